@@ -1,0 +1,247 @@
+#include "talus/core/esri_ascii.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string_view>
+
+#include "talus/core/error.hpp"
+
+namespace talus {
+namespace {
+
+/// Splits text into whitespace-separated tokens, remembering each one's line.
+class Tokenizer {
+ public:
+  explicit Tokenizer(std::string_view text) : text_(text) {}
+
+  /// Next token, or nullopt at the end of the text.
+  std::optional<std::string_view> next() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+      if (text_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+    if (pos_ >= text_.size()) return std::nullopt;
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    token_line_ = line_;
+    return text_.substr(start, pos_ - start);
+  }
+  std::size_t line() const { return token_line_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t line_ = 1;
+  std::size_t token_line_ = 1;
+};
+
+[[noreturn]] void fail(const std::string& source, std::size_t line, const std::string& what) {
+  throw InputError(source + ":" + std::to_string(line) + ": " + what);
+}
+
+std::optional<double> parse_number(std::string_view token) {
+  double value = 0.0;
+  const char* first = token.data();
+  const char* last = token.data() + token.size();
+  if (first != last && *first == '+') ++first;  // from_chars rejects a leading '+'
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  if (ec != std::errc() || ptr != last) return std::nullopt;
+  return value;
+}
+
+bool starts_like_number(std::string_view token) {
+  const char c = token.front();
+  return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return out;
+}
+
+struct Header {
+  std::map<std::string, double> values;
+  std::map<std::string, std::size_t> lines;
+};
+
+Header read_header(Tokenizer& tokens, const std::string& source, std::optional<std::string_view>& first_data) {
+  static const char* const kKnown[] = {"ncols",     "nrows",     "xllcorner", "xllcenter",
+                                       "yllcorner", "yllcenter", "cellsize",  "nodata_value"};
+  Header header;
+  while (true) {
+    auto token = tokens.next();
+    if (!token) {
+      if (header.values.empty()) fail(source, tokens.line(), "empty file: not an ESRI ASCII grid");
+      fail(source, tokens.line(), "file ends inside the header: no elevation values");
+    }
+    if (starts_like_number(*token)) {
+      first_data = token;
+      return header;
+    }
+    const std::string key = lower(*token);
+    const std::size_t line = tokens.line();
+    if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown)) {
+      fail(source, line,
+           "unknown header key '" + std::string(*token) +
+               "' (expected ncols, nrows, xllcorner|xllcenter, yllcorner|yllcenter, cellsize, "
+               "NODATA_value): not an ESRI ASCII grid?");
+    }
+    if (header.values.count(key)) fail(source, line, "header key '" + key + "' appears twice");
+    auto value_token = tokens.next();
+    if (!value_token || tokens.line() != line) fail(source, line, "header key '" + key + "' has no value");
+    const auto value = parse_number(*value_token);
+    if (!value || !std::isfinite(*value)) {
+      fail(source, line,
+           "header key '" + key + "' has value '" + std::string(*value_token) +
+               "', expected a finite number");
+    }
+    header.values[key] = *value;
+    header.lines[key] = line;
+  }
+}
+
+std::size_t positive_count(const Header& header, const std::string& key, const std::string& source) {
+  const double v = header.values.at(key);
+  if (v < 2 || v != std::floor(v) || v > 1e8) {
+    fail(source, header.lines.at(key),
+         key + " must be an integer >= 2, got " + std::to_string(v));
+  }
+  return static_cast<std::size_t>(v);
+}
+
+double corner_or_centre(const Header& header, const std::string& axis, double cellsize,
+                        const std::string& source) {
+  const std::string corner = axis + "llcorner", centre = axis + "llcenter";
+  const bool has_corner = header.values.count(corner) != 0;
+  const bool has_centre = header.values.count(centre) != 0;
+  if (has_corner && has_centre) {
+    fail(source, header.lines.at(centre), "both " + corner + " and " + centre + " are given");
+  }
+  if (has_corner) return header.values.at(corner) + 0.5 * cellsize;
+  if (has_centre) return header.values.at(centre);
+  fail(source, 1, "missing header key " + corner + " (or " + centre + ")");
+}
+
+}  // namespace
+
+ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) {
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  Tokenizer tokens(text);
+  std::optional<std::string_view> token;
+  const Header header = read_header(tokens, source_name, token);
+
+  for (const char* key : {"ncols", "nrows", "cellsize"}) {
+    if (!header.values.count(key)) fail(source_name, 1, std::string("missing header key ") + key);
+  }
+  const std::size_t ncols = positive_count(header, "ncols", source_name);
+  const std::size_t nrows = positive_count(header, "nrows", source_name);
+  const double cellsize = header.values.at("cellsize");
+  if (!(cellsize > 0.0)) {
+    fail(source_name, header.lines.at("cellsize"),
+         "cellsize must be positive, got " + std::to_string(cellsize));
+  }
+  const double x_min = corner_or_centre(header, "x", cellsize, source_name);
+  const double y_min = corner_or_centre(header, "y", cellsize, source_name);
+  const bool has_nodata = header.values.count("nodata_value") != 0;
+  const double nodata = has_nodata ? header.values.at("nodata_value") : 0.0;
+
+  ElevationGrid grid(ncols, nrows, cellsize, x_min, y_min);
+  const std::size_t expected = ncols * nrows;
+  std::size_t count = 0;
+  // Rows are expected one per line; a file that wraps rows over several lines
+  // is accepted as long as the total count is right.
+  std::map<std::size_t, std::size_t> per_line;
+  for (; token; token = tokens.next()) {
+    const std::size_t line = tokens.line();
+    if (count == expected) {
+      fail(source_name, line,
+           "more values than ncols x nrows = " + std::to_string(expected) + " (extra token '" +
+               std::string(*token) + "')");
+    }
+    const auto value = parse_number(*token);
+    if (!value) {
+      fail(source_name, line, "value '" + std::string(*token) + "' is not a number");
+    }
+    if (!std::isfinite(*value)) {
+      fail(source_name, line, "value '" + std::string(*token) + "' is not finite (NaN/Inf are not "
+                              "allowed; use NODATA_value for voids)");
+    }
+    const std::size_t row_from_north = count / ncols;
+    const std::size_t i = count % ncols;
+    const std::size_t j = nrows - 1 - row_from_north;
+    if (has_nodata && *value == nodata) {
+      grid.set_void(i, j);
+    } else {
+      grid.at(i, j) = *value;
+    }
+    ++per_line[line];
+    ++count;
+  }
+  if (count < expected) {
+    fail(source_name, tokens.line(),
+         "file ends after " + std::to_string(count) + " values, expected ncols x nrows = " +
+             std::to_string(ncols) + " x " + std::to_string(nrows) + " = " +
+             std::to_string(expected));
+  }
+  if (per_line.size() == nrows) {
+    for (const auto& [line, n] : per_line) {
+      if (n != ncols) {
+        fail(source_name, line,
+             "row has " + std::to_string(n) + " values, expected ncols = " + std::to_string(ncols));
+      }
+    }
+  }
+  return grid;
+}
+
+ElevationGrid read_esri_ascii(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open file for reading");
+  return read_esri_ascii(in, path);
+}
+
+void write_esri_ascii(const ElevationGrid& grid, std::ostream& out, double nodata_value) {
+  out << std::setprecision(17);
+  out << "ncols " << grid.ncols() << "\nnrows " << grid.nrows() << "\nxllcorner "
+      << grid.x_min() - 0.5 * grid.cellsize() << "\nyllcorner "
+      << grid.y_min() - 0.5 * grid.cellsize() << "\ncellsize " << grid.cellsize()
+      << "\nNODATA_value " << nodata_value << "\n";
+  char buffer[64];
+  for (std::size_t r = 0; r < grid.nrows(); ++r) {
+    const std::size_t j = grid.nrows() - 1 - r;
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      const double z = grid.valid(i, j) ? grid.at(i, j) : nodata_value;
+      if (grid.valid(i, j) && z == nodata_value) {
+        throw InputError("cannot write grid: node (" + std::to_string(i) + ", " +
+                         std::to_string(j) + ") has the NODATA value as its elevation");
+      }
+      // Shortest representation that round-trips exactly.
+      const auto result = std::to_chars(buffer, buffer + sizeof buffer, z);
+      if (i) out << ' ';
+      out.write(buffer, result.ptr - buffer);
+    }
+    out << '\n';
+  }
+  if (!out) throw InputError("write failed while writing an ESRI ASCII grid");
+}
+
+void write_esri_ascii(const ElevationGrid& grid, const std::string& path, double nodata_value) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(path + ": cannot open file for writing");
+  write_esri_ascii(grid, out, nodata_value);
+  out.close();
+  if (!out) throw InputError(path + ": write failed");
+}
+
+}  // namespace talus

@@ -3,6 +3,7 @@
 /// Fixed-size Eigen aliases for the geometry used throughout Talus. All
 /// lengths are metres; frames are x east, y north, z up.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace talus {
 

@@ -1,0 +1,89 @@
+#pragma once
+/// @file
+/// BPatch: the smooth terrain surface z(x, y), a bicubic tensor-product
+/// B-spline over an elevation grid.
+///
+/// The knots are uniform at the grid's node spacing h, so the surface has
+/// (ncols + 2) × (nrows + 2) control points and is C² everywhere; its domain
+/// is the grid's node rectangle [x_min, x_max] × [y_min, y_max]. Two fits:
+/// - interpolate(): exact at every node; the two extra conditions per row and
+///   column are "not-a-knot" (no jump of the third derivative at the second
+///   and second-to-last knot), so any bicubic polynomial is reproduced exactly.
+/// - fit_smoothing(): least squares on the valid nodes plus λ times the
+///   thin-plate curvature energy ∫∫ (z_uu² + 2 z_uv² + z_vv²) du dv measured in
+///   grid-index units u = (x - x_min)/h, v = (y - y_min)/h. Both terms are in
+///   m², so λ is dimensionless: λ = 1 smooths over about one cell on any grid.
+///   Solved as one sparse SPD system with SuiteSparse CHOLMOD.
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "talus/core/elevation_grid.hpp"
+#include "talus/core/types.hpp"
+
+namespace talus {
+
+/// Elevation and its first and second derivatives at one point.
+struct SurfacePoint {
+  double z = 0.0;                  ///< elevation [m]
+  Vec2 gradient = Vec2::Zero();    ///< (z_x, z_y) [-]
+  Mat2 hessian = Mat2::Zero();     ///< [[z_xx, z_xy], [z_xy, z_yy]] [1/m]
+};
+
+/// How fit_smoothing() and interpolate() treat NODATA nodes.
+struct BPatchFitReport {
+  double max_node_residual = 0.0;  ///< max |z(node) - data| over valid nodes [m]
+  double rms_residual = 0.0;       ///< RMS of the same [m]
+  std::size_t voids = 0;           ///< NODATA nodes (excluded from the fit)
+};
+
+class BPatch {
+ public:
+  /// Interpolating fit. A grid with NODATA nodes is an InputError naming the
+  /// first one; fill it first (fill_voids) if that is what you want.
+  /// Needs at least 4 × 4 nodes.
+  static BPatch interpolate(const ElevationGrid& grid);
+  /// Smoothing fit with curvature weight lambda > 0 (see the file comment);
+  /// NODATA nodes are left out of the data term. Throws InputError for
+  /// lambda <= 0 or fewer than 3 valid nodes, SolverError if CHOLMOD fails.
+  static BPatch fit_smoothing(const ElevationGrid& grid, double lambda);
+
+  double x_min() const { return x_min_; }
+  double y_min() const { return y_min_; }
+  double x_max() const { return x_min_ + static_cast<double>(ncols_ - 1) * h_; }
+  double y_max() const { return y_min_ + static_cast<double>(nrows_ - 1) * h_; }
+  double cellsize() const { return h_; }
+  std::size_t ncols() const { return ncols_; }
+  std::size_t nrows() const { return nrows_; }
+  /// Number of bicubic pieces, (ncols - 1) (nrows - 1).
+  std::size_t patches() const { return (ncols_ - 1) * (nrows_ - 1); }
+  /// (ncols + 2) × (nrows + 2) control values, entry (a, b) weighting the basis
+  /// functions centred on node (a - 1, b - 1).
+  const Eigen::MatrixXd& control_points() const { return control_; }
+
+  bool contains(const Vec2& p) const;
+  /// False where the source grid had a NODATA node at a corner of p's cell:
+  /// the surface there is extrapolated by the fit, not measured.
+  bool on_data(const Vec2& p) const;
+
+  /// z at p. Throws InputError if p is outside the domain or not finite.
+  double elevation(const Vec2& p) const;
+  /// z, gradient and Hessian at p, O(1), no allocation. Throws InputError if
+  /// p is outside the domain or not finite.
+  SurfacePoint evaluate(const Vec2& p) const;
+
+  /// Residuals of the surface at the valid nodes of `grid` (same geometry).
+  BPatchFitReport residuals(const ElevationGrid& grid) const;
+
+ private:
+  BPatch(const ElevationGrid& grid, Eigen::MatrixXd control);
+  void locate(const Vec2& p, std::size_t& i, std::size_t& j, double& tu, double& tv) const;
+
+  std::size_t ncols_ = 0, nrows_ = 0;
+  double h_ = 1.0, x_min_ = 0.0, y_min_ = 0.0;
+  Eigen::MatrixXd control_;
+  std::vector<unsigned char> cell_on_data_;  ///< per cell, (ncols-1) × (nrows-1)
+};
+
+}  // namespace talus

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Talus needs (see /work/shared/docs/BUILDING.md).
+# Skips apt entirely when every package is already installed, so re-runs are fast.
+# Usage: bash scripts/setup.sh      (as root, or with sudo available)
+set -euo pipefail
+
+packages=(
+  libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev libnlopt-dev libsundials-dev
+  libsuitesparse-dev libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
+  libyaml-cpp-dev gnuplot-nox pkg-config cmake g++ make
+)
+
+if ! command -v dpkg-query >/dev/null 2>&1 || ! command -v apt-get >/dev/null 2>&1; then
+  echo "setup.sh: dpkg-query/apt-get not found; this script supports Debian 12 only." >&2
+  exit 1
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Abbrev}' "$p" 2>/dev/null || true)
+  [[ "$status" == ii* ]] || missing+=("$p")
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "setup.sh: all ${#packages[@]} required packages are installed."
+  exit 0
+fi
+
+echo "setup.sh: installing ${#missing[@]} missing package(s): ${missing[*]}"
+if [[ $(id -u) -eq 0 ]]; then
+  sudo=()
+elif command -v sudo >/dev/null 2>&1; then
+  sudo=(sudo)
+else
+  echo "setup.sh: need root to install ${missing[*]} (run as root or install sudo)." >&2
+  exit 1
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+apt=("${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=300)
+if ! "${apt[@]}" update; then
+  echo "setup.sh: 'apt-get update' failed." >&2
+  exit 1
+fi
+if ! "${apt[@]}" install -y --no-install-recommends "${packages[@]}"; then
+  echo "setup.sh: 'apt-get install' failed for: ${packages[*]}" >&2
+  exit 1
+fi
+
+# Verify: fail loudly if anything is still missing.
+still=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Abbrev}' "$p" 2>/dev/null || true)
+  [[ "$status" == ii* ]] || still+=("$p")
+done
+if [[ ${#still[@]} -ne 0 ]]; then
+  echo "setup.sh: still not installed after apt-get: ${still[*]}" >&2
+  exit 1
+fi
+echo "setup.sh: done."

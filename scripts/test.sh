@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Builds Talus and runs the whole test suite.
+# Usage: bash scripts/test.sh              Release build in build/
+#        bash scripts/test.sh --sanitize   ASan+UBSan build in build-sanitize/
+set -euo pipefail
+
+usage() { echo "usage: $0 [--sanitize]" >&2; exit 2; }
+
+sanitize=0
+for arg in "$@"; do
+  case "$arg" in
+    --sanitize) sanitize=1 ;;
+    -h|--help) usage ;;
+    *) echo "test.sh: unknown argument '$arg'" >&2; usage ;;
+  esac
+done
+
+repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$repo_root"
+
+bash scripts/setup.sh
+
+jobs=$(nproc)
+if [[ $sanitize -eq 1 ]]; then
+  build_dir=build-sanitize
+  export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  cmake -S . -B "$build_dir" -DTALUS_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DTALUS_BUILD_BENCHMARKS=OFF
+else
+  build_dir=build
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
+fi
+
+cmake --build "$build_dir" -j"$jobs"
+ctest --test-dir "$build_dir" --output-on-failure

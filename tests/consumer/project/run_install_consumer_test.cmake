@@ -1,0 +1,91 @@
+# CTest driver for InstallConsumer.BuildsAgainstInstalledPackage (registered in
+# tests/consumer/CMakeLists.txt). Not part of the consumer project's build.
+#
+# cmake -DTALUS_BUILD_DIR=... -DCONSUMER_SOURCE_DIR=... -DINSTALL_PREFIX=...
+#       -DCONSUMER_BUILD_DIR=... -DCONFIG=... -DGENERATOR=... -DCXX_COMPILER=...
+#       [-DMAKE_PROGRAM=...] [-DEXTRA_CXX_FLAGS=...] -P run_install_consumer_test.cmake
+#
+# (a) installs the Talus build tree into a fresh prefix, (b) configures the
+# consumer project against that prefix only, (c) builds it, (d) runs it.
+cmake_minimum_required(VERSION 3.25)
+
+foreach(var TALUS_BUILD_DIR CONSUMER_SOURCE_DIR INSTALL_PREFIX CONSUMER_BUILD_DIR GENERATOR)
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
+    message(FATAL_ERROR "run_install_consumer_test.cmake: ${var} is not set")
+  endif()
+endforeach()
+
+function(run_step name)
+  message(STATUS "---- ${name}: ${ARGN}")
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rv)
+  if(NOT rv EQUAL 0)
+    message(FATAL_ERROR "InstallConsumer: step '${name}' failed (${rv}): ${ARGN}")
+  endif()
+endfunction()
+
+# Start clean each run.
+file(REMOVE_RECURSE "${INSTALL_PREFIX}" "${CONSUMER_BUILD_DIR}")
+
+set(config_args)
+if(CONFIG)
+  set(config_args --config ${CONFIG})
+endif()
+
+# (a) install
+run_step(install ${CMAKE_COMMAND} --install ${TALUS_BUILD_DIR} --prefix ${INSTALL_PREFIX} ${config_args})
+file(GLOB_RECURSE talus_config "${INSTALL_PREFIX}/*/talusConfig.cmake")
+if(NOT talus_config)
+  message(FATAL_ERROR "InstallConsumer: no talusConfig.cmake under ${INSTALL_PREFIX} after install")
+endif()
+
+# (b) configure, seeing only the fresh prefix (no package registries)
+set(configure_args
+  -S ${CONSUMER_SOURCE_DIR} -B ${CONSUMER_BUILD_DIR} -G ${GENERATOR}
+  -DCMAKE_PREFIX_PATH=${INSTALL_PREFIX}
+  -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
+  -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF)
+if(CONFIG)
+  list(APPEND configure_args -DCMAKE_BUILD_TYPE=${CONFIG})
+endif()
+if(CXX_COMPILER)
+  list(APPEND configure_args -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
+endif()
+if(MAKE_PROGRAM)
+  list(APPEND configure_args -DCMAKE_MAKE_PROGRAM=${MAKE_PROGRAM})
+endif()
+if(EXTRA_CXX_FLAGS)
+  # e.g. the sanitizer flags: an instrumented static libtalus_core needs the
+  # sanitizer runtime in the final link.
+  list(APPEND configure_args "-DCMAKE_CXX_FLAGS=${EXTRA_CXX_FLAGS}"
+                             "-DCMAKE_EXE_LINKER_FLAGS=${EXTRA_CXX_FLAGS}")
+endif()
+run_step(configure ${CMAKE_COMMAND} ${configure_args})
+
+# The consumer must have found *this* install, not some other talus.
+file(STRINGS "${CONSUMER_BUILD_DIR}/CMakeCache.txt" talus_dir_line REGEX "^talus_DIR:")
+string(REGEX REPLACE "^talus_DIR:[A-Z]+=" "" talus_dir "${talus_dir_line}")
+file(REAL_PATH "${INSTALL_PREFIX}" prefix_real)
+if(talus_dir)
+  file(REAL_PATH "${talus_dir}" talus_dir)
+endif()
+string(FIND "${talus_dir}/" "${prefix_real}/" at)
+if(NOT at EQUAL 0)
+  message(FATAL_ERROR "InstallConsumer: consumer found talus in '${talus_dir}', not under ${prefix_real}")
+endif()
+
+# (c) build
+run_step(build ${CMAKE_COMMAND} --build ${CONSUMER_BUILD_DIR} ${config_args})
+
+# (d) run
+set(exe "")
+foreach(candidate "${CONSUMER_BUILD_DIR}/talus_consumer" "${CONSUMER_BUILD_DIR}/${CONFIG}/talus_consumer")
+  if(EXISTS "${candidate}" AND NOT IS_DIRECTORY "${candidate}")
+    set(exe "${candidate}")
+    break()
+  endif()
+endforeach()
+if(NOT exe)
+  message(FATAL_ERROR "InstallConsumer: talus_consumer executable not found in ${CONSUMER_BUILD_DIR}")
+endif()
+run_step(run ${exe})
+message(STATUS "InstallConsumer: OK")

@@ -1,0 +1,185 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/esri_ascii.hpp"
+
+namespace talus {
+namespace {
+
+using Field = std::function<double(double, double)>;
+
+ElevationGrid sample(const Field& f, std::size_t nc, std::size_t nr, double h, double x0 = 3.0,
+                     double y0 = -2.0) {
+  ElevationGrid grid(nc, nr, h, x0, y0);
+  for (std::size_t j = 0; j < nr; ++j)
+    for (std::size_t i = 0; i < nc; ++i) {
+      const Vec2 p = grid.node_position(i, j);
+      grid.at(i, j) = f(p.x(), p.y());
+    }
+  return grid;
+}
+
+// A full bicubic polynomial (all 16 monomials x^a y^b, a, b <= 3).
+double bicubic(double x, double y) {
+  const double c[4][4] = {{1.0, -0.5, 0.2, 0.01}, {0.3, 0.07, -0.02, 0.003},
+                          {-0.04, 0.01, 0.005, -0.001}, {0.002, -0.0007, 0.0003, 0.0001}};
+  double z = 0.0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) z += c[a][b] * std::pow(x, a) * std::pow(y, b);
+  return z;
+}
+
+TEST(BPatch, InterpolationIsExactAtEveryNode) {
+  const ElevationGrid grid = sample([](double x, double y) { return std::sin(x) * std::cos(0.7 * y) + 0.1 * x; }, 23, 17, 0.4);
+  const BPatch patch = BPatch::interpolate(grid);
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i)
+      EXPECT_NEAR(patch.elevation(grid.node_position(i, j)), grid.at(i, j), 1e-12);
+  EXPECT_LT(patch.residuals(grid).max_node_residual, 1e-12);
+  EXPECT_EQ(patch.patches(), 22u * 16u);
+}
+
+TEST(BPatch, InterpolationReproducesBicubicPolynomialsWithDerivatives) {
+  const ElevationGrid grid = sample(bicubic, 12, 9, 0.5);
+  const BPatch patch = BPatch::interpolate(grid);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> ux(patch.x_min(), patch.x_max()),
+      uy(patch.y_min(), patch.y_max());
+  for (int k = 0; k < 200; ++k) {
+    const double x = ux(rng), y = uy(rng), e = 1e-4;
+    const SurfacePoint sp = patch.evaluate({x, y});
+    EXPECT_NEAR(sp.z, bicubic(x, y), 1e-10);
+    // Derivatives of the exact polynomial by central differences (exact up to O(e^2) on a cubic).
+    const double zx = (bicubic(x + e, y) - bicubic(x - e, y)) / (2 * e);
+    const double zy = (bicubic(x, y + e) - bicubic(x, y - e)) / (2 * e);
+    const double zxx = (bicubic(x + e, y) - 2 * bicubic(x, y) + bicubic(x - e, y)) / (e * e);
+    const double zyy = (bicubic(x, y + e) - 2 * bicubic(x, y) + bicubic(x, y - e)) / (e * e);
+    const double zxy = (bicubic(x + e, y + e) - bicubic(x + e, y - e) - bicubic(x - e, y + e) +
+                        bicubic(x - e, y - e)) / (4 * e * e);
+    EXPECT_NEAR(sp.gradient.x(), zx, 1e-6);
+    EXPECT_NEAR(sp.gradient.y(), zy, 1e-6);
+    EXPECT_NEAR(sp.hessian(0, 0), zxx, 1e-4);
+    EXPECT_NEAR(sp.hessian(1, 1), zyy, 1e-4);
+    EXPECT_NEAR(sp.hessian(0, 1), zxy, 1e-4);
+    EXPECT_EQ(sp.hessian(0, 1), sp.hessian(1, 0));
+  }
+}
+
+TEST(BPatch, DerivativesMatchFiniteDifferencesOnARealDem) {
+  const ElevationGrid grid =
+      read_esri_ascii(std::string(TALUS_DATA_DIR) + "/terrain/west_bijou_escarpment_nasadem25m.asc");
+  const BPatch patch = BPatch::interpolate(grid);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> ux(patch.x_min() + 1, patch.x_max() - 1),
+      uy(patch.y_min() + 1, patch.y_max() - 1);
+  for (int k = 0; k < 100; ++k) {
+    const Vec2 p(ux(rng), uy(rng));
+    const double e = 1e-3;
+    const SurfacePoint sp = patch.evaluate(p);
+    const SurfacePoint px = patch.evaluate(p + Vec2(e, 0)), mx = patch.evaluate(p - Vec2(e, 0));
+    const SurfacePoint py = patch.evaluate(p + Vec2(0, e)), my = patch.evaluate(p - Vec2(0, e));
+    EXPECT_NEAR(sp.gradient.x(), (px.z - mx.z) / (2 * e), 1e-6);
+    EXPECT_NEAR(sp.gradient.y(), (py.z - my.z) / (2 * e), 1e-6);
+    EXPECT_NEAR(sp.hessian(0, 0), (px.gradient.x() - mx.gradient.x()) / (2 * e), 1e-6);
+    EXPECT_NEAR(sp.hessian(0, 1), (py.gradient.x() - my.gradient.x()) / (2 * e), 1e-6);
+    EXPECT_NEAR(sp.hessian(1, 1), (py.gradient.y() - my.gradient.y()) / (2 * e), 1e-6);
+    EXPECT_DOUBLE_EQ(patch.elevation(p), sp.z);
+  }
+}
+
+TEST(BPatch, SurfaceIsTwiceContinuouslyDifferentiableAcrossCellEdges) {
+  const ElevationGrid grid = sample([](double x, double y) { return std::exp(-0.1 * (x * x + y * y)); }, 15, 15, 0.7, -5, -5);
+  const BPatch patch = BPatch::interpolate(grid);
+  const double edge = grid.node_position(6, 0).x(), e = 1e-9;
+  for (double y : {-4.0, -1.3, 0.2, 3.9}) {
+    const SurfacePoint left = patch.evaluate({edge - e, y}), right = patch.evaluate({edge + e, y});
+    EXPECT_NEAR(left.z, right.z, 1e-8);
+    EXPECT_NEAR(left.gradient.x(), right.gradient.x(), 1e-7);
+    EXPECT_NEAR(left.hessian(0, 0), right.hessian(0, 0), 1e-6);
+  }
+}
+
+TEST(BPatch, PointsOffTheMapAreInputErrors) {
+  const BPatch patch = BPatch::interpolate(sample(bicubic, 6, 6, 1.0, 0.0, 0.0));
+  EXPECT_NO_THROW(patch.evaluate({5.0, 5.0}));  // the far corner is in the domain
+  EXPECT_THROW(patch.evaluate({5.01, 2.0}), InputError);
+  EXPECT_THROW(patch.evaluate({2.0, -0.01}), InputError);
+  EXPECT_THROW(patch.elevation({std::nan(""), 2.0}), InputError);
+  EXPECT_THROW(patch.evaluate({2.0, std::numeric_limits<double>::infinity()}), InputError);
+}
+
+TEST(BPatch, InterpolationRejectsVoidsAndTinyGrids) {
+  ElevationGrid grid = sample(bicubic, 8, 8, 1.0);
+  grid.set_void(3, 5);
+  try {
+    BPatch::interpolate(grid);
+    ADD_FAILURE() << "voids accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("column 3, row 5"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(BPatch::interpolate(fill_voids(grid, VoidFill::kNearest)));
+  EXPECT_THROW(BPatch::interpolate(sample(bicubic, 3, 8, 1.0)), InputError);
+}
+
+TEST(BPatchSmoothing, ReproducesAPlaneExactlyForAnyLambda) {
+  // Planes carry no curvature energy, so the smoothing fit must return them.
+  const auto plane = [](double x, double y) { return 2.0 + 0.3 * x - 0.8 * y; };
+  const ElevationGrid grid = sample(plane, 20, 14, 2.0);
+  for (double lambda : {1e-3, 1.0, 1e3}) {
+    const BPatch patch = BPatch::fit_smoothing(grid, lambda);
+    EXPECT_LT(patch.residuals(grid).max_node_residual, 1e-8) << lambda;
+    const SurfacePoint sp = patch.evaluate({17.3, 9.1});
+    EXPECT_NEAR(sp.gradient.x(), 0.3, 1e-9);
+    EXPECT_NEAR(sp.gradient.y(), -0.8, 1e-9);
+  }
+}
+
+TEST(BPatchSmoothing, LargerLambdaSmoothsMoreAndSmallLambdaApproachesInterpolation) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  ElevationGrid grid = sample([](double x, double y) { return std::sin(0.3 * x) + std::cos(0.2 * y); }, 30, 25, 1.0);
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i) grid.at(i, j) += noise(rng);
+  double previous = 0.0;
+  for (double lambda : {1e-6, 1e-2, 1.0, 100.0}) {
+    const double rms = BPatch::fit_smoothing(grid, lambda).residuals(grid).rms_residual;
+    EXPECT_GT(rms, previous) << lambda;
+    previous = rms;
+  }
+  EXPECT_LT(BPatch::fit_smoothing(grid, 1e-8).residuals(grid).max_node_residual, 1e-3);
+}
+
+TEST(BPatchSmoothing, IgnoresVoidsAndFillsThemSmoothly) {
+  const auto quad = [](double x, double y) { return 0.01 * x * x + 0.5 * y; };
+  ElevationGrid grid = sample(quad, 16, 16, 1.0);
+  for (std::size_t i = 6; i < 10; ++i)
+    for (std::size_t j = 6; j < 10; ++j) grid.set_void(i, j);
+  const BPatch patch = BPatch::fit_smoothing(grid, 1e-4);
+  const BPatchFitReport report = patch.residuals(grid);
+  EXPECT_EQ(report.voids, 16u);
+  EXPECT_LT(report.max_node_residual, 1e-3);
+  const Vec2 hole = grid.node_position(8, 8);
+  EXPECT_NEAR(patch.elevation(hole), quad(hole.x(), hole.y()), 0.05);
+  EXPECT_FALSE(patch.on_data(hole));
+  EXPECT_TRUE(patch.on_data(grid.node_position(1, 1) + Vec2(0.5, 0.5)));
+}
+
+TEST(BPatchSmoothing, RejectsBadLambdaAndTooFewNodes) {
+  const ElevationGrid grid = sample(bicubic, 8, 8, 1.0);
+  EXPECT_THROW(BPatch::fit_smoothing(grid, 0.0), InputError);
+  EXPECT_THROW(BPatch::fit_smoothing(grid, -1.0), InputError);
+  EXPECT_THROW(BPatch::fit_smoothing(grid, std::nan("")), InputError);
+  ElevationGrid empty = grid;
+  for (std::size_t j = 0; j < 8; ++j)
+    for (std::size_t i = 0; i < 8; ++i)
+      if (i + j > 0) empty.set_void(i, j);
+  EXPECT_THROW(BPatch::fit_smoothing(empty, 1.0), InputError);
+}
+
+}  // namespace
+}  // namespace talus

@@ -1,0 +1,197 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include "talus/bspline/surface_path.hpp"
+#include "talus/core/error.hpp"
+
+namespace talus {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+ElevationGrid sample(const std::function<double(double, double)>& f, double half_width, double h) {
+  const auto n = static_cast<std::size_t>(std::lround(2 * half_width / h)) + 1;
+  ElevationGrid grid(n, n, h, -half_width, -half_width);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 p = grid.node_position(i, j);
+      grid.at(i, j) = f(p.x(), p.y());
+    }
+  return grid;
+}
+
+Curve2 circle(const Vec2& centre, double a, double b, int points = 400) {
+  // Closed ellipse (semi-axes a along x, b along y), counter-clockwise.
+  std::vector<Vec2> pts;
+  for (int k = 0; k <= points; ++k) {
+    const double th = 2 * kPi * k / points;
+    pts.push_back(centre + Vec2(a * std::cos(th), b * std::sin(th)));
+  }
+  return Curve2::interpolate(pts);
+}
+
+Curve2 segment(const Vec2& a, const Vec2& b) { return Curve2::interpolate({a, b}); }
+
+/// Exact derivatives of the spherical cap z = sqrt(R^2 - x^2 - y^2).
+SurfacePoint sphere_point(double R, const Vec2& p) {
+  const double w = std::sqrt(R * R - p.squaredNorm()), w3 = w * w * w;
+  SurfacePoint sp;
+  sp.z = w;
+  sp.gradient = -p / w;
+  sp.hessian << -(R * R - p.y() * p.y()) / w3, -p.x() * p.y() / w3, -p.x() * p.y() / w3,
+      -(R * R - p.x() * p.x()) / w3;
+  return sp;
+}
+
+TEST(SurfaceFrame, SphereNormalCurvatureIsMinusOneOverRInEveryDirection) {
+  const double R = 7.0;
+  for (const Vec2& p : {Vec2(0, 0), Vec2(1.5, -2.0), Vec2(-3.0, 4.0)}) {
+    for (double heading = 0; heading < 2 * kPi; heading += 0.4) {
+      const Vec2 d1(std::cos(heading), std::sin(heading));
+      for (const Vec2& d2 : {Vec2(0, 0), Vec2(0.3, -1.1)}) {
+        const PathFrame f = lift_to_surface(p, sphere_point(R, p), d1, d2);
+        EXPECT_NEAR(f.kappa_n, -1.0 / R, 1e-12);
+        EXPECT_NEAR(f.tangent.dot(f.normal), 0.0, 1e-14);
+        EXPECT_NEAR(f.lateral.norm(), 1.0, 1e-14);
+        EXPECT_NEAR(f.k_t * f.k_t + f.k_q * f.k_q + f.k_r * f.k_r, 1.0, 1e-14);
+        EXPECT_GT(f.k_r, 0.0);
+      }
+    }
+  }
+}
+
+TEST(SurfaceFrame, CircleInATiltedPlaneHasGeodesicCurvatureOneOverRadius) {
+  // Plane z = tan(alpha) x; a circle of radius rho lying in it projects onto
+  // the ellipse x = rho cos(alpha) cos(th), y = rho sin(th).
+  const double alpha = 0.4, rho = 3.0, c = std::cos(alpha);
+  SurfacePoint plane;
+  plane.gradient = Vec2(std::tan(alpha), 0.0);
+  for (double th = 0; th < 2 * kPi; th += 0.3) {
+    const Vec2 p(rho * c * std::cos(th), rho * std::sin(th));
+    const Vec2 d1(-rho * c * std::sin(th), rho * std::cos(th));
+    const Vec2 d2(-rho * c * std::cos(th), -rho * std::sin(th));
+    const PathFrame f = lift_to_surface(p, plane, d1, d2);
+    EXPECT_NEAR(f.kappa_g, 1.0 / rho, 1e-12) << th;
+    EXPECT_NEAR(f.kappa_n, 0.0, 1e-12) << th;
+    // k_t is the sine of the path's climb angle: dz/ds along the plane.
+    EXPECT_NEAR(f.k_t, std::tan(alpha) * d1.x() / std::hypot(d1.norm(), std::tan(alpha) * d1.x()),
+                1e-12);
+  }
+}
+
+TEST(SurfaceFrame, ZeroPlanarVelocityIsAnInputError) {
+  EXPECT_THROW(lift_to_surface(Vec2::Zero(), SurfacePoint{}, Vec2::Zero(), Vec2(1, 0)), InputError);
+}
+
+TEST(SurfacePath, FlatCircleHasGeodesicCurvatureOneOverRadiusAndLengthTwoPiR) {
+  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 5.0; }, 10, 1.0));
+  const double r = 4.0;
+  const SurfacePath path(flat, circle(Vec2(0.5, -0.5), r, r));
+  EXPECT_NEAR(path.length(), 2 * kPi * r, 1e-6);
+  for (const PathFrame& f : path.sample(37)) {
+    EXPECT_NEAR(f.kappa_g, 1.0 / r, 1e-4);
+    EXPECT_NEAR(f.kappa_n, 0.0, 1e-12);
+    EXPECT_NEAR(f.k_r, 1.0, 1e-12);
+    EXPECT_NEAR(f.k_t, 0.0, 1e-12);
+    EXPECT_NEAR(f.k_q, 0.0, 1e-12);
+    EXPECT_NEAR(f.point.z(), 5.0, 1e-12);
+  }
+}
+
+TEST(SurfacePath, CircleInATiltedPlaneOnAFittedPatch) {
+  const double alpha = 0.35, rho = 5.0;
+  const BPatch plane =
+      BPatch::interpolate(sample([&](double x, double) { return std::tan(alpha) * x; }, 10, 0.5));
+  const SurfacePath path(plane, circle(Vec2::Zero(), rho * std::cos(alpha), rho));
+  EXPECT_NEAR(path.length(), 2 * kPi * rho, 1e-5);
+  for (const PathFrame& f : path.sample(25)) {
+    EXPECT_NEAR(f.kappa_g, 1.0 / rho, 1e-4);
+    EXPECT_NEAR(f.kappa_n, 0.0, 1e-9);
+    EXPECT_NEAR(f.k_r, std::cos(alpha), 1e-12);
+  }
+}
+
+TEST(SurfacePath, StraightLineUpAPlaneHasSlopeComponents) {
+  const double alpha = 0.3;
+  const BPatch plane =
+      BPatch::interpolate(sample([&](double x, double) { return std::tan(alpha) * x; }, 10, 1.0));
+  const SurfacePath up(plane, segment({-8, 1}, {8, 1}));
+  EXPECT_NEAR(up.length(), 16.0 / std::cos(alpha), 1e-9);
+  const PathFrame f = up.frame_at_arc_length(3.0);
+  EXPECT_NEAR(f.k_t, std::sin(alpha), 1e-12);  // uphill: k_t > 0
+  EXPECT_NEAR(f.k_q, 0.0, 1e-12);
+  EXPECT_NEAR(f.k_r, std::cos(alpha), 1e-12);
+  EXPECT_NEAR(f.kappa_n, 0.0, 1e-12);
+  EXPECT_NEAR(f.kappa_g, 0.0, 1e-12);
+  EXPECT_NEAR(f.s, 3.0, 1e-12);
+  // Across the slope heading north, the ground rises to the right (east): k_q < 0.
+  const PathFrame across = SurfacePath(plane, segment({2, -8}, {2, 8})).frame_at_arc_length(4.0);
+  EXPECT_NEAR(across.k_q, -std::sin(alpha), 1e-12);
+  EXPECT_NEAR(across.k_t, 0.0, 1e-12);
+}
+
+TEST(SurfacePath, SphereCapOnAFittedPatch) {
+  const double R = 40.0;
+  const BPatch cap = BPatch::interpolate(
+      sample([&](double x, double y) { return std::sqrt(R * R - x * x - y * y); }, 12, 0.25));
+  const double a = 6.0;  // planar radius of a circle of latitude
+  const SurfacePath path(cap, circle(Vec2::Zero(), a, a));
+  EXPECT_NEAR(path.length(), 2 * kPi * a, 1e-4);
+  for (const PathFrame& f : path.sample(20)) {
+    EXPECT_NEAR(f.kappa_n, -1.0 / R, 1e-3 / R);
+    // kappa^2 = kappa_n^2 + kappa_g^2 for a circle of radius a.
+    EXPECT_NEAR(f.kappa_g, std::sqrt(1.0 / (a * a) - 1.0 / (R * R)), 1e-4);
+  }
+  const PathFrame top = SurfacePath(cap, segment({-5, -5}, {5, 5})).frame_at_arc_length(0.5 * 14.15);
+  EXPECT_NEAR(top.kappa_n, -1.0 / R, 1e-3 / R);
+  EXPECT_NEAR(top.kappa_g, 0.0, 1e-5);
+}
+
+TEST(SurfacePath, CylinderCrestAlongAndAcrossTheAxis) {
+  const double R = 30.0;  // axis along x at height 0: z = sqrt(R^2 - y^2) - R
+  const BPatch crest = BPatch::interpolate(
+      sample([&](double, double y) { return std::sqrt(R * R - y * y) - R; }, 10, 0.25));
+  // Along the axis, offset y0: a straight ruling with a side slope.
+  const double y0 = -6.0, slope = std::asin(-y0 / R);  // ground rises towards the axis (to the left)
+  const PathFrame along = SurfacePath(crest, segment({-8, y0}, {8, y0})).frame_at_arc_length(8.0);
+  EXPECT_NEAR(along.kappa_n, 0.0, 1e-6);
+  EXPECT_NEAR(along.kappa_g, 0.0, 1e-6);
+  EXPECT_NEAR(along.k_q, std::sin(slope), 1e-6);
+  EXPECT_NEAR(along.k_t, 0.0, 1e-9);
+  // Across the axis: a circle of radius R in a vertical plane.
+  const SurfacePath across(crest, segment({1, -9}, {1, 9}));
+  for (const PathFrame& f : across.sample(9)) {
+    EXPECT_NEAR(f.kappa_n, -1.0 / R, 1e-4 / R);
+    EXPECT_NEAR(f.kappa_g, 0.0, 1e-9);
+    EXPECT_NEAR(f.k_t, -f.point.y() / R, 1e-6);  // uphill before the axis, downhill after
+    EXPECT_NEAR(f.k_q, 0.0, 1e-9);
+  }
+}
+
+TEST(SurfacePath, ArcLengthInverseRoundTrips) {
+  const BPatch cap = BPatch::interpolate(
+      sample([](double x, double y) { return 0.1 * x * x - 0.05 * x * y + std::sin(y); }, 10, 0.5));
+  const SurfacePath path(cap, Curve2::interpolate({Vec2(-8, -8), Vec2(-2, 0), Vec2(3, -4), Vec2(8, 7)}));
+  for (double s = 0; s <= path.length(); s += path.length() / 13) {
+    const PathFrame f = path.frame_at_arc_length(s);
+    EXPECT_NEAR(path.frame_at_parameter(f.parameter).s, s, 1e-9 * path.length());
+  }
+  EXPECT_THROW(path.frame_at_arc_length(path.length() * 1.01), InputError);
+  EXPECT_THROW(path.frame_at_arc_length(-1e-3), InputError);
+}
+
+TEST(SurfacePath, APathLeavingTheTerrainIsAnInputError) {
+  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 5, 1.0));
+  try {
+    SurfacePath(flat, segment({0, 0}, {7, 0}));
+    ADD_FAILURE() << "path off the map accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("leaves the terrain"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace talus

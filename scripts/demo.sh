@@ -22,11 +22,9 @@ cd "$repo_root"
 bash scripts/setup.sh
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-# The CMake target that produces build/experiments/talus. NOTE: the top-level
-# INTERFACE library is already called `talus`, so the executable's target must
-# have another name (e.g. talus_cli with OUTPUT_NAME talus); set it here.
-cli_target=${TALUS_CLI_TARGET:-talus}
-cmake --build build -j"$(nproc)" --target "$cli_target"
+# The executable build/experiments/talus comes from target talus_cli (the
+# name `talus` belongs to the umbrella library target).
+cmake --build build -j"$(nproc)" --target talus_cli
 
 talus=build/experiments/talus
 if [[ ! -x "$talus" ]]; then

@@ -33,4 +33,4 @@ else
 fi
 
 cmake --build "$build_dir" -j"$jobs"
-ctest --test-dir "$build_dir" --output-on-failure
+ctest --test-dir "$build_dir" --output-on-failure -j"$jobs"

@@ -1,0 +1,39 @@
+#include "experiment.hpp"
+
+#include <cstdlib>
+
+#include "talus/core/error.hpp"
+#include "terrain_gallery.hpp"
+
+namespace talus::experiments {
+
+std::vector<Experiment> all_experiments() {
+  return {
+      {"terrain-gallery",
+       "every bundled DEM and a fractal terrain as shaded relief with contours, and the "
+       "smoothing B-patch fit's residual map",
+       run_terrain_gallery},
+  };
+}
+
+std::filesystem::path find_data_dir(const std::string& explicit_dir) {
+  namespace fs = std::filesystem;
+  const auto has_terrain = [](const fs::path& dir) { return fs::is_directory(dir / "terrain"); };
+  if (!explicit_dir.empty()) {
+    if (!has_terrain(explicit_dir)) {
+      throw InputError("data folder '" + explicit_dir + "' has no terrain/ subfolder");
+    }
+    return explicit_dir;
+  }
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("TALUS_DATA_DIR")) candidates.emplace_back(env);
+  candidates.emplace_back(TALUS_SOURCE_DATA_DIR);
+  candidates.emplace_back(TALUS_INSTALL_DATA_DIR);
+  for (const fs::path& dir : candidates) {
+    if (has_terrain(dir)) return dir;
+  }
+  throw InputError(
+      "cannot find the bundled data (terrain/*.asc): pass --data DIR or set TALUS_DATA_DIR");
+}
+
+}  // namespace talus::experiments

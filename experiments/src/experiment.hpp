@@ -1,0 +1,34 @@
+#pragma once
+/// @file
+/// The experiment framework: each experiment reproduces a figure or table,
+/// writing `<out>/<name>/` with CSV data, PNG figures and a `report.md`.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace talus::experiments {
+
+/// What an experiment gets to run.
+struct ExperimentContext {
+  std::filesystem::path output_dir;  ///< `<out>/<name>/`, created before run() is called
+  std::filesystem::path data_dir;    ///< folder holding `terrain/*.asc` (the bundled DEMs)
+  bool quick = false;                ///< smaller problem sizes, for tests and smoke runs
+};
+
+/// One registered experiment.
+struct Experiment {
+  std::string name;         ///< command-line name, e.g. "terrain-gallery"
+  std::string description;  ///< one line for `talus experiment list`
+  std::function<void(const ExperimentContext&)> run;  ///< throws talus::Error on failure
+};
+
+/// Every experiment, in the order `talus experiment list` shows them.
+std::vector<Experiment> all_experiments();
+
+/// The bundled-data folder: `--data` if given, else $TALUS_DATA_DIR, else the
+/// source tree's data/ (build tree), else the installed share/talus/data.
+/// Throws InputError if none holds `terrain/`.
+std::filesystem::path find_data_dir(const std::string& explicit_dir);
+
+}  // namespace talus::experiments

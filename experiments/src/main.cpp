@@ -1,0 +1,213 @@
+// The `talus` command-line tool. Argument parsing only: the work is in the
+// talus_experiments library so that tests and notebooks can call it too.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+
+#include "experiment.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/esri_ascii.hpp"
+#include "talus/core/terrain_generators.hpp"
+#include "terrain_commands.hpp"
+
+namespace {
+
+using namespace talus;
+namespace ex = talus::experiments;
+
+void add_shape_options(CLI::App& command, GridShape& shape) {
+  command.add_option("--ncols", shape.ncols, "nodes west to east")->capture_default_str();
+  command.add_option("--nrows", shape.nrows, "nodes south to north")->capture_default_str();
+  command.add_option("--cellsize", shape.cellsize, "node spacing [m]")->capture_default_str();
+  command.add_option("--xmin", shape.x_min, "x of the south-west node [m]")->capture_default_str();
+  command.add_option("--ymin", shape.y_min, "y of the south-west node [m]")->capture_default_str();
+}
+
+/// Options of every generator; each `terrain generate KIND` subcommand binds its own.
+struct GenerateOptions {
+  FractalTerrainOptions fractal;
+  PlaneOptions plane;
+  CylinderOptions cylinder;
+  bool dip = false;
+  SphereCapOptions sphere;
+  GaussianHillsOptions hills;
+  std::vector<std::vector<double>> hill_specs;
+  BowlOptions bowl;
+  EldershawYimOptions eldershaw_yim;
+  std::string output;
+};
+
+void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
+  CLI::App* generate = terrain.add_subcommand(
+      "generate", "write a generated terrain as an ESRI ASCII grid (seeded, reproducible)");
+  generate->require_subcommand(1);
+  const auto output = [&o](CLI::App* c) {
+    c->add_option("-o,--output", o.output, "output .asc file")->required();
+  };
+
+  CLI::App* fractal = generate->add_subcommand(
+      "fractal", "fractional Brownian surface (Iagnemma-Shimoda-Shiller defaults: D 2.05, 0.24 m "
+                 "spacing, 4.2 m height scale)");
+  add_shape_options(*fractal, o.fractal.shape);
+  fractal->add_option("--fractal-dimension", o.fractal.fractal_dimension, "D in (2, 3)")->capture_default_str();
+  fractal->add_option("--height-scale", o.fractal.height_scale, "peak-to-peak range of the fractal part [m]")->capture_default_str();
+  fractal->add_option("--undulation-amplitude", o.fractal.undulation_amplitude, "[m]")->capture_default_str();
+  fractal->add_option("--undulation-wavelength", o.fractal.undulation_wavelength, "[m], 0 = grid's longer side")->capture_default_str();
+  fractal->add_option("--peaks", o.fractal.peaks, "number of discrete Gaussian peaks")->capture_default_str();
+  fractal->add_option("--peak-height", o.fractal.peak_height, "[m]")->capture_default_str();
+  fractal->add_option("--peak-radius", o.fractal.peak_radius, "Gaussian standard deviation [m]")->capture_default_str();
+  fractal->add_option("--seed", o.fractal.seed, "random seed")->capture_default_str();
+  output(fractal);
+
+  CLI::App* plane = generate->add_subcommand("plane", "inclined plane");
+  add_shape_options(*plane, o.plane.shape);
+  plane->add_option("--slope", o.plane.slope, "inclination [rad]")->capture_default_str();
+  plane->add_option("--aspect", o.plane.aspect, "direction of steepest ascent [rad, CCW from east]")->capture_default_str();
+  plane->add_option("--z0", o.plane.z0, "elevation at the grid's centre [m]")->capture_default_str();
+  output(plane);
+
+  CLI::App* cylinder = generate->add_subcommand("cylinder", "horizontal circular cylinder: crest or dip");
+  add_shape_options(*cylinder, o.cylinder.shape);
+  cylinder->add_option("--radius", o.cylinder.radius, "[m]")->capture_default_str();
+  cylinder->add_option("--axis", o.cylinder.axis_direction, "axis direction [rad, CCW from east]")->capture_default_str();
+  cylinder->add_flag("--dip", o.dip, "concave up (a dip) instead of a crest");
+  cylinder->add_option("--z0", o.cylinder.z0, "elevation on the axis [m]")->capture_default_str();
+  output(cylinder);
+
+  CLI::App* sphere = generate->add_subcommand("sphere-cap", "spherical cap over the grid's centre");
+  add_shape_options(*sphere, o.sphere.shape);
+  sphere->add_option("--radius", o.sphere.radius, "[m]")->capture_default_str();
+  sphere->add_option("--z0", o.sphere.z0, "elevation at the top [m]")->capture_default_str();
+  output(sphere);
+
+  CLI::App* hills = generate->add_subcommand("gaussian-hills", "sum of Gaussian hills on a flat base");
+  add_shape_options(*hills, o.hills.shape);
+  hills->add_option("--hill", o.hill_specs, "X,Y,HEIGHT,SIGMA in metres (repeatable)")
+      ->delimiter(',')
+      ->expected(4)
+      ->allow_extra_args(false);
+  hills->add_option("--z0", o.hills.z0, "base elevation [m]")->capture_default_str();
+  output(hills);
+
+  CLI::App* bowl = generate->add_subcommand("bowl", "paraboloid bowl");
+  add_shape_options(*bowl, o.bowl.shape);
+  bowl->add_option("--curvature", o.bowl.curvature, "second derivative at the centre [1/m]")->capture_default_str();
+  bowl->add_option("--z0", o.bowl.z0, "[m]")->capture_default_str();
+  output(bowl);
+
+  CLI::App* ey = generate->add_subcommand(
+      "eldershaw-yim", "plateau with a cliff and nine sharp peaks (Eldershaw-Yim test terrain)");
+  add_shape_options(*ey, o.eldershaw_yim.shape);
+  ey->add_option("--plateau-height", o.eldershaw_yim.plateau_height, "[m]")->capture_default_str();
+  ey->add_option("--peak-height", o.eldershaw_yim.peak_height, "[m]")->capture_default_str();
+  ey->add_option("--roughness", o.eldershaw_yim.roughness, "standard deviation [m]")->capture_default_str();
+  ey->add_option("--seed", o.eldershaw_yim.seed, "random seed")->capture_default_str();
+  output(ey);
+
+  generate->callback([generate, &o]() {
+    CLI::App* kind = generate->get_subcommands().front();
+    const std::string name = kind->get_name();
+    ElevationGrid grid;
+    if (name == "fractal") grid = generate_fractal_terrain(o.fractal);
+    if (name == "plane") grid = generate_plane(o.plane);
+    if (name == "cylinder") {
+      o.cylinder.crest = !o.dip;
+      grid = generate_cylinder(o.cylinder);
+    }
+    if (name == "sphere-cap") grid = generate_sphere_cap(o.sphere);
+    if (name == "gaussian-hills") {
+      for (const auto& spec : o.hill_specs) {
+        o.hills.hills.push_back({Vec2(spec.at(0), spec.at(1)), spec.at(2), spec.at(3)});
+      }
+      grid = generate_gaussian_hills(o.hills);
+    }
+    if (name == "bowl") grid = generate_bowl(o.bowl);
+    if (name == "eldershaw-yim") grid = generate_eldershaw_yim(o.eldershaw_yim);
+    write_esri_ascii(grid, o.output);
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Talus: time-optimal trajectory planning of ground vehicles over rough terrain.\n"
+               "Units are SI; x east, y north, z up (see README, Conventions)."};
+  app.name("talus");
+  app.require_subcommand(1);
+
+  CLI::App* terrain = app.add_subcommand("terrain", "inspect, generate and fit terrains");
+  terrain->require_subcommand(1);
+
+  std::string info_path;
+  CLI::App* info = terrain->add_subcommand(
+      "info", "print JSON: ncols, nrows, cellsize, xmin, xmax, ymin, ymax (node domain: the "
+              "centres of the edge cells), zmin, zmax, voids");
+  info->add_option("FILE", info_path, "ESRI ASCII grid (.asc)")->required();
+  info->callback([&info_path]() { std::cout << ex::terrain_info(info_path).dump(2) << "\n"; });
+
+  ex::TerrainFitRequest fit_request;
+  std::string fill;
+  CLI::App* fit = terrain->add_subcommand(
+      "fit", "fit a bicubic B-patch and print JSON: max_node_residual, rms_residual [m], "
+             "fit_seconds, patches");
+  fit->add_option("FILE", fit_request.path, "ESRI ASCII grid (.asc)")->required();
+  fit->add_option("--smoothing", fit_request.smoothing,
+                  "curvature weight lambda > 0 (dimensionless) of the smoothing fit; without it "
+                  "the surface interpolates every node");
+  fit->add_option("--fill", fill, "fill NODATA nodes before fitting")
+      ->check(CLI::IsMember({"nearest"}));
+  fit->callback([&]() {
+    fit_request.fill_nearest = (fill == "nearest");
+    std::cout << ex::terrain_fit(fit_request).dump(2) << "\n";
+  });
+
+  GenerateOptions generate_options;
+  add_generate_commands(*terrain, generate_options);
+
+  std::string experiment_name, out_dir = "talus-out", data_dir;
+  bool quick = false;
+  CLI::App* experiment = app.add_subcommand(
+      "experiment", "run a paper-reproduction experiment (`talus experiment list` lists them)");
+  experiment->add_option("NAME", experiment_name, "experiment name, or `list`")->required();
+  experiment->add_option("--out", out_dir, "results go to OUT/NAME/")->capture_default_str();
+  experiment->add_option("--data", data_dir, "folder with the bundled terrain/ DEMs");
+  experiment->add_flag("--quick", quick, "smaller problem sizes (smoke runs)");
+  experiment->callback([&]() {
+    const std::vector<ex::Experiment> experiments = ex::all_experiments();
+    if (experiment_name == "list") {
+      for (const ex::Experiment& e : experiments) std::cout << e.name << "\t" << e.description << "\n";
+      return;
+    }
+    for (const ex::Experiment& e : experiments) {
+      if (e.name != experiment_name) continue;
+      ex::ExperimentContext context;
+      context.output_dir = std::filesystem::path(out_dir) / e.name;
+      context.data_dir = ex::find_data_dir(data_dir);
+      context.quick = quick;
+      std::filesystem::create_directories(context.output_dir);
+      e.run(context);
+      std::cout << "wrote " << (context.output_dir / "report.md").string() << "\n";
+      return;
+    }
+    throw InputError("unknown experiment '" + experiment_name +
+                     "' (run `talus experiment list`)");
+  });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "talus: error: " << e.what() << " (see --help)\n";
+    return 1;
+  } catch (const talus::Error& e) {
+    std::cerr << "talus: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "talus: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

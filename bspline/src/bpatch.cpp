@@ -2,6 +2,7 @@
 
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -98,6 +99,7 @@ void BPatch::locate(const Vec2& p, std::size_t& i, std::size_t& j, double& tu, d
   constexpr double kSlack = 1e-9;
   if (!(u >= -kSlack && u <= umax + kSlack && v >= -kSlack && v <= vmax + kSlack)) {
     std::ostringstream msg;
+    msg.precision(12);
     msg << "point (" << p.x() << ", " << p.y() << ") is outside the terrain domain [" << x_min_
         << ", " << x_max() << "] x [" << y_min_ << ", " << y_max() << "]";
     throw InputError(msg.str());

@@ -99,7 +99,13 @@ BPatch BPatch::fit_smoothing(const ElevationGrid& grid, double lambda) {
       SparseMatrix(collocation.transpose() * collocation) + lambda * energy;
   const Eigen::VectorXd rhs = collocation.transpose() * data;
 
-  Eigen::CholmodSupernodalLLT<SparseMatrix> cholesky(normal);
+  Eigen::CholmodSupernodalLLT<SparseMatrix> cholesky;
+  // AMD alone: CHOLMOD's default also tries METIS on these grid-like systems,
+  // which costs more ordering time than it saves in the factorisation
+  // (256 x 256: 1.3 s with AMD against 2.3 s by default, bench_bpatch).
+  cholesky.cholmod().nmethods = 1;
+  cholesky.cholmod().method[0].ordering = CHOLMOD_AMD;
+  cholesky.compute(normal);
   if (cholesky.info() != Eigen::Success) {
     throw SolverError("smoothing B-patch fit: CHOLMOD could not factor the normal equations "
                       "(are the valid nodes collinear?)");

@@ -28,3 +28,6 @@ endif()
 find_dependency(NLopt 2.7 CONFIG HINTS /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/nlopt_cxx)
 
 find_dependency(SUNDIALS 6.4 CONFIG COMPONENTS cvode)
+
+# Vehicle files (dynamics). The 0.7 target is plain `yaml-cpp` (namespaced from 0.8 on).
+find_dependency(yaml-cpp 0.7 CONFIG)

@@ -1,5 +1,6 @@
 #include "talus/bspline/surface_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -17,6 +18,7 @@ PathFrame lift_to_surface(const Vec2& position, const SurfacePoint& surface, con
   PathFrame f;
   f.point = Vec3(position.x(), position.y(), surface.z);
   f.speed = p1.norm();
+  f.speed_rate = p1.dot(p2) / f.speed;
   f.tangent = p1 / f.speed;
   const Vec3 curvature = (p2 - p2.dot(f.tangent) * f.tangent) / (f.speed * f.speed);
   f.normal = Vec3(-g.x(), -g.y(), 1.0).normalized();
@@ -32,10 +34,28 @@ PathFrame lift_to_surface(const Vec2& position, const SurfacePoint& surface, con
 namespace {
 
 ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
-  std::vector<double> breaks;
+  // Quadrature pieces end at the curve's knots and are at most half a terrain
+  // cell long: the speed |P'| is smooth inside a curve span only as long as
+  // the point stays inside one bicubic cell, and Gauss–Legendre loses its
+  // order across a cell edge (8 pieces per span left 3e-6 m errors at 1 m cells).
+  std::vector<double> knots;
   for (double k : curve.knots().knots()) {
     if (k < curve.parameter_begin() || k > curve.parameter_end()) continue;
-    if (breaks.empty() || k > breaks.back()) breaks.push_back(k);
+    if (knots.empty() || k > knots.back()) knots.push_back(k);
+  }
+  std::vector<double> breaks{knots.front()};
+  for (std::size_t i = 1; i < knots.size(); ++i) {
+    const double a = knots[i - 1], b = knots[i];
+    double planar = 0.0;  // polyline length over the span, a cheap bound on its extent
+    Vec2 previous = curve.evaluate(a);
+    for (int m = 1; m <= 8; ++m) {
+      const Vec2 p = curve.evaluate(a + (b - a) * m / 8.0);
+      planar += (p - previous).norm();
+      previous = p;
+    }
+    const int pieces = std::max(4, static_cast<int>(std::ceil(2.0 * planar / surface.cellsize())));
+    for (int m = 1; m < pieces; ++m) breaks.push_back(a + (b - a) * m / pieces);
+    breaks.push_back(b);
   }
   auto speed = [&surface, &curve](double sigma) {
     Curve2::Derivatives d;
@@ -50,7 +70,7 @@ ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
       throw InputError(msg.str());
     }
   };
-  return ArcLengthTable(breaks, 8, speed);
+  return ArcLengthTable(breaks, 1, speed);
 }
 
 }  // namespace
@@ -58,19 +78,53 @@ ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
 SurfacePath::SurfacePath(const BPatch& surface, Curve2 curve)
     : surface_(&surface), curve_(std::move(curve)), arc_length_(make_table(surface, curve_)) {}
 
-PathFrame SurfacePath::frame_at_parameter(double sigma) const {
+namespace {
+
+/// Frame at σ without its arc length.
+PathFrame frame_without_arc_length(const BPatch& surface, const Curve2& curve, double sigma) {
   Curve2::Derivatives d;
-  curve_.derivatives(sigma, 2, d);
-  PathFrame f = lift_to_surface(d.col(0), surface_->evaluate(d.col(0)), d.col(1), d.col(2));
+  curve.derivatives(sigma, 2, d);
+  PathFrame f = lift_to_surface(d.col(0), surface.evaluate(d.col(0)), d.col(1), d.col(2));
   f.parameter = sigma;
+  return f;
+}
+
+}  // namespace
+
+PathFrame SurfacePath::frame_at_parameter(double sigma) const {
+  PathFrame f = frame_without_arc_length(*surface_, curve_, sigma);
   f.s = arc_length_.arc_length(sigma);
   return f;
 }
 
 PathFrame SurfacePath::frame_at_arc_length(double s) const {
-  PathFrame f = frame_at_parameter(arc_length_.parameter(s));
+  PathFrame f = frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s));
   f.s = s;
   return f;
+}
+
+void SurfacePath::sample_uniform_parameter(std::size_t stations,
+                                           std::vector<PathFrame>& frames) const {
+  if (stations < 2) throw InputError("a path needs at least 2 stations");
+  frames.resize(stations);
+  const double begin = curve_.parameter_begin(), end = curve_.parameter_end();
+  const double step = (end - begin) / static_cast<double>(stations - 1);
+  // Coarser than the arc-length table: the table's quadrature is the accurate choice.
+  const bool coarse = stations - 1 < arc_length_.pieces();
+  for (std::size_t k = 0; k < stations; ++k) {
+    const double sigma = (k + 1 == stations) ? end : begin + step * static_cast<double>(k);
+    PathFrame& f = frames[k];
+    f = frame_without_arc_length(*surface_, curve_, sigma);
+    if (k == 0) {
+      f.s = 0.0;
+    } else if (coarse || k + 1 == stations) {
+      f.s = arc_length_.arc_length(sigma);
+    } else {
+      const PathFrame& prev = frames[k - 1];
+      f.s = prev.s + 0.5 * step * (prev.speed + f.speed) +
+            step * step / 12.0 * (prev.speed_rate - f.speed_rate);
+    }
+  }
 }
 
 std::vector<PathFrame> SurfacePath::sample(std::size_t stations) const {

@@ -21,6 +21,8 @@ class ArcLengthTable {
   double length() const { return cumulative_.back(); }
   double parameter_begin() const { return parameters_.front(); }
   double parameter_end() const { return parameters_.back(); }
+  /// Number of tabulated pieces.
+  std::size_t pieces() const { return parameters_.size() - 1; }
   /// s(t) for t in the parameter range (InputError otherwise).
   double arc_length(double t) const;
   /// t(s) for s in [0, length()] (InputError otherwise); |s(t(s)) - s| <= 1e-10 length.

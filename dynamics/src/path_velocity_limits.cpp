@@ -1,0 +1,30 @@
+#include "talus/dynamics/path_velocity_limits.hpp"
+
+namespace talus {
+
+VelocityLimits::VelocityLimits(const Vehicle& vehicle) : vehicle_(vehicle) { vehicle_.validate(); }
+
+VelocityLimits::VelocityLimits(const Vehicle& vehicle, const SurfacePath& path,
+                               std::size_t stations)
+    : VelocityLimits(vehicle) {
+  compute(path, stations);
+}
+
+void VelocityLimits::compute(const SurfacePath& path, std::size_t stations) {
+  path.sample_uniform_parameter(stations, frames_);
+  geometry_.resize(stations);
+  limits_.resize(stations);
+  for (std::size_t k = 0; k < stations; ++k) {
+    geometry_[k] = StationGeometry::from(frames_[k]);
+    limits_[k] = speed_limits(vehicle_, geometry_[k]);
+  }
+}
+
+std::size_t VelocityLimits::first_untraversable() const {
+  for (std::size_t k = 0; k < limits_.size(); ++k) {
+    if (!limits_[k].traversable) return k;
+  }
+  return limits_.size();
+}
+
+}  // namespace talus

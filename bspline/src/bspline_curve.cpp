@@ -21,6 +21,29 @@ BSplineCurve<Dim>::BSplineCurve(KnotVector knots, std::vector<Point> control_poi
       throw InputError("B-spline curve: control point " + std::to_string(i) + " is not finite");
     }
   }
+  build_taylor_coefficients();
+}
+
+template <int Dim>
+void BSplineCurve<Dim>::build_taylor_coefficients() {
+  const int p = knots_.degree();
+  const std::vector<double>& t = knots_.knots();
+  const std::size_t first_span = static_cast<std::size_t>(p);
+  const std::size_t last_span = knots_.num_basis() - 1;
+  taylor_.assign(last_span - first_span + 1, Taylor::Zero());
+  Eigen::MatrixXd basis(p + 1, p + 1);
+  for (std::size_t span = first_span; span <= last_span; ++span) {
+    if (t[span] == t[span + 1]) continue;  // empty span: never located
+    knots_.basis_derivatives(span, t[span], basis);
+    Taylor& c = taylor_[span - first_span];
+    double factorial = 1.0;
+    for (int k = 0; k <= p; ++k) {
+      if (k > 0) factorial *= k;
+      for (int j = 0; j <= p; ++j) {
+        c.col(k) += basis(k, j) / factorial * control_points_[span - first_span + static_cast<std::size_t>(j)];
+      }
+    }
+  }
 }
 
 template <int Dim>
@@ -35,14 +58,18 @@ void BSplineCurve<Dim>::derivatives(double t, int order, Derivatives& out) const
   if (order < 0 || order > 3) throw InputError("curve derivative order must be in [0, 3]");
   const std::size_t span = knots_.find_span(t);
   const int p = knots_.degree();
-  Eigen::Matrix<double, 4, kMaxDegree + 1> basis;
-  auto used = basis.topLeftCorner(order + 1, p + 1);
-  knots_.basis_derivatives(span, t, used);
+  const Taylor& c = taylor_[span - static_cast<std::size_t>(p)];
+  const double dt = t - knots_.knots()[span];
   out.setZero();
-  const std::size_t first = span - static_cast<std::size_t>(p);
-  for (int j = 0; j <= p; ++j) {
-    const Point& c = control_points_[first + static_cast<std::size_t>(j)];
-    for (int k = 0; k <= order; ++k) out.col(k) += used(k, j) * c;
+  // Horner for C and its derivatives: C^(k)(t) = sum_{m>=k} m!/(m-k)! c_m dt^(m-k).
+  for (int k = 0; k <= std::min(order, p); ++k) {
+    Point value = Point::Zero();
+    for (int m = p; m >= k; --m) {
+      double falling = 1.0;  // m! / (m - k)!
+      for (int i = 0; i < k; ++i) falling *= (m - i);
+      value = value * dt + falling * c.col(m);
+    }
+    out.col(k) = value;
   }
 }
 

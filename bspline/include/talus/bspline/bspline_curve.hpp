@@ -39,8 +39,15 @@ class BSplineCurve {
   void derivatives(double t, int order, Derivatives& out) const;
 
  private:
+  /// Taylor coefficients C^(k)(t_span) / k! of every non-empty knot span, so
+  /// that evaluation is a Horner scheme instead of a Cox–de Boor recursion
+  /// (about 8x faster; curves are evaluated at every station of every path).
+  using Taylor = Eigen::Matrix<double, Dim, kMaxDegree + 1>;
+  void build_taylor_coefficients();
+
   KnotVector knots_;
   std::vector<Point> control_points_;
+  std::vector<Taylor> taylor_;  ///< indexed by span - degree
 };
 
 using Curve2 = BSplineCurve<2>;

@@ -107,20 +107,25 @@ AccelerationBounds acceleration_bounds(const Vehicle& vehicle, const StationGeom
   const double f_q = vehicle.gravity * g.k_q + g.kappa_g * x;
   const double normal = vehicle.gravity * g.k_r + g.kappa_n * x;
   AccelerationBounds out;
-  if (!(normal >= 0.0)) {
+  // A speed exactly on the limit curve, computed in floating point, may sit a
+  // few ulps outside it; kOnLimit keeps such states admissible.
+  constexpr double kOnLimit = 1e-10;
+  const double scale = vehicle.gravity + std::abs(g.kappa_n * x) + std::abs(g.kappa_g * x);
+  if (!(normal >= -kOnLimit * scale)) {
     out.violated = Constraint::kContact;
     return out;
   }
-  if (std::abs(f_q) > vehicle.half_track / vehicle.cg_height * normal) {
+  if (std::abs(f_q) > vehicle.half_track / vehicle.cg_height * normal + kOnLimit * scale) {
     out.violated = Constraint::kTipover;
     return out;
   }
-  const double friction_force = vehicle.friction * normal;
-  const double slack = friction_force * friction_force - f_q * f_q;
-  if (!(slack >= 0.0)) {
+  const double friction_force = vehicle.friction * std::max(normal, 0.0);
+  double slack = friction_force * friction_force - f_q * f_q;
+  if (!(slack >= -kOnLimit * scale * scale)) {
     out.violated = Constraint::kSliding;
     return out;
   }
+  slack = std::max(slack, 0.0);
   if (speed > vehicle.max_speed * (1.0 + 1e-12)) {
     out.violated = Constraint::kMaxSpeed;
     return out;
@@ -129,7 +134,7 @@ AccelerationBounds acceleration_bounds(const Vehicle& vehicle, const StationGeom
   double upper = std::sqrt(slack), lower = -upper;
   out.upper_binding = out.lower_binding = Constraint::kSliding;
   if (vehicle.model == VehicleModel::kRigidBody) {
-    const double pitch = vehicle.half_wheelbase / vehicle.cg_height * normal;
+    const double pitch = vehicle.half_wheelbase / vehicle.cg_height * std::max(normal, 0.0);
     if (pitch < upper) {
       upper = pitch;
       lower = -pitch;

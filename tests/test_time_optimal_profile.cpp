@@ -1,0 +1,267 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <memory>
+#include <random>
+
+#include "../optimal/src/step_controls.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/terrain_generators.hpp"
+#include "talus/optimal/time_optimal_profile.hpp"
+
+namespace talus {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kG = 9.81;
+
+Vehicle vehicle(double mu, double max_accel = INFINITY, double max_decel = INFINITY,
+                double max_speed = INFINITY) {
+  Vehicle v;
+  v.friction = mu;
+  v.cg_height = 0.3;
+  v.half_track = 1.0;  // b/h > mu: tip-over never binds in these tests
+  v.max_accel = max_accel;
+  v.max_decel = max_decel;
+  v.max_speed = max_speed;
+  return v;
+}
+
+ElevationGrid sample(const std::function<double(double, double)>& f, double x0, double y0,
+                     double x1, double y1, double h) {
+  const auto nc = static_cast<std::size_t>(std::lround((x1 - x0) / h)) + 1;
+  const auto nr = static_cast<std::size_t>(std::lround((y1 - y0) / h)) + 1;
+  ElevationGrid grid(nc, nr, h, x0, y0);
+  for (std::size_t j = 0; j < nr; ++j)
+    for (std::size_t i = 0; i < nc; ++i) {
+      const Vec2 p = grid.node_position(i, j);
+      grid.at(i, j) = f(p.x(), p.y());
+    }
+  return grid;
+}
+
+/// Default spacing for the analytic tests: 0.5 m stations.
+std::size_t stations_for(double length) { return static_cast<std::size_t>(length / 0.5) + 1; }
+
+TimeOptimalProfile solve_straight(const BPatch& patch, const Vec2& a, const Vec2& b, const Vehicle& v,
+                                  double v0 = 0.0, double v1 = 0.0) {
+  const SurfacePath path(patch, Curve2::interpolate({a, b}));
+  const VelocityLimits limits(v, path, stations_for(path.length()));
+  TimeOptimalProfileSolver solver;
+  return solver.solve(limits, {v0, v1});
+}
+
+void expect_within_half_percent(double actual, double expected) {
+  EXPECT_NEAR(actual, expected, 0.005 * expected);
+}
+
+TEST(TimeOptimalProfile, FlatStraightLineRestToRest) {
+  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
+  const double L = 200.0, mu = 0.7;
+  const TimeOptimalProfile p = solve_straight(flat, {5, 0}, {5 + L, 0}, vehicle(mu));
+  ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
+  expect_within_half_percent(p.travel_time, 2.0 * std::sqrt(L / (mu * kG)));
+  EXPECT_EQ(p.v.front(), 0.0);
+  EXPECT_NEAR(p.v.back(), 0.0, 1e-9);
+  // Accelerate, then decelerate from the middle (the one step that straddles
+  // the middle takes an intermediate control).
+  ASSERT_GE(p.switching_points.size(), 1u);
+  ASSERT_LE(p.switching_points.size(), 2u);
+  EXPECT_EQ(p.switching_points.front().from, ControlKind::kAccelerate);
+  EXPECT_EQ(p.switching_points.back().to, ControlKind::kDecelerate);
+  for (const SwitchingPoint& sp : p.switching_points) EXPECT_NEAR(sp.s, L / 2, 1.0);
+}
+
+TEST(TimeOptimalProfile, DriveBrakeAndSpeedLimitsGiveATrapezoid) {
+  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
+  const double L = 200.0, A = 2.0, D = 4.0, V = 10.0;
+  const TimeOptimalProfile p = solve_straight(flat, {5, 0}, {5 + L, 0}, vehicle(0.9, A, D, V));
+  ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
+  const double expected = V / A + V / D + (L - V * V / (2 * A) - V * V / (2 * D)) / V;  // 23.75 s
+  expect_within_half_percent(p.travel_time, expected);
+  EXPECT_GE(p.switching_points.size(), 2u);  // accelerate -> cruise at the limit -> decelerate
+  // Without the speed limit: a triangle with different slopes.
+  const TimeOptimalProfile tri = solve_straight(flat, {5, 0}, {5 + L, 0}, vehicle(0.9, A, D));
+  const double peak = std::sqrt(2.0 * L * A * D / (A + D));
+  expect_within_half_percent(tri.travel_time, peak / A + peak / D);
+}
+
+TEST(TimeOptimalProfile, StraightUpAndDownAnInclinedPlane) {
+  const double alpha = 0.15, mu = 0.8, L = 150.0;
+  const BPatch plane = BPatch::interpolate(
+      sample([&](double x, double) { return std::tan(alpha) * x; }, 0, -5, 160, 5, 1.0));
+  const double run = L * std::cos(alpha);
+  for (const bool up : {true, false}) {
+    const Vec2 a = up ? Vec2(5, 0) : Vec2(5 + run, 0), b = up ? Vec2(5 + run, 0) : Vec2(5, 0);
+    const TimeOptimalProfile p = solve_straight(plane, a, b, vehicle(mu));
+    ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message << " up=" << up << " n=" << p.s.size() << " L=" << p.s.back();
+    const double s = up ? 1.0 : -1.0;
+    const double acc = kG * (mu * std::cos(alpha) - s * std::sin(alpha));
+    const double dec = kG * (mu * std::cos(alpha) + s * std::sin(alpha));
+    const double peak = std::sqrt(2.0 * L * acc * dec / (acc + dec));
+    expect_within_half_percent(p.travel_time, peak / acc + peak / dec);
+  }
+}
+
+TEST(TimeOptimalProfile, FlatCircleAtItsSteadySpeedStaysThere) {
+  const double r = 20.0, mu = 0.6;
+  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, -25, -25, 25, 25, 1.0));
+  std::vector<Vec2> pts;
+  for (int k = 0; k <= 200; ++k) pts.emplace_back(r * std::cos(2 * kPi * k / 200), r * std::sin(2 * kPi * k / 200));
+  const SurfacePath path(flat, Curve2::interpolate(pts));
+  const VelocityLimits limits(vehicle(mu), path, stations_for(path.length()));
+  // The limit along the fitted circle wobbles by ~1e-5 relative: enter at the smallest one.
+  double v_lim = INFINITY;
+  for (const SpeedLimits& l : limits.all_limits()) v_lim = std::min(v_lim, l.v_max);
+  expect_within_half_percent(v_lim, std::sqrt(mu * kG * r));
+  TimeOptimalProfileSolver solver;
+  const TimeOptimalProfile p = solver.solve(limits, {v_lim, v_lim});
+  ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
+  expect_within_half_percent(p.travel_time, 2 * kPi * r / std::sqrt(mu * kG * r));
+  for (double v : p.v) EXPECT_NEAR(v, v_lim, 2e-3 * v_lim);
+}
+
+TEST(TimeOptimalProfile, CrestForcesSlowingToTheContactLimit) {
+  // Flat run-up, then a crest of radius R (z = sqrt(R^2 - (x-30)^2) - R for
+  // |x - 30| < 12), then flat again: with high friction the vehicle would go
+  // much faster than sqrt(g R cos(alpha)) and must slow down for the crest.
+  const double R = 20.0, half = 12.0;
+  const auto z = [&](double x, double) {
+    const double d = std::clamp(x - 30.0, -half, half), slope = half / std::sqrt(R * R - half * half);
+    const double cap = std::sqrt(R * R - d * d) - R;
+    return cap - slope * (std::abs(x - 30.0) - std::abs(d));  // continues with the edge slope
+  };
+  const BPatch terrain = BPatch::interpolate(sample(z, 0, -3, 60, 3, 0.25));
+  const SurfacePath path(terrain, Curve2::interpolate({Vec2(1, 0), Vec2(59, 0)}));
+  const VelocityLimits limits(vehicle(2.0), path, 1200);
+  TimeOptimalProfileSolver solver;
+  const TimeOptimalProfile p = solver.solve(limits, {});
+  ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
+  std::size_t touching = 0, top = 0;
+  for (std::size_t k = 0; k < p.v.size(); ++k) {
+    EXPECT_LE(p.v[k], p.v_max[k] * (1 + 1e-9));
+    if (limits.limits(k).upper_binding == Constraint::kContact && p.v[k] >= 0.99 * p.v_max[k]) ++touching;
+    if (std::abs(limits.frame(k).point.x() - 30.0) < std::abs(limits.frame(top).point.x() - 30.0)) top = k;
+  }
+  EXPECT_GT(touching, 0u) << "the profile never reaches the contact limit";
+  expect_within_half_percent(limits.limits(top).v_max, std::sqrt(kG * R));
+  EXPECT_LE(p.v[top], std::sqrt(kG * R) * 1.005);
+  // On the crest the vehicle is slower than the flat-ground profile would allow there.
+  const double flat_peak = std::sqrt(2.0 * 2.0 * kG * 29.0);  // accelerate at 2 g over half the path
+  EXPECT_LT(p.v[top], 0.5 * flat_peak);
+}
+
+TEST(TimeOptimalProfile, StartOrEndAboveTheLimitIsAnInputError) {
+  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
+  const SurfacePath path(flat, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
+  const VelocityLimits limits(vehicle(0.7, INFINITY, INFINITY, 10.0), path, 51);
+  TimeOptimalProfileSolver solver;
+  EXPECT_THROW(solver.solve(limits, {12.0, 0.0}), InputError);
+  EXPECT_THROW(solver.solve(limits, {0.0, 10.5}), InputError);
+  EXPECT_THROW(solver.solve(limits, {-1.0, 0.0}), InputError);
+  // Too fast to stop within 50 m: infeasible status, not an exception.
+  const TimeOptimalProfile p = solver.solve(limits, {10.0, 0.0});
+  EXPECT_EQ(p.status, ProfileStatus::kOk);  // 10 m/s stops in 7.3 m at 0.7 g
+  const VelocityLimits short_path(vehicle(0.1, INFINITY, INFINITY, 10.0), path, 51);
+  const TimeOptimalProfile q = solver.solve(short_path, {10.0, 0.0});  // needs 51 m at 0.1 g
+  EXPECT_EQ(q.status, ProfileStatus::kInfeasible);
+  EXPECT_FALSE(q.message.empty());
+}
+
+TEST(TimeOptimalProfile, UntraversableStationIsReportedWithItsConstraint) {
+  // A side slope steeper than friction across the middle of the path.
+  const BPatch ridge = BPatch::interpolate(sample(
+      [](double x, double y) { return (x > 20 && x < 40) ? 0.9 * y : 0.0; }, 0, -5, 60, 5, 0.5));
+  const SurfacePath path(ridge, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
+  const VelocityLimits limits(vehicle(0.6), path, 201);
+  TimeOptimalProfileSolver solver;
+  const TimeOptimalProfile p = solver.solve(limits, {});
+  ASSERT_EQ(p.status, ProfileStatus::kInfeasible);
+  EXPECT_EQ(p.infeasible_binding, Constraint::kSliding);
+  EXPECT_GT(p.s[p.infeasible_station], 14.0);
+  EXPECT_NE(p.message.find("not traversable"), std::string::npos) << p.message;
+}
+
+TEST(TimeOptimalProfile, NearlyCoincidentStationsAreMerged) {
+  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
+  const SurfacePath path(flat, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
+  // 5e7 stations would be 1e-9 m apart; use a huge count on a tiny path instead.
+  const SurfacePath tiny(flat, Curve2::interpolate({Vec2(5, 0), Vec2(5 + 2e-8, 0)}));
+  const VelocityLimits limits(vehicle(0.7), tiny, 101);
+  TimeOptimalProfileSolver solver;
+  const TimeOptimalProfile p = solver.solve(limits, {});
+  EXPECT_EQ(p.status, ProfileStatus::kOk) << p.message;
+  EXPECT_GT(p.merged_stations, 0u);
+  EXPECT_TRUE(std::isfinite(p.travel_time));
+}
+
+/// Invariants on random paths over fractal terrain (rover scale).
+TEST(TimeOptimalProfile, InvariantsOnRandomFractalPaths) {
+  FractalTerrainOptions terrain;
+  terrain.shape = {129, 129, 0.5, 0.0, 0.0};
+  terrain.height_scale = 6.0;
+  terrain.seed = 4;
+  const BPatch patch = BPatch::fit_smoothing(generate_fractal_terrain(terrain), 1.0);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> coordinate(12.0, 52.0);  // splines overshoot their points
+  Vehicle v = vehicle(0.8, 3.0, 6.0, 12.0);
+  v.half_track = 0.35;
+  v.cg_height = 0.5;
+  int solved = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    std::vector<Vec2> pts;
+    for (int k = 0; k < 5; ++k) pts.emplace_back(coordinate(rng), coordinate(rng));
+    std::unique_ptr<SurfacePath> path;
+    try {
+      path = std::make_unique<SurfacePath>(patch, Curve2::interpolate(pts));
+    } catch (const InputError&) {
+      continue;  // a random spline may overshoot the map: not this test's subject
+    }
+    const VelocityLimits limits(v, *path, 400);
+    TimeOptimalProfileSolver solver;
+    const TimeOptimalProfile p = solver.solve(limits, {});
+    if (p.status != ProfileStatus::kOk) continue;
+    ++solved;
+    const detail::VehicleConstants c(v);
+    double t = 0.0;
+    for (std::size_t k = 0; k < p.v.size(); ++k) {
+      EXPECT_LE(p.v[k], p.v_max[k] * (1 + 1e-9) + 1e-9) << "station " << k;
+      if (k + 1 == p.v.size()) break;
+      const double ds = p.s[k + 1] - p.s[k];
+      const double u = (p.v[k + 1] * p.v[k + 1] - p.v[k] * p.v[k]) / (2 * ds);
+      EXPECT_NEAR(u, p.a[k], 1e-6 * (1 + std::abs(u)));
+      // The step's acceleration is admissible at both of its ends.
+      const AccelerationBounds b0 = limits.acceleration_bounds(k, p.v[k]);
+      const AccelerationBounds b1 = limits.acceleration_bounds(k + 1, p.v[k + 1]);
+      ASSERT_TRUE(b0.feasible && b1.feasible) << k;
+      const double tol = 1e-6 * (1 + std::abs(u));
+      EXPECT_GE(u, std::max(b0.a_min, b1.a_min) - tol) << k;
+      EXPECT_LE(u, std::min(b0.a_max, b1.a_max) + tol) << k;
+      t += 2 * ds / (p.v[k] + p.v[k + 1]);
+      EXPECT_NEAR(p.t[k + 1], t, 1e-9 * t);
+      // Maximality: raising this station's speed breaks a constraint of a neighbouring step.
+      if (k > 0) {
+        const double x_up = p.v[k] * p.v[k] * (1 + 1e-5) + 1e-6;
+        const double ds_prev = p.s[k] - p.s[k - 1];
+        const double u_in = (x_up - p.v[k - 1] * p.v[k - 1]) / (2 * ds_prev);
+        const double u_out = (p.v[k + 1] * p.v[k + 1] - x_up) / (2 * ds);
+        const bool in_ok = !detail::admissible_controls(c, limits.geometry(k - 1), p.v[k - 1] * p.v[k - 1], 0, 0, INFINITY).empty() &&
+                           [&] { auto a = detail::admissible_controls(c, limits.geometry(k - 1), p.v[k - 1] * p.v[k - 1], 0, 0, INFINITY);
+                                 auto b = detail::admissible_controls(c, limits.geometry(k), x_up, 0, 0, p.v_max[k] * p.v_max[k]);
+                                 return u_in >= std::max(a.lower, b.lower) && u_in <= std::min(a.upper, b.upper); }();
+        const bool out_ok = [&] { auto a = detail::admissible_controls(c, limits.geometry(k), x_up, 0, 0, p.v_max[k] * p.v_max[k]);
+                                  auto b = detail::admissible_controls(c, limits.geometry(k + 1), p.v[k + 1] * p.v[k + 1], 0, 0, INFINITY);
+                                  return u_out >= std::max(a.lower, b.lower) && u_out <= std::min(a.upper, b.upper); }();
+        EXPECT_FALSE(in_ok && out_ok) << "station " << k << " could go faster: v " << p.v[k - 1] << " " << p.v[k] << " "
+                                      << p.v[k + 1] << " vmax " << p.v_max[k] << " a " << p.a[k - 1] << " " << p.a[k]
+                                      << " ctrl " << to_string(p.control[k - 1]) << " " << to_string(p.control[k]) << " n " << p.v.size();
+      }
+    }
+  }
+  EXPECT_GE(solved, 6);
+}
+
+}  // namespace
+}  // namespace talus

@@ -1,1 +1,224 @@
-// placeholder: being written
+#include "limits_command.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/bspline_curve.hpp"
+#include "talus/bspline/surface_path.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/esri_ascii.hpp"
+#include "talus/core/path_csv.hpp"
+#include "talus/dynamics/path_velocity_limits.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/dynamics/velocity_limits.hpp"
+
+namespace talus::experiments {
+namespace {
+
+/// "(x, y)" with enough digits for UTM coordinates.
+std::string format_point(const Vec2& p) {
+  std::ostringstream out;
+  out.precision(15);
+  out << "(" << p.x() << ", " << p.y() << ")";
+  return out.str();
+}
+
+std::string format_domain(const ElevationGrid& grid) {
+  std::ostringstream out;
+  out.precision(15);
+  out << "[" << grid.x_min() << ", " << grid.x_max() << "] x [" << grid.y_min() << ", "
+      << grid.y_max() << "]";
+  return out.str();
+}
+
+/// "point k (x, y) (P.csv line L)": point k is on line k + 2 (read_path_csv).
+std::string describe_point(const std::vector<Vec2>& points, std::size_t k,
+                           const std::string& path_file) {
+  return "path point " + std::to_string(k) + " " + format_point(points[k]) + " (" + path_file +
+         " line " + std::to_string(k + 2) + ")";
+}
+
+/// Every way point must lie on the terrain's domain (checked before the fit).
+void check_points_in_domain(const std::vector<Vec2>& points, const ElevationGrid& grid,
+                            const std::string& path_file, const std::string& terrain_file) {
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (!grid.contains(points[k])) {
+      throw InputError(describe_point(points, k, path_file) + " is outside the terrain " +
+                       terrain_file + ", whose domain is " + format_domain(grid));
+    }
+  }
+}
+
+/// Every way point must lie on the surface and on measured data.
+void check_points_on_data(const std::vector<Vec2>& points, const BPatch& surface,
+                          const ElevationGrid& grid, const std::string& path_file,
+                          const std::string& terrain_file) {
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (!surface.contains(points[k])) {
+      throw InputError(describe_point(points, k, path_file) + " is outside the terrain " +
+                       terrain_file + ", whose domain is " + format_domain(grid));
+    }
+    if (!surface.on_data(points[k])) {
+      throw InputError(describe_point(points, k, path_file) + " lies in a NODATA cell of " +
+                       terrain_file + " (a corner of its cell has no elevation)");
+    }
+  }
+}
+
+/// The interpolating spline can swing outside the domain between two way
+/// points; name the two points (SurfacePath's own check remains the backstop).
+void check_curve_in_domain(const Curve2& curve, const std::vector<Vec2>& points,
+                           const BPatch& surface, const std::string& path_file,
+                           const std::string& terrain_file, const ElevationGrid& grid) {
+  // The way points' chord-length parameters, normalised to the curve's domain.
+  std::vector<double> u(points.size(), 0.0);
+  for (std::size_t k = 1; k < points.size(); ++k)
+    u[k] = u[k - 1] + (points[k] - points[k - 1]).norm();
+  const double begin = curve.parameter_begin(), end = curve.parameter_end();
+  for (double& value : u) value = begin + (end - begin) * value / u.back();
+  constexpr int kSamplesPerSegment = 64;
+  for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+    for (int m = 1; m < kSamplesPerSegment; ++m) {
+      const double sigma = u[k] + (u[k + 1] - u[k]) * m / kSamplesPerSegment;
+      const Vec2 p = curve.evaluate(sigma);
+      if (!surface.contains(p)) {
+        throw InputError("the spline through the path points of " + path_file +
+                         " leaves the terrain " + terrain_file + " between points " +
+                         std::to_string(k) + " and " + std::to_string(k + 1) + ", at " +
+                         format_point(p) + " (domain " + format_domain(grid) +
+                         "): move those points further inside or add points between them");
+      }
+    }
+  }
+}
+
+double planar_polyline_length(const std::vector<Vec2>& points) {
+  double length = 0.0;
+  for (std::size_t k = 1; k < points.size(); ++k) length += (points[k] - points[k - 1]).norm();
+  return length;
+}
+
+/// Shortest representation that round-trips exactly; infinity is "inf".
+void append_number(std::string& out, double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+}  // namespace
+
+std::size_t default_station_count(double planar_length) {
+  if (!(planar_length >= 0.0)) return kMinDefaultStations;
+  const double n = std::ceil(planar_length) + 1.0;
+  if (n >= static_cast<double>(kMaxDefaultStations)) return kMaxDefaultStations;
+  return std::max(kMinDefaultStations, static_cast<std::size_t>(n));
+}
+
+nlohmann::json limits(const LimitsRequest& request) {
+  const auto start = std::chrono::steady_clock::now();
+  if (request.stations && *request.stations < 2) {
+    throw InputError("--stations must be at least 2, got " + std::to_string(*request.stations));
+  }
+  if (request.stations && *request.stations > kMaxStations) {
+    throw InputError("--stations must be at most " + std::to_string(kMaxStations) + ", got " +
+                     std::to_string(*request.stations));
+  }
+  if (request.smoothing && !(std::isfinite(*request.smoothing) && *request.smoothing > 0.0)) {
+    std::ostringstream msg;
+    msg << "--smoothing must be a positive finite number (lambda), got " << *request.smoothing;
+    throw InputError(msg.str());
+  }
+  if (request.output.empty()) throw InputError("no output file given (-o OUT.csv)");
+
+  const Vehicle vehicle = load_vehicle(request.vehicle);
+  const std::vector<Vec2> points = read_path_csv(request.path);
+  const ElevationGrid grid = read_esri_ascii(request.terrain);
+  check_points_in_domain(points, grid, request.path, request.terrain);
+
+  const BPatch surface = [&] {
+    try {
+      return request.smoothing ? BPatch::fit_smoothing(grid, *request.smoothing)
+                               : BPatch::interpolate(grid);
+    } catch (const InputError& e) {
+      throw InputError(request.terrain + ": " + e.what());
+    }
+  }();
+  check_points_on_data(points, surface, grid, request.path, request.terrain);
+
+  Curve2 curve = Curve2::interpolate(points);
+  check_curve_in_domain(curve, points, surface, request.path, request.terrain, grid);
+  const SurfacePath path(surface, std::move(curve));
+
+  const std::size_t stations = request.stations
+                                   ? static_cast<std::size_t>(*request.stations)
+                                   : default_station_count(planar_polyline_length(points));
+  const VelocityLimits limits(vehicle, path, stations);
+
+  // The CSV, and the summary on the way.
+  std::string csv = kLimitsCsvHeader;
+  csv += '\n';
+  std::map<std::string, std::size_t> binding_counts;
+  for (const Constraint c : {Constraint::kSliding, Constraint::kTipover, Constraint::kContact,
+                             Constraint::kMaxSpeed, Constraint::kNone}) {
+    binding_counts[std::string(to_string(c))] = 0;
+  }
+  double min_v_max = std::numeric_limits<double>::infinity();
+  double min_v_max_s = 0.0;
+  std::size_t untraversable = 0;
+  for (std::size_t k = 0; k < limits.size(); ++k) {
+    const PathFrame& f = limits.frame(k);
+    const SpeedLimits& l = limits.limits(k);
+    const double v_max = l.traversable ? l.v_max : 0.0;
+    const double v_min = l.traversable ? l.v_min : 0.0;
+    const std::string binding(to_string(l.upper_binding));
+    ++binding_counts[binding];
+    if (!l.traversable) ++untraversable;
+    if (v_max < min_v_max) {
+      min_v_max = v_max;
+      min_v_max_s = f.s;
+    }
+    for (const double value : {f.s, f.point.x(), f.point.y(), f.point.z(), v_min, v_max}) {
+      append_number(csv, value);
+      csv += ',';
+    }
+    csv += binding;
+    for (const double value : {f.k_t, f.k_q, f.k_r, f.kappa_n, f.kappa_g}) {
+      csv += ',';
+      append_number(csv, value);
+    }
+    csv += '\n';
+  }
+
+  std::ofstream out(request.output, std::ios::binary);
+  if (!out) throw InputError(request.output + ": cannot open file for writing");
+  out << csv;
+  out.close();
+  if (!out) throw InputError(request.output + ": write failed");
+
+  nlohmann::json summary;
+  summary["stations"] = limits.size();
+  summary["length_m"] = path.length();
+  summary["min_v_max"] =
+      std::isinf(min_v_max) ? nlohmann::json(nullptr) : nlohmann::json(min_v_max);
+  summary["min_v_max_s"] =
+      std::isinf(min_v_max) ? nlohmann::json(nullptr) : nlohmann::json(min_v_max_s);
+  summary["untraversable_stations"] = untraversable;
+  summary["binding_counts"] = binding_counts;
+  summary["fit"] = request.smoothing ? "smoothing" : "interpolating";
+  summary["smoothing"] =
+      request.smoothing ? nlohmann::json(*request.smoothing) : nlohmann::json(nullptr);
+  summary["output"] = request.output;
+  summary["seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace talus::experiments

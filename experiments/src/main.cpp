@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "experiment.hpp"
+#include "limits_command.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/terrain_generators.hpp"
@@ -163,6 +164,36 @@ int main(int argc, char** argv) {
 
   GenerateOptions generate_options;
   add_generate_commands(*terrain, generate_options);
+
+  ex::LimitsRequest limits_request;
+  CLI::App* limits = app.add_subcommand(
+      "limits",
+      "speed limits of a vehicle along a path on a terrain: writes CSV columns "
+      "s,x,y,z,v_min,v_max,binding,k_t,k_q,k_r,kappa_n,kappa_g (SI units; v_max `inf` where "
+      "nothing limits it, 0 where no speed is admissible; binding = sliding, tipover, contact, "
+      "max_speed or none) and prints a JSON summary: stations, length_m, min_v_max, "
+      "untraversable_stations, binding_counts, seconds");
+  limits->add_option("--terrain", limits_request.terrain, "ESRI ASCII grid (.asc)")->required();
+  limits
+      ->add_option("--path", limits_request.path,
+                   "path CSV: header `x,y`, then one way point per line in the terrain's "
+                   "coordinates [m]; the path is the interpolating cubic B-spline through them "
+                   "(chord-length parameters) lifted onto the terrain")
+      ->required();
+  limits
+      ->add_option("--vehicle", limits_request.vehicle,
+                   "vehicle YAML (see data/vehicles/README.md)")
+      ->required();
+  limits->add_option(
+      "--stations", limits_request.stations,
+      "number of stations (2 to 10000000), equally spaced in the curve parameter; default: "
+      "one per metre of the way points' polyline, ceil(length) + 1, clamped to "
+      "[100, 100000]");
+  limits->add_option("--smoothing", limits_request.smoothing,
+                     "curvature weight lambda > 0 of the smoothing fit; without it the surface "
+                     "interpolates every node");
+  limits->add_option("-o,--output", limits_request.output, "output .csv file")->required();
+  limits->callback([&]() { std::cout << ex::limits(limits_request).dump(2) << "\n"; });
 
   std::string experiment_name, out_dir = "talus-out", data_dir;
   bool quick = false;

@@ -1,0 +1,49 @@
+#pragma once
+/// @file
+/// The `talus limits` command's work, separate from argument parsing: a
+/// vehicle's speed limits at stations along a path on a terrain, written as CSV.
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace talus::experiments {
+
+/// `talus limits --terrain T.asc --path P.csv --vehicle V.yaml [--stations N]
+/// [--smoothing LAMBDA] -o OUT.csv`.
+struct LimitsRequest {
+  std::string terrain;  ///< ESRI ASCII grid
+  std::string path;     ///< path CSV (read_path_csv): way points in the terrain's frame [m]
+  std::string vehicle;  ///< vehicle YAML/JSON (load_vehicle)
+  std::string output;   ///< CSV written here
+  /// Stations (2 to kMaxStations), equally spaced in the curve parameter; none = the default.
+  std::optional<long long> stations;
+  /// lambda of the smoothing fit; none = interpolating fit.
+  std::optional<double> smoothing;
+};
+
+/// Largest --stations accepted (memory: about 0.3 kB per station).
+inline constexpr long long kMaxStations = 10'000'000;
+/// Smallest and largest default station count.
+inline constexpr std::size_t kMinDefaultStations = 100;
+inline constexpr std::size_t kMaxDefaultStations = 100000;
+
+/// Default station count for a path whose planar polyline (the straight
+/// segments between its way points) is `planar_length` metres long: one per
+/// metre, ceil(planar_length) + 1, clamped to [100, 100000].
+std::size_t default_station_count(double planar_length);
+
+/// The columns of the CSV, in order.
+inline constexpr const char* kLimitsCsvHeader =
+    "s,x,y,z,v_min,v_max,binding,k_t,k_q,k_r,kappa_n,kappa_g";
+
+/// Builds the path (interpolating cubic B-spline through the way points,
+/// chord-length parameters, lifted onto the terrain's B-patch), computes the
+/// vehicle's speed limits at every station, writes them to request.output and
+/// returns the summary: stations, length_m, min_v_max (null if unbounded),
+/// untraversable_stations, binding_counts, seconds (and fit, smoothing,
+/// output). Bad input throws InputError.
+nlohmann::json limits(const LimitsRequest& request);
+
+}  // namespace talus::experiments

@@ -4,6 +4,7 @@
 
 #include "talus/core/error.hpp"
 #include "terrain_gallery.hpp"
+#include "velocity_limits_experiment.hpp"
 
 namespace talus::experiments {
 
@@ -13,6 +14,10 @@ std::vector<Experiment> all_experiments() {
        "every bundled DEM and a fractal terrain as shaded relief with contours, and the "
        "smoothing B-patch fit's residual map",
        run_terrain_gallery},
+      {"velocity-limits",
+       "speed limits of each constraint, the binding one and the acceleration bounds along a "
+       "path across the West Bijou escarpment, at DEM and at rover scale",
+       run_velocity_limits},
   };
 }
 

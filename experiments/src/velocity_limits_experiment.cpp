@@ -1,1 +1,1027 @@
-// placeholder: being written
+#include "velocity_limits_experiment.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "plot.hpp"
+#include "relief.hpp"
+#include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/bspline_curve.hpp"
+#include "talus/bspline/surface_path.hpp"
+#include "talus/core/elevation_grid.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/esri_ascii.hpp"
+#include "talus/dynamics/path_velocity_limits.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/dynamics/velocity_limits.hpp"
+
+namespace talus::experiments {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------
+// Fixed settings, named so the report can quote them.
+
+constexpr const char* kDemStem = "west_bijou_escarpment_nasadem25m";
+/// data/terrain/README.md "Rover-scale use": x, y and z all scaled by 1/25
+/// give 1 m cells with unchanged slopes and 25× larger curvatures.
+constexpr double kRoverScale = 1.0 / 25.0;
+constexpr std::size_t kFullStations = 2000;
+constexpr std::size_t kQuickStations = 300;
+/// Acceleration bounds are evaluated at this fraction of v_max(s): at v_max
+/// itself the lateral force uses up the whole friction budget on sliding-bound
+/// stations and the bounds collapse to a point, which says little.
+constexpr double kAccelSpeedFraction = 0.8;
+/// Constraint limit curves are clipped at this multiple of the max speed: a
+/// crest limit of 300 m/s is as irrelevant as none, and would squash the plot.
+constexpr double kClipFactor = 1.5;
+constexpr std::size_t kRasterMaxSamples = 400;  // relief raster of the maps, longer side
+constexpr double kAmbient = 0.35;               // hillshade floor, as in terrain-gallery
+constexpr double kSmoothingLambda = 1.0;  // control run: "smooths over about one cell" (bpatch.hpp)
+
+/// A path interpolation point in grid cells from the south-west node, so the
+/// same path serves the 25 m DEM and its 1 m rover-scale copy. All points are
+/// at least 6 cells inside the 121 × 81-cell domain, and the cubic stays
+/// inside too (SurfacePath checks that and would throw otherwise).
+struct CellPoint {
+  double u, v;
+};
+// West plateau (NW) → south along the plateau → east down the escarpment
+// face → north-east → east across the lower plains → south over the knoll →
+// south-east corner. The turns at P2, P4 and P5 are the "real turns"; P3
+// sits below the escarpment's steepest stretch, P6 on the knoll.
+constexpr CellPoint kPathCells[] = {{6.0, 74.0},  {18.0, 54.0}, {28.0, 32.0}, {46.0, 38.0},
+                                    {60.0, 60.0}, {84.0, 62.0}, {92.0, 46.0}, {114.0, 20.0}};
+
+// ---------------------------------------------------------------------------
+// Formatting.
+
+std::string fmt(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+/// A CSV number: "inf" / "nan" spelled out (printf may print "-nan"), else
+/// `digits` significant digits. gnuplot and pandas both read these spellings.
+std::string num(double value, int digits = 7) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0.0 ? "inf" : "-inf";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+/// About three significant digits without exponent or trailing zeros.
+std::string sig3(double value) {
+  if (value == 0.0 || !std::isfinite(value)) return fmt("%g", value);
+  const int digits = static_cast<int>(std::floor(std::log10(std::abs(value)))) + 1;
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", std::max(0, 3 - digits), value);
+  std::string text = buffer;
+  if (text.find('.') != std::string::npos) {
+    text.erase(text.find_last_not_of('0') + 1);
+    if (text.back() == '.') text.pop_back();
+  }
+  return text;
+}
+
+std::string percent(std::size_t part, std::size_t whole) {
+  return whole == 0 ? "–" : fmt("%.1f", 100.0 * static_cast<double>(part) / whole) + " %";
+}
+
+// ---------------------------------------------------------------------------
+// Vehicles and constraints.
+
+struct VehicleSpec {
+  std::string name;   ///< file-name part: point_mass, rigid_body, tall_rigid_body
+  std::string label;  ///< for titles and the report
+  Vehicle vehicle;
+};
+
+std::vector<VehicleSpec> make_vehicles() {
+  Vehicle point;
+  point.model = VehicleModel::kPointMass;
+  point.friction = 0.7;
+  point.cg_height = 0.5;
+  point.half_track = 0.6;
+  point.max_speed = 15.0;
+  // gravity 9.81 m/s², max_accel and max_decel unlimited: the defaults, so
+  // the acceleration bounds show the dynamic limits alone.
+
+  Vehicle rigid = point;
+  rigid.model = VehicleModel::kRigidBody;
+  rigid.half_wheelbase = 1.0;
+
+  // b/h = 0.45 < μ: it tips over sideways before it slides; l/h = 0.6 < μ:
+  // pitch-over caps the tangential force before friction does. (The standard
+  // rigid body has b/h = 1.2 and l/h = 2, both above μ = 0.7, so neither
+  // tip-over limit can ever bind for it.)
+  Vehicle tall = rigid;
+  tall.cg_height = 1.0;
+  tall.half_track = 0.45;
+  tall.half_wheelbase = 0.6;
+
+  std::vector<VehicleSpec> specs = {{"point_mass", "point mass", point},
+                                    {"rigid_body", "rigid body", rigid},
+                                    {"tall_rigid_body", "tall narrow rigid body", tall}};
+  for (const VehicleSpec& spec : specs) spec.vehicle.validate();
+  return specs;
+}
+
+std::string vehicle_parameters(const Vehicle& v) {
+  std::ostringstream text;
+  text << "μ = " << fmt("%g", v.friction) << ", h = " << fmt("%g", v.cg_height)
+       << " m, b = " << fmt("%g", v.half_track) << " m";
+  if (v.model == VehicleModel::kRigidBody) text << ", l = " << fmt("%g", v.half_wheelbase) << " m";
+  text << ", max speed " << fmt("%g", v.max_speed) << " m/s";
+  return text.str();
+}
+
+/// Colour and legend text of each constraint that can set v_max (or make a
+/// station untraversable) or bound the acceleration. One table so the figures
+/// and the gnuplot colour function cannot drift apart.
+struct ConstraintStyle {
+  Constraint constraint;
+  const char* colour;  ///< #rrggbb
+  const char* label;
+};
+constexpr ConstraintStyle kStyles[] = {
+    {Constraint::kContact, "#d62728", "contact (R ≥ 0)"},
+    {Constraint::kSliding, "#1f77b4", "sliding (friction)"},
+    {Constraint::kTipover, "#ff7f0e", "lateral tip-over"},
+    {Constraint::kMaxSpeed, "#7f7f7f", "max speed"},
+    {Constraint::kPitchover, "#9467bd", "pitch-over"},
+    {Constraint::kNone, "#000000", "none"},
+};
+
+const ConstraintStyle& style(Constraint c) {
+  for (const ConstraintStyle& s : kStyles)
+    if (s.constraint == c) return s;
+  return kStyles[std::size(kStyles) - 1];
+}
+
+constexpr std::size_t kConstraintCount = 8;  // enumerators of talus::Constraint
+std::size_t index_of(Constraint c) {
+  return static_cast<std::size_t>(c);
+}
+
+// ---------------------------------------------------------------------------
+// Per-station results.
+
+struct Station {
+  double s = 0.0;
+  Vec3 point = Vec3::Zero();
+  StationGeometry g;
+  SpeedLimits limits;
+  /// Each constraint's own speed limits [m/s]: upper ∞ where unbounded, 0
+  /// where the constraint's interval is empty (no speed satisfies it).
+  double v_sliding = 0.0, v_tipover = 0.0, v_contact = 0.0;
+  double v_sliding_min = 0.0, v_tipover_min = 0.0;
+  double accel_speed = 0.0;  ///< where the acceleration bounds were evaluated [m/s]
+  AccelerationBounds accel;
+};
+
+double upper_speed(const SquaredSpeedInterval& interval) {
+  return interval.empty() ? 0.0 : std::sqrt(interval.upper);  // sqrt(∞) = ∞
+}
+double lower_speed(const SquaredSpeedInterval& interval) {
+  return interval.empty() ? 0.0 : std::sqrt(interval.lower);
+}
+
+struct Summary {
+  double min_v_max = 0.0, median_v_max = 0.0;
+  std::size_t min_index = 0;
+  std::array<std::size_t, kConstraintCount> upper_counts{};  ///< by upper_binding
+  std::size_t untraversable = 0;
+  std::size_t lower_bound_stations = 0;  ///< v_min > 0
+  double max_v_min = 0.0;
+  std::size_t pitch_stations = 0;    ///< an acceleration bound set by pitch-over
+  std::size_t dips = 0;              ///< strict local minima of v_max(s)
+  std::size_t sliding_on_crest = 0;  ///< v_max set by sliding where κ_n < 0
+  std::size_t accel_infeasible = 0;
+  double median_a_max = 0.0, median_a_min = 0.0;
+  /// Smallest value of each constraint's own limit (for the "above the clip" note).
+  double min_v_sliding = 0.0, min_v_tipover = 0.0, min_v_contact = 0.0;
+};
+
+struct VehicleRun {
+  VehicleSpec spec;
+  std::vector<Station> stations;
+  Summary summary;
+};
+
+double median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto mid = values.begin() + static_cast<long>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+/// Speed limits of one vehicle along the path, and each constraint's own limits.
+VehicleRun run_vehicle(const VehicleSpec& spec, const SurfacePath& path, std::size_t stations) {
+  const VelocityLimits limits(spec.vehicle, path, stations);
+  VehicleRun run{spec, std::vector<Station>(limits.size()), {}};
+  for (std::size_t k = 0; k < limits.size(); ++k) {
+    Station& st = run.stations[k];
+    st.s = limits.frame(k).s;
+    st.point = limits.frame(k).point;
+    st.g = limits.geometry(k);
+    st.limits = limits.limits(k);
+    st.v_sliding = upper_speed(st.limits.sliding);
+    st.v_tipover = upper_speed(st.limits.tipover);
+    st.v_contact = upper_speed(st.limits.contact);
+    st.v_sliding_min = lower_speed(st.limits.sliding);
+    st.v_tipover_min = lower_speed(st.limits.tipover);
+  }
+  return run;
+}
+
+/// Acceleration bounds of every vehicle in `runs` (same path, same stations)
+/// at one common speed per station: kAccelSpeedFraction × the smallest v_max
+/// of the group there, raised to the largest v_min. A common speed makes the
+/// curves comparable: the lateral load, and with it the friction left for
+/// s̈, is then the same for all vehicles, so what differs is only the
+/// acceleration constraints themselves (pitch-over). v_max <= max_speed, so
+/// the speed is capped at the max speed already. Stations where some vehicle
+/// cannot pass are evaluated at standstill.
+void evaluate_accelerations(std::vector<VehicleRun>& runs) {
+  if (runs.empty()) return;
+  for (std::size_t k = 0; k < runs.front().stations.size(); ++k) {
+    double v_max = std::numeric_limits<double>::infinity(), v_min = 0.0;
+    for (const VehicleRun& run : runs) {
+      v_max = std::min(v_max, run.stations[k].limits.v_max);
+      v_min = std::max(v_min, run.stations[k].limits.v_min);
+    }
+    const double speed = std::max(kAccelSpeedFraction * v_max, std::min(v_min, v_max));
+    for (VehicleRun& run : runs) {
+      Station& st = run.stations[k];
+      st.accel_speed = speed;
+      st.accel = acceleration_bounds(run.spec.vehicle, st.g, speed);
+    }
+  }
+}
+
+void summarise(VehicleRun& run) {
+  Summary& sum = run.summary;
+  std::vector<double> v_max, a_max, a_min;
+  sum.min_v_max = std::numeric_limits<double>::infinity();
+  sum.min_v_sliding = sum.min_v_tipover = sum.min_v_contact =
+      std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < run.stations.size(); ++k) {
+    const Station& st = run.stations[k];
+    v_max.push_back(st.limits.v_max);
+    if (st.limits.v_max < sum.min_v_max) {
+      sum.min_v_max = st.limits.v_max;
+      sum.min_index = k;
+    }
+    // Strict local minima below the max speed: the "dips" of v_max(s).
+    if (k > 0 && k + 1 < run.stations.size() &&
+        st.limits.v_max < run.stations[k - 1].limits.v_max &&
+        st.limits.v_max < run.stations[k + 1].limits.v_max)
+      ++sum.dips;
+    ++sum.upper_counts[index_of(st.limits.upper_binding)];
+    if (!st.limits.traversable) ++sum.untraversable;
+    if (st.limits.v_min > 0.0) ++sum.lower_bound_stations;
+    if (st.limits.upper_binding == Constraint::kSliding && st.g.kappa_n < 0.0)
+      ++sum.sliding_on_crest;
+    sum.max_v_min = std::max(sum.max_v_min, st.limits.v_min);
+    sum.min_v_sliding = std::min(sum.min_v_sliding, st.v_sliding);
+    sum.min_v_tipover = std::min(sum.min_v_tipover, st.v_tipover);
+    sum.min_v_contact = std::min(sum.min_v_contact, st.v_contact);
+    if (!st.accel.feasible) {
+      ++sum.accel_infeasible;
+      continue;
+    }
+    if (st.accel.upper_binding == Constraint::kPitchover ||
+        st.accel.lower_binding == Constraint::kPitchover)
+      ++sum.pitch_stations;
+    a_max.push_back(st.accel.a_max);
+    a_min.push_back(st.accel.a_min);
+  }
+  sum.median_v_max = median(v_max);
+  sum.median_a_max = median(a_max);
+  sum.median_a_min = median(a_min);
+}
+
+// ---------------------------------------------------------------------------
+// Terrain cases.
+
+struct TerrainCase {
+  std::string name;   ///< "dem" or "rover": prefixes every output file
+  std::string label;  ///< for titles
+  double scale = 1.0;
+  ElevationGrid grid;
+};
+
+/// The DEM with x, y and z multiplied by `k`. Slopes (dz/dx) are unchanged;
+/// curvatures (d²z/dx²) are multiplied by 1/k.
+ElevationGrid scaled_grid(const ElevationGrid& grid, double k) {
+  ElevationGrid out(grid.ncols(), grid.nrows(), grid.cellsize() * k, grid.x_min() * k,
+                    grid.y_min() * k);
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      if (grid.valid(i, j)) {
+        out.set(i, j, grid.at(i, j) * k);
+      } else {
+        out.set_void(i, j);  // BPatch::interpolate will name it
+      }
+    }
+  return out;
+}
+
+/// The path interpolation points in this grid's coordinates.
+std::vector<Vec2> path_points(const ElevationGrid& grid) {
+  std::vector<Vec2> points;
+  const double h = grid.cellsize();
+  for (const CellPoint& c : kPathCells) {
+    if (c.u < 2.0 || c.v < 2.0 || c.u > static_cast<double>(grid.ncols() - 1) - 2.0 ||
+        c.v > static_cast<double>(grid.nrows() - 1) - 2.0) {
+      throw InputError("velocity-limits: path point (" + fmt("%g", c.u) + ", " + fmt("%g", c.v) +
+                       ") cells is not 2 cells inside the " + std::to_string(grid.ncols()) + " × " +
+                       std::to_string(grid.nrows()) + "-node grid");
+    }
+    points.emplace_back(grid.x_min() + c.u * h, grid.y_min() + c.v * h);
+  }
+  return points;
+}
+
+struct CaseResult {
+  std::string name, label;
+  double scale = 1.0, cellsize = 1.0, zmin = 0.0, zmax = 0.0, length = 0.0;
+  double compute_seconds = 0.0, exaggeration = 1.0;
+  std::size_t stations = 0;
+  std::vector<Vec2> points;  ///< relative to the south-west node [m]
+  std::vector<VehicleRun> runs;
+  std::vector<VehicleRun> smoothed;  ///< point mass on the smoothing fit (one entry)
+  double smoothed_seconds = 0.0;
+};
+
+// ---------------------------------------------------------------------------
+// Output files.
+
+void write_vehicle_csv(const VehicleRun& run, const fs::path& file) {
+  std::ofstream out = open_output_file(file);
+  out << "s,x,y,z,v_max,v_min,binding,v_sliding,v_tipover,v_contact,a_min,a_max,k_t,k_q,k_r,"
+         "kappa_n,kappa_g\n";
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Station& st : run.stations) {
+    const bool a_ok = st.accel.feasible;
+    out << num(st.s, 9) << ',' << num(st.point.x(), 10) << ',' << num(st.point.y(), 10) << ','
+        << num(st.point.z(), 9) << ',' << num(st.limits.v_max) << ',' << num(st.limits.v_min) << ','
+        << to_string(st.limits.upper_binding) << ',' << num(st.v_sliding) << ','
+        << num(st.v_tipover) << ',' << num(st.v_contact) << ',' << num(a_ok ? st.accel.a_min : nan)
+        << ',' << num(a_ok ? st.accel.a_max : nan) << ',' << num(st.g.k_t) << ',' << num(st.g.k_q)
+        << ',' << num(st.g.k_r) << ',' << num(st.g.kappa_n) << ',' << num(st.g.kappa_g) << '\n';
+  }
+  close_output_file(out, file);
+}
+
+/// Speeds and bindings behind the acceleration figure: one row per station,
+/// one group of columns per vehicle (the per-vehicle CSVs keep their fixed
+/// column set).
+void write_acceleration_csv(const CaseResult& c, const fs::path& file) {
+  std::ofstream out = open_output_file(file);
+  out << "s";
+  for (const VehicleRun& run : c.runs) {
+    const std::string& n = run.spec.name;
+    out << ',' << n << "_speed," << n << "_a_min," << n << "_a_max," << n << "_lower_binding," << n
+        << "_upper_binding";
+  }
+  out << '\n';
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = 0; k < c.stations; ++k) {
+    out << num(c.runs.front().stations[k].s, 9);
+    for (const VehicleRun& run : c.runs) {
+      const Station& st = run.stations[k];
+      const bool ok = st.accel.feasible;
+      out << ',' << num(st.accel_speed) << ',' << num(ok ? st.accel.a_min : nan) << ','
+          << num(ok ? st.accel.a_max : nan) << ','
+          << (ok ? to_string(st.accel.lower_binding) : "infeasible") << ','
+          << (ok ? to_string(st.accel.upper_binding) : "infeasible");
+    }
+    out << '\n';
+  }
+  close_output_file(out, file);
+}
+
+/// gnuplot function mapping a binding name (CSV string) to a 0xRRGGBB colour.
+std::string gnuplot_colour_function(const std::string& name) {
+  std::ostringstream f;
+  f << name << "(b) = ";
+  for (const ConstraintStyle& s : kStyles) {
+    f << "(b eq '" << to_string(s.constraint) << "') ? 0x" << (s.colour + 1) << " : ";
+  }
+  f << "0x000000\n";
+  return f.str();
+}
+
+std::string csv_name(const CaseResult& c, const VehicleRun& run) {
+  return c.name + "_" + run.spec.name + ".csv";
+}
+std::string smoothed_csv_name(const CaseResult& c) {
+  return c.name + "_smoothed_" + c.smoothed.front().spec.name + ".csv";
+}
+
+/// Figure 1: per vehicle, each constraint's limit curve (thin) and v_max(s)
+/// coloured by its binding constraint (thick), one panel per vehicle.
+void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
+  const double max_speed = c.runs.front().spec.vehicle.max_speed;
+  const double cap = kClipFactor * max_speed;
+  const std::string png = c.name + "_speed_limits.png";
+  const int panel_height = 400;
+  std::ostringstream gp;
+  gp << "# Speed limits along the path, " << c.label << ", from `talus experiment "
+     << "velocity-limits`.\n# Re-render in this folder with: gnuplot " << c.name
+     << "_speed_limits.gp\n# Inputs: " << c.name
+     << "_<vehicle>.csv (columns: 1 s, 5 v_max, 6 v_min, 7 binding, 8 v_sliding, 9 v_tipover, "
+        "10 v_contact).\n"
+     << png_terminal(1250, 90 + panel_height * static_cast<int>(c.runs.size())) << "set output "
+     << gnuplot_string(png) << "\n"
+     << "set datafile separator ','\n"
+     << "CAP = " << fmt("%g", cap) << "\n"
+     << "# Limits above CAP (and ∞) are drawn just above the plot so their lines leave it.\n"
+     << "clip(v) = (v > CAP) ? 1.02 * CAP : v\n"
+     << gnuplot_colour_function("binding_colour") << "set multiplot layout " << c.runs.size()
+     << ",1 title "
+     << gnuplot_string(c.label +
+                       ": speed limits along the path [m/s]\nthin: each constraint's own "
+                       "limit, clipped at " +
+                       fmt("%g", cap) + " m/s = " + fmt("%g", kClipFactor) +
+                       " × max speed (∞ where it does not bound the speed); thick: v_{max}(s) "
+                       "coloured by the constraint that sets it")
+     << "\n"
+     << "set xrange [0:" << fmt("%.10g", c.length) << "]\nset yrange [0:CAP]\n"
+     << "set xlabel 'arc length s [m]'\nset ylabel 'speed [m/s]'\n"
+     << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
+     << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
+     << "# The key sits right of each panel, at a fixed place so the panels line up.\n"
+     << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 2 spacing 1.1 "
+        "font ',10'\n";
+  for (const VehicleRun& run : c.runs) {
+    const Summary& sum = run.summary;
+    const std::string file = gnuplot_string(csv_name(c, run));
+    const auto limit_title = [&](const char* name, double min_v) {
+      std::string t = std::string(name) + " limit";
+      if (!(min_v <= cap)) t += " (> " + fmt("%g", cap) + " m/s everywhere)";
+      return gnuplot_string(t);
+    };
+    gp << "\nset title "
+       << gnuplot_string(run.spec.label + ": " + vehicle_parameters(run.spec.vehicle)) << "\nplot "
+       << file << " skip 1 using 1:(clip($8)) with lines lw 1.2 lc rgb '#601f77b4' "
+       << "title " << limit_title("sliding", sum.min_v_sliding) << ", \\\n"
+       << "     '' skip 1 using 1:(clip($9)) with lines lw 1.2 lc rgb '#60ff7f0e' title "
+       << limit_title("tip-over", sum.min_v_tipover) << ", \\\n"
+       << "     '' skip 1 using 1:(clip($10)) with lines lw 1.2 lc rgb '#60d62728' title "
+       << limit_title("contact", sum.min_v_contact) << ", \\\n";
+    if (sum.lower_bound_stations > 0) {
+      gp << "     '' skip 1 using 1:($6 > 0 ? $6 : NaN) with lines lw 1.5 dt 2 lc rgb 'black' "
+            "title 'v_{min} (lower bound)', \\\n";
+    }
+    // Each segment takes the colour of its end station's binding constraint.
+    gp << "     '' skip 1 using 1:5:(binding_colour(strcol(7))) with lines lw 2.5 lc rgb "
+          "variable notitle";
+    for (const ConstraintStyle& s : kStyles) {
+      const std::size_t count = sum.upper_counts[index_of(s.constraint)];
+      if (count == 0) continue;  // legend only for constraints that occur
+      gp << ", \\\n     NaN with lines lw 4 lc rgb '" << s.colour << "' title "
+         << gnuplot_string(std::string("v_{max} set by ") + s.label + " (" +
+                           percent(count, run.stations.size()) + ")");
+    }
+    if (sum.untraversable > 0) {
+      gp << ", \\\n     '' skip 1 using 1:($5 == 0 ? 0 : NaN) with points pt 2 ps 1.2 lc rgb "
+            "'black' title "
+         << gnuplot_string("untraversable (" + std::to_string(sum.untraversable) + " stations)");
+    }
+    if (&run == &c.runs.front() && !c.smoothed.empty()) {
+      gp << ", \\\n     " << gnuplot_string(smoothed_csv_name(c))
+         << " skip 1 using 1:5 with lines lw 1 lc rgb 'black' title "
+         << gnuplot_string("v_{max}, smoothing fit (λ = " + fmt("%g", kSmoothingLambda) + ")");
+    }
+    gp << "\n";
+  }
+  gp << "unset multiplot\n";
+  const fs::path script = out_dir / (c.name + "_speed_limits.gp");
+  write_text_file(script, gp.str());
+  run_gnuplot(script);
+}
+
+/// Figure 2: tangential-acceleration bounds. Top: point mass vs rigid body.
+/// Bottom: the tall rigid body, segments coloured by what sets the bound.
+void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
+  const std::string png = c.name + "_acceleration.png";
+  const std::string data = gnuplot_string(c.name + "_acceleration.csv");
+  // Column of vehicle v's quantity q (0 speed, 1 a_min, 2 a_max, 3 lower, 4 upper).
+  const auto col = [](std::size_t v, int q) { return std::to_string(2 + 5 * v + q); };
+  std::ostringstream gp;
+  gp << "# Tangential-acceleration bounds along the path, " << c.label
+     << ", from `talus experiment velocity-limits`.\n# Re-render in this folder with: gnuplot "
+     << c.name << "_acceleration.gp\n# Input: " << c.name
+     << "_acceleration.csv (per vehicle: speed, a_min, a_max, lower and upper binding).\n"
+     << png_terminal(1250, 900) << "set output " << gnuplot_string(png) << "\n"
+     << "set datafile separator ','\n"
+     << gnuplot_colour_function("binding_colour") << "set multiplot layout 2,1 title "
+     << gnuplot_string(c.label +
+                       ": admissible tangential acceleration s̈ ∈ [a_{min}, a_{max}] [m/s²]\n"
+                       "all vehicles at one common speed per station, " +
+                       fmt("%g", kAccelSpeedFraction) +
+                       " × the smallest v_{max}(s) of the three; no drive or brake limit")
+     << "\n"
+     << "set xrange [0:" << fmt("%.10g", c.length) << "]\n"
+     << "set xlabel 'arc length s [m]'\nset ylabel 'acceleration [m/s²]'\n"
+     << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
+     << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
+     << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 3 spacing 1.1 "
+        "font ',10'\n"
+     << "set xzeroaxis lt 1 lc rgb '#808080'\n";
+  // Top panel: vehicles 0 and 1 (point mass, rigid body).
+  const Vehicle& rigid = c.runs[1].spec.vehicle;
+  const std::size_t rigid_pitch = c.runs[1].summary.pitch_stations;
+  gp << "set title "
+     << gnuplot_string(
+            "point mass vs rigid body (l/h = " + fmt("%g", rigid.half_wheelbase / rigid.cg_height) +
+            (rigid.half_wheelbase / rigid.cg_height > rigid.friction ? " > " : " ≤ ") +
+            "μ = " + fmt("%g", rigid.friction) + "; pitch-over binds at " +
+            std::to_string(rigid_pitch) + " stations" +
+            (rigid_pitch == 0 ? ", so the dashed curves lie on the solid ones)" : ")"))
+     << "\nplot " << data << " skip 1 using 1:" << col(0, 2)
+     << " with lines lw 3 lc rgb '#1f77b4' title 'point mass a_{max}', \\\n"
+     << "     '' skip 1 using 1:" << col(0, 1)
+     << " with lines lw 3 lc rgb '#6baed6' title 'point mass a_{min}', \\\n"
+     << "     '' skip 1 using 1:" << col(1, 2)
+     << " with lines lw 1.5 dt (6,4) lc rgb '#d62728' title 'rigid body a_{max}', \\\n"
+     << "     '' skip 1 using 1:" << col(1, 1)
+     << " with lines lw 1.5 dt (6,4) lc rgb '#ff9896' title 'rigid body a_{min}'\n";
+  // Bottom panel: the tall rigid body coloured by binding, point mass for reference.
+  if (c.runs.size() > 2) {
+    const VehicleRun& tall = c.runs[2];
+    gp << "set title "
+       << gnuplot_string(tall.spec.label + ": " + vehicle_parameters(tall.spec.vehicle) +
+                         "; colour = constraint setting the bound")
+       << "\nplot " << data << " skip 1 using 1:" << col(0, 2)
+       << " with lines lw 1 lc rgb '#b0b0b0' title 'point mass (reference)', \\\n"
+       << "     '' skip 1 using 1:" << col(0, 1)
+       << " with lines lw 1 lc rgb '#b0b0b0' notitle, \\\n"
+       << "     '' skip 1 using 1:" << col(2, 2) << ":(binding_colour(strcol(" << col(2, 4)
+       << "))) with lines lw 2.5 lc rgb variable notitle, \\\n"
+       << "     '' skip 1 using 1:" << col(2, 1) << ":(binding_colour(strcol(" << col(2, 3)
+       << "))) with lines lw 2.5 lc rgb variable notitle";
+    for (const Constraint cst : {Constraint::kSliding, Constraint::kPitchover}) {
+      bool occurs = false;  // legend only for bindings that occur
+      for (const Station& st : tall.stations)
+        occurs |=
+            st.accel.feasible && (st.accel.upper_binding == cst || st.accel.lower_binding == cst);
+      if (!occurs) continue;
+      gp << ", \\\n     NaN with lines lw 4 lc rgb '" << style(cst).colour << "' title "
+         << gnuplot_string(std::string("bound set by ") + style(cst).label);
+    }
+    gp << "\n";
+  }
+  gp << "unset multiplot\n";
+  const fs::path script = out_dir / (c.name + "_acceleration.gp");
+  write_text_file(script, gp.str());
+  run_gnuplot(script);
+}
+
+/// Figure 3: the path over shaded relief, coloured by v_max of the point mass
+/// (identical to the rigid body's).
+void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
+              double& exaggeration) {
+  const double x0 = patch.x_min(), y0 = patch.y_min();
+  const double width = patch.x_max() - x0, height = patch.y_max() - y0;
+  const RasterSize raster = raster_for_extent(width, height, kRasterMaxSamples);
+  std::vector<SurfacePoint> samples(raster.nx * raster.ny);
+  std::vector<double> slopes(samples.size());
+  for (std::size_t b = 0; b < raster.ny; ++b)
+    for (std::size_t a = 0; a < raster.nx; ++a) {
+      // Clamped so rounding never pushes the last sample off the domain.
+      const double dx = std::min(static_cast<double>(a) * raster.spacing, width);
+      const double dy = std::min(static_cast<double>(b) * raster.spacing, height);
+      const std::size_t k = b * raster.nx + a;
+      samples[k] = patch.evaluate(Vec2(x0 + dx, y0 + dy));
+      slopes[k] = samples[k].gradient.norm();
+    }
+  std::vector<double> sorted = slopes;
+  const auto p95 = sorted.begin() + static_cast<long>(0.95 * static_cast<double>(sorted.size()));
+  std::nth_element(sorted.begin(), p95, sorted.end());
+  exaggeration = hillshade_exaggeration(*p95);
+  const SunPosition sun{315.0, 45.0};
+
+  const fs::path rgb_file = out_dir / (c.name + "_relief.rgb");
+  std::ofstream rgb = open_output_file(rgb_file);
+  rgb << "# " << c.label << ": interpolating B-patch, hypsometric colour x hillshade (azimuth "
+      << sun.azimuth_deg << " deg, altitude " << sun.altitude_deg << " deg, exaggeration "
+      << exaggeration << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
+  const double relief = c.zmax - c.zmin;
+  for (std::size_t b = 0; b < raster.ny; ++b) {
+    for (std::size_t a = 0; a < raster.nx; ++a) {
+      const std::size_t k = b * raster.nx + a;
+      const SurfacePoint& s = samples[k];
+      const double t = relief > 0.0 ? (s.z - c.zmin) / relief : 0.5;
+      Rgb colour =
+          shade_colour(hypsometric_colour(t),
+                       hillshade(s.gradient.x(), s.gradient.y(), sun, exaggeration), kAmbient);
+      // Washed towards white so the coloured path stands out against the tint.
+      colour = {0.55 * colour.r + 0.45, 0.55 * colour.g + 0.45, 0.55 * colour.b + 0.45};
+      rgb << fmt("%.7g", std::min(static_cast<double>(a) * raster.spacing, width)) << ' '
+          << fmt("%.7g", std::min(static_cast<double>(b) * raster.spacing, height)) << ' '
+          << to_byte(colour.r) << ' ' << to_byte(colour.g) << ' ' << to_byte(colour.b) << '\n';
+    }
+    rgb << '\n';
+  }
+  close_output_file(rgb, rgb_file);
+
+  const VehicleRun& run = c.runs.front();
+  const fs::path path_file = out_dir / (c.name + "_path.dat");
+  std::ofstream path = open_output_file(path_file);
+  path << "# " << c.label << ": path stations; x - x_min [m], y - y_min [m], v_max of the "
+       << run.spec.label << " [m/s], 1 if untraversable\n";
+  for (const Station& st : run.stations) {
+    path << fmt("%.7g", st.point.x() - x0) << ' ' << fmt("%.7g", st.point.y() - y0) << ' '
+         << num(st.limits.v_max) << ' ' << (st.limits.traversable ? 0 : 1) << '\n';
+  }
+  close_output_file(path, path_file);
+
+  const fs::path points_file = out_dir / (c.name + "_path_points.dat");
+  std::ofstream points = open_output_file(points_file);
+  points << "# interpolation points of the path: x - x_min [m], y - y_min [m], label\n";
+  for (std::size_t i = 0; i < c.points.size(); ++i) {
+    points << fmt("%.7g", c.points[i].x()) << ' ' << fmt("%.7g", c.points[i].y()) << " P" << i
+           << '\n';
+  }
+  close_output_file(points, points_file);
+
+  const double max_speed = run.spec.vehicle.max_speed;
+  const double ratio = height / width;
+  const int canvas_height = static_cast<int>(std::clamp(220.0 + 760.0 * ratio, 450.0, 1100.0));
+  std::ostringstream title;
+  title << c.label << ": path coloured by v_{max} of the point mass (= rigid body)\n"
+        << "over shaded relief of the interpolating fit (elevation " << sig3(c.zmin) << " to "
+        << sig3(c.zmax) << " m, hillshade × " << fmt("%g", exaggeration)
+        << " vertical exaggeration)";
+  std::ostringstream gp;
+  gp << "# Map of the path, " << c.label << ", from `talus experiment velocity-limits`.\n"
+     << "# Re-render in this folder with: gnuplot " << c.name << "_map.gp\n"
+     << "# Inputs: " << c.name << "_relief.rgb (x y r g b), " << c.name
+     << "_path.dat (x y v_max untraversable), " << c.name << "_path_points.dat (x y label).\n"
+     << png_terminal(1100, canvas_height) << "set output " << gnuplot_string(c.name + "_map.png")
+     << "\n"
+     << "set size ratio -1\n"
+     << "set xrange [0:" << fmt("%.10g", width) << "]\nset yrange [0:" << fmt("%.10g", height)
+     << "]\n"
+     << "set xlabel 'x − x_{min} [m]  (east)'\nset ylabel 'y − y_{min} [m]  (north)'\n"
+     << "set tics out nomirror\n"
+     << "set title " << gnuplot_string(title.str()) << " font ',10'\n"
+     << "# ColorBrewer RdYlBu: red = slow, blue = fast.\n"
+     << "set palette defined (0 '#a50026', 0.25 '#f46d43', 0.5 '#fee090', 0.75 '#74add1', "
+        "1 '#313695')\n"
+     << "set cbrange [0:" << fmt("%g", max_speed) << "]\n"
+     << "set cblabel 'v_{max} [m/s]'\nset colorbox\n"
+     << "set key outside bottom center horizontal samplen 2\n"
+     << "plot " << gnuplot_string(c.name + "_relief.rgb")
+     << " using 1:2:3:4:5 with rgbimage notitle, \\\n"
+     << "     " << gnuplot_string(c.name + "_path.dat")
+     << " using 1:2 with lines lw 9 lc rgb 'black' notitle, \\\n"
+     << "     '' using 1:2:3 with lines lw 7 lc palette title 'path, coloured by v_{max}', \\\n"
+     << (run.summary.untraversable > 0
+             ? "     '' using 1:($4 > 0 ? $2 : NaN) with points pt 2 ps 1.5 lw 2 lc rgb 'black' "
+               "title 'untraversable', \\\n"
+             : "")
+     << "     " << gnuplot_string(c.name + "_path_points.dat")
+     << " using 1:2 with points pt 7 ps 1.4 lc rgb 'black' title 'interpolation points', \\\n"
+     << "     '' using 1:2:3 with labels offset char 1.2,0.8 font ',11' tc rgb 'black' notitle\n";
+  const fs::path script = out_dir / (c.name + "_map.gp");
+  write_text_file(script, gp.str());
+  run_gnuplot(script);
+}
+
+CaseResult process_case(const TerrainCase& tc, const std::vector<VehicleSpec>& vehicles,
+                        std::size_t stations, const fs::path& out_dir) {
+  using Clock = std::chrono::steady_clock;
+  CaseResult c;
+  c.name = tc.name;
+  c.label = tc.label;
+  c.scale = tc.scale;
+  c.cellsize = tc.grid.cellsize();
+  c.stations = stations;
+  const auto range = tc.grid.elevation_range();
+  if (!range) throw InputError("velocity-limits: " + tc.label + " has no valid node");
+  c.zmin = range->first;
+  c.zmax = range->second;
+
+  const auto t0 = Clock::now();
+  const BPatch patch = BPatch::interpolate(tc.grid);
+  const std::vector<Vec2> points = path_points(tc.grid);
+  for (const Vec2& p : points) c.points.emplace_back(p.x() - patch.x_min(), p.y() - patch.y_min());
+  const Curve2 curve = Curve2::interpolate(points);
+  const SurfacePath path(patch, curve);
+  c.length = path.length();
+  for (const VehicleSpec& spec : vehicles) c.runs.push_back(run_vehicle(spec, path, stations));
+  evaluate_accelerations(c.runs);
+  for (VehicleRun& run : c.runs) summarise(run);
+  c.compute_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+
+  // Control run: the same path on the smoothing fit, point mass only. The DEM
+  // stores whole metres, so the interpolating fit turns the 1 m steps into
+  // curvature; the smoothing fit (about one cell of smoothing, and λ is
+  // dimensionless, so the same at both scales) shows how much of v_max(s)
+  // comes from that quantisation rather than from the landforms.
+  const auto t1 = Clock::now();
+  const BPatch smooth_patch = BPatch::fit_smoothing(tc.grid, kSmoothingLambda);
+  const SurfacePath smooth_path(smooth_patch, curve);
+  c.smoothed.push_back(run_vehicle(vehicles.front(), smooth_path, stations));
+  evaluate_accelerations(c.smoothed);
+  summarise(c.smoothed.front());
+  c.smoothed_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+
+  for (const VehicleRun& run : c.runs) write_vehicle_csv(run, out_dir / csv_name(c, run));
+  write_vehicle_csv(c.smoothed.front(), out_dir / smoothed_csv_name(c));
+  write_acceleration_csv(c, out_dir / (c.name + "_acceleration.csv"));
+  draw_speed_limits(c, out_dir);
+  draw_acceleration(c, out_dir);
+  draw_map(c, patch, out_dir, c.exaggeration);
+  return c;
+}
+
+// ---------------------------------------------------------------------------
+// Report.
+
+void write_summary_csv(const std::vector<CaseResult>& cases, const fs::path& file) {
+  std::ostringstream csv;
+  csv << "case,vehicle,stations,length_m,min_v_max,median_v_max,share_contact,share_sliding,"
+         "share_tipover,share_max_speed,untraversable,lower_bound_stations,max_v_min,"
+         "pitchover_accel_stations,median_a_min,median_a_max\n";
+  for (const CaseResult& c : cases)
+    for (const VehicleRun& run : c.runs) {
+      const Summary& s = run.summary;
+      const double n = static_cast<double>(run.stations.size());
+      const auto share = [&](Constraint cst) {
+        return num(static_cast<double>(s.upper_counts[index_of(cst)]) / n, 5);
+      };
+      csv << c.name << ',' << run.spec.name << ',' << run.stations.size() << ',' << num(c.length, 8)
+          << ',' << num(s.min_v_max, 5) << ',' << num(s.median_v_max, 5) << ','
+          << share(Constraint::kContact) << ',' << share(Constraint::kSliding) << ','
+          << share(Constraint::kTipover) << ',' << share(Constraint::kMaxSpeed) << ','
+          << s.untraversable << ',' << s.lower_bound_stations << ',' << num(s.max_v_min, 5) << ','
+          << s.pitch_stations << ',' << num(s.median_a_min, 5) << ',' << num(s.median_a_max, 5)
+          << '\n';
+    }
+  write_text_file(file, csv.str());
+}
+
+std::string commentary(const CaseResult& dem, const CaseResult& rover) {
+  const VehicleRun& dem_pm = dem.runs[0];
+  const VehicleRun& pm = rover.runs[0];
+  const VehicleRun& rb = rover.runs[1];
+  const VehicleRun& tall = rover.runs[2];
+  const VehicleRun& smooth = rover.smoothed.front();
+  const Vehicle& v = pm.spec.vehicle;
+  const auto count = [](const VehicleRun& run, Constraint c) {
+    return run.summary.upper_counts[index_of(c)];
+  };
+  const auto share = [&](const VehicleRun& run, Constraint c) {
+    return percent(count(run, c), run.stations.size());
+  };
+  std::ostringstream text;
+
+  // 1. The DEM's own scale.
+  text << "At the DEM's own 25 m scale the dynamics hardly matter: the max speed sets v_max at "
+       << share(dem_pm, Constraint::kMaxSpeed) << " of the stations of the " << sig3(dem.length)
+       << " m path, and the tightest dynamic limits anywhere are "
+       << sig3(dem_pm.summary.min_v_sliding) << " m/s (sliding) and "
+       << sig3(dem_pm.summary.min_v_contact)
+       << " m/s (contact), because turns and landform curvatures there have radii of hundreds "
+          "of metres. ";
+
+  // 2. Rover scale: what binds, and why contact never shows.
+  const Station& worst = pm.stations[pm.summary.min_index];
+  const double g = v.gravity;
+  const double crest_only = worst.g.kappa_n < 0.0 ? std::sqrt(g * worst.g.k_r / -worst.g.kappa_n)
+                                                  : std::numeric_limits<double>::infinity();
+  const double turn_only = std::sqrt(v.friction * g / std::max(std::abs(worst.g.kappa_g), 1e-300));
+  text << "At rover scale (1 m cells, curvatures × 25) the point mass's v_max is set by sliding at "
+       << share(pm, Constraint::kSliding) << " of the stations and by the max speed at "
+       << share(pm, Constraint::kMaxSpeed) << ", and by contact at only "
+       << share(pm, Constraint::kContact)
+       << ": the sliding interval always lies inside the contact interval and meets its end only "
+          "where the lateral force vanishes, so a crest appears as sliding with the contact limit "
+          "just above it ("
+       << percent(pm.summary.sliding_on_crest, count(pm, Constraint::kSliding))
+       << " of the sliding-bound stations have κ_n < 0); the slowest station, "
+       << sig3(pm.summary.min_v_max) << " m/s at s = " << sig3(worst.s)
+       << " m, is a crest (κ_n = " << sig3(worst.g.kappa_n) << " 1/m, contact alone "
+       << sig3(crest_only) << " m/s) in a turn (κ_g = " << sig3(worst.g.kappa_g)
+       << " 1/m, √(μg/|κ_g|) = " << sig3(turn_only)
+       << " m/s on flat ground), and the two together give the lower value. ";
+
+  // 3. How much of it is the DEM's vertical quantisation.
+  text << "The many narrow dips are largely the DEM's whole-metre quantisation (4 cm steps per "
+          "1 m cell after scaling), which the interpolating fit turns into curvature: v_max(s) "
+          "has "
+       << pm.summary.dips << " local minima along " << sig3(rover.length) << " m (one every "
+       << sig3(rover.length / static_cast<double>(std::max<std::size_t>(pm.summary.dips, 1)))
+       << " m, the cell scale) against " << smooth.summary.dips
+       << " on the smoothing fit (λ = " << fmt("%g", kSmoothingLambda)
+       << "), which lifts min/median v_max from " << sig3(pm.summary.min_v_max) << "/"
+       << sig3(pm.summary.median_v_max) << " to " << sig3(smooth.summary.min_v_max) << "/"
+       << sig3(smooth.summary.median_v_max)
+       << " m/s; the broad pattern, sliding binding through the turns, survives the smoothing ("
+       << share(smooth, Constraint::kSliding) << " of the stations there vs "
+       << share(pm, Constraint::kSliding) << "). ";
+
+  // 4. Rigid body vs point mass, and the tall vehicle.
+  bool same_limits = true, same_accel = true;
+  for (std::size_t k = 0; k < pm.stations.size(); ++k) {
+    same_limits &= pm.stations[k].limits.v_max == rb.stations[k].limits.v_max &&
+                   pm.stations[k].limits.v_min == rb.stations[k].limits.v_min;
+    same_accel &= pm.stations[k].accel.a_max == rb.stations[k].accel.a_max &&
+                  pm.stations[k].accel.a_min == rb.stations[k].accel.a_min;
+  }
+  const Vehicle& rv = rb.spec.vehicle;
+  text << "The rigid body's speed limits are "
+       << (same_limits ? "identical to the point mass's at every station" : "NOT identical")
+       << " (its only extra constraint, pitch-over |f_t| ≤ (l/h) R, acts on the acceleration), "
+          "and since l/h = "
+       << fmt("%g", rv.half_wheelbase / rv.cg_height) << " exceeds μ = " << fmt("%g", rv.friction)
+       << " the friction ellipse is always the tighter bound, so its acceleration bounds are "
+       << (same_accel ? "identical" : "NOT identical") << " too (pitch-over binds at "
+       << rb.summary.pitch_stations << " stations). ";
+  const Vehicle& tv = tall.spec.vehicle;
+  text << "The tall narrow rigid body (b/h = " << fmt("%g", tv.half_track / tv.cg_height)
+       << ", l/h = " << fmt("%g", tv.half_wheelbase / tv.cg_height)
+       << ", both below μ) shows both tip-over limits: lateral tip-over has the same form as "
+          "the sliding condition with b/h in place of μ, so it replaces sliding everywhere ("
+       << share(tall, Constraint::kTipover) << " tip-over, " << share(tall, Constraint::kSliding)
+       << " sliding; median v_max " << sig3(tall.summary.median_v_max) << " vs "
+       << sig3(pm.summary.median_v_max)
+       << " m/s), and at the common evaluation speed pitch-over sets its acceleration bound at "
+       << percent(tall.summary.pitch_stations, tall.stations.size())
+       << " of the stations (median a_max " << sig3(tall.summary.median_a_max) << " vs "
+       << sig3(pm.summary.median_a_max) << " m/s² for the point mass).";
+  return text.str();
+}
+
+void write_report(const std::vector<CaseResult>& cases, const std::vector<VehicleSpec>& vehicles,
+                  const ElevationGrid& dem, const ExperimentContext& context,
+                  const fs::path& file) {
+  std::ostringstream md;
+  md << "# Velocity limits along a path on a real DEM\n\n"
+     << "The speed limits v_min(s) ≤ ṡ ≤ v_max(s) of each dynamic constraint (sliding, lateral "
+        "tip-over, loss of contact) and the binding one, and the admissible tangential "
+        "acceleration, along one fixed curved path across the West Bijou escarpment, for three "
+        "vehicles, at the DEM's own scale and at rover scale.\n\n"
+     << "## What was run\n\n"
+     << "- Terrain: `data/terrain/" << kDemStem
+     << ".asc` (West Bijou Creek escarpment, "
+        "Colorado; NASADEM, "
+     << dem.ncols() << " × " << dem.nrows() << " nodes, cell " << fmt("%g", dem.cellsize())
+     << " m, see `data/terrain/README.md`), fitted with the interpolating B-patch "
+        "(`BPatch::interpolate`, exact at every node).\n"
+     << "- Two cases:\n"
+     << "  - `dem`: the DEM as it is (25 m cells, elevations " << sig3(cases[0].zmin) << " to "
+     << sig3(cases[0].zmax) << " m).\n"
+     << "  - `rover`: the same DEM with x, y **and** z multiplied by k = 1/25 (README "
+        "\"Rover-scale use\"), built in code: 1 m cells, elevations "
+     << sig3(cases[1].zmin) << " to " << sig3(cases[1].zmax)
+     << " m, slopes unchanged, curvatures 25 × larger. At 25 m cells the terrain's "
+        "curvatures and the path's turns are too gentle for any limit to bind at vehicle "
+        "speeds; at 1 m they are rover-sized. Note that the DEM stores whole metres, so at "
+        "rover scale its 1 m quantisation steps become 4 cm steps per 1 m cell, which the "
+        "interpolating fit reproduces as small-scale curvature.\n"
+     << "- Path: `Curve2::interpolate` (cubic, chord-length parameters) through "
+     << std::size(kPathCells)
+     << " fixed points given in cells from the south-west node (the same for both cases); "
+        "in metres from that node:\n\n"
+     << "  | point | cells (u, v) | `dem` x, y [m] | `rover` x, y [m] |\n"
+     << "  |---|---|---|---|\n";
+  for (std::size_t i = 0; i < std::size(kPathCells); ++i) {
+    md << "  | P" << i << " | " << fmt("%g", kPathCells[i].u) << ", " << fmt("%g", kPathCells[i].v)
+       << " | " << sig3(cases[0].points[i].x()) << ", " << sig3(cases[0].points[i].y()) << " | "
+       << sig3(cases[1].points[i].x()) << ", " << sig3(cases[1].points[i].y()) << " |\n";
+  }
+  md << "\n  It runs south along the west plateau, turns east down the escarpment face, then "
+        "north-east, east across the lower plains, and south over the knoll to the south-east "
+        "corner.\n"
+     << "- Stations: " << cases[0].stations << (context.quick ? " (quick mode)" : "")
+     << ", equally spaced in the curve parameter (`VelocityLimits`, "
+        "`SurfacePath::sample_uniform_parameter`).\n"
+     << "- Vehicles (g = 9.81 m/s², no drive or brake limit):\n";
+  for (const VehicleSpec& v : vehicles) {
+    md << "  - `" << v.name << "`: "
+       << (v.vehicle.model == VehicleModel::kPointMass ? "point-mass model" : "rigid-body model")
+       << ", friction μ = " << fmt("%g", v.vehicle.friction)
+       << ", cg_height h = " << fmt("%g", v.vehicle.cg_height)
+       << " m, half_track b = " << fmt("%g", v.vehicle.half_track) << " m"
+       << (v.vehicle.model == VehicleModel::kRigidBody
+               ? ", half_wheelbase l = " + fmt("%g", v.vehicle.half_wheelbase) + " m"
+               : std::string())
+       << ", max_speed " << fmt("%g", v.vehicle.max_speed)
+       << " m/s (b/h = " << fmt("%.3g", v.vehicle.half_track / v.vehicle.cg_height) << ")\n";
+  }
+  md << "- Per station: `SpeedLimits` (v_max, v_min, the binding constraint) and each "
+        "constraint's own interval of ṡ², plotted as √upper (∞ where unbounded, 0 where no "
+        "speed satisfies it). Acceleration bounds (`acceleration_bounds`) of all three vehicles at "
+        "one common speed per station, "
+     << fmt("%g", kAccelSpeedFraction)
+     << " × the smallest of their v_max(s) (raised to the largest v_min; v_max ≤ max speed, "
+        "so the speed is capped there already): the lateral load is then the same for all "
+        "three, and the curves differ only through the acceleration constraints.\n"
+     << "- Control run: the same path on the smoothing fit (`BPatch::fit_smoothing`, λ = "
+     << fmt("%g", kSmoothingLambda)
+     << ", dimensionless, so the same smoothing at both scales), point mass only (its "
+        "acceleration bounds at 0.8 × its own v_max), to separate the landforms from the "
+        "DEM's vertical quantisation (whole metres).\n"
+     << "- Files: `<case>_<vehicle>.csv` (columns s, x, y, z, v_max, v_min, binding, "
+        "v_sliding, v_tipover, v_contact, a_min, a_max, k_t, k_q, k_r, kappa_n, kappa_g; SI "
+        "units, `inf`/`nan` spelled out), `<case>_smoothed_point_mass.csv` (the control run, same "
+        "columns), `<case>_acceleration.csv` (per vehicle: evaluation "
+        "speed, a_min, a_max and what sets each), `summary.csv`, and every figure's gnuplot "
+        "script (`<case>_*.gp`) beside its PNG.\n\n"
+     << "## Results\n\n";
+  for (const CaseResult& c : cases) {
+    md << "### `" << c.name << "`: " << c.label << "\n\n"
+       << "Path length " << sig3(c.length) << " m (3-D), " << c.stations
+       << " stations, limits computed in " << sig3(1e3 * c.compute_seconds)
+       << " ms (interpolating fit, path and all vehicles; the smoothing-fit control run "
+       << sig3(1e3 * c.smoothed_seconds) << " ms).\n\n"
+       << "| vehicle | min v_max [m/s] | median v_max [m/s] | contact | sliding | tip-over | "
+          "max speed | untraversable | stations with v_min > 0 | accel. bound by pitch-over | "
+          "median a_min … a_max [m/s²] |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    std::vector<const VehicleRun*> rows;
+    for (const VehicleRun& run : c.runs) rows.push_back(&run);
+    rows.push_back(&c.smoothed.front());
+    for (const VehicleRun* row : rows) {
+      const VehicleRun& run = *row;
+      const Summary& s = run.summary;
+      const std::size_t n = run.stations.size();
+      const bool control = row == rows.back();
+      md << "| `" << run.spec.name << "`" << (control ? " on the smoothing fit (control)" : "")
+         << " | " << sig3(s.min_v_max) << " | " << sig3(s.median_v_max) << " | "
+         << percent(s.upper_counts[index_of(Constraint::kContact)], n) << " | "
+         << percent(s.upper_counts[index_of(Constraint::kSliding)], n) << " | "
+         << percent(s.upper_counts[index_of(Constraint::kTipover)], n) << " | "
+         << percent(s.upper_counts[index_of(Constraint::kMaxSpeed)], n) << " | " << s.untraversable
+         << " | " << s.lower_bound_stations
+         << (s.lower_bound_stations > 0 ? " (max " + sig3(s.max_v_min) + " m/s)" : "") << " | "
+         << percent(s.pitch_stations, n) << " | " << sig3(s.median_a_min) << " … "
+         << sig3(s.median_a_max) << " |\n";
+    }
+    md << "\nShares are of all stations, by the constraint that sets v_max (an untraversable "
+          "station counts under the constraint that fails).\n\n";
+  }
+  md << "## What the figures show\n\n" << commentary(cases[0], cases[1]) << "\n\n## Figures\n\n";
+  for (const CaseResult& c : cases) {
+    md << "### `" << c.name << "`\n\n"
+       << "![" << c.name << " speed limits](" << c.name << "_speed_limits.png)\n\n"
+       << "![" << c.name << " acceleration bounds](" << c.name << "_acceleration.png)\n\n"
+       << "![" << c.name << " map](" << c.name << "_map.png)\n\n";
+  }
+  write_text_file(file, md.str());
+}
+
+}  // namespace
+
+void run_velocity_limits(const ExperimentContext& context) {
+  // Fail in a second, not after the computation, if the figures cannot be drawn.
+  require_gnuplot();
+  const fs::path dem_file = context.data_dir / "terrain" / (std::string(kDemStem) + ".asc");
+  std::error_code ec;
+  if (!fs::is_regular_file(dem_file, ec)) {
+    throw InputError("velocity-limits: the bundled DEM " + dem_file.string() + " is missing");
+  }
+  const ElevationGrid dem = read_esri_ascii(dem_file.string());
+  const std::vector<VehicleSpec> vehicles = make_vehicles();
+  const std::size_t stations = context.quick ? kQuickStations : kFullStations;
+
+  const std::vector<TerrainCase> terrains = {
+      {"dem", "West Bijou DEM, 25 m cells", 1.0, dem},
+      {"rover", "West Bijou scaled by 1/25 (1 m cells)", kRoverScale,
+       scaled_grid(dem, kRoverScale)},
+  };
+  std::vector<CaseResult> cases;
+  for (const TerrainCase& terrain : terrains) {
+    cases.push_back(process_case(terrain, vehicles, stations, context.output_dir));
+    const CaseResult& c = cases.back();
+    std::cout << "velocity-limits: " << c.name << ": path " << sig3(c.length) << " m, "
+              << c.stations << " stations, limits in " << fmt("%.3f", c.compute_seconds)
+              << " s; point mass min v_max " << sig3(c.runs.front().summary.min_v_max) << " m/s\n";
+  }
+  write_summary_csv(cases, context.output_dir / "summary.csv");
+  write_report(cases, vehicles, dem, context, context.output_dir / "report.md");
+}
+
+}  // namespace talus::experiments

@@ -41,11 +41,14 @@ struct ControlInterval {
 
 /// Vehicle constants the step solver needs, precomputed once.
 struct VehicleConstants {
-  double g, mu, tip, pitch, drive, brake;  // tip = b/h, pitch = l/h (inf for a point mass)
+  double g, mu, tip;
+  double lateral;  // min(mu, b/h): |f_q| <= lateral R covers sliding's lateral part and tip-over
+  double pitch, drive, brake;  // pitch = l/h (inf for a point mass)
   explicit VehicleConstants(const Vehicle& v)
       : g(v.gravity),
         mu(v.friction),
         tip(v.half_track / v.cg_height),
+        lateral(std::min(v.friction, v.half_track / v.cg_height)),
         pitch(v.model == VehicleModel::kRigidBody ? v.half_wheelbase / v.cg_height
                                                   : std::numeric_limits<double>::infinity()),
         drive(v.max_accel),
@@ -75,11 +78,10 @@ inline ControlInterval admissible_controls(const VehicleConstants& c, const Stat
   const double R0 = c.g * s.k_r + s.kappa_n * y0, R1 = s.kappa_n * beta;
   const double Q0 = c.g * s.k_q + s.kappa_g * y0, Q1 = s.kappa_g * beta;
   const double T0 = c.g * s.k_t;
-  out.require_nonnegative(R0, R1);                          // contact
-  out.require_nonnegative(c.tip * R0 - Q0, c.tip * R1 - Q1);  // tip-over, both sides
-  out.require_nonnegative(c.tip * R0 + Q0, c.tip * R1 + Q1);
-  out.require_nonnegative(c.mu * R0 - Q0, c.mu * R1 - Q1);  // lateral part of sliding
-  out.require_nonnegative(c.mu * R0 + Q0, c.mu * R1 + Q1);
+  // |f_q| <= min(mu, b/h) R: tip-over and the lateral part of sliding at
+  // once; together they also imply contact (R >= 0).
+  out.require_nonnegative(c.lateral * R0 - Q0, c.lateral * R1 - Q1);
+  out.require_nonnegative(c.lateral * R0 + Q0, c.lateral * R1 + Q1);
   if (std::isfinite(c.pitch)) {  // |f_t| <= (l/h) R
     out.require_nonnegative(c.pitch * R0 - T0, c.pitch * R1 - 1.0);
     out.require_nonnegative(c.pitch * R0 + T0, c.pitch * R1 + 1.0);
@@ -128,6 +130,32 @@ inline ControlInterval admissible_controls(const VehicleConstants& c, const Stat
       }
     }
   }
+  return out;
+}
+
+/// The u admissible at a station whose state x is known: the beta = 0 case
+/// of admissible_controls, without the line algebra (half the cost).
+inline ControlInterval known_state_controls(const VehicleConstants& c, const StationGeometry& s,
+                                            double x) {
+  ControlInterval out;
+  const double R = c.g * s.k_r + s.kappa_n * x, Q = c.g * s.k_q + s.kappa_g * x;
+  const double T0 = c.g * s.k_t;
+  const double scale = c.g + std::abs(s.kappa_n * x) + std::abs(s.kappa_g * x);
+  if (std::abs(Q) > c.lateral * R + 1e-10 * scale) {  // tip-over, lateral sliding, contact
+    out.lower = kUnbounded;
+    return out;
+  }
+  const double friction = c.mu * std::max(R, 0.0);
+  const double half_width = std::sqrt(std::max(friction * friction - Q * Q, 0.0));
+  double upper = std::min(half_width, c.drive), lower = std::max(-half_width, -c.brake);
+  if (std::isfinite(c.pitch)) {
+    const double pitch = c.pitch * std::max(R, 0.0);
+    upper = std::min(upper, pitch);
+    lower = std::max(lower, -pitch);
+  }
+  const double widen = 1e-12 * (1.0 + std::abs(T0) + half_width);
+  out.lower = lower - T0 - widen;
+  out.upper = upper - T0 + widen;
   return out;
 }
 

@@ -30,12 +30,12 @@ struct Step {
 
   /// Controls admissible at the start (state x) that land in [lo, hi] at the end.
   ControlInterval forward(double x, double lo, double hi) const {
-    return intersect(admissible_controls(c, from, x, 0.0, x, x),
+    return intersect(detail::known_state_controls(c, from, x),
                      admissible_controls(c, to, x, 2.0 * length, lo, hi));
   }
   /// Controls admissible at the end (state x_end) reached from a start state in [lo, hi].
   ControlInterval backward(double x_end, double lo, double hi) const {
-    return intersect(admissible_controls(c, to, x_end, 0.0, x_end, x_end),
+    return intersect(detail::known_state_controls(c, to, x_end),
                      admissible_controls(c, from, x_end, -2.0 * length, lo, hi));
   }
   bool feasible(double x, double lo, double hi) const { return !forward(x, lo, hi).empty(); }
@@ -233,7 +233,7 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
   for (std::size_t jj = 0; jj + 1 < m; ++jj) {
     const std::size_t i0 = kept_[jj], i1 = kept_[jj + 1];
     const Step step{constants, limits.geometry(i0), limits.geometry(i1), out.s[i1] - out.s[i0]};
-    const ControlInterval own = admissible_controls(constants, step.from, x, 0.0, x, x);
+    const ControlInterval own = detail::known_state_controls(constants, step.from, x);
     const ControlInterval u = intersect(own, admissible_controls(constants, step.to, x, 2.0 * step.length,
                                                                  lower_[jj + 1], upper_[jj + 1]));
     if (u.empty()) {

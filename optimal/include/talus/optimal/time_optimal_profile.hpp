@@ -25,6 +25,11 @@
 
 namespace talus {
 
+/// Default station spacing along a path [m] for callers that choose the
+/// station count (the CLI, the planner): see the convergence study of the
+/// optimal-profile experiment.
+inline constexpr double kDefaultStationSpacing = 0.5;
+
 /// Options of the time-optimal profile.
 struct ProfileOptions {
   double start_speed = 0.0;  ///< ṡ at the first station [m/s] (>= 0)

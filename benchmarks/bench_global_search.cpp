@@ -1,0 +1,59 @@
+// Global search over a fractal terrain: lattice sizes 128^2 .. 1024^2,
+// 16-connected (issue target: 512^2 in < 0.5 s on one core including edge
+// costs). "Fields" computes both cost-to-go fields and 3 candidates (every
+// edge gets evaluated); "Single" asks for one candidate, the same work, as the
+// candidate extraction needs the goal field too: the difference is the
+// extraction's cost.
+#include <benchmark/benchmark.h>
+
+#include <map>
+
+#include "talus/core/terrain_generators.hpp"
+#include "talus/optimal/global_search.hpp"
+
+namespace {
+
+struct Case {
+  talus::BPatch terrain;
+  talus::Vehicle vehicle;
+};
+
+const Case& terrain_case(std::size_t n) {
+  static std::map<std::size_t, Case> cases;
+  auto it = cases.find(n);
+  if (it == cases.end()) {
+    talus::FractalTerrainOptions options;
+    options.shape = {n, n, 0.25, 0.0, 0.0};
+    options.height_scale = 0.02 * static_cast<double>(n);  // comparable roughness at every size
+    options.seed = 3;
+    talus::Vehicle vehicle;
+    vehicle.max_speed = 10.0;
+    it = cases.emplace(n, Case{talus::BPatch::fit_smoothing(talus::generate_fractal_terrain(options), 1.0), vehicle}).first;
+  }
+  return it->second;
+}
+
+void run(benchmark::State& state, std::size_t candidates) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const Case& c = terrain_case(n);
+  const double w = c.terrain.x_max() - c.terrain.x_min();
+  talus::GlobalSearchOptions options;
+  options.connectivity = 16;
+  options.candidates = candidates;
+  talus::GlobalSearchResult result;
+  for (auto _ : state) {
+    result = talus::global_search(c.terrain, c.vehicle, {0.1 * w, 0.1 * w}, {0.9 * w, 0.9 * w}, options);
+    benchmark::DoNotOptimize(result.candidates.data());
+  }
+  if (result.status != talus::GlobalSearchStatus::kOk) state.SkipWithError(result.message.c_str());
+  state.counters["nodes"] = static_cast<double>(result.nodes);
+  state.counters["edges"] = static_cast<double>(result.edges_evaluated);
+  state.counters["candidates"] = static_cast<double>(result.candidates.size());
+}
+
+void BM_GlobalSearchFields(benchmark::State& state) { run(state, 3); }
+void BM_GlobalSearchSingle(benchmark::State& state) { run(state, 1); }
+BENCHMARK(BM_GlobalSearchFields)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_GlobalSearchSingle)->Arg(512)->Unit(benchmark::kMillisecond)->Iterations(2);
+
+}  // namespace

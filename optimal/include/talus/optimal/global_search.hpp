@@ -1,0 +1,89 @@
+#pragma once
+/// @file
+/// The global stage of the Shiller–Gwo planner: a minimum-time search over a
+/// lattice on the terrain whose edge cost is the travel time at the velocity
+/// limit, J = ∫ ds / v_max(s) (Iagnemma–Shimoda–Shiller 2008, eq. (6)), and the
+/// extraction of several distinct good candidate paths for the local optimiser.
+///
+/// Edges are straight segments in (x, y) lifted onto the B-patch, sampled at
+/// stations at most a quarter of the lattice spacing apart (Simpson's rule on
+/// ds / v_max). An edge is untraversable in a direction if at some station
+/// (a) no speed satisfies the speed limits (v_max = 0), or (b) the vehicle
+/// could neither climb nor hold its speed — a_max < 0 at every admissible
+/// speed (too steep to drive up) — or (c) could not brake — a_min > 0 at
+/// every admissible speed (too steep to drive down and stop). J alone ignores
+/// the tangential acceleration, so without (b) and (c) the search would route
+/// straight up a cliff whose v_max is high because it is straight.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/dynamics/vehicle.hpp"
+
+namespace talus {
+
+struct GlobalSearchOptions {
+  double lattice_spacing = 0.0;  ///< node spacing [m]; 0 = the terrain's cell size
+  int connectivity = 16;         ///< 8, 16 or 32 neighbours per node
+  std::size_t candidates = 3;    ///< how many distinct candidates to return (>= 1)
+  /// Minimum Hausdorff distance between two candidates [m]; 0 = 10 % of the
+  /// start–goal distance, and at least 3 lattice spacings.
+  double distinctness = 0.0;
+  /// Candidates cost at most this multiple of the best (>= 1).
+  double max_cost_ratio = 2.0;
+  /// Throws InputError naming the field.
+  void validate() const;
+};
+
+enum class GlobalSearchStatus {
+  kOk,           ///< at least one candidate
+  kUnreachable,  ///< the goal cannot be reached from the start; see `message`
+};
+
+/// One candidate path: lattice vertices from start to goal.
+struct CandidatePath {
+  std::vector<Vec2> vertices;  ///< [m], first = start node, last = goal node
+  double cost_seconds = 0.0;   ///< J along it [s]
+  double length_m = 0.0;       ///< 3-D length on the surface [m]
+};
+
+/// Travel-time cost of one straight edge in each direction; +inf = untraversable.
+struct EdgeCost {
+  double forward = 0.0;   ///< a -> b [s]
+  double backward = 0.0;  ///< b -> a [s]
+  double length = 0.0;    ///< 3-D length [m]
+};
+/// J along the straight segment a -> b (and back) lifted onto `terrain`, with
+/// the untraversability rules of the file comment. `stations` >= 3, odd.
+EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a, const Vec2& b,
+                   int stations);
+
+struct GlobalSearchResult {
+  GlobalSearchStatus status = GlobalSearchStatus::kUnreachable;
+  std::string message;
+  std::vector<CandidatePath> candidates;  ///< ordered by cost, best first
+  Vec2 start_node = Vec2::Zero(), goal_node = Vec2::Zero();  ///< the snapped start and goal
+  // Diagnostics.
+  std::size_t nodes = 0;            ///< lattice nodes
+  std::size_t edges_evaluated = 0;  ///< undirected edges whose cost was computed
+  std::size_t expanded = 0;         ///< nodes expanded by the two searches
+  std::size_t reachable_nodes = 0;  ///< nodes reachable from the start
+  double search_seconds = 0.0;      ///< total time of the global stage
+  // The lattice and the two cost-to-go fields, for plots (row-major, +inf = unreached).
+  std::size_t nx = 0, ny = 0;
+  double spacing = 0.0;
+  Vec2 origin = Vec2::Zero();
+  std::vector<double> cost_from_start, cost_to_goal;
+};
+
+/// Runs the global stage from `start` to `goal` [m]. Throws InputError for an
+/// invalid vehicle (it needs a finite max_speed: J is the time at the speed
+/// limit, and an unlimited straight road would cost nothing), a start or goal
+/// off the map, on NODATA or on untraversable terrain; an unreachable goal
+/// is a status.
+GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
+                                 const Vec2& goal, const GlobalSearchOptions& options);
+
+}  // namespace talus

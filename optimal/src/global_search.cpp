@@ -1,0 +1,349 @@
+#include "talus/optimal/global_search.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <cstring>
+#include <sstream>
+
+#include "talus/bspline/surface_path.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/graph_search.hpp"
+#include "talus/dynamics/velocity_limits.hpp"
+
+namespace talus {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Speed samples at which the tangential rules are checked: the admissible
+/// speeds' ends (a_max and a_min are monotone in ṡ² along a straight edge,
+/// whose geodesic curvature is zero) and the middle for safety.
+bool cannot_climb_or_stop(const Vehicle& vehicle, const StationGeometry& g, const SpeedLimits& l) {
+  double best_a_max = -kInf, best_a_min = kInf;
+  bool any = false;
+  for (const double v : {l.v_min, 0.5 * (l.v_min + l.v_max), l.v_max}) {
+    const AccelerationBounds b = acceleration_bounds(vehicle, g, v);
+    if (!b.feasible) continue;
+    any = true;
+    best_a_max = std::max(best_a_max, b.a_max);
+    best_a_min = std::min(best_a_min, b.a_min);
+  }
+  return !any || best_a_max < 0.0 || best_a_min > 0.0;
+}
+
+EdgeCost edge_cost_impl(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a, const Vec2& b,
+                        int stations, const SurfacePoint* at_a, const SurfacePoint* at_b) {
+  const Vec2 d1 = b - a;
+  EdgeCost out;
+  double forward_sum = 0.0;
+  bool forward_ok = true, backward_ok = true;
+  for (int k = 0; k < stations; ++k) {
+    const double tau = static_cast<double>(k) / (stations - 1);
+    const Vec2 p = (k == stations - 1) ? b : Vec2(a + tau * d1);
+    if (!terrain.on_data(p)) return {kInf, kInf, kInf};
+    const SurfacePoint sp = (k == 0 && at_a)                  ? *at_a
+                            : (k == stations - 1 && at_b) ? *at_b
+                                                              : terrain.evaluate(p);
+    const PathFrame f = lift_to_surface(p, sp, d1, Vec2::Zero());
+    const StationGeometry g = StationGeometry::from(f);
+    const SpeedLimits l = speed_limits(vehicle, g);
+    if (!l.traversable || !(l.v_max > 0.0)) return {kInf, kInf, kInf};
+    // Simpson weights 1, 4, 2, 4, ..., 4, 1 (stations is odd).
+    const double w = (k == 0 || k == stations - 1) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    forward_sum += w * f.speed / l.v_max;
+    out.length += w * f.speed;
+    if (forward_ok && cannot_climb_or_stop(vehicle, g, l)) forward_ok = false;
+    // Driving b -> a flips t and q: k_t, k_q and kappa_g change sign.
+    const StationGeometry reversed{g.kappa_n, -g.kappa_g, -g.k_t, -g.k_q, g.k_r};
+    if (backward_ok && cannot_climb_or_stop(vehicle, reversed, l)) backward_ok = false;
+  }
+  const double h = 1.0 / (stations - 1) / 3.0;
+  const double time = forward_sum * h;
+  out.length *= h;
+  out.forward = forward_ok ? time : kInf;
+  out.backward = backward_ok ? time : kInf;
+  return out;
+}
+
+/// Neighbour offsets; the first half are "positive" (dy > 0, or dy = 0 and
+/// dx > 0) and offset k + half is the negation of offset k.
+std::vector<std::pair<int, int>> neighbour_offsets(int connectivity) {
+  std::vector<std::pair<int, int>> positive = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
+  if (connectivity >= 16) {
+    for (const auto& o : std::vector<std::pair<int, int>>{{2, 1}, {1, 2}, {-1, 2}, {-2, 1}}) positive.push_back(o);
+  }
+  if (connectivity >= 32) {
+    for (const auto& o : std::vector<std::pair<int, int>>{
+             {3, 1}, {1, 3}, {-1, 3}, {-3, 1}, {3, 2}, {2, 3}, {-2, 3}, {-3, 2}}) {
+      positive.push_back(o);
+    }
+  }
+  std::vector<std::pair<int, int>> all = positive;
+  for (const auto& [dx, dy] : positive) all.emplace_back(-dx, -dy);
+  return all;
+}
+
+/// The lattice with lazily computed, cached edge costs in both directions.
+class Lattice {
+ public:
+  Lattice(const BPatch& terrain, const Vehicle& vehicle, double spacing, int connectivity)
+      : terrain_(terrain), vehicle_(vehicle), spacing_(spacing), offsets_(neighbour_offsets(connectivity)) {
+    origin_ = Vec2(terrain.x_min(), terrain.y_min());
+    nx_ = static_cast<std::size_t>(std::floor((terrain.x_max() - terrain.x_min()) / spacing + 1e-9)) + 1;
+    ny_ = static_cast<std::size_t>(std::floor((terrain.y_max() - terrain.y_min()) / spacing + 1e-9)) + 1;
+    if (nx_ < 2 || ny_ < 2) throw InputError("lattice spacing is larger than the terrain");
+    if (nx_ * ny_ > 50'000'000) throw InputError("lattice too large: increase --lattice-spacing");
+    half_ = offsets_.size() / 2;
+    surface_.resize(nx_ * ny_);
+    on_data_.resize(nx_ * ny_);
+    for (std::size_t n = 0; n < nx_ * ny_; ++n) {
+      const Vec2 p = position(static_cast<std::uint32_t>(n));
+      on_data_[n] = terrain.on_data(p);
+      if (on_data_[n]) surface_[n] = terrain.evaluate(p);
+    }
+    forward_.assign(nx_ * ny_ * half_, std::numeric_limits<double>::quiet_NaN());
+    backward_.assign(nx_ * ny_ * half_, std::numeric_limits<double>::quiet_NaN());
+  }
+
+  std::size_t size() const { return nx_ * ny_; }
+  std::size_t nx() const { return nx_; }
+  std::size_t ny() const { return ny_; }
+  Vec2 origin() const { return origin_; }
+  Vec2 position(std::uint32_t n) const {
+    return origin_ + spacing_ * Vec2(static_cast<double>(n % nx_), static_cast<double>(n / nx_));
+  }
+  std::uint32_t nearest(const Vec2& p) const {
+    const auto i = static_cast<std::size_t>(std::clamp(std::lround((p.x() - origin_.x()) / spacing_), 0L, static_cast<long>(nx_) - 1));
+    const auto j = static_cast<std::size_t>(std::clamp(std::lround((p.y() - origin_.y()) / spacing_), 0L, static_cast<long>(ny_) - 1));
+    return static_cast<std::uint32_t>(j * nx_ + i);
+  }
+  std::size_t edges_evaluated() const { return evaluated_; }
+
+  /// Cost of the directed edge from n along offset k (+inf if none).
+  double cost(std::uint32_t n, std::size_t k) {
+    const auto [dx, dy] = offsets_[k];
+    const long i = static_cast<long>(n % nx_) + dx, j = static_cast<long>(n / nx_) + dy;
+    if (i < 0 || j < 0 || i >= static_cast<long>(nx_) || j >= static_cast<long>(ny_)) return kInf;
+    const auto m = static_cast<std::uint32_t>(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i));
+    if (k < half_) return ensure(n, m, k).first;
+    return ensure(m, n, k - half_).second;  // m -> n is positive: n -> m is its backward
+  }
+  /// Cost of the directed edge into n from its neighbour along offset k.
+  double cost_into(std::uint32_t n, std::size_t k) {
+    const auto [dx, dy] = offsets_[k];
+    const long i = static_cast<long>(n % nx_) + dx, j = static_cast<long>(n / nx_) + dy;
+    if (i < 0 || j < 0 || i >= static_cast<long>(nx_) || j >= static_cast<long>(ny_)) return kInf;
+    const auto m = static_cast<std::uint32_t>(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i));
+    if (k < half_) return ensure(n, m, k).second;  // m -> n is the backward of n -> m
+    return ensure(m, n, k - half_).first;
+  }
+  std::uint32_t neighbour(std::uint32_t n, std::size_t k) const {
+    const auto [dx, dy] = offsets_[k];
+    return static_cast<std::uint32_t>(static_cast<long>(n) + dy * static_cast<long>(nx_) + dx);
+  }
+  std::size_t offsets() const { return offsets_.size(); }
+  bool on_data(std::uint32_t n) const { return on_data_[n] != 0; }
+
+  /// Stations of an edge of planar length L: at most half a spacing apart, odd count.
+  int stations_for(double planar_length) const {
+    return 2 * static_cast<int>(std::ceil(planar_length / spacing_ - 1e-9)) + 1;
+  }
+
+ private:
+  /// Forward/backward costs of the positive edge a -> b (offset k < half).
+  std::pair<double, double> ensure(std::uint32_t a, std::uint32_t b, std::size_t k) {
+    const std::size_t slot = static_cast<std::size_t>(a) * half_ + k;
+    if (std::isnan(forward_[slot])) {
+      EdgeCost c{kInf, kInf, kInf};
+      if (on_data_[a] && on_data_[b]) {
+        const Vec2 pa = position(a), pb = position(b);
+        c = edge_cost_impl(terrain_, vehicle_, pa, pb, stations_for((pb - pa).norm()), &surface_[a], &surface_[b]);
+      }
+      forward_[slot] = c.forward;
+      backward_[slot] = c.backward;
+      ++evaluated_;
+    }
+    return {forward_[slot], backward_[slot]};
+  }
+
+  const BPatch& terrain_;
+  const Vehicle& vehicle_;
+  double spacing_;
+  std::vector<std::pair<int, int>> offsets_;
+  std::size_t half_ = 0, nx_ = 0, ny_ = 0;
+  Vec2 origin_;
+  std::vector<SurfacePoint> surface_;
+  std::vector<unsigned char> on_data_;
+  std::vector<double> forward_, backward_;
+  std::size_t evaluated_ = 0;
+};
+
+double point_to_polyline(const Vec2& p, const std::vector<Vec2>& line) {
+  double best = kInf;
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const Vec2 d = line[k + 1] - line[k];
+    const double t = std::clamp((p - line[k]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+    best = std::min(best, (p - (line[k] + t * d)).norm());
+  }
+  return line.size() == 1 ? (p - line[0]).norm() : best;
+}
+
+/// Symmetric Hausdorff distance between two polylines (vertices against segments).
+double hausdorff(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  double d = 0.0;
+  for (const Vec2& p : a) d = std::max(d, point_to_polyline(p, b));
+  for (const Vec2& p : b) d = std::max(d, point_to_polyline(p, a));
+  return d;
+}
+
+}  // namespace
+
+void GlobalSearchOptions::validate() const {
+  if (!(lattice_spacing >= 0.0) || !std::isfinite(lattice_spacing)) {
+    throw InputError("GlobalSearchOptions.lattice_spacing must be >= 0 (0 = cell size), got " + std::to_string(lattice_spacing));
+  }
+  if (connectivity != 8 && connectivity != 16 && connectivity != 32) {
+    throw InputError("GlobalSearchOptions.connectivity must be 8, 16 or 32, got " + std::to_string(connectivity));
+  }
+  if (candidates < 1) throw InputError("GlobalSearchOptions.candidates must be >= 1");
+  if (!(distinctness >= 0.0)) throw InputError("GlobalSearchOptions.distinctness must be >= 0");
+  if (!(max_cost_ratio >= 1.0)) throw InputError("GlobalSearchOptions.max_cost_ratio must be >= 1");
+}
+
+EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a, const Vec2& b, int stations) {
+  if (stations < 3 || stations % 2 == 0) throw InputError("edge_cost: stations must be odd and >= 3");
+  if (!terrain.contains(a) || !terrain.contains(b)) throw InputError("edge_cost: edge leaves the terrain");
+  return edge_cost_impl(terrain, vehicle, a, b, stations, nullptr, nullptr);
+}
+
+GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
+                                 const Vec2& goal, const GlobalSearchOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  options.validate();
+  vehicle.validate();
+  if (!std::isfinite(vehicle.max_speed)) {
+    throw InputError("the global search needs a vehicle with a finite max_speed: its cost is the time "
+                     "at the speed limit, and an unlimited straight road would cost nothing");
+  }
+  const auto check_point = [&terrain](const char* which, const Vec2& p) {
+    std::ostringstream msg;
+    msg.precision(12);
+    if (!p.allFinite() || !terrain.contains(p)) {
+      msg << which << " (" << p.x() << ", " << p.y() << ") is off the map [" << terrain.x_min() << ", "
+          << terrain.x_max() << "] x [" << terrain.y_min() << ", " << terrain.y_max() << "]";
+      throw InputError(msg.str());
+    }
+    if (!terrain.on_data(p)) {
+      msg << which << " (" << p.x() << ", " << p.y() << ") is on a NODATA cell";
+      throw InputError(msg.str());
+    }
+  };
+  check_point("start", start);
+  check_point("goal", goal);
+
+  const double spacing = options.lattice_spacing > 0.0 ? options.lattice_spacing : terrain.cellsize();
+  Lattice lattice(terrain, vehicle, spacing, options.connectivity);
+  GlobalSearchResult result;
+  result.nodes = lattice.size();
+  result.nx = lattice.nx();
+  result.ny = lattice.ny();
+  result.spacing = spacing;
+  result.origin = lattice.origin();
+  const std::uint32_t s = lattice.nearest(start), g = lattice.nearest(goal);
+  result.start_node = lattice.position(s);
+  result.goal_node = lattice.position(g);
+  for (const auto& [which, node] : {std::pair{"start", s}, std::pair{"goal", g}}) {
+    bool any = false;
+    for (std::size_t k = 0; k < lattice.offsets() && !any; ++k) {
+      any = std::strcmp(which, "start") == 0 ? lattice.cost(node, k) < kInf : lattice.cost_into(node, k) < kInf;
+    }
+    if (!any) {
+      std::ostringstream msg;
+      msg.precision(12);
+      const Vec2 p = lattice.position(node);
+      msg << which << " node (" << p.x() << ", " << p.y() << ") is on untraversable terrain: every lattice edge "
+          << (std::strcmp(which, "start") == 0 ? "from" : "into") << " it is too steep or unstable for the vehicle";
+      throw InputError(msg.str());
+    }
+  }
+
+  const std::size_t n = lattice.size();
+  const EdgeVisitor forward = [&lattice](std::uint32_t node, const std::function<void(std::uint32_t, double)>& emit) {
+    for (std::size_t k = 0; k < lattice.offsets(); ++k) {
+      const double c = lattice.cost(node, k);
+      if (c < kInf) emit(lattice.neighbour(node, k), c);
+    }
+  };
+  const EdgeVisitor reverse = [&lattice](std::uint32_t node, const std::function<void(std::uint32_t, double)>& emit) {
+    for (std::size_t k = 0; k < lattice.offsets(); ++k) {
+      const double c = lattice.cost_into(node, k);
+      if (c < kInf) emit(lattice.neighbour(node, k), c);
+    }
+  };
+  const ShortestPathTree from_start = shortest_paths(n, s, forward);
+  result.expanded += from_start.expanded;
+  result.reachable_nodes = static_cast<std::size_t>(
+      std::count_if(from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
+  if (!(from_start.cost[g] < kInf)) {
+    std::ostringstream msg;
+    msg << "goal unreachable: from the start the vehicle can reach " << result.reachable_nodes << " of "
+        << n << " lattice nodes (" << 100.0 * static_cast<double>(result.reachable_nodes) / static_cast<double>(n)
+        << " % of the terrain), and the goal is not among them";
+    result.status = GlobalSearchStatus::kUnreachable;
+    result.message = msg.str();
+    result.cost_from_start = from_start.cost;
+    result.edges_evaluated = lattice.edges_evaluated();
+    result.search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  }
+  const ShortestPathTree to_goal = shortest_paths(n, g, reverse);
+  result.expanded += to_goal.expanded;
+
+  // Candidates: nodes in increasing order of the best cost through them; each
+  // node's path (start tree + goal tree) is accepted if it is far enough, in
+  // Hausdorff distance, from every accepted one.
+  const double best = from_start.cost[g];
+  const double separation = options.distinctness > 0.0
+                                ? options.distinctness
+                                : std::max(0.1 * (result.goal_node - result.start_node).norm(), 3.0 * spacing);
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double through = from_start.cost[k] + to_goal.cost[k];
+    if (through <= best * options.max_cost_ratio * (1 + 1e-12)) order.push_back(k);
+  }
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const double ca = from_start.cost[a] + to_goal.cost[a], cb = from_start.cost[b] + to_goal.cost[b];
+    return ca != cb ? ca < cb : a < b;  // ties by node id: deterministic
+  });
+  for (const std::uint32_t node : order) {
+    if (result.candidates.size() >= options.candidates) break;
+    const Vec2 p = lattice.position(node);
+    bool near = false;
+    for (const CandidatePath& c : result.candidates) near = near || point_to_polyline(p, c.vertices) < separation;
+    if (near) continue;
+    std::vector<std::uint32_t> ids = from_start.path_to(node);
+    for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone; m = to_goal.parent[m]) ids.push_back(m);
+    CandidatePath candidate;
+    for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
+    bool distinct = true;
+    for (const CandidatePath& c : result.candidates) distinct = distinct && hausdorff(candidate.vertices, c.vertices) >= separation;
+    if (!distinct) continue;
+    candidate.cost_seconds = from_start.cost[node] + to_goal.cost[node];
+    for (std::size_t k = 0; k + 1 < candidate.vertices.size(); ++k) {
+      const Vec2 a = candidate.vertices[k], b = candidate.vertices[k + 1];
+      candidate.length_m += edge_cost_impl(terrain, vehicle, a, b, lattice.stations_for((b - a).norm()), nullptr, nullptr).length;
+    }
+    result.candidates.push_back(std::move(candidate));
+  }
+  result.status = GlobalSearchStatus::kOk;
+  result.cost_from_start = from_start.cost;
+  result.cost_to_goal = to_goal.cost;
+  result.edges_evaluated = lattice.edges_evaluated();
+  result.search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace talus

@@ -35,7 +35,7 @@ double recomputed_cost(const BPatch& terrain, const Vehicle& v, const CandidateP
   double total = 0.0;
   for (std::size_t k = 0; k + 1 < c.vertices.size(); ++k) {
     const Vec2 a = c.vertices[k], b = c.vertices[k + 1];
-    const int stations = 2 * static_cast<int>(std::ceil((b - a).norm() / spacing - 1e-9)) + 1;
+    const int stations = edge_stations((b - a).norm(), spacing);
     total += edge_cost(terrain, v, a, b, stations).forward;
   }
   return total;
@@ -51,6 +51,20 @@ TEST(GlobalSearch, FlatTerrainGivesTheStraightLineAtMaxSpeed) {
   EXPECT_NEAR(r.candidates[0].cost_seconds, 50.0 / 10.0, 1e-9);
   EXPECT_NEAR(r.candidates[0].length_m, 50.0, 1e-9);
   for (const Vec2& p : r.candidates[0].vertices) EXPECT_NEAR(p.y(), 20.0, 1e-9);
+}
+
+TEST(GlobalSearch, AStarFindsTheSameCostAsTheFullFields) {
+  const BPatch terrain = BPatch::interpolate(sample(
+      [](double x, double y) { return 3.0 * std::sin(0.15 * x) * std::cos(0.11 * y) + 0.002 * x * y; }, 80, 60, 1.0));
+  GlobalSearchOptions options;
+  options.candidates = 1;
+  const GlobalSearchResult full = global_search(terrain, rover(0.6), {5, 5}, {75, 55}, options);
+  options.cost_fields = false;
+  const GlobalSearchResult astar = global_search(terrain, rover(0.6), {5, 5}, {75, 55}, options);
+  ASSERT_EQ(full.status, GlobalSearchStatus::kOk);
+  ASSERT_EQ(astar.status, GlobalSearchStatus::kOk);
+  EXPECT_NEAR(astar.candidates[0].cost_seconds, full.candidates[0].cost_seconds, 1e-9);
+  EXPECT_LT(astar.edges_evaluated, full.edges_evaluated);
 }
 
 TEST(GlobalSearch, DiagonalOnFlatTerrainUsesKnightMovesWith16Neighbours) {

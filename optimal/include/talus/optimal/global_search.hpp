@@ -6,8 +6,8 @@
 /// extraction of several distinct good candidate paths for the local optimiser.
 ///
 /// Edges are straight segments in (x, y) lifted onto the B-patch, sampled at
-/// stations at most a quarter of the lattice spacing apart (Simpson's rule on
-/// ds / v_max). An edge is untraversable in a direction if at some station
+/// stations at most half a lattice spacing apart (Simpson's rule on
+/// ds / v_max, see edge_stations()). An edge is untraversable in a direction if at some station
 /// (a) no speed satisfies the speed limits (v_max = 0), or (b) the vehicle
 /// could neither climb nor hold its speed — a_max < 0 at every admissible
 /// speed (too steep to drive up) — or (c) could not brake — a_min > 0 at
@@ -33,6 +33,11 @@ struct GlobalSearchOptions {
   double distinctness = 0.0;
   /// Candidates cost at most this multiple of the best (>= 1).
   double max_cost_ratio = 2.0;
+  /// Compute both cost-to-go fields over the whole lattice (needed for more
+  /// than one candidate, and for plots). false with candidates = 1 runs A*
+  /// from start to goal with the admissible heuristic distance / max_speed,
+  /// which evaluates only the edges it needs.
+  bool cost_fields = true;
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -55,6 +60,9 @@ struct EdgeCost {
   double backward = 0.0;  ///< b -> a [s]
   double length = 0.0;    ///< 3-D length [m]
 };
+/// Stations per lattice edge of planar length `planar_length` at lattice spacing `spacing`.
+int edge_stations(double planar_length, double spacing);
+
 /// J along the straight segment a -> b (and back) lifted onto `terrain`, with
 /// the untraversability rules of the file comment. `stations` >= 3, odd.
 EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a, const Vec2& b,

@@ -17,6 +17,10 @@
 namespace talus::detail {
 
 inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+/// Relative slack granted to every bound for floating-point rounding: states
+/// computed on the boundary of the admissible set (a braking curve, the limit
+/// curve) come out 1e-12 .. 1e-11 outside it, and must stay admissible.
+inline constexpr double kRounding = 1e-10;
 
 /// An interval of u; empty when lower > upper.
 struct ControlInterval {
@@ -69,8 +73,8 @@ inline ControlInterval admissible_controls(const VehicleConstants& c, const Stat
   out.require_nonnegative(y0 - x_lower, beta);
   if (std::isfinite(x_upper)) out.require_nonnegative(x_upper - y0, -beta);
   if (beta != 0.0) {
-    const double widen = 1e-12 * (1.0 + std::abs(out.lower == -kUnbounded ? 0.0 : out.lower) +
-                                  std::abs(out.upper == kUnbounded ? 0.0 : out.upper));
+    const double widen = kRounding * (1.0 + std::abs(out.lower == -kUnbounded ? 0.0 : out.lower) +
+                                      std::abs(out.upper == kUnbounded ? 0.0 : out.upper));
     out.lower -= widen;
     out.upper += widen;
   }
@@ -96,7 +100,7 @@ inline ControlInterval admissible_controls(const VehicleConstants& c, const Stat
   const double scale = std::max({std::abs(T0), std::abs(Q0), c.mu * std::abs(R0), 1e-300});
   const double disc = b * b - 4.0 * a * k;
   if (a > 0.0) {
-    if (disc < -1e-12 * scale * scale * std::max(a, 1.0)) {
+    if (disc < -kRounding * scale * scale * std::max(a, 1.0)) {
       out.lower = std::numeric_limits<double>::infinity();
       return out;
     }
@@ -105,7 +109,7 @@ inline ControlInterval admissible_controls(const VehicleConstants& c, const Stat
     const double q = -0.5 * (b + std::copysign(root, b));
     double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
     if (r1 > r2) std::swap(r1, r2);
-    const double widen = 1e-12 * (1.0 + std::abs(r1) + std::abs(r2));
+    const double widen = kRounding * (1.0 + std::abs(r1) + std::abs(r2));
     out.intersect(r1 - widen, r2 + widen);
   } else if (a == 0.0) {
     out.require_nonnegative(-k, -b);
@@ -118,7 +122,7 @@ inline ControlInterval admissible_controls(const VehicleConstants& c, const Stat
       const double q = -0.5 * (b + std::copysign(root, b));
       double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
       if (r1 > r2) std::swap(r1, r2);
-      const double widen = 1e-12 * (1.0 + std::abs(r1) + std::abs(r2));
+      const double widen = kRounding * (1.0 + std::abs(r1) + std::abs(r2));
       if (out.upper <= r1 + widen) {
         // already inside the lower piece
       } else if (out.lower >= r2 - widen) {
@@ -141,7 +145,7 @@ inline ControlInterval known_state_controls(const VehicleConstants& c, const Sta
   const double R = c.g * s.k_r + s.kappa_n * x, Q = c.g * s.k_q + s.kappa_g * x;
   const double T0 = c.g * s.k_t;
   const double scale = c.g + std::abs(s.kappa_n * x) + std::abs(s.kappa_g * x);
-  if (std::abs(Q) > c.lateral * R + 1e-10 * scale) {  // tip-over, lateral sliding, contact
+  if (std::abs(Q) > c.lateral * R + kRounding * scale) {  // tip-over, lateral sliding, contact
     out.lower = kUnbounded;
     return out;
   }
@@ -153,7 +157,7 @@ inline ControlInterval known_state_controls(const VehicleConstants& c, const Sta
     upper = std::min(upper, pitch);
     lower = std::max(lower, -pitch);
   }
-  const double widen = 1e-12 * (1.0 + std::abs(T0) + half_width);
+  const double widen = kRounding * (1.0 + std::abs(T0) + half_width);
   out.lower = lower - T0 - widen;
   out.upper = upper - T0 + widen;
   return out;

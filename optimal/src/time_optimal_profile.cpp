@@ -177,7 +177,9 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
       for (const double target : {next_hi, next_lo}) {
         const ControlInterval u = step.backward(target, x_min, x_max);
         if (u.empty() || !std::isfinite(u.lower)) continue;
-        const double candidate = std::max(target - 2.0 * step.length * u.lower, x_min);
+        double candidate = std::max(target - 2.0 * step.length * u.lower, x_min);
+        // The closed-form state sits on the boundary: nudge it inside if rounding put it out.
+        if (!feasible(candidate)) candidate = std::max(candidate * (1.0 - 1e-9) - 1e-12, x_min);
         if (!feasible(candidate)) continue;
         hi = candidate;
         const double probe = candidate * (1.0 + 1e-9) + 1e-12;
@@ -188,6 +190,13 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
         }
         break;
       }
+      // Last resort: the feasible states form an interval; if its bottom is
+      // feasible, bisect up to its top.
+      if (hi == -kInfinity && feasible(x_min)) {
+        double top = std::isfinite(x_max) ? x_max : 2.0 * x_min + 1.0;
+        while (!std::isfinite(x_max) && feasible(top)) top *= 2.0;
+        hi = bisect_boundary(x_min, top, feasible);
+      }
     }
     // Lower end, symmetrically.
     double lo = kInfinity;
@@ -197,7 +206,8 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
       for (const double target : {next_lo, next_hi}) {
         const ControlInterval u = step.backward(target, x_min, x_max);
         if (u.empty() || !std::isfinite(u.upper)) continue;
-        const double candidate = std::min(std::max(target - 2.0 * step.length * u.upper, x_min), x_max);
+        double candidate = std::min(std::max(target - 2.0 * step.length * u.upper, x_min), x_max);
+        if (!feasible(candidate)) candidate = std::min(candidate * (1.0 + 1e-9) + 1e-12, x_max);
         if (!feasible(candidate)) continue;
         lo = candidate;
         const double probe = candidate * (1.0 - 1e-9) - 1e-12;
@@ -244,10 +254,12 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
     }
     const double control = u.upper;
     const double x_next = std::clamp(x + 2.0 * step.length * control, lower_[jj + 1], upper_[jj + 1]);
-    const double tolerance = 1e-9 * (1.0 + std::abs(control));
-    out.control[i0] = control >= own.upper - tolerance   ? ControlKind::kAccelerate
-                      : control <= own.lower + tolerance ? ControlKind::kDecelerate
-                                                         : ControlKind::kLimit;
+    // The step's own bounds are those at both of its ends.
+    const ControlInterval bounds = intersect(own, detail::known_state_controls(constants, step.to, x_next));
+    const double tolerance = 1e-7 * (1.0 + std::abs(control));
+    out.control[i0] = control >= bounds.upper - tolerance   ? ControlKind::kAccelerate
+                      : control <= bounds.lower + tolerance ? ControlKind::kDecelerate
+                                                            : ControlKind::kLimit;
     out.a[i0] = control;
     const double v0 = std::sqrt(x), v1 = std::sqrt(std::max(x_next, 0.0));
     if (!(v0 + v1 > 0.0)) {

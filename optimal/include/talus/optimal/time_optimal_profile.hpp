@@ -26,9 +26,11 @@
 namespace talus {
 
 /// Default station spacing along a path [m] for callers that choose the
-/// station count (the CLI, the planner): see the convergence study of the
-/// optimal-profile experiment.
-inline constexpr double kDefaultStationSpacing = 0.5;
+/// station count (the CLI, the planner). The discretisation is conservative
+/// and converges at first order: on the rover-scale West Bijou path of the
+/// optimal-profile experiment the travel-time error is about 1 % per metre of
+/// spacing (+0.50 % at 0.5 m, +0.11 % at 0.1 m), so 0.1 m keeps it near 0.1 %.
+inline constexpr double kDefaultStationSpacing = 0.1;
 
 /// Options of the time-optimal profile.
 struct ProfileOptions {

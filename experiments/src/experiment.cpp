@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "optimal_profile_experiment.hpp"
 #include "talus/core/error.hpp"
 #include "terrain_gallery.hpp"
 #include "velocity_limits_experiment.hpp"
@@ -18,6 +19,11 @@ std::vector<Experiment> all_experiments() {
        "speed limits of each constraint, the binding one and the acceleration bounds along a "
        "path across the West Bijou escarpment, at DEM and at rover scale",
        run_velocity_limits},
+      {"optimal-profile",
+       "the time-optimal velocity profile under the limit curve, with switching points and "
+       "acceleration bounds, along a curved path on the rover-scale West Bijou DEM, and its "
+       "convergence in the number of stations",
+       run_optimal_profile},
   };
 }
 

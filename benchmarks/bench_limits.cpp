@@ -3,6 +3,7 @@
 // arc-length-uniform sampling (SurfacePath::sample) at 10^4 stations.
 #include <benchmark/benchmark.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,7 @@ using talus::Vec2;
 struct Setup {
   talus::ElevationGrid grid;
   talus::BPatch patch;
-  talus::SurfacePath path;
+  std::optional<talus::SurfacePath> path;  // built in place: it points at `patch`
   talus::Vehicle vehicle;
 };
 
@@ -30,17 +31,14 @@ talus::SurfacePath make_path(const talus::ElevationGrid& grid, const talus::BPat
 }
 
 const Setup& setup() {
-  static const Setup s = [] {
+  static Setup s = [] {
     talus::ElevationGrid grid =
         talus::read_esri_ascii(std::string(TALUS_DATA_DIR) + "/terrain/bigtujunga_srtm30m.asc");
-    talus::BPatch patch = talus::BPatch::interpolate(grid);
     talus::Vehicle vehicle;  // defaults: point mass, mu 0.7, h 0.5, b 0.6
-    return Setup{grid, patch, make_path(grid, patch), vehicle};
+    return Setup{grid, talus::BPatch::interpolate(grid), {}, vehicle};
   }();
-  // The path holds a pointer to the patch inside the static: rebuild it there.
-  static const talus::SurfacePath path = make_path(s.grid, s.patch);
-  static const Setup fixed{s.grid, s.patch, path, s.vehicle};
-  return fixed;
+  if (!s.path) s.path.emplace(make_path(s.grid, s.patch));
+  return s;
 }
 
 void BM_VelocityLimitsAlongPath(benchmark::State& state) {
@@ -48,7 +46,7 @@ void BM_VelocityLimitsAlongPath(benchmark::State& state) {
   const auto stations = static_cast<std::size_t>(state.range(0));
   talus::VelocityLimits limits(s.vehicle);
   for (auto _ : state) {
-    limits.compute(s.path, stations);
+    limits.compute(*s.path, stations);
     benchmark::DoNotOptimize(limits.all_limits().data());
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));
@@ -60,7 +58,7 @@ BENCHMARK(BM_VelocityLimitsAlongPath)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(
 
 void BM_AccelerationBounds(benchmark::State& state) {
   const Setup& s = setup();
-  const talus::VelocityLimits limits(s.vehicle, s.path, 10000);
+  const talus::VelocityLimits limits(s.vehicle, *s.path, 10000);
   std::size_t k = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(limits.acceleration_bounds(k, 3.0));
@@ -72,7 +70,7 @@ BENCHMARK(BM_AccelerationBounds);
 
 void BM_ExactArcLengthSampling(benchmark::State& state) {
   const Setup& s = setup();
-  for (auto _ : state) benchmark::DoNotOptimize(s.path.sample(static_cast<std::size_t>(state.range(0))));
+  for (auto _ : state) benchmark::DoNotOptimize(s.path->sample(static_cast<std::size_t>(state.range(0))));
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 BENCHMARK(BM_ExactArcLengthSampling)->Arg(10000)->Unit(benchmark::kMillisecond);

@@ -1,1 +1,468 @@
+// End-to-end tests of `talus profile`: the CSV and JSON contracts on the
+// bundled examples, analytic travel times on generated flat terrain, the
+// infeasible outcome (exit code 2, JSON on stdout) and input errors (exit 1).
 #include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+/// A scratch folder of this test process (ctest runs tests in parallel).
+std::filesystem::path profile_scratch_dir() {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("talus_cli_profile_test_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string profile_scratch(const std::string& name) {
+  return (profile_scratch_dir() / name).string();
+}
+
+struct ProfileRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs `talus ARGS`, capturing stdout and stderr separately.
+ProfileRun run_talus_profile(const std::string& args) {
+  const std::string err_file = profile_scratch("stderr.txt");
+  const std::string command = std::string("'") + TALUS_CLI + "' " + args + " 2>'" + err_file + "'";
+  ProfileRun result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream err(err_file);
+  result.err.assign(std::istreambuf_iterator<char>(err), {});
+  return result;
+}
+
+std::string profile_data(const std::string& relative) {
+  return std::string(TALUS_DATA_DIR) + "/" + relative;
+}
+
+std::string quoted(const std::string& s) {
+  return "'" + s + "'";
+}
+
+void write_profile_text(const std::string& file, const std::string& text) {
+  std::ofstream(file) << text;
+}
+
+const std::string kProfileExampleArgs =
+    "--terrain " + quoted(profile_data("terrain/west_bijou_escarpment_nasadem25m.asc")) +
+    " --path " + quoted(profile_data("paths/west_bijou_traverse.csv"));
+
+/// One parsed row of the profile CSV.
+struct ProfileRow {
+  double s, x, y, z, v, a, t, v_max;
+  std::string binding;
+};
+
+double parse_profile_field(const std::string& field) {
+  char* end = nullptr;
+  const double value = std::strtod(field.c_str(), &end);
+  if (field.empty() || *end != '\0') {
+    ADD_FAILURE() << "not a number: '" << field << "'";
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return value;
+}
+
+/// Reads the CSV, checking the header and the column count of every row.
+std::vector<ProfileRow> read_profile_csv(const std::string& file) {
+  std::ifstream in(file);
+  std::string line;
+  EXPECT_TRUE(std::getline(in, line)) << file << " is missing or empty";
+  EXPECT_EQ(line, "s,x,y,z,v,a,t,v_max,binding");
+  std::vector<ProfileRow> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell);
+    if (f.size() != 9) {
+      ADD_FAILURE() << "row " << rows.size() << " has " << f.size() << " columns: " << line;
+      continue;
+    }
+    ProfileRow r{};
+    double* numbers[] = {&r.s, &r.x, &r.y, &r.z, &r.v, &r.a, &r.t, &r.v_max};
+    for (std::size_t c = 0; c < 8; ++c) *numbers[c] = parse_profile_field(f[c]);
+    r.binding = f[8];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+nlohmann::json parse_profile_json(const ProfileRun& r) {
+  try {
+    return nlohmann::json::parse(r.out);
+  } catch (const nlohmann::json::exception& e) {
+    ADD_FAILURE() << "stdout is not one JSON object: " << e.what() << "\n" << r.out;
+    return nlohmann::json::object();
+  }
+}
+
+/// Runs a profile command that must succeed and returns its JSON summary.
+nlohmann::json run_profile_ok(const std::string& args) {
+  const ProfileRun r = run_talus_profile("profile " + args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  return parse_profile_json(r);
+}
+
+/// The keys every summary has, ok or infeasible.
+void expect_profile_keys(const nlohmann::json& j) {
+  for (const char* key :
+       {"status", "travel_time", "stations", "switching_points", "solve_seconds", "message",
+        "infeasible_station", "infeasible_s", "infeasible_binding", "length_m", "limits_seconds",
+        "merged_stations", "start_speed", "end_speed", "seconds"}) {
+    EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
+  }
+}
+
+/// The checks every feasible profile CSV must pass, against its JSON summary.
+void expect_consistent_profile(const std::vector<ProfileRow>& rows, const nlohmann::json& j) {
+  static const std::set<std::string> kBindings = {"none",    "sliding",   "tipover",
+                                                  "contact", "max_speed", "pitchover"};
+  static const std::set<std::string> kControls = {"accelerate", "decelerate", "limit"};
+  expect_profile_keys(j);
+  ASSERT_EQ(j.at("status"), "ok") << j.dump();
+  ASSERT_EQ(rows.size(), j.at("stations").get<std::size_t>());
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_EQ(rows.front().s, 0.0);
+  EXPECT_EQ(rows.front().t, 0.0);
+  EXPECT_DOUBLE_EQ(rows.back().t, j.at("travel_time").get<double>());
+  EXPECT_NEAR(rows.back().s, j.at("length_m").get<double>(), 1e-9 * (1.0 + rows.back().s));
+  EXPECT_NEAR(rows.front().v, j.at("start_speed").get<double>(), 1e-9);
+  EXPECT_NEAR(rows.back().v, j.at("end_speed").get<double>(), 1e-9);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const ProfileRow& r = rows[k];
+    EXPECT_LE(r.v, r.v_max + 1e-9) << "station " << k;
+    EXPECT_GE(r.v, 0.0) << "station " << k;
+    EXPECT_TRUE(kBindings.count(r.binding)) << "station " << k << ": " << r.binding;
+    EXPECT_EQ(std::isinf(r.v_max), r.binding == "none") << "station " << k;
+    for (const double value : {r.s, r.x, r.y, r.z, r.v, r.a, r.t}) {
+      EXPECT_TRUE(std::isfinite(value)) << "station " << k;
+    }
+    if (k == 0) continue;
+    const ProfileRow& p = rows[k - 1];
+    const double ds = r.s - p.s;
+    EXPECT_GT(ds, 0.0) << "station " << k;
+    EXPECT_GT(r.t, p.t) << "station " << k;
+    // Constant s'' over each step: v1^2 = v0^2 + 2 a ds, t1 - t0 = 2 ds / (v0 + v1).
+    EXPECT_NEAR(r.v * r.v, p.v * p.v + 2.0 * p.a * ds, 1e-7 * (1.0 + r.v * r.v)) << "station " << k;
+    EXPECT_NEAR(r.t - p.t, 2.0 * ds / (p.v + r.v), 1e-9 * (r.t - p.t)) << "station " << k;
+  }
+  EXPECT_EQ(j.at("merged_stations"), 0);
+  EXPECT_TRUE(j.at("message").is_null());
+  EXPECT_TRUE(j.at("infeasible_station").is_null());
+  EXPECT_GE(j.at("solve_seconds").get<double>(), 0.0);
+  EXPECT_GE(j.at("limits_seconds").get<double>(), 0.0);
+  EXPECT_GE(j.at("seconds").get<double>(), j.at("solve_seconds").get<double>());
+  ASSERT_TRUE(j.at("switching_points").is_array());
+  double previous_s = -1.0;
+  for (const nlohmann::json& p : j.at("switching_points")) {
+    const std::size_t station = p.at("station").get<std::size_t>();
+    ASSERT_LT(station, rows.size());
+    EXPECT_DOUBLE_EQ(p.at("s").get<double>(), rows[station].s);
+    EXPECT_GT(p.at("s").get<double>(), previous_s);
+    previous_s = p.at("s").get<double>();
+    EXPECT_TRUE(kControls.count(p.at("from").get<std::string>())) << p.dump();
+    EXPECT_TRUE(kControls.count(p.at("to").get<std::string>())) << p.dump();
+    EXPECT_NE(p.at("from"), p.at("to"));
+  }
+}
+
+/// A flat 121 m x 121 m plane at 1 m spacing, (0, 0) at its south-west node.
+std::string profile_flat_terrain() {
+  const std::string file = profile_scratch("flat.asc");
+  const ProfileRun r = run_talus_profile(
+      "terrain generate plane --slope 0 --ncols 121 --nrows 121 --cellsize 1 -o " + quoted(file));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return file;
+}
+
+/// A point mass with friction mu, b/h = 1.2 and no drive, brake or speed limit
+/// (or a top speed, if given).
+std::string profile_vehicle(const std::string& name, double mu, double max_speed = 0.0) {
+  const std::string file = profile_scratch(name);
+  std::ostringstream text;
+  text << "model: point_mass\nfriction: " << mu << "\ncg_height: 0.5\nhalf_track: 0.6\n";
+  if (max_speed > 0.0) text << "max_speed: " << max_speed << "\n";
+  write_profile_text(file, text.str());
+  return file;
+}
+
+std::string profile_points(const std::string& name,
+                           const std::vector<std::array<double, 2>>& points) {
+  std::ostringstream text;
+  text.precision(17);
+  text << "x,y\n";
+  for (const auto& p : points) text << p[0] << "," << p[1] << "\n";
+  const std::string file = profile_scratch(name);
+  write_profile_text(file, text.str());
+  return file;
+}
+
+/// The default station spacing h as `talus profile --help` states it, in
+/// "ceil(length_m / h) + 1".
+double documented_station_spacing() {
+  const ProfileRun r = run_talus_profile("profile --help");
+  const std::string prefix = "ceil(length_m / ";
+  const std::size_t at = r.out.find(prefix);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "no `" << prefix << "` in the help:\n" << r.out;
+    return 0.5;
+  }
+  const double spacing = std::strtod(r.out.c_str() + at + prefix.size(), nullptr);
+  EXPECT_GT(spacing, 0.0);
+  EXPECT_LE(spacing, 1.0);
+  return spacing;
+}
+
+/// The documented default station count for a path of 3-D length `length`.
+std::size_t expected_default_stations(double length) {
+  const double n = std::ceil(length / documented_station_spacing()) + 1.0;
+  return static_cast<std::size_t>(std::clamp(n, 100.0, 1e6));
+}
+
+TEST(CliProfile, ExampleFilesGiveTheDocumentedCsvAndJson) {
+  const std::string out = profile_scratch("example.csv");
+  const nlohmann::json j =
+      run_profile_ok(kProfileExampleArgs + " --vehicle " +
+                     quoted(profile_data("vehicles/rover.yaml")) + " -o " + quoted(out));
+  const std::vector<ProfileRow> rows = read_profile_csv(out);
+  expect_consistent_profile(rows, j);
+  // Default stations: ceil(3-D length / spacing) + 1.
+  const double length = j.at("length_m").get<double>();
+  EXPECT_EQ(j.at("stations").get<std::size_t>(), expected_default_stations(length));
+  EXPECT_GT(j.at("stations").get<std::size_t>(), 100u);
+  EXPECT_GT(length, 2700.0);
+  // From rest to rest: 2.7 km mostly at the rover's 15 m/s top speed, slower
+  // through the switchback.
+  const double travel_time = j.at("travel_time").get<double>();
+  EXPECT_GT(travel_time, length / 15.0);
+  EXPECT_LT(travel_time, 1.2 * length / 15.0);
+  EXPECT_EQ(rows.front().v, 0.0);
+  EXPECT_EQ(rows.back().v, 0.0);
+  EXPECT_NEAR(j.at("peak_speed").get<double>(), 15.0, 1e-9);
+  EXPECT_GE(j.at("switching_points").size(), 2u);
+  bool slowed_by_sliding = false;
+  for (const ProfileRow& r : rows) {
+    EXPECT_LE(r.v_max, 15.0 * (1 + 1e-12));
+    if (r.binding == "sliding" && r.v_max < 14.0 && r.v > 0.9 * r.v_max) slowed_by_sliding = true;
+  }
+  EXPECT_TRUE(slowed_by_sliding);
+  EXPECT_NEAR(rows.front().x, 556810.0, 1e-6);
+  EXPECT_NEAR(rows.back().y, 4374160.0, 1e-6);
+}
+
+TEST(CliProfile, StationsSmoothingRigidBodyAndStartEndSpeeds) {
+  const std::string out = profile_scratch("rigid.csv");
+  const nlohmann::json j = run_profile_ok(
+      kProfileExampleArgs + " --vehicle " + quoted(profile_data("vehicles/rover_rigid.yaml")) +
+      " --stations 300 --smoothing 1 --v0 5 --v1 2.5 -o " + quoted(out));
+  EXPECT_EQ(j.at("stations"), 300);
+  EXPECT_EQ(j.at("fit"), "smoothing");
+  const std::vector<ProfileRow> rows = read_profile_csv(out);
+  EXPECT_EQ(rows.size(), 300u);
+  expect_consistent_profile(rows, j);
+  EXPECT_NEAR(rows.front().v, 5.0, 1e-12);
+  EXPECT_NEAR(rows.back().v, 2.5, 1e-9);
+}
+
+TEST(CliProfile, StraightPathOnFlatGroundFromRestToRestTakesTwoSqrtLOverMuG) {
+  const double mu = 0.7, g = 9.81, length = 100.0;
+  const std::string out = profile_scratch("straight.csv");
+  const nlohmann::json j = run_profile_ok(
+      "--terrain " + quoted(profile_flat_terrain()) + " --path " +
+      quoted(profile_points("straight.csv", {{{10, 60}}, {{110, 60}}})) + " --vehicle " +
+      quoted(profile_vehicle("unlimited.yaml", mu)) + " -o " + quoted(out));
+  const std::vector<ProfileRow> rows = read_profile_csv(out);
+  expect_consistent_profile(rows, j);
+  EXPECT_EQ(j.at("stations").get<std::size_t>(), expected_default_stations(length));
+  EXPECT_NEAR(j.at("length_m").get<double>(), length, 1e-9);
+  const double expected = 2.0 * std::sqrt(length / (mu * g));
+  EXPECT_NEAR(j.at("travel_time").get<double>(), expected, 0.005 * expected);
+  EXPECT_NEAR(j.at("peak_speed").get<double>(), std::sqrt(mu * g * length),
+              0.005 * std::sqrt(mu * g * length));
+  // Bang-bang: full friction forwards, then full friction backwards, once.
+  ASSERT_EQ(j.at("switching_points").size(), 1u) << j.dump();
+  EXPECT_EQ(j.at("switching_points")[0].at("from"), "accelerate");
+  EXPECT_EQ(j.at("switching_points")[0].at("to"), "decelerate");
+  EXPECT_NEAR(j.at("switching_points")[0].at("s").get<double>(), length / 2, 1.0);
+  EXPECT_NEAR(rows.front().a, mu * g, 1e-9);
+  EXPECT_NEAR(rows.back().a, -mu * g, 1e-9);
+  // Nothing limits the speed on a straight flat path: v_max is written `inf`.
+  std::ifstream in(out);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find(",inf,none\n"), std::string::npos) << text.substr(0, 300);
+}
+
+TEST(CliProfile, StartAndEndSpeedsOnFlatGroundMatchTheBangBangTime) {
+  const double mu = 0.7, g = 9.81, length = 100.0, v0 = 5.0, v1 = 3.0;
+  const std::string out = profile_scratch("speeds.csv");
+  const nlohmann::json j = run_profile_ok(
+      "--terrain " + quoted(profile_flat_terrain()) + " --path " +
+      quoted(profile_points("speeds.csv", {{{10, 60}}, {{110, 60}}})) + " --vehicle " +
+      quoted(profile_vehicle("unlimited.yaml", mu)) + " --v0 5 --v1 3 -o " + quoted(out));
+  expect_consistent_profile(read_profile_csv(out), j);
+  const double a = mu * g;
+  const double peak = std::sqrt((2.0 * a * length + v0 * v0 + v1 * v1) / 2.0);
+  const double expected = (peak - v0) / a + (peak - v1) / a;
+  EXPECT_NEAR(j.at("travel_time").get<double>(), expected, 0.005 * expected);
+  EXPECT_EQ(j.at("start_speed"), 5.0);
+  EXPECT_EQ(j.at("end_speed"), 3.0);
+}
+
+TEST(CliProfile, SideSlopeSteeperThanFrictionIsInfeasibleWithExitCodeTwo) {
+  // 0.8 rad slope rising to the north: tan(0.8) = 1.03 > mu = 0.6 (< b/h = 1.2).
+  const std::string terrain = profile_scratch("side_slope.asc");
+  const ProfileRun g = run_talus_profile(
+      "terrain generate plane --slope 0.8 --aspect 1.5707963267948966 --ncols 41 --nrows 41 "
+      "-o " +
+      quoted(terrain));
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  const std::string path = profile_points("east.csv", {{{5, 20}}, {{35, 20}}});
+  const std::string vehicle = profile_vehicle("mu06.yaml", 0.6);
+  const std::string args =
+      "--terrain " + quoted(terrain) + " --path " + quoted(path) + " --vehicle " + quoted(vehicle);
+
+  // talus limits agrees that no station can be passed at any speed.
+  const ProfileRun limits =
+      run_talus_profile("limits " + args + " -o " + quoted(profile_scratch("side_limits.csv")));
+  ASSERT_EQ(limits.exit_code, 0) << limits.err;
+  const nlohmann::json lj = parse_profile_json(limits);
+  EXPECT_EQ(lj.at("untraversable_stations"), lj.at("stations"));
+
+  const std::string out = profile_scratch("side_profile.csv");
+  std::filesystem::remove(out);
+  const ProfileRun r = run_talus_profile("profile " + args + " -o " + quoted(out));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const nlohmann::json j = parse_profile_json(r);
+  expect_profile_keys(j);
+  EXPECT_EQ(j.at("status"), "infeasible");
+  EXPECT_TRUE(j.at("travel_time").is_null());
+  EXPECT_FALSE(j.at("message").get<std::string>().empty());
+  EXPECT_EQ(j.at("infeasible_binding"), "sliding");
+  EXPECT_EQ(j.at("infeasible_station"), 0);
+  EXPECT_EQ(j.at("infeasible_s"), 0.0);
+  const std::size_t stations = j.at("stations").get<std::size_t>();
+  EXPECT_EQ(stations, expected_default_stations(30.0));
+  EXPECT_TRUE(j.at("switching_points").empty());
+  // The CSV is still written: limits as usual, no motion.
+  const std::vector<ProfileRow> rows = read_profile_csv(out);
+  ASSERT_EQ(rows.size(), stations);
+  for (const ProfileRow& row : rows) {
+    EXPECT_EQ(row.v, 0.0);
+    EXPECT_EQ(row.a, 0.0);
+    EXPECT_TRUE(std::isinf(row.t));
+    EXPECT_EQ(row.v_max, 0.0);
+    EXPECT_EQ(row.binding, "sliding");
+  }
+  EXPECT_NEAR(rows.back().s, 30.0, 1e-9);
+}
+
+TEST(CliProfile, StartSpeedThatCannotBeBrakedInTimeIsInfeasible) {
+  // mu = 0.1: stopping from the 10 m/s top speed takes 100 / (2 * 0.981) = 51 m > 20 m.
+  const std::string args = "--terrain " + quoted(profile_flat_terrain()) + " --path " +
+                           quoted(profile_points("short.csv", {{{10, 10}}, {{30, 10}}})) +
+                           " --vehicle " + quoted(profile_vehicle("slippery.yaml", 0.1, 10.0)) +
+                           " -o " + quoted(profile_scratch("short_profile.csv"));
+  const ProfileRun r = run_talus_profile("profile " + args + " --v0 10");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const nlohmann::json j = parse_profile_json(r);
+  expect_profile_keys(j);
+  EXPECT_EQ(j.at("status"), "infeasible");
+  EXPECT_TRUE(j.at("travel_time").is_null());
+  EXPECT_EQ(j.at("infeasible_station"), 0);
+  EXPECT_NE(j.at("message").get<std::string>().find("start speed"), std::string::npos)
+      << j.at("message");
+  // From 5 m/s the vehicle stops in 12.7 m: feasible.
+  const nlohmann::json ok = run_profile_ok(args + " --v0 5");
+  EXPECT_EQ(ok.at("status"), "ok");
+  EXPECT_EQ(ok.at("stations").get<std::size_t>(), expected_default_stations(20.0));
+}
+
+TEST(CliProfile, DefaultStationCountIsClampedBelowAt100) {
+  const std::string out = profile_scratch("tiny.csv");
+  const nlohmann::json j =
+      run_profile_ok("--terrain " + quoted(profile_flat_terrain()) + " --path " +
+                     quoted(profile_points("tiny.csv", {{{10, 10}}, {{14, 13}}})) + " --vehicle " +
+                     quoted(profile_vehicle("unlimited.yaml", 0.7)) + " -o " + quoted(out));
+  ASSERT_GT(documented_station_spacing(), 0.06);  // so that ceil(5 m / h) + 1 < 100
+  EXPECT_EQ(j.at("stations"), 100);
+  EXPECT_EQ(read_profile_csv(out).size(), 100u);
+  const double expected = 2.0 * std::sqrt(5.0 / (0.7 * 9.81));
+  EXPECT_NEAR(j.at("travel_time").get<double>(), expected, 0.005 * expected);
+}
+
+TEST(CliProfile, BadInputGivesOneLineOnStderrAndExitCodeOne) {
+  const std::string rover = quoted(profile_data("vehicles/rover.yaml"));
+  const std::string out = profile_scratch("never_written.csv");
+  std::filesystem::remove(out);
+  const std::string common = " -o " + quoted(out);
+  struct Case {
+    std::string args;
+    std::string fragment;  // the message must contain this
+  };
+  const std::vector<Case> cases = {
+      {kProfileExampleArgs + common, "--vehicle"},
+      {kProfileExampleArgs + " --vehicle " + rover + " --v0 20" + common,
+       "start speed 20 m/s is above the speed limit 15 m/s (max_speed)"},
+      {kProfileExampleArgs + " --vehicle " + rover + " --v1 15.5" + common,
+       "end speed 15.5 m/s is above the speed limit"},
+      {kProfileExampleArgs + " --vehicle " + rover + " --v0 -1" + common, "--v0"},
+      {kProfileExampleArgs + " --vehicle " + rover + " --v1 nan" + common, "--v1"},
+      {kProfileExampleArgs + " --vehicle " + rover + " --stations 1" + common,
+       "--stations must be at least 2, got 1"},
+      {kProfileExampleArgs + " --vehicle " + rover + " --smoothing 0" + common, "--smoothing"},
+      {"--terrain /nonexistent.asc --path " +
+           quoted(profile_data("paths/west_bijou_traverse.csv")) + " --vehicle " + rover + common,
+       "/nonexistent.asc"},
+      {kProfileExampleArgs + " --vehicle " + rover, "--output"},
+  };
+  for (const Case& c : cases) {
+    const ProfileRun r = run_talus_profile("profile " + c.args);
+    EXPECT_EQ(r.exit_code, 1) << c.args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("talus: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.fragment), std::string::npos) << c.fragment << " not in " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
+  }
+}
+
+TEST(CliProfile, HelpDocumentsTheContract) {
+  const ProfileRun r = run_talus_profile("profile --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* fragment :
+       {"Usage", "s,x,y,z,v,a,t,v_max,binding", "[100, 1000000]", "3-D length", "--v0", "--v1",
+        "Exit code 0", "2 when", "infeasible", "switching_points", "solve_seconds"}) {
+    EXPECT_NE(r.out.find(fragment), std::string::npos) << fragment << " not in " << r.out;
+  }
+}
+
+}  // namespace

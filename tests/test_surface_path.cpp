@@ -195,3 +195,24 @@ TEST(SurfacePath, APathLeavingTheTerrainIsAnInputError) {
 
 }  // namespace
 }  // namespace talus
+
+namespace talus {
+namespace {
+
+TEST(SurfacePath, CopiesAndMovesStayValidAfterTheOriginalIsGone) {
+  const BPatch flat = BPatch::interpolate(sample([](double x, double) { return 0.1 * x; }, 10, 1.0));
+  std::vector<SurfacePath> paths;
+  {
+    SurfacePath original(flat, segment({-5, 0}, {5, 0}));
+    SurfacePath copy = original;
+    paths.push_back(std::move(original));
+    paths.push_back(copy);
+  }  // the original and the copy are gone; the vector holds a moved and a copied path
+  for (const SurfacePath& p : paths) {
+    EXPECT_NEAR(p.length(), 10.0 * std::hypot(1.0, 0.1), 1e-9);
+    EXPECT_NEAR(p.frame_at_arc_length(0.5 * p.length()).point.x(), 0.0, 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace talus

@@ -57,7 +57,7 @@ ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
     for (int m = 1; m < pieces; ++m) breaks.push_back(a + (b - a) * m / pieces);
     breaks.push_back(b);
   }
-  auto speed = [&surface, &curve](double sigma) {
+  const auto speed = [&surface, &curve](double sigma) {
     Curve2::Derivatives d;
     curve.derivatives(sigma, 1, d);
     const Vec2 p = d.col(0), d1 = d.col(1);
@@ -78,6 +78,13 @@ ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
 SurfacePath::SurfacePath(const BPatch& surface, Curve2 curve)
     : surface_(&surface), curve_(std::move(curve)), arc_length_(make_table(surface, curve_)) {}
 
+double SurfacePath::speed(double sigma) const {
+  Curve2::Derivatives d;
+  curve_.derivatives(sigma, 1, d);
+  const Vec2 d1 = d.col(1);
+  return std::hypot(d1.x(), d1.y(), surface_->evaluate(d.col(0)).gradient.dot(d1));
+}
+
 namespace {
 
 /// Frame at σ without its arc length.
@@ -93,12 +100,12 @@ PathFrame frame_without_arc_length(const BPatch& surface, const Curve2& curve, d
 
 PathFrame SurfacePath::frame_at_parameter(double sigma) const {
   PathFrame f = frame_without_arc_length(*surface_, curve_, sigma);
-  f.s = arc_length_.arc_length(sigma);
+  f.s = arc_length_.arc_length(sigma, speed_function());
   return f;
 }
 
 PathFrame SurfacePath::frame_at_arc_length(double s) const {
-  PathFrame f = frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s));
+  PathFrame f = frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s, speed_function()));
   f.s = s;
   return f;
 }
@@ -118,7 +125,7 @@ void SurfacePath::sample_uniform_parameter(std::size_t stations,
     if (k == 0) {
       f.s = 0.0;
     } else if (coarse || k + 1 == stations) {
-      f.s = arc_length_.arc_length(sigma);
+      f.s = arc_length_.arc_length(sigma, speed_function());
     } else {
       const PathFrame& prev = frames[k - 1];
       f.s = prev.s + 0.5 * step * (prev.speed + f.speed) +

@@ -106,14 +106,59 @@ double planar_polyline_length(const std::vector<Vec2>& points) {
   return length;
 }
 
-/// Shortest representation that round-trips exactly; infinity is "inf".
-void append_number(std::string& out, double value) {
+}  // namespace
+
+void append_csv_number(std::string& out, double value) {
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   out.append(buffer, result.ptr);
 }
 
-}  // namespace
+void write_text_file(const std::string& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  if (!out) throw InputError(file + ": cannot open file for writing");
+  out << text;
+  out.close();
+  if (!out) throw InputError(file + ": write failed");
+}
+
+void check_path_options(const std::optional<long long>& stations,
+                        const std::optional<double>& smoothing, const std::string& output) {
+  if (stations && *stations < 2) {
+    throw InputError("--stations must be at least 2, got " + std::to_string(*stations));
+  }
+  if (stations && *stations > kMaxStations) {
+    throw InputError("--stations must be at most " + std::to_string(kMaxStations) + ", got " +
+                     std::to_string(*stations));
+  }
+  if (smoothing && !(std::isfinite(*smoothing) && *smoothing > 0.0)) {
+    std::ostringstream msg;
+    msg << "--smoothing must be a positive finite number (lambda), got " << *smoothing;
+    throw InputError(msg.str());
+  }
+  if (output.empty()) throw InputError("no output file given (-o OUT.csv)");
+}
+
+TerrainPath build_terrain_path(const std::string& terrain_file, const std::string& path_file,
+                               const std::optional<double>& smoothing) {
+  const std::vector<Vec2> points = read_path_csv(path_file);
+  const ElevationGrid grid = read_esri_ascii(terrain_file);
+  check_points_in_domain(points, grid, path_file, terrain_file);
+
+  auto surface = std::make_unique<const BPatch>([&] {
+    try {
+      return smoothing ? BPatch::fit_smoothing(grid, *smoothing) : BPatch::interpolate(grid);
+    } catch (const InputError& e) {
+      throw InputError(terrain_file + ": " + e.what());
+    }
+  }());
+  check_points_on_data(points, *surface, grid, path_file, terrain_file);
+
+  Curve2 curve = Curve2::interpolate(points);
+  check_curve_in_domain(curve, points, *surface, path_file, terrain_file, grid);
+  auto path = std::make_unique<const SurfacePath>(*surface, std::move(curve));
+  return TerrainPath{std::move(surface), std::move(path), planar_polyline_length(points)};
+}
 
 std::size_t default_station_count(double planar_length) {
   if (!(planar_length >= 0.0)) return kMinDefaultStations;
@@ -124,42 +169,15 @@ std::size_t default_station_count(double planar_length) {
 
 nlohmann::json limits(const LimitsRequest& request) {
   const auto start = std::chrono::steady_clock::now();
-  if (request.stations && *request.stations < 2) {
-    throw InputError("--stations must be at least 2, got " + std::to_string(*request.stations));
-  }
-  if (request.stations && *request.stations > kMaxStations) {
-    throw InputError("--stations must be at most " + std::to_string(kMaxStations) + ", got " +
-                     std::to_string(*request.stations));
-  }
-  if (request.smoothing && !(std::isfinite(*request.smoothing) && *request.smoothing > 0.0)) {
-    std::ostringstream msg;
-    msg << "--smoothing must be a positive finite number (lambda), got " << *request.smoothing;
-    throw InputError(msg.str());
-  }
-  if (request.output.empty()) throw InputError("no output file given (-o OUT.csv)");
+  check_path_options(request.stations, request.smoothing, request.output);
 
   const Vehicle vehicle = load_vehicle(request.vehicle);
-  const std::vector<Vec2> points = read_path_csv(request.path);
-  const ElevationGrid grid = read_esri_ascii(request.terrain);
-  check_points_in_domain(points, grid, request.path, request.terrain);
+  const TerrainPath terrain_path =
+      build_terrain_path(request.terrain, request.path, request.smoothing);
+  const SurfacePath& path = *terrain_path.path;
 
-  const BPatch surface = [&] {
-    try {
-      return request.smoothing ? BPatch::fit_smoothing(grid, *request.smoothing)
-                               : BPatch::interpolate(grid);
-    } catch (const InputError& e) {
-      throw InputError(request.terrain + ": " + e.what());
-    }
-  }();
-  check_points_on_data(points, surface, grid, request.path, request.terrain);
-
-  Curve2 curve = Curve2::interpolate(points);
-  check_curve_in_domain(curve, points, surface, request.path, request.terrain, grid);
-  const SurfacePath path(surface, std::move(curve));
-
-  const std::size_t stations = request.stations
-                                   ? static_cast<std::size_t>(*request.stations)
-                                   : default_station_count(planar_polyline_length(points));
+  const std::size_t stations = request.stations ? static_cast<std::size_t>(*request.stations)
+                                                : default_station_count(terrain_path.planar_length);
   const VelocityLimits limits(vehicle, path, stations);
 
   // The CSV, and the summary on the way.
@@ -186,22 +204,18 @@ nlohmann::json limits(const LimitsRequest& request) {
       min_v_max_s = f.s;
     }
     for (const double value : {f.s, f.point.x(), f.point.y(), f.point.z(), v_min, v_max}) {
-      append_number(csv, value);
+      append_csv_number(csv, value);
       csv += ',';
     }
     csv += binding;
     for (const double value : {f.k_t, f.k_q, f.k_r, f.kappa_n, f.kappa_g}) {
       csv += ',';
-      append_number(csv, value);
+      append_csv_number(csv, value);
     }
     csv += '\n';
   }
 
-  std::ofstream out(request.output, std::ios::binary);
-  if (!out) throw InputError(request.output + ": cannot open file for writing");
-  out << csv;
-  out.close();
-  if (!out) throw InputError(request.output + ": write failed");
+  write_text_file(request.output, csv);
 
   nlohmann::json summary;
   summary["stations"] = limits.size();

@@ -3,10 +3,14 @@
 /// The `talus limits` command's work, separate from argument parsing: a
 /// vehicle's speed limits at stations along a path on a terrain, written as CSV.
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/surface_path.hpp"
 
 namespace talus::experiments {
 
@@ -33,6 +37,37 @@ inline constexpr std::size_t kMaxDefaultStations = 100000;
 /// segments between its way points) is `planar_length` metres long: one per
 /// metre, ceil(planar_length) + 1, clamped to [100, 100000].
 std::size_t default_station_count(double planar_length);
+
+/// Checks the options that `talus limits` and `talus profile` share, before
+/// any file is read: --stations (if given) in [2, kMaxStations], --smoothing
+/// (if given) positive and finite, and an output file. Throws InputError.
+void check_path_options(const std::optional<long long>& stations,
+                        const std::optional<double>& smoothing, const std::string& output);
+
+/// A path on a terrain as `talus limits` and `talus profile` build it. Both
+/// objects live on the heap: the path refers to the surface, and a
+/// SurfacePath must not be moved or copied (its arc-length table refers to
+/// its own curve).
+struct TerrainPath {
+  std::unique_ptr<const BPatch> surface;
+  std::unique_ptr<const SurfacePath> path;  ///< lifted onto *surface
+  double planar_length = 0.0;               ///< the way points' polyline (straight segments) [m]
+};
+
+/// Reads the way points of `path_file` (read_path_csv) and the terrain grid,
+/// fits the B-patch (interpolating, or the smoothing fit with lambda
+/// `smoothing`), and lifts the interpolating cubic B-spline through the way
+/// points (chord-length parameters) onto it. Way points off the domain or on
+/// NODATA, and a spline that leaves the domain, are InputErrors naming the
+/// point, file and line.
+TerrainPath build_terrain_path(const std::string& terrain_file, const std::string& path_file,
+                               const std::optional<double>& smoothing);
+
+/// Appends the shortest text that reads back as exactly `value`; infinity is "inf".
+void append_csv_number(std::string& out, double value);
+
+/// Writes `text` to `file`; InputError if it cannot be opened or written.
+void write_text_file(const std::string& file, const std::string& text);
 
 /// The columns of the CSV, in order.
 inline constexpr const char* kLimitsCsvHeader =

@@ -6,6 +6,7 @@
 
 #include "experiment.hpp"
 #include "limits_command.hpp"
+#include "profile_command.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/terrain_generators.hpp"
@@ -195,6 +196,53 @@ int main(int argc, char** argv) {
   limits->add_option("-o,--output", limits_request.output, "output .csv file")->required();
   limits->callback([&]() { std::cout << ex::limits(limits_request).dump(2) << "\n"; });
 
+  ex::ProfileRequest profile_request;
+  int exit_code = 0;  // set by commands whose outcome is not an error (profile: 2 = infeasible)
+  CLI::App* profile = app.add_subcommand(
+      "profile",
+      "time-optimal velocity profile of a vehicle along a path on a terrain, from speed v0 to "
+      "v1 (TOPP-RA reachability analysis; every constraint holds at every station). Writes CSV "
+      "columns s,x,y,z,v,a,t,v_max,binding (SI units: s arc length [m], v speed [m/s], a = "
+      "s'' of the step that starts there [m/s^2], t time of arrival [s]; v_max `inf` where "
+      "nothing limits it, 0 where no speed is admissible; binding = what sets v_max, as in "
+      "`talus limits`) and prints one JSON object: status (ok | infeasible), travel_time [s] "
+      "(null when infeasible), stations, length_m, switching_points [{station, s, from, to}] "
+      "(accelerate | decelerate | limit), solve_seconds (the solver alone), limits_seconds, "
+      "merged_stations, peak_speed, message, infeasible_station, infeasible_s, "
+      "infeasible_binding (null when ok), start_speed, end_speed, fit, smoothing, output, "
+      "seconds. Exit code 0 when a profile exists; 2 when the path is infeasible (the JSON is "
+      "still printed and OUT.csv still written, with s,x,y,z,v_max,binding as usual and v = 0, "
+      "a = 0, t = inf at every station); 1 on bad input, including a start or end speed above "
+      "the speed limit there (one line on stderr, nothing written)");
+  profile->add_option("--terrain", profile_request.terrain, "ESRI ASCII grid (.asc)")->required();
+  profile
+      ->add_option("--path", profile_request.path,
+                   "path CSV: header `x,y`, then one way point per line in the terrain's "
+                   "coordinates [m]; the path is the interpolating cubic B-spline through them "
+                   "(chord-length parameters) lifted onto the terrain")
+      ->required();
+  profile
+      ->add_option("--vehicle", profile_request.vehicle,
+                   "vehicle YAML (see data/vehicles/README.md)")
+      ->required();
+  profile->add_option("--v0", profile_request.start_speed, "speed at the start [m/s], >= 0")
+      ->capture_default_str();
+  profile->add_option("--v1", profile_request.end_speed, "speed at the end [m/s], >= 0")
+      ->capture_default_str();
+  profile->add_option("--stations", profile_request.stations,
+                      "number of stations (2 to 10000000), equally spaced in the curve "
+                      "parameter; default: " +
+                          ex::default_profile_stations_text());
+  profile->add_option("--smoothing", profile_request.smoothing,
+                      "curvature weight lambda > 0 of the smoothing fit; without it the surface "
+                      "interpolates every node");
+  profile->add_option("-o,--output", profile_request.output, "output .csv file")->required();
+  profile->callback([&]() {
+    const ex::ProfileOutcome outcome = ex::profile(profile_request);
+    std::cout << outcome.summary.dump(2) << "\n";
+    if (!outcome.feasible) exit_code = ex::kInfeasibleExitCode;
+  });
+
   std::string experiment_name, out_dir = "talus-out", data_dir;
   bool quick = false;
   CLI::App* experiment = app.add_subcommand(
@@ -240,5 +288,5 @@ int main(int argc, char** argv) {
     std::cerr << "talus: error: " << e.what() << "\n";
     return 1;
   }
-  return 0;
+  return exit_code;
 }

@@ -50,7 +50,8 @@ PathFrame lift_to_surface(const Vec2& position, const SurfacePoint& surface, con
                           const Vec2& d2);
 
 /// A planar B-spline curve lifted onto a BPatch, with its 3-D arc-length map.
-/// Holds a reference to the surface: the BPatch must outlive the path.
+/// Holds a pointer to the surface: the BPatch must outlive the path (copies
+/// and moves of the path are fine).
 class SurfacePath {
  public:
   /// Throws InputError if the curve leaves the surface's domain (checked at
@@ -76,6 +77,12 @@ class SurfacePath {
   void sample_uniform_parameter(std::size_t stations, std::vector<PathFrame>& frames) const;
 
  private:
+  /// |dP/dσ| of the lifted curve, the arc-length table's integrand.
+  double speed(double sigma) const;
+  ArcLengthTable::SpeedFunction speed_function() const {
+    return [this](double sigma) { return speed(sigma); };
+  }
+
   const BPatch* surface_;
   Curve2 curve_;
   ArcLengthTable arc_length_;

@@ -1,6 +1,7 @@
 // Downstream use of the installed Talus package: build a small elevation grid
 // with a void, round-trip it through the ESRI ASCII writer and reader, and
 // check that nothing changed. Returns non-zero on any difference.
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/optimal/time_optimal_profile.hpp"
 
 namespace {
 
@@ -65,6 +67,23 @@ int main() {
     threw = true;
   }
   check(threw, "malformed input must throw talus::InputError");
+
+  // Every layer through the installed package: a smoothing B-patch (CHOLMOD),
+  // a vehicle from YAML (yaml-cpp), and the time-optimal profile on a flat
+  // straight line, whose time is 2 sqrt(L / (mu g)).
+  talus::ElevationGrid flat(41, 11, 1.0, 0.0, 0.0, 3.0);
+  const talus::BPatch patch = talus::BPatch::fit_smoothing(flat, 1.0);
+  const talus::SurfacePath path(
+      patch, talus::Curve2::interpolate({talus::Vec2(0, 5), talus::Vec2(40, 5)}));
+  const talus::Vehicle vehicle = talus::parse_vehicle(
+      "model: point_mass\nfriction: 0.5\ncg_height: 0.5\nhalf_track: 0.6\n", "<consumer>");
+  const talus::VelocityLimits limits(vehicle, path, 401);
+  talus::TimeOptimalProfileSolver solver;
+  const talus::TimeOptimalProfile profile = solver.solve(limits, {});
+  const double expected = 2.0 * std::sqrt(40.0 / (0.5 * 9.81));
+  check(profile.status == talus::ProfileStatus::kOk &&
+            std::abs(profile.travel_time - expected) < 0.005 * expected,
+        "time-optimal profile on a flat line");
 
   if (failures != 0) {
     std::cerr << failures << " check(s) failed\n";

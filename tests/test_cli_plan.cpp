@@ -1,1 +1,399 @@
+// End-to-end tests of `talus plan --stage global`: the analytic cost on a flat
+// plane, the candidates.csv / summary.json / fields.csv contracts, two
+// candidates around a hill, the unreachable outcome (exit code 2, JSON on
+// stdout) behind a wall of hills, input errors (exit 1) and a bundled DEM.
 #include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+/// A scratch folder of this test process (ctest runs tests in parallel).
+std::filesystem::path plan_scratch_dir() {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("talus_cli_plan_test_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string plan_scratch(const std::string& name) {
+  return (plan_scratch_dir() / name).string();
+}
+
+std::string plan_quoted(const std::string& s) {
+  return "'" + s + "'";
+}
+
+struct PlanRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs `talus ARGS`, capturing stdout and stderr separately.
+PlanRun run_talus_plan(const std::string& args) {
+  const std::string err_file = plan_scratch("stderr.txt");
+  const std::string command = std::string("'") + TALUS_CLI + "' " + args + " 2>'" + err_file + "'";
+  PlanRun result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream err(err_file);
+  result.err.assign(std::istreambuf_iterator<char>(err), {});
+  return result;
+}
+
+nlohmann::json parse_plan_json(const std::string& text, const std::string& what) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    ADD_FAILURE() << what << " is not one JSON object: " << e.what() << "\n" << text;
+    return nlohmann::json::object();
+  }
+}
+
+std::string read_plan_file(const std::string& file) {
+  std::ifstream in(file);
+  EXPECT_TRUE(in.good()) << file << " is missing";
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+/// Generates a terrain with `talus terrain generate ARGS -o NAME`.
+std::string plan_terrain(const std::string& name, const std::string& args) {
+  const std::string file = plan_scratch(name);
+  const PlanRun r = run_talus_plan("terrain generate " + args + " -o " + plan_quoted(file));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return file;
+}
+
+/// 61 x 41 nodes at 1 m spacing, (0, 0) at the south-west node.
+const std::string kPlanShape = "--ncols 61 --nrows 41 --cellsize 1";
+
+std::string plan_flat_terrain() {
+  return plan_terrain("flat.asc", "plane --slope 0 " + kPlanShape);
+}
+
+/// A point mass with friction 0.7, b/h = 1.2 and the given top speed (none if 0).
+std::string plan_vehicle(const std::string& name, double max_speed) {
+  const std::string file = plan_scratch(name);
+  std::ostringstream text;
+  text << "model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n";
+  if (max_speed > 0.0) text << "max_speed: " << max_speed << "\n";
+  std::ofstream(file) << text.str();
+  return file;
+}
+
+std::string plan_data(const std::string& relative) {
+  return std::string(TALUS_DATA_DIR) + "/" + relative;
+}
+
+struct PlanVertex {
+  int candidate;
+  double x, y;
+};
+
+/// Reads candidates.csv, checking the exact header and the column count.
+std::vector<PlanVertex> read_plan_candidates(const std::string& file) {
+  std::ifstream in(file);
+  std::string line;
+  EXPECT_TRUE(std::getline(in, line)) << file << " is missing or empty";
+  EXPECT_EQ(line, "candidate,x,y");
+  std::vector<PlanVertex> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell);
+    if (f.size() != 3) {
+      ADD_FAILURE() << "row " << rows.size() << " has " << f.size() << " columns: " << line;
+      continue;
+    }
+    rows.push_back({std::stoi(f[0]), std::stod(f[1]), std::stod(f[2])});
+  }
+  return rows;
+}
+
+/// The vertices of candidate `c`, in order.
+std::vector<PlanVertex> plan_candidate(const std::vector<PlanVertex>& rows, int c) {
+  std::vector<PlanVertex> out;
+  std::copy_if(rows.begin(), rows.end(), std::back_inserter(out),
+               [c](const PlanVertex& v) { return v.candidate == c; });
+  return out;
+}
+
+/// candidates.csv agrees with the summary: each candidate's vertex count, from
+/// the start node to the goal node, ordered by cost.
+void expect_plan_candidates(const nlohmann::json& j, const std::string& dir) {
+  EXPECT_GE(j.at("search_seconds").get<double>(), 0.0);
+  EXPECT_LE(j.at("reachable_nodes"), j.at("nodes"));
+  const std::vector<PlanVertex> rows = read_plan_candidates(dir + "/candidates.csv");
+  const auto& candidates = j.at("candidates");
+  std::size_t total = 0;
+  double previous_cost = 0.0;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const nlohmann::json& cj = candidates[c];
+    for (const char* key : {"cost_seconds", "length_m", "vertices"}) {
+      EXPECT_TRUE(cj.contains(key)) << key << " missing from " << cj.dump();
+    }
+    const double cost = cj.at("cost_seconds").get<double>();
+    EXPECT_GE(cost, previous_cost) << "candidates must be ordered by cost";
+    previous_cost = cost;
+    const std::vector<PlanVertex> v = plan_candidate(rows, static_cast<int>(c));
+    ASSERT_EQ(v.size(), cj.at("vertices").get<std::size_t>()) << "candidate " << c;
+    ASSERT_GE(v.size(), 2u);
+    EXPECT_EQ(v.front().x, j.at("start_node")[0].get<double>()) << "candidate " << c;
+    EXPECT_EQ(v.front().y, j.at("start_node")[1].get<double>()) << "candidate " << c;
+    EXPECT_EQ(v.back().x, j.at("goal_node")[0].get<double>()) << "candidate " << c;
+    EXPECT_EQ(v.back().y, j.at("goal_node")[1].get<double>()) << "candidate " << c;
+    total += v.size();
+  }
+  EXPECT_EQ(rows.size(), total) << "candidates.csv rows of unknown candidates";
+}
+
+/// Runs `talus plan ARGS --out DIR` and checks what every run, reachable or
+/// not, must satisfy: the summary on stdout equals DIR/summary.json, has the
+/// contract's keys, and candidates.csv agrees with it. Returns the summary.
+nlohmann::json run_plan_and_check(const std::string& args, const std::string& dir,
+                                  int expected_exit_code) {
+  std::filesystem::remove_all(dir);
+  const PlanRun r = run_talus_plan("plan " + args + " --out " + plan_quoted(dir));
+  EXPECT_EQ(r.exit_code, expected_exit_code) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const nlohmann::json j = parse_plan_json(r.out, "stdout");
+  EXPECT_EQ(j, parse_plan_json(read_plan_file(dir + "/summary.json"), "summary.json"));
+  for (const char* key : {"status", "message", "candidates", "nodes", "edges_evaluated",
+                          "search_seconds", "reachable_nodes", "start_node", "goal_node",
+                          "lattice_spacing", "connectivity", "expanded"}) {
+    EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
+  }
+  if (j.contains("candidates") && j.contains("start_node")) expect_plan_candidates(j, dir);
+  return j;
+}
+
+/// The checks of a run that reaches the goal.
+nlohmann::json run_plan_ok(const std::string& args, const std::string& dir) {
+  const nlohmann::json j = run_plan_and_check(args, dir, 0);
+  EXPECT_EQ(j.value("status", ""), "ok") << j.dump();
+  EXPECT_TRUE(j.value("message", nlohmann::json()).is_null());
+  EXPECT_FALSE(j.value("candidates", nlohmann::json::array()).empty());
+  return j;
+}
+
+TEST(CliPlan, FlatPlaneSameRowCostsDistanceOverMaxSpeed) {
+  const std::string terrain = plan_flat_terrain();
+  const std::string args = "--terrain " + plan_quoted(terrain) + " --start 5,20 --goal 55,20" +
+                           " --vehicle " + plan_quoted(plan_vehicle("v10.yaml", 10.0)) +
+                           " --stage global";
+  const std::string dir = plan_scratch("flat_out");
+  const nlohmann::json j = run_plan_ok(args, dir);
+  const double expected = 50.0 / 10.0;
+  ASSERT_FALSE(j.at("candidates").empty());
+  EXPECT_NEAR(j.at("candidates")[0].at("cost_seconds").get<double>(), expected, 1e-9 * expected);
+  EXPECT_NEAR(j.at("candidates")[0].at("length_m").get<double>(), 50.0, 1e-9 * 50.0);
+  EXPECT_EQ(j.at("candidates")[0].at("vertices"), 51);  // straight along the row
+  EXPECT_LE(j.at("candidates").size(), 3u);             // the default
+  EXPECT_EQ(j.at("start_node"), nlohmann::json::array({5.0, 20.0}));
+  EXPECT_EQ(j.at("goal_node"), nlohmann::json::array({55.0, 20.0}));
+  EXPECT_EQ(j.at("nodes"), 61 * 41);
+  EXPECT_EQ(j.at("reachable_nodes"), 61 * 41);
+  EXPECT_EQ(j.at("lattice_spacing"), 1.0);  // 0 = the cell size
+  EXPECT_EQ(j.at("connectivity"), 16);
+  EXPECT_GT(j.at("edges_evaluated").get<std::size_t>(), 0u);
+  EXPECT_GT(j.at("expanded").get<std::size_t>(), 0u);
+  for (const PlanVertex& v : plan_candidate(read_plan_candidates(dir + "/candidates.csv"), 0)) {
+    EXPECT_EQ(v.y, 20.0);
+  }
+
+  // fields.csv: one row per node; the start's and the goal's own costs are 0.
+  std::ifstream fields(dir + "/fields.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(fields, line));
+  EXPECT_EQ(line, "x,y,cost_from_start,cost_to_goal");
+  std::size_t rows = 0;
+  while (std::getline(fields, line)) {
+    double x = 0, y = 0, from_start = 0, to_goal = 0;
+    char c1 = 0, c2 = 0, c3 = 0;
+    std::istringstream row(line);
+    ASSERT_TRUE(row >> x >> c1 >> y >> c2 >> from_start >> c3 >> to_goal) << line;
+    if (x == 5.0 && y == 20.0) {
+      EXPECT_EQ(from_start, 0.0);
+      EXPECT_NEAR(to_goal, expected, 1e-9 * expected);
+    }
+    if (x == 55.0 && y == 20.0) {
+      EXPECT_EQ(to_goal, 0.0);
+      EXPECT_NEAR(from_start, expected, 1e-9 * expected);
+    }
+    ++rows;
+  }
+  EXPECT_EQ(rows, 61u * 41u);
+
+  // The lattice options reach the search: 2.5 m spacing, 8 neighbours, and a
+  // start off the lattice snaps to the nearest node.
+  const nlohmann::json coarse = run_plan_ok(
+      "--terrain " + plan_quoted(terrain) + " --start 5.4,19.3 --goal 55,20 --vehicle " +
+          plan_quoted(plan_vehicle("v10.yaml", 10.0)) +
+          " --stage global --lattice-spacing 2.5 --connectivity 8 --candidates 1",
+      plan_scratch("coarse_out"));
+  EXPECT_EQ(coarse.at("nodes"), 25 * 17);
+  EXPECT_EQ(coarse.at("lattice_spacing"), 2.5);
+  EXPECT_EQ(coarse.at("connectivity"), 8);
+  EXPECT_EQ(coarse.at("start_node"), nlohmann::json::array({5.0, 20.0}));
+  ASSERT_EQ(coarse.at("candidates").size(), 1u);
+  EXPECT_NEAR(coarse.at("candidates")[0].at("cost_seconds").get<double>(), expected,
+              1e-9 * expected);
+  EXPECT_EQ(coarse.at("candidates")[0].at("vertices"), 21);
+}
+
+TEST(CliPlan, GaussianHillGivesTwoCandidatesOneOnEachSide) {
+  // Slopes up to 0.6 * 8 / 5 = 0.97 > mu = 0.7 near the hill: the vehicle
+  // goes round it, north or south.
+  const std::string terrain =
+      plan_terrain("hill.asc", "gaussian-hills --hill 30,20,8,5 " + kPlanShape);
+  const std::string dir = plan_scratch("hill_out");
+  const nlohmann::json j = run_plan_ok(
+      "--terrain " + plan_quoted(terrain) + " --start 5,20 --goal 55,20 --vehicle " +
+          plan_quoted(plan_vehicle("v10.yaml", 10.0)) + " --stage global --candidates 2",
+      dir);
+  ASSERT_EQ(j.at("candidates").size(), 2u) << j.dump();
+  const std::vector<PlanVertex> rows = read_plan_candidates(dir + "/candidates.csv");
+  int north = 0, south = 0;
+  for (int c = 0; c < 2; ++c) {
+    EXPECT_GT(j.at("candidates")[c].at("cost_seconds").get<double>(), 50.0 / 10.0);
+    double y_max = -1e300, y_min = 1e300;
+    for (const PlanVertex& v : plan_candidate(rows, c)) {
+      y_max = std::max(y_max, v.y);
+      y_min = std::min(y_min, v.y);
+    }
+    north += y_min >= 20.0 && y_max > 25.0;
+    south += y_max <= 20.0 && y_min < 15.0;
+  }
+  EXPECT_EQ(north, 1);
+  EXPECT_EQ(south, 1);
+}
+
+TEST(CliPlan, WallOfHillsMakesTheGoalUnreachableWithExitCodeTwo) {
+  // Hills 30 m high, sigma 3 m, every 5 m along y = 20 and beyond both edges:
+  // a ridge whose flanks (slope up to 6) no vehicle with mu = 0.7 can climb.
+  std::string hills = "gaussian-hills " + kPlanShape;
+  for (int x = -10; x <= 70; x += 5) hills += " --hill " + std::to_string(x) + ",20,30,3";
+  const std::string terrain = plan_terrain("wall.asc", hills);
+  const std::string dir = plan_scratch("wall_out");
+  const nlohmann::json j = run_plan_and_check(
+      "--terrain " + plan_quoted(terrain) + " --start 30,5 --goal 30,35 --vehicle " +
+          plan_quoted(plan_vehicle("v10.yaml", 10.0)) + " --stage global",
+      dir, 2);
+  EXPECT_EQ(j.value("status", ""), "unreachable") << j.dump();
+  EXPECT_TRUE(j.value("candidates", nlohmann::json::array({1})).empty());
+  EXPECT_FALSE(j.value("message", "").empty());
+  EXPECT_GT(j.value("reachable_nodes", 0), 0);
+  EXPECT_LT(j.value("reachable_nodes", 0), j.value("nodes", 0));
+  EXPECT_EQ(read_plan_file(dir + "/candidates.csv"), "candidate,x,y\n");
+  // fields.csv: nodes beyond the wall are `inf` from the start; the cost to
+  // the goal is not computed (`nan`).
+  const std::string fields = read_plan_file(dir + "/fields.csv");
+  EXPECT_EQ(fields.rfind("x,y,cost_from_start,cost_to_goal\n", 0), 0u);
+  EXPECT_EQ(std::count(fields.begin(), fields.end(), '\n'), 61 * 41 + 1);
+  EXPECT_NE(fields.find("\n30,35,inf,nan\n"), std::string::npos);
+  EXPECT_NE(fields.find("\n30,5,0,nan\n"), std::string::npos);
+}
+
+TEST(CliPlan, BadInputGivesOneLineOnStderrAndExitCodeOne) {
+  const std::string flat = plan_quoted(plan_flat_terrain());
+  const std::string steep = plan_quoted(
+      plan_terrain("steep.asc", "plane --slope 0.8 --ncols 41 --nrows 41 --cellsize 1"));
+  const std::string v10 = " --vehicle " + plan_quoted(plan_vehicle("v10.yaml", 10.0));
+  const std::string unlimited = " --vehicle " + plan_quoted(plan_vehicle("unlimited.yaml", 0.0));
+  const std::string dir = plan_scratch("never_written");
+  std::filesystem::remove_all(dir);
+  const std::string tail = " --stage global --out " + plan_quoted(dir);
+  struct Case {
+    std::string args;
+    std::string fragment;  // the message must contain this
+  };
+  const std::vector<Case> cases = {
+      {"--terrain " + flat + " --start 70,20 --goal 55,20" + v10 + tail, "--start (70, 20)"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,-1" + v10 + tail, "--goal (55, -1)"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --connectivity 12" + tail,
+       "--connectivity must be 8, 16 or 32, got 12"},
+      {"--terrain " + flat + " --start '1;2' --goal 55,20" + v10 + tail, "'1;2'"},
+      {"--terrain " + flat + " --start 5,20 --goal 55" + v10 + tail, "--goal must be X,Y"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + unlimited + tail, "max_speed"},
+      {"--terrain " + steep + " --start 20,20 --goal 30,30" + v10 + tail, "untraversable"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --candidates 0" + tail,
+       "--candidates"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --smoothing -1" + tail,
+       "--smoothing"},
+      {"--terrain /nonexistent.asc --start 5,20 --goal 55,20" + v10 + tail, "/nonexistent.asc"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --stage full --out " +
+           plan_quoted(dir),
+       "--stage"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --stage global", "--out"},
+  };
+  for (const Case& c : cases) {
+    const PlanRun r = run_talus_plan("plan " + c.args);
+    EXPECT_EQ(r.exit_code, 1) << c.args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("talus: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.fragment), std::string::npos) << c.fragment << " not in " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(dir)) << c.args;
+  }
+}
+
+TEST(CliPlan, BundledDemCornerToCornerIsSane) {
+  // West Bijou escarpment (NASADEM, 25 m, 122 x 82 nodes), south-west to
+  // north-east node, the 15 m/s rover.
+  const std::string terrain = plan_data("terrain/west_bijou_escarpment_nasadem25m.asc");
+  const PlanRun info = run_talus_plan("terrain info " + plan_quoted(terrain));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json d = parse_plan_json(info.out, "terrain info");
+  std::ostringstream args;
+  args.precision(17);
+  args << "--terrain " << plan_quoted(terrain) << " --start " << d.at("xmin").get<double>() << ","
+       << d.at("ymin").get<double>() << " --goal " << d.at("xmax").get<double>() << ","
+       << d.at("ymax").get<double>() << " --vehicle "
+       << plan_quoted(plan_data("vehicles/rover.yaml")) << " --stage global";
+  const nlohmann::json j = run_plan_ok(args.str(), plan_scratch("bijou_out"));
+  EXPECT_EQ(j.at("nodes"), 122 * 82);
+  EXPECT_EQ(j.at("candidates").size(), 3u) << j.dump();
+  const double dx = d.at("xmax").get<double>() - d.at("xmin").get<double>();
+  const double dy = d.at("ymax").get<double>() - d.at("ymin").get<double>();
+  const double straight = std::hypot(dx, dy);
+  for (const nlohmann::json& c : j.at("candidates")) {
+    // No faster than the straight line at top speed; no wild detour either.
+    EXPECT_GE(c.at("cost_seconds").get<double>(), straight / 15.0);
+    EXPECT_LE(c.at("cost_seconds").get<double>(), 1.5 * straight / 15.0);
+    EXPECT_GE(c.at("length_m").get<double>(), straight);
+    EXPECT_LE(c.at("cost_seconds").get<double>(),
+              2.0 * j.at("candidates")[0].at("cost_seconds").get<double>());
+  }
+}
+
+TEST(CliPlan, HelpDocumentsTheContract) {
+  const PlanRun r = run_talus_plan("plan --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* fragment :
+       {"Usage", "--stage", "global", "full", "not available yet", "candidate,x,y", "summary.json",
+        "cost_seconds", "unreachable", "Exit code 0", "2 when", "--candidates", "--lattice-spacing",
+        "--connectivity", "--smoothing"}) {
+    EXPECT_NE(r.out.find(fragment), std::string::npos) << fragment << " not in " << r.out;
+  }
+}
+
+}  // namespace

@@ -6,6 +6,7 @@
 
 #include "experiment.hpp"
 #include "limits_command.hpp"
+#include "plan_command.hpp"
 #include "profile_command.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
@@ -241,6 +242,58 @@ int main(int argc, char** argv) {
     const ex::ProfileOutcome outcome = ex::profile(profile_request);
     std::cout << outcome.summary.dump(2) << "\n";
     if (!outcome.feasible) exit_code = ex::kInfeasibleExitCode;
+  });
+
+  ex::PlanRequest plan_request;
+  CLI::App* plan = app.add_subcommand(
+      "plan",
+      "plan a time-optimal route for a vehicle from a start to a goal on a terrain. Only the "
+      "global stage exists so far: --stage global runs the minimum-time search over a lattice "
+      "on the fitted surface (edge cost J = integral of ds / v_max, the travel time at the "
+      "speed limit) and returns up to --candidates distinct corridors. --stage full (the "
+      "default once the local optimiser lands) is not available yet. Writes, in --out DIR "
+      "(created if needed): candidates.csv (columns candidate,x,y: the lattice vertices of "
+      "each candidate from the start node to the goal node, candidate 0 the best), "
+      "fields.csv (x,y,cost_from_start,cost_to_goal [s] at every lattice node, `inf` = not "
+      "reachable, `nan` = not computed; skipped above 4000000 nodes) and summary.json, and "
+      "prints the same JSON: status (ok | unreachable), message, candidates [{cost_seconds, "
+      "length_m, vertices}], nodes, edges_evaluated, expanded, reachable_nodes, "
+      "search_seconds, start_node, goal_node ([x, y] of the snapped lattice nodes), "
+      "lattice_spacing, connectivity, ... Exit code 0 when the goal is reached; 2 when it is "
+      "unreachable (summary still written and printed); 1 on bad input: a start or goal off "
+      "the map, on NODATA or on untraversable terrain, a vehicle without max_speed, a "
+      "malformed X,Y (one line on stderr, nothing written)");
+  plan->add_option("--terrain", plan_request.terrain, "ESRI ASCII grid (.asc)")->required();
+  plan->add_option("--start", plan_request.start, "start X,Y in the terrain's frame [m]")
+      ->required();
+  plan->add_option("--goal", plan_request.goal, "goal X,Y in the terrain's frame [m]")->required();
+  plan->add_option("--vehicle", plan_request.vehicle,
+                   "vehicle YAML with a finite max_speed (see data/vehicles/README.md)")
+      ->required();
+  plan->add_option("--stage", plan_request.stage,
+                   "global = the lattice search only (required for now; `full`, the future "
+                   "default, is not available yet)")
+      ->required()
+      ->check(CLI::IsMember({std::string(ex::kPlanStageGlobal)}));
+  plan->add_option("--candidates", plan_request.candidates,
+                   "distinct candidate corridors wanted (>= 1; fewer when no other corridor "
+                   "costs at most twice the best)")
+      ->capture_default_str();
+  plan->add_option("--lattice-spacing", plan_request.lattice_spacing,
+                   "lattice node spacing [m]; 0 = the terrain's cell size")
+      ->capture_default_str();
+  plan->add_option("--connectivity", plan_request.connectivity,
+                   "neighbours per lattice node: 8, 16 or 32")
+      ->capture_default_str();
+  plan->add_option("--smoothing", plan_request.smoothing,
+                   "curvature weight lambda > 0 of the smoothing fit; without it the surface "
+                   "interpolates every node");
+  plan->add_option("--out", plan_request.output_dir, "output folder (created if needed)")
+      ->required();
+  plan->callback([&]() {
+    const ex::PlanOutcome outcome = ex::plan(plan_request);
+    std::cout << outcome.summary.dump(2) << "\n";
+    if (!outcome.reachable) exit_code = ex::kUnreachableExitCode;
   });
 
   std::string experiment_name, out_dir = "talus-out", data_dir;

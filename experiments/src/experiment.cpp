@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "global_search_experiment.hpp"
 #include "optimal_profile_experiment.hpp"
 #include "talus/core/error.hpp"
 #include "terrain_gallery.hpp"
@@ -24,6 +25,11 @@ std::vector<Experiment> all_experiments() {
        "acceleration bounds, along a curved path on the rover-scale West Bijou DEM, and its "
        "convergence in the number of stations",
        run_optimal_profile},
+      {"global-search",
+       "the global minimum-time search across Mount St. Helens at true scale for a car-like "
+       "vehicle at friction 0.7 and 0.35: distinct candidate corridors over shaded relief, the "
+       "cost-to-go fields and how the best route changes with friction",
+       run_global_search_experiment},
   };
 }
 

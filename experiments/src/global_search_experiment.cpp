@@ -1,1 +1,1252 @@
-// placeholder: being written
+#include "global_search_experiment.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "plot.hpp"
+#include "relief.hpp"
+#include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/surface_path.hpp"
+#include "talus/core/elevation_grid.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/esri_ascii.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/dynamics/velocity_limits.hpp"
+#include "talus/optimal/global_search.hpp"
+
+namespace talus::experiments {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------------------
+// Fixed settings, named so the report can quote them.
+
+constexpr const char* kDemStem = "mount_st_helens_usgs30m";
+
+/// The crop, in DEM node indices (column from the west, row from the south):
+/// the DEM's full width and rows 60–389, which hold the whole cone, the
+/// crater with its northern breach and, to the south, the lowland apron that
+/// the route round the mountain needs at low friction (the northern debris
+/// plain beyond row 389 plays no part and is left out). True 30 m posting:
+/// the slopes (crater walls up to ~69°, flanks 20–35°) are what a car-like
+/// vehicle feels, so no rescaling.
+struct Crop {
+  std::size_t col, row, ncols, nrows;
+};
+constexpr Crop kCrop{0, 60, 317, 330};
+
+/// Start and goal in DEM node indices: west and east of the cone, on gentle
+/// ground (slope < 12° around both), so that the straight line crosses the
+/// crater and a route must go over the flanks north or south of it, or round
+/// the mountain. Both lie in the one region that stays connected at μ = 0.35
+/// (the apron south of the cone, which reaches up its west and east sides);
+/// the northern plain and the crater floor are cut off from it at that
+/// friction, so a start there would make the μ = 0.35 run unreachable.
+struct NodeIndex {
+  double i, j;
+};
+constexpr NodeIndex kStart{14.0, 275.0};
+constexpr NodeIndex kGoal{289.0, 303.0};
+
+/// The search runs on the smoothing fit. The 1980 USGS DEM carries an
+/// east–west striping artefact: going north along a column on the flanks,
+/// one-cell steps of 15–25 m (tan 0.5–0.8) alternate with flat or reversed
+/// cells (over the whole DEM the mean |second difference| is 4.3 m along y
+/// against 2.9 m along x; the report gives the crop's values). The
+/// interpolating fit honours every step exactly, and each step steeper than
+/// atan μ becomes a one-row untraversable bar that the search must detour
+/// around, although the real flank is passable. λ = 1 (dimensionless,
+/// grid-index units) smooths over about one cell, which removes the terraces
+/// but keeps the crater walls and gullies. The interpolating fit is kept as a
+/// control run so that the report can show the effect.
+constexpr double kSmoothingLambda = 1.0;
+
+constexpr double kFrictions[] = {0.7, 0.35};
+constexpr int kConnectivity = 16;
+constexpr std::size_t kCandidates = 3;
+/// Quick mode: the same crop on a lattice three cells apart (9× fewer nodes).
+constexpr double kQuickLatticeCells = 3.0;
+
+constexpr std::size_t kRasterMaxSamples = 480;  // relief raster, longer side
+constexpr std::size_t kQuickRasterMaxSamples = 240;
+constexpr double kAmbient = 0.35;  // hillshade floor, as in terrain-gallery
+constexpr int kContourTargetLevels = 12;
+constexpr double kExcessShare = 0.2;  // colour range of the excess panel, × J*
+/// A candidate's vertex "shares" the best route's corridor if it lies within
+/// this fraction of the separation of it (about 200 m here, 7 cells).
+constexpr double kSharedFraction = 0.25;
+
+/// Candidate colours (ColorBrewer Set1 red, blue, purple; then orange, brown):
+/// saturated enough to read over the washed relief tint.
+constexpr const char* kCandidateColours[] = {"#e41a1c", "#377eb8", "#984ea3", "#ff7f00", "#a65628"};
+/// The best route at each friction in the comparison figure.
+constexpr const char* kFrictionColours[] = {"#e41a1c", "#377eb8"};
+
+// ---------------------------------------------------------------------------
+// Formatting.
+
+std::string fmt(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+/// A data-file number: "NaN" for NaN and ±inf (gnuplot leaves such pixels
+/// transparent and skips them when tracing contours), else 7 significant digits.
+std::string num(double value) {
+  if (!std::isfinite(value)) return "NaN";
+  return fmt("%.7g", value);
+}
+
+/// About three significant digits without exponent or trailing zeros.
+std::string sig3(double value) {
+  if (value == 0.0 || !std::isfinite(value)) return fmt("%g", value);
+  const int digits = static_cast<int>(std::floor(std::log10(std::abs(value)))) + 1;
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", std::max(0, 3 - digits), value);
+  std::string text = buffer;
+  if (text.find('.') != std::string::npos) {
+    text.erase(text.find_last_not_of('0') + 1);
+    if (text.back() == '.') text.pop_back();
+  }
+  return text;
+}
+
+/// "mu0.7": the file-name tag of one friction.
+std::string friction_tag(double mu) {
+  return "mu" + fmt("%g", mu);
+}
+
+double degrees(double radians) {
+  return radians * 180.0 / std::numbers::pi;
+}
+
+/// Slope angle [deg] of the terrain at a surface point (steepest descent).
+double slope_degrees(const SurfacePoint& p) {
+  return degrees(std::atan(p.gradient.norm()));
+}
+
+/// Compass name (8 sectors) of a planar direction, x east, y north.
+std::string compass(const Vec2& d) {
+  static constexpr const char* kNames[] = {"east", "north-east", "north", "north-west",
+                                           "west", "south-west", "south", "south-east"};
+  const double angle = std::atan2(d.y(), d.x());  // from east, counter-clockwise
+  const int sector = static_cast<int>(std::lround(angle / (std::numbers::pi / 4.0)) + 8) % 8;
+  return kNames[sector];
+}
+
+// ---------------------------------------------------------------------------
+// Terrain.
+
+/// The rectangle `c` of `dem` as a grid of its own (same cell size and CRS).
+ElevationGrid crop_grid(const ElevationGrid& dem, const Crop& c) {
+  if (c.ncols < 2 || c.nrows < 2 || c.col + c.ncols > dem.ncols() ||
+      c.row + c.nrows > dem.nrows()) {
+    throw InputError("global-search: crop of " + std::to_string(c.ncols) + " × " +
+                     std::to_string(c.nrows) + " nodes at column " + std::to_string(c.col) +
+                     ", row " + std::to_string(c.row) + " does not fit the " +
+                     std::to_string(dem.ncols()) + " × " + std::to_string(dem.nrows()) +
+                     "-node DEM");
+  }
+  const double h = dem.cellsize();
+  ElevationGrid out(c.ncols, c.nrows, h, dem.x_min() + static_cast<double>(c.col) * h,
+                    dem.y_min() + static_cast<double>(c.row) * h);
+  for (std::size_t j = 0; j < c.nrows; ++j)
+    for (std::size_t i = 0; i < c.ncols; ++i) {
+      if (dem.valid(c.col + i, c.row + j)) {
+        out.set(i, j, dem.at(c.col + i, c.row + j));
+      } else {
+        out.set_void(i, j);  // BPatch::interpolate names it
+      }
+    }
+  return out;
+}
+
+/// Mean |z(i+1) − 2 z(i) + z(i−1)| over the interior nodes, along x and along y.
+std::pair<double, double> second_differences(const ElevationGrid& g) {
+  double sx = 0.0, sy = 0.0;
+  std::size_t n = 0;
+  for (std::size_t j = 1; j + 1 < g.nrows(); ++j)
+    for (std::size_t i = 1; i + 1 < g.ncols(); ++i) {
+      sx += std::abs(g.at(i + 1, j) - 2.0 * g.at(i, j) + g.at(i - 1, j));
+      sy += std::abs(g.at(i, j + 1) - 2.0 * g.at(i, j) + g.at(i, j - 1));
+      ++n;
+    }
+  return n > 0 ? std::pair{sx / static_cast<double>(n), sy / static_cast<double>(n)}
+               : std::pair{0.0, 0.0};
+}
+
+/// A DEM node index as a position [m].
+Vec2 dem_position(const ElevationGrid& dem, const NodeIndex& n) {
+  return {dem.x_min() + n.i * dem.cellsize(), dem.y_min() + n.j * dem.cellsize()};
+}
+
+struct Setup {
+  Setup(ElevationGrid grid, BPatch surface, BPatch control)
+      : dem_crop(std::move(grid)), patch(std::move(surface)), interpolating(std::move(control)) {}
+  ElevationGrid dem_crop;
+  BPatch patch;          ///< smoothing fit: what the search runs on
+  BPatch interpolating;  ///< exact at the nodes: the control run
+  double zmin = 0.0, zmax = 0.0;
+  Vec2 start = Vec2::Zero(), goal = Vec2::Zero();
+  Vec2 summit = Vec2::Zero();  ///< highest node of the crop
+  double summit_z = 0.0;
+  double spacing = 0.0;  ///< lattice spacing [m]
+  double fit_seconds = 0.0;
+  /// Mean |second difference| of the crop's nodes along x and along y [m]:
+  /// the row terracing shows as a larger value along y.
+  double roughness_x = 0.0, roughness_y = 0.0;
+  Vec2 origin() const { return {patch.x_min(), patch.y_min()}; }
+  double width() const { return patch.x_max() - patch.x_min(); }
+  double height() const { return patch.y_max() - patch.y_min(); }
+};
+
+// ---------------------------------------------------------------------------
+// One search and what the figures and the report need from it.
+
+/// Measurements along one candidate.
+struct CandidateInfo {
+  std::vector<double> s;              ///< 3-D distance along the route at each vertex [m]
+  std::vector<double> z;              ///< elevation at each vertex [m]
+  std::vector<double> slope;          ///< terrain slope at each vertex [deg]
+  std::vector<double> edge_speed;     ///< per edge: length / J, the mean speed at the limit [m/s]
+  double max_slope = 0.0;             ///< steepest terrain slope at any station of any edge [deg]
+  double max_z = -kInf, climb = 0.0;  ///< highest point [m]; sum of the rises [m]
+  std::string side;                   ///< compass side of the summit where it passes it
+  double summit_distance = kNaN;      ///< planar distance from the summit there [m]
+  double recomputed_cost = 0.0;       ///< Σ edge_cost forward, as a check of cost_seconds
+  bool reversals = false;             ///< the vertex list revisits a node
+  double min_edge_speed = kInf;       ///< slowest edge, length / J [m/s]
+  /// Stations (of the search's own edge sampling) steeper than atan μ, and
+  /// among them those where the vehicle could not hold itself at rest — no
+  /// s̈ at all, or it could neither climb (a_max < 0) nor stop (a_min > 0) at
+  /// v = 0 — so the edge passed rules (b)/(c) only thanks to the extra normal
+  /// load κ_n v² of a concave surface at a higher admissible speed.
+  std::size_t steep_stations = 0, speed_only_stations = 0;
+  std::size_t concave_speed_only = 0;  ///< of the latter, those with κ_n > 0 along the edge
+  /// Relation to the best candidate: symmetric Hausdorff distance [m] and the
+  /// share of this route's vertices within kSharedFraction × the separation
+  /// of it (the same corridor).
+  double hausdorff_to_best = 0.0, shared_with_best = 1.0;
+};
+
+struct FrictionRun {
+  double friction = 0.0;
+  Vehicle vehicle;
+  GlobalSearchResult result;
+  std::vector<CandidateInfo> info;
+  std::size_t steep_nodes = 0;  ///< lattice nodes whose terrain slope exceeds atan(μ)
+  std::size_t unreachable = 0;  ///< lattice nodes with cost_from_start = +inf
+};
+
+Vehicle make_vehicle(double friction) {
+  Vehicle v;
+  v.model = VehicleModel::kPointMass;
+  v.friction = friction;
+  v.cg_height = 0.8;
+  v.half_track = 0.8;
+  v.max_speed = 20.0;  // J needs a finite top speed (global_search.hpp)
+  v.validate();
+  return v;
+}
+
+/// The point of `line` where its projection on the start→goal axis first
+/// reaches that of `target`, or the nearest vertex if it never does.
+Vec2 crossing_point(const std::vector<Vec2>& line, const Vec2& start, const Vec2& axis,
+                    const Vec2& target) {
+  const double t_target = (target - start).dot(axis);
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const double t0 = (line[k] - start).dot(axis), t1 = (line[k + 1] - start).dot(axis);
+    if ((t0 - t_target) * (t1 - t_target) <= 0.0 && t0 != t1) {
+      const double f = (t_target - t0) / (t1 - t0);
+      return line[k] + f * (line[k + 1] - line[k]);
+    }
+  }
+  Vec2 best = line.front();
+  for (const Vec2& p : line)
+    if ((p - target).norm() < (best - target).norm()) best = p;
+  return best;
+}
+
+double point_to_polyline(const Vec2& p, const std::vector<Vec2>& line) {
+  double best = (p - line.front()).norm();
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const Vec2 d = line[k + 1] - line[k];
+    const double t = std::clamp((p - line[k]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+    best = std::min(best, (p - (line[k] + t * d)).norm());
+  }
+  return best;
+}
+
+/// The default separation of global_search.hpp: 10 % of the start–goal
+/// distance (between the snapped nodes), at least 3 lattice spacings.
+double default_separation(const GlobalSearchResult& r) {
+  return std::max(0.1 * (r.goal_node - r.start_node).norm(), 3.0 * r.spacing);
+}
+
+CandidateInfo measure(const Setup& setup, const Vehicle& vehicle, const CandidatePath& c,
+                      double spacing) {
+  CandidateInfo info;
+  const std::vector<Vec2>& v = c.vertices;
+  double s = 0.0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const SurfacePoint p = setup.patch.evaluate(v[k]);
+    if (k > 0) {
+      const Vec2 a = v[k - 1], b = v[k];
+      const int stations = edge_stations((b - a).norm(), spacing);
+      const EdgeCost e = edge_cost(setup.patch, vehicle, a, b, stations);
+      s += e.length;
+      info.recomputed_cost += e.forward;
+      info.edge_speed.push_back(e.length / e.forward);
+      info.min_edge_speed = std::min(info.min_edge_speed, info.edge_speed.back());
+      // The steepest slope anywhere on the edge, at the search's own stations,
+      // and whether the vehicle could stand still where it exceeds atan μ.
+      const double steep = degrees(std::atan(vehicle.friction));
+      for (int q = 0; q < stations; ++q) {
+        const double tau = static_cast<double>(q) / (stations - 1);
+        const Vec2 x = a + tau * (b - a);
+        const SurfacePoint sp = setup.patch.evaluate(x);
+        const double slope = slope_degrees(sp);
+        info.max_slope = std::max(info.max_slope, slope);
+        if (slope <= steep) continue;
+        ++info.steep_stations;
+        const StationGeometry g =
+            StationGeometry::from(lift_to_surface(x, sp, b - a, Vec2::Zero()));
+        const AccelerationBounds rest = acceleration_bounds(vehicle, g, 0.0);
+        if (!rest.feasible || rest.a_max < 0.0 || rest.a_min > 0.0) {
+          ++info.speed_only_stations;
+          if (g.kappa_n > 0.0) ++info.concave_speed_only;
+        }
+      }
+      info.climb += std::max(0.0, p.z - info.z.back());
+    }
+    info.s.push_back(s);
+    info.z.push_back(p.z);
+    info.slope.push_back(slope_degrees(p));
+    info.max_z = std::max(info.max_z, p.z);
+  }
+  for (std::size_t a = 0; a < v.size() && !info.reversals; ++a)
+    for (std::size_t b = a + 1; b < v.size() && !info.reversals; ++b)
+      info.reversals = (v[a] - v[b]).norm() < 1e-6 * spacing;
+  const Vec2 axis = (setup.goal - setup.start).normalized();
+  const Vec2 p = crossing_point(v, setup.start, axis, setup.summit);
+  info.side = compass(p - setup.summit);
+  info.summit_distance = (p - setup.summit).norm();
+  return info;
+}
+
+FrictionRun run_search(const Setup& setup, double friction, const GlobalSearchOptions& options) {
+  FrictionRun run;
+  run.friction = friction;
+  run.vehicle = make_vehicle(friction);
+  run.result = global_search(setup.patch, run.vehicle, setup.start, setup.goal, options);
+  const GlobalSearchResult& r = run.result;
+  if (r.status != GlobalSearchStatus::kOk || r.candidates.empty()) {
+    // The start and goal are fixed; an unreachable goal here means the search
+    // or the limits changed, which the figures could not show meaningfully.
+    throw InfeasibleError("global-search: μ = " + fmt("%g", friction) + ": " + r.message);
+  }
+  const double steep = degrees(std::atan(friction));
+  for (std::size_t n = 0; n < r.nx * r.ny; ++n) {
+    const Vec2 p =
+        r.origin + r.spacing * Vec2(static_cast<double>(n % r.nx), static_cast<double>(n / r.nx));
+    if (slope_degrees(setup.patch.evaluate(p)) > steep) ++run.steep_nodes;
+    if (!(r.cost_from_start[n] < kInf)) ++run.unreachable;
+  }
+  for (const CandidatePath& c : r.candidates)
+    run.info.push_back(measure(setup, run.vehicle, c, r.spacing));
+  // How distinct the candidates really are: the search's Hausdorff rule is
+  // met by one far-off vertex, so also count how much of each route runs in
+  // the best one's corridor.
+  const std::vector<Vec2>& best = r.candidates.front().vertices;
+  const double separation = default_separation(r);
+  for (std::size_t c = 1; c < r.candidates.size(); ++c) {
+    const std::vector<Vec2>& v = r.candidates[c].vertices;
+    double h = 0.0;
+    std::size_t near = 0;
+    for (const Vec2& p : v) {
+      const double d = point_to_polyline(p, best);
+      h = std::max(h, d);
+      if (d < kSharedFraction * separation) ++near;
+    }
+    for (const Vec2& p : best) h = std::max(h, point_to_polyline(p, v));
+    run.info[c].hausdorff_to_best = h;
+    run.info[c].shared_with_best = static_cast<double>(near) / static_cast<double>(v.size());
+  }
+  return run;
+}
+
+/// The same search on the interpolating fit: best cost and reachability only.
+struct ControlRun {
+  double friction = 0.0;
+  bool ok = false;
+  double cost = kNaN, length = kNaN;
+  std::size_t unreachable = 0, steep_nodes = 0, nodes = 0;
+};
+
+ControlRun run_control(const Setup& setup, double friction, GlobalSearchOptions options) {
+  ControlRun control;
+  control.friction = friction;
+  options.candidates = 1;  // the fields are still computed: cost_fields stays true
+  const GlobalSearchResult r =
+      global_search(setup.interpolating, make_vehicle(friction), setup.start, setup.goal, options);
+  control.ok = r.status == GlobalSearchStatus::kOk && !r.candidates.empty();
+  if (control.ok) {
+    control.cost = r.candidates.front().cost_seconds;
+    control.length = r.candidates.front().length_m;
+  }
+  control.nodes = r.nodes;
+  const double steep = degrees(std::atan(friction));
+  for (std::size_t n = 0; n < r.nx * r.ny; ++n) {
+    const Vec2 p =
+        r.origin + r.spacing * Vec2(static_cast<double>(n % r.nx), static_cast<double>(n / r.nx));
+    if (slope_degrees(setup.interpolating.evaluate(p)) > steep) ++control.steep_nodes;
+    if (!(r.cost_from_start[n] < kInf)) ++control.unreachable;
+  }
+  return control;
+}
+
+// ---------------------------------------------------------------------------
+// Data files.
+
+/// Shaded relief raster (washed towards white so that routes and overlays
+/// read on top of it) and the elevation raster gnuplot traces contours on.
+/// Shared by every map; returns the contour interval.
+double write_relief(const Setup& setup, std::size_t max_samples, const fs::path& out_dir) {
+  const double width = setup.width(), height = setup.height();
+  const RasterSize raster = raster_for_extent(width, height, max_samples);
+  std::vector<SurfacePoint> samples(raster.nx * raster.ny);
+  std::vector<Vec2> offsets(samples.size());
+  std::vector<double> slopes(samples.size());
+  for (std::size_t b = 0; b < raster.ny; ++b)
+    for (std::size_t a = 0; a < raster.nx; ++a) {
+      // Clamped so rounding never pushes the last sample off the domain.
+      const double dx = std::min(static_cast<double>(a) * raster.spacing, width);
+      const double dy = std::min(static_cast<double>(b) * raster.spacing, height);
+      const std::size_t k = b * raster.nx + a;
+      offsets[k] = Vec2(dx, dy);
+      samples[k] = setup.patch.evaluate(setup.origin() + offsets[k]);
+      slopes[k] = samples[k].gradient.norm();
+    }
+  const auto p95 = slopes.begin() + static_cast<long>(0.95 * static_cast<double>(slopes.size()));
+  std::nth_element(slopes.begin(), p95, slopes.end());
+  const double exaggeration = hillshade_exaggeration(*p95);
+  const SunPosition sun{315.0, 45.0};
+
+  const fs::path rgb_file = out_dir / "relief.rgb";
+  const fs::path elevation_file = out_dir / "elevation.dat";
+  std::ofstream rgb = open_output_file(rgb_file);
+  std::ofstream elevation = open_output_file(elevation_file);
+  rgb << "# " << kDemStem
+      << " crop, smoothing B-patch: hypsometric colour x hillshade (azimuth 315 deg, altitude "
+      << "45 deg, exaggeration " << exaggeration
+      << "), washed 45 % towards white\n# x - x_min [m], y - y_min [m], red, green, blue\n";
+  elevation << "# " << kDemStem << " crop: smoothing B-patch (lambda " << kSmoothingLambda
+            << ") on a " << raster.nx << " x " << raster.ny
+            << " raster\n# x - x_min [m], y - y_min [m], z [m]\n";
+  const double relief = setup.zmax - setup.zmin;
+  for (std::size_t b = 0; b < raster.ny; ++b) {
+    for (std::size_t a = 0; a < raster.nx; ++a) {
+      const std::size_t k = b * raster.nx + a;
+      const SurfacePoint& s = samples[k];
+      const double t = relief > 0.0 ? (s.z - setup.zmin) / relief : 0.5;
+      Rgb colour =
+          shade_colour(hypsometric_colour(t),
+                       hillshade(s.gradient.x(), s.gradient.y(), sun, exaggeration), kAmbient);
+      colour = {0.55 * colour.r + 0.45, 0.55 * colour.g + 0.45, 0.55 * colour.b + 0.45};
+      const std::string x = fmt("%.7g", offsets[k].x()), y = fmt("%.7g", offsets[k].y());
+      rgb << x << ' ' << y << ' ' << to_byte(colour.r) << ' ' << to_byte(colour.g) << ' '
+          << to_byte(colour.b) << '\n';
+      elevation << x << ' ' << y << ' ' << fmt("%.7g", s.z) << '\n';
+    }
+    rgb << '\n';
+    elevation << '\n';
+  }
+  close_output_file(rgb, rgb_file);
+  close_output_file(elevation, elevation_file);
+  return contour_interval(relief, kContourTargetLevels);
+}
+
+/// Lattice nodes of `r` as offsets from the crop's south-west node.
+Vec2 node_offset(const Setup& setup, const GlobalSearchResult& r, std::size_t n) {
+  return r.origin - setup.origin() +
+         r.spacing * Vec2(static_cast<double>(n % r.nx), static_cast<double>(n / r.nx));
+}
+
+/// Translucent overlay of the lattice nodes unreachable from the start:
+/// x y r g b alpha, alpha 0 where reachable. `other` (optional) adds a second,
+/// lighter shade for nodes unreachable only in `r` but reachable in `other`.
+void write_unreachable(const Setup& setup, const GlobalSearchResult& r,
+                       const GlobalSearchResult* other, const fs::path& file) {
+  std::ofstream out = open_output_file(file);
+  out << "# lattice nodes unreachable from the start (alpha > 0)\n"
+      << "# x - x_min [m], y - y_min [m], red, green, blue, alpha [0-255]\n";
+  for (std::size_t j = 0; j < r.ny; ++j) {
+    for (std::size_t i = 0; i < r.nx; ++i) {
+      const std::size_t n = j * r.nx + i;
+      const Vec2 p = node_offset(setup, r, n);
+      const bool here = !(r.cost_from_start[n] < kInf);
+      const bool there = other != nullptr && !(other->cost_from_start[n] < kInf);
+      int alpha = 0;
+      if (here) alpha = (other == nullptr || there) ? 150 : 70;
+      out << fmt("%.7g", p.x()) << ' ' << fmt("%.7g", p.y()) << " 25 25 25 " << alpha << '\n';
+    }
+    out << '\n';
+  }
+  close_output_file(out, file);
+}
+
+/// One block per candidate (separated by two blank lines, for gnuplot's
+/// `index`): x - x_min, y - y_min, s, z, slope, and the speed of the edge
+/// that ends at the vertex.
+void write_route_blocks(const Setup& setup, const FrictionRun& run, const fs::path& file) {
+  std::ofstream out = open_output_file(file);
+  out << "# μ = " << run.friction << ": one block per candidate, best first\n"
+      << "# x - x_min [m], y - y_min [m], s [m], z [m], terrain slope [deg], "
+         "length/J of the edge ending here [m/s]\n";
+  for (std::size_t c = 0; c < run.result.candidates.size(); ++c) {
+    const CandidatePath& path = run.result.candidates[c];
+    const CandidateInfo& info = run.info[c];
+    out << "# candidate " << c + 1 << "\n";
+    for (std::size_t k = 0; k < path.vertices.size(); ++k) {
+      const Vec2 p = path.vertices[k] - setup.origin();
+      out << fmt("%.7g", p.x()) << ' ' << fmt("%.7g", p.y()) << ' ' << fmt("%.7g", info.s[k]) << ' '
+          << fmt("%.7g", info.z[k]) << ' ' << fmt("%.4g", info.slope[k]) << ' '
+          << (k == 0 ? "NaN" : fmt("%.5g", info.edge_speed[k - 1])) << '\n';
+    }
+    out << "\n\n";
+  }
+  close_output_file(out, file);
+}
+
+void write_candidates_csv(const Setup& setup, const FrictionRun& run, const fs::path& file) {
+  std::ostringstream csv;
+  csv << "candidate,x,y,z\n";
+  for (std::size_t c = 0; c < run.result.candidates.size(); ++c)
+    for (const Vec2& p : run.result.candidates[c].vertices)
+      csv << c + 1 << ',' << fmt("%.3f", p.x()) << ',' << fmt("%.3f", p.y()) << ','
+          << fmt("%.3f", setup.patch.elevation(p)) << '\n';
+  write_text_file(file, csv.str());
+}
+
+/// The two cost-to-go fields on the lattice: x, y, T_start [s], and the
+/// excess T_start + T_goal − J* [s] of the best route through each node.
+void write_fields(const Setup& setup, const FrictionRun& run, const fs::path& file) {
+  const GlobalSearchResult& r = run.result;
+  const double best = r.candidates.front().cost_seconds;
+  std::ofstream out = open_output_file(file);
+  out << "# μ = " << run.friction << ": lattice cost-to-go fields (NaN = unreachable)\n"
+      << "# x - x_min [m], y - y_min [m], T_start [s], T_start + T_goal - J* [s] (J* = "
+      << fmt("%.6g", best) << " s)\n";
+  for (std::size_t j = 0; j < r.ny; ++j) {
+    for (std::size_t i = 0; i < r.nx; ++i) {
+      const std::size_t n = j * r.nx + i;
+      const Vec2 p = node_offset(setup, r, n);
+      const double through = r.cost_from_start[n] + r.cost_to_goal[n];
+      out << fmt("%.7g", p.x()) << ' ' << fmt("%.7g", p.y()) << ' ' << num(r.cost_from_start[n])
+          << ' ' << num(through - best) << '\n';
+    }
+    out << '\n';
+  }
+  close_output_file(out, file);
+}
+
+// ---------------------------------------------------------------------------
+// Figures.
+
+/// gnuplot lines tracing the elevation contours into contours.dat.
+std::string contour_tracing(const Setup& setup, double step) {
+  const double first = std::ceil(setup.zmin / step) * step;
+  const double last = std::floor(setup.zmax / step) * step;
+  std::ostringstream gp;
+  gp << "# Elevation contours, traced by gnuplot on the elevation raster into a table.\n"
+     << "set contour base\nunset surface\nset view map\nset cntrparam linear\n"
+     << "set cntrparam levels incremental " << fmt("%.10g", first) << ", " << fmt("%.10g", step)
+     << ", " << fmt("%.10g", last) << "\n"
+     << "set table 'contours.dat'\n"
+     << "splot 'elevation.dat' using 1:2:3 with lines notitle\n"
+     << "unset table\nunset contour\nset surface\n";
+  return gp.str();
+}
+
+std::string map_axes(const Setup& setup) {
+  std::ostringstream gp;
+  gp << "set size ratio -1\n"
+     << "set xrange [0:" << fmt("%.10g", setup.width() * 1e-3) << "]\n"
+     << "set yrange [0:" << fmt("%.10g", setup.height() * 1e-3) << "]\n"
+     << "set xlabel 'x − x_{min} [km]  (east)'\nset ylabel 'y − y_{min} [km]  (north)'\n"
+     << "set tics out nomirror\n";
+  return gp.str();
+}
+
+/// Start and goal markers with labels (offsets in metres from the crop's SW node).
+std::string endpoint_markers(const Setup& setup) {
+  const Vec2 s = (setup.start - setup.origin()) * 1e-3, g = (setup.goal - setup.origin()) * 1e-3;
+  std::ostringstream gp;
+  // Boxed in white: the labels must read over dark field colours too.
+  gp << "set style textbox opaque noborder fillcolor rgb 'white' margins 1,1\n"
+     << "set label 101 'start' at " << fmt("%.6g", s.x()) << "," << fmt("%.6g", s.y())
+     << " offset char -1.5,1.3 front boxed font ',12' tc rgb 'black'\n"
+     << "set label 102 'goal' at " << fmt("%.6g", g.x()) << "," << fmt("%.6g", g.y())
+     << " offset char 0.9,0.9 front boxed font ',12' tc rgb 'black'\n";
+  return gp.str();
+}
+
+/// Plot items drawing start (circle) and goal (square) from endpoints.dat.
+std::string endpoint_items() {
+  return "'endpoints.dat' index 0 using ($1/1000):($2/1000) with points pt 7 ps 2.2 "
+         "lc rgb 'black' notitle, \\\n"
+         "     '' index 0 using ($1/1000):($2/1000) with points pt 7 ps 1.5 lc rgb '#4dff4d' "
+         "title 'start', \\\n"
+         "     '' index 1 using ($1/1000):($2/1000) with points pt 5 ps 2.2 lc rgb 'black' "
+         "notitle, \\\n"
+         "     '' index 1 using ($1/1000):($2/1000) with points pt 5 ps 1.5 lc rgb '#ffd700' "
+         "title 'goal'";
+}
+
+void write_endpoints(const Setup& setup, const fs::path& out_dir) {
+  std::ostringstream text;
+  const Vec2 s = setup.start - setup.origin(), g = setup.goal - setup.origin();
+  text << "# start, then goal: x - x_min [m], y - y_min [m]\n"
+       << fmt("%.7g", s.x()) << ' ' << fmt("%.7g", s.y()) << "\n\n\n"
+       << fmt("%.7g", g.x()) << ' ' << fmt("%.7g", g.y()) << '\n';
+  write_text_file(out_dir / "endpoints.dat", text.str());
+}
+
+std::string candidate_title(std::size_t c, const CandidatePath& path) {
+  return "candidate " + std::to_string(c + 1) + ": J = " + fmt("%.1f", path.cost_seconds) + " s, " +
+         fmt("%.2f", path.length_m * 1e-3) + " km, mean " +
+         fmt("%.1f", path.length_m / path.cost_seconds) + " m/s";
+}
+
+std::string vehicle_text(const Vehicle& v) {
+  return "point mass, μ = " + fmt("%g", v.friction) + ", h = " + fmt("%g", v.cg_height) +
+         " m, b = " + fmt("%g", v.half_track) + " m, v_{max} ≤ " + fmt("%g", v.max_speed) + " m/s";
+}
+
+int map_canvas_height(const Setup& setup, int width) {
+  return static_cast<int>(
+      std::clamp(230.0 + (width - 260.0) * setup.height() / setup.width(), 450.0, 1200.0));
+}
+
+/// Figure 1: the candidates of one friction over shaded relief.
+void draw_routes(const Setup& setup, const FrictionRun& run, double contour_step,
+                 const fs::path& out_dir) {
+  const std::string tag = friction_tag(run.friction);
+  write_unreachable(setup, run.result, nullptr, out_dir / ("unreachable_" + tag + ".rgba"));
+  const GlobalSearchResult& r = run.result;
+  std::ostringstream title;
+  title << "Global search on Mount St. Helens (30 m DEM): " << r.candidates.size()
+        << " distinct candidates, " << vehicle_text(run.vehicle) << "\n"
+        << kConnectivity << "-connected lattice, spacing " << fmt("%g", r.spacing)
+        << " m; shaded: unreachable from the start; contours every " << fmt("%g", contour_step)
+        << " m";
+  const int width = 1100;
+  std::ostringstream gp;
+  gp << "# Candidate routes at μ = " << run.friction << ", from `talus experiment global-search`.\n"
+     << "# Re-render in this folder with: gnuplot routes_" << tag << ".gp\n"
+     << "# Inputs: relief.rgb, elevation.dat, unreachable_" << tag << ".rgba, routes_" << tag
+     << ".dat (one block per candidate), endpoints.dat.\n"
+     << png_terminal(width, map_canvas_height(setup, width) + 60) << "set output 'routes_" << tag
+     << ".png'\n"
+     << contour_tracing(setup, contour_step) << map_axes(setup) << "set title "
+     << gnuplot_string(title.str()) << " font ',10'\n"
+     << endpoint_markers(setup) << "set key outside bottom center vertical maxrows 3 samplen 2\n"
+     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
+     << "     'unreachable_" << tag
+     << ".rgba' using ($1/1000):($2/1000):3:4:5:6 with rgbalpha notitle, \\\n"
+     << "     keyentry with boxes fs solid 0.6 noborder fc rgb '#191919' "
+        "title 'unreachable from the start', \\\n"
+     << "     'contours.dat' using ($1/1000):($2/1000) with lines lc rgb '#606060' lw 0.5 "
+        "notitle, \\\n";
+  // Legend best first; lines drawn worst first, so the best lies on top
+  // where routes share a corridor.
+  for (std::size_t c = 0; c < r.candidates.size(); ++c) {
+    gp << "     keyentry with lines lw 3 lc rgb '"
+       << kCandidateColours[c % std::size(kCandidateColours)] << "' title "
+       << gnuplot_string(candidate_title(c, r.candidates[c])) << ", \\\n";
+  }
+  for (std::size_t c = r.candidates.size(); c-- > 0;) {
+    const char* colour = kCandidateColours[c % std::size(kCandidateColours)];
+    gp << "     'routes_" << tag << ".dat' index " << c
+       << " using ($1/1000):($2/1000) with lines lw 5.5 lc rgb 'white' notitle, \\\n"
+       << "     '' index " << c << " using ($1/1000):($2/1000) with lines lw 3 lc rgb '" << colour
+       << "' notitle, \\\n";
+  }
+  gp << "     " << endpoint_items() << "\n";
+  const fs::path script = out_dir / ("routes_" + tag + ".gp");
+  write_text_file(script, gp.str());
+  run_gnuplot(script);
+}
+
+/// Figure 2: the cost-to-go field from the start and the excess of the best
+/// route through each node over the optimum, side by side.
+void draw_fields(const Setup& setup, const FrictionRun& run, const fs::path& out_dir) {
+  const std::string tag = friction_tag(run.friction);
+  write_fields(setup, run, out_dir / ("fields_" + tag + ".dat"));
+  const GlobalSearchResult& r = run.result;
+  const double best = r.candidates.front().cost_seconds;
+  double t_max = 0.0;
+  for (const double t : r.cost_from_start)
+    if (t < kInf) t_max = std::max(t_max, t);
+  const double t_step = contour_interval(t_max, 10);
+  // The excess panel saturates at 20 % of J*: the candidates may cost up to
+  // max_cost_ratio = 2 times J*, but the valleys they follow lie within a
+  // few per cent of it and would all look alike on a [0, J*] scale.
+  const double excess_max = kExcessShare * best;
+  const double excess_step = contour_interval(excess_max, 6);
+
+  const int width = 1800;
+  const int height =
+      static_cast<int>(std::clamp(220.0 + 660.0 * setup.height() / setup.width(), 500.0, 1300.0));
+  std::ostringstream title;
+  title << "Cost-to-go fields on Mount St. Helens, " << vehicle_text(run.vehicle) << ", "
+        << kConnectivity << "-connected lattice, spacing " << fmt("%g", r.spacing)
+        << " m; bare relief: unreachable from the start";
+  std::ostringstream gp;
+  gp << "# Cost-to-go fields at μ = " << run.friction
+     << ", from `talus experiment global-search`.\n"
+     << "# Re-render in this folder with: gnuplot fields_" << tag << ".gp\n"
+     << "# Inputs: fields_" << tag << ".dat (x y T_start excess), relief.rgb, routes_" << tag
+     << ".dat, endpoints.dat.\n"
+     << png_terminal(width, height) << "set output 'fields_" << tag << ".png'\n"
+     << "# Isochrones of T_start and iso-excess lines, traced by gnuplot into tables.\n"
+     << "set contour base\nunset surface\nset view map\nset cntrparam linear\n"
+     << "set cntrparam levels incremental 0, " << fmt("%.10g", t_step) << ", "
+     << fmt("%.10g", t_max) << "\n"
+     << "set table 'fields_" << tag << "_isochrones.dat'\n"
+     << "splot 'fields_" << tag << ".dat' using 1:2:3 with lines notitle\n"
+     << "unset table\n"
+     << "set cntrparam levels incremental " << fmt("%.10g", excess_step) << ", "
+     << fmt("%.10g", excess_step) << ", " << fmt("%.10g", excess_max) << "\n"
+     << "set table 'fields_" << tag << "_excess.dat'\n"
+     << "splot 'fields_" << tag << ".dat' using 1:2:4 with lines notitle\n"
+     << "unset table\nunset contour\nset surface\n"
+     << "set multiplot layout 1,2 title " << gnuplot_string(title.str()) << " font ',12'\n"
+     << map_axes(setup) << endpoint_markers(setup)
+     << "set key outside bottom center vertical maxrows 2 samplen 2\n"
+     << "set cblabel 'T_{start} [s]'\n"
+     << "# Viridis-like: dark = reached early. Unreachable nodes are NaN, drawn\n"
+     << "# transparent, so the bare relief marks them.\n"
+     << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 "
+        "'#fde725')\n"
+     << "set cbrange [0:" << fmt("%.10g", t_max) << "]\n"
+     << "set title "
+     << gnuplot_string("(a) minimum time from the start, T_{start}; isochrones every " +
+                       fmt("%g", t_step) + " s")
+     << "\n"
+     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
+     << "     'fields_" << tag << ".dat' using ($1/1000):($2/1000):3 with image notitle, \\\n"
+     << "     'fields_" << tag
+     << "_isochrones.dat' using ($1/1000):($2/1000) with lines lc rgb "
+        "'white' lw 0.7 notitle, \\\n"
+     << "     'routes_" << tag
+     << ".dat' index 0 using ($1/1000):($2/1000) with lines lw 5.5 lc rgb 'white' notitle, \\\n"
+     << "     '' index 0 using ($1/1000):($2/1000) with lines lw 3 lc rgb '#e41a1c' title "
+        "'best route', \\\n"
+     << "     " << endpoint_items() << "\n"
+     << "set cblabel 'T_{start} + T_{goal} − J* [s]'\n"
+     << "# Magma-like, reversed: dark valleys = nodes on near-optimal routes.\n"
+     << "set palette defined (0 '#000004', 0.25 '#51127c', 0.5 '#b73779', 0.75 '#fc8961', 1 "
+        "'#fcfdbf')\n"
+     << "set cbrange [0:" << fmt("%.10g", excess_max) << "]\n"
+     << "set title "
+     << gnuplot_string(
+            "(b) excess time of the best route through each node "
+            "over J* = " +
+            fmt("%.1f", best) + " s; lines every " + fmt("%g", excess_step) +
+            " s, colours saturate at " + fmt("%.0f", excess_max) + " s")
+     << "\n"
+     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
+     << "     'fields_" << tag << ".dat' using ($1/1000):($2/1000):($4 < "
+     << fmt("%.10g", excess_max) << " ? $4 : " << fmt("%.10g", excess_max)
+     << ") with image notitle, \\\n"
+     << "     'fields_" << tag
+     << "_excess.dat' using ($1/1000):($2/1000) with lines lc rgb "
+        "'white' lw 0.7 notitle, \\\n";
+  for (std::size_t c = 0; c < r.candidates.size(); ++c) {
+    gp << "     keyentry with lines lw 2.5 lc rgb '"
+       << kCandidateColours[c % std::size(kCandidateColours)] << "' title 'candidate " << c + 1
+       << "', \\\n";
+  }
+  for (std::size_t c = r.candidates.size(); c-- > 0;) {
+    gp << "     'routes_" << tag << ".dat' index " << c
+       << " using ($1/1000):($2/1000) with lines lw 5 lc rgb 'white' notitle, \\\n"
+       << "     '' index " << c << " using ($1/1000):($2/1000) with lines lw 2.5 lc rgb '"
+       << kCandidateColours[c % std::size(kCandidateColours)] << "' notitle, \\\n";
+  }
+  gp << "     " << endpoint_items() << "\n"
+     << "unset multiplot\n";
+  const fs::path script = out_dir / ("fields_" + tag + ".gp");
+  write_text_file(script, gp.str());
+  run_gnuplot(script);
+}
+
+/// Figure 3: the best route at each friction on one map, with their
+/// elevation and terrain slope against distance.
+void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs, double contour_step,
+                     const fs::path& out_dir) {
+  // Shade where the lowest friction cannot reach: light where only it
+  // fails, dark where every friction fails.
+  const FrictionRun& high = runs.front();
+  const FrictionRun& low = runs.back();
+  write_unreachable(setup, low.result, &high.result, out_dir / "unreachable_compare.rgba");
+  const int width = 1900;
+  const int height =
+      static_cast<int>(std::clamp(260.0 + 800.0 * setup.height() / setup.width(), 700.0, 1300.0));
+  std::ostringstream gp;
+  gp << "# Best route at each friction, from `talus experiment global-search`.\n"
+     << "# Re-render in this folder with: gnuplot compare.gp\n"
+     << "# Inputs: relief.rgb, elevation.dat, unreachable_compare.rgba, routes_mu*.dat, "
+        "endpoints.dat.\n"
+     << png_terminal(width, height) << "set output 'compare.png'\n"
+     << contour_tracing(setup, contour_step) << "set multiplot title "
+     << gnuplot_string("Best route at μ = " + fmt("%g", high.friction) +
+                       " and μ = " + fmt("%g", low.friction) +
+                       ", Mount St. Helens (30 m DEM), point mass h = b = 0.8 m, v ≤ 20 m/s")
+     << " font ',13'\n"
+     << "# Left: the map (52 % of the width).\n"
+     << "set origin 0,0\nset size 0.52,0.96\n"
+     << map_axes(setup) << endpoint_markers(setup)
+     << "set key outside bottom center vertical maxrows 3 samplen 2\n"
+     << "set title 'routes; shaded: unreachable at μ = " << fmt("%g", low.friction)
+     << " (light: reachable at μ = " << fmt("%g", high.friction) << ", dark: at neither)'\n"
+     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
+     << "     'unreachable_compare.rgba' using ($1/1000):($2/1000):3:4:5:6 with rgbalpha "
+        "notitle, \\\n"
+     << "     'contours.dat' using ($1/1000):($2/1000) with lines lc rgb '#606060' lw 0.5 "
+        "notitle, \\\n";
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const FrictionRun& run = runs[k];
+    const CandidatePath& best = run.result.candidates.front();
+    gp << "     'routes_" << friction_tag(run.friction)
+       << ".dat' index 0 using ($1/1000):($2/1000) with lines lw 6 lc rgb 'white' notitle, \\\n"
+       << "     '' index 0 using ($1/1000):($2/1000) with lines lw 3.5 lc rgb '"
+       << kFrictionColours[k % std::size(kFrictionColours)] << "' title "
+       << gnuplot_string("μ = " + fmt("%g", run.friction) +
+                         ": J = " + fmt("%.1f", best.cost_seconds) + " s, " +
+                         fmt("%.2f", best.length_m * 1e-3) + " km")
+       << ", \\\n";
+  }
+  // Slowest edge of either best route: when it is the top speed, J is just
+  // length / v_max and panel (b) says so instead of plotting a flat line.
+  double slowest = kInf;
+  for (const FrictionRun& run : runs) slowest = std::min(slowest, run.info.front().min_edge_speed);
+  const double top = high.vehicle.max_speed;
+  gp << "     " << endpoint_items() << "\n"
+     << "unset label\nset size noratio\nset autoscale\n"
+     << "set xlabel 'distance along the route s [km]'\nset grid lc rgb '#d0d0d0'\n"
+     << "set key inside top right opaque samplen 2\n";
+  // Right column: two stacked panels.
+  const std::string slope_title =
+      slowest >= top * (1.0 - 1e-9)
+          ? "(b) terrain slope at the vertices; dashed: atan μ\nevery edge of both routes is "
+            "driven at the top speed " +
+                fmt("%g", top) + " m/s, so J = length / " + fmt("%g", top) + " m/s"
+          : "(b) terrain slope at the vertices; dashed: atan μ\nslowest edge of either route "
+            "(length / J): " +
+                fmt("%.1f", slowest) + " m/s";
+  const std::string panels[][3] = {
+      {"elevation z [m]", "4", "(a) elevation along the best route"},
+      {"terrain slope [°]", "5", slope_title},
+  };
+  for (int p = 0; p < 2; ++p) {
+    gp << "set origin 0.55," << fmt("%.4g", 0.49 - 0.46 * p) << "\nset size 0.44,0.46\n"
+       << "set ylabel '" << panels[p][0] << "'\nset title " << gnuplot_string(panels[p][2]) << "\n"
+       << (p == 1 ? "set yrange [0:" +
+                        fmt("%.0f",
+                            10.0 * std::ceil(degrees(std::atan(high.friction)) / 10.0) + 10.0) +
+                        "]\nset key horizontal maxrows 2\n"
+                  : std::string("set yrange [*:*]\n"))
+       << "plot ";
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      const FrictionRun& run = runs[k];
+      const char* colour = kFrictionColours[k % std::size(kFrictionColours)];
+      gp << (k ? ", \\\n     " : "") << "'routes_" << friction_tag(run.friction)
+         << ".dat' index 0 using ($3/1000):" << panels[p][1] << " with lines lw 2 lc rgb '"
+         << colour << "' title 'μ = " << fmt("%g", run.friction) << "'";
+      if (p == 1) {
+        gp << ", \\\n     " << fmt("%.6g", degrees(std::atan(run.friction)))
+           << " with lines dt (6,4) lw 1.5 lc rgb '" << colour << "' title 'atan "
+           << fmt("%g", run.friction) << " = " << fmt("%.1f", degrees(std::atan(run.friction)))
+           << "°'";
+      }
+    }
+    gp << "\n";
+  }
+  gp << "unset multiplot\n";
+  const fs::path script = out_dir / "compare.gp";
+  write_text_file(script, gp.str());
+  run_gnuplot(script);
+}
+
+// ---------------------------------------------------------------------------
+// Summary and report.
+
+void write_summary(const std::vector<FrictionRun>& runs, const fs::path& file) {
+  std::ostringstream csv;
+  csv << "friction,candidate,cost_seconds,length_m,mean_speed_mps,nodes,edges_evaluated,"
+         "search_seconds,max_slope_deg,max_z_m,climb_m\n";
+  for (const FrictionRun& run : runs) {
+    const GlobalSearchResult& r = run.result;
+    for (std::size_t c = 0; c < r.candidates.size(); ++c) {
+      const CandidatePath& p = r.candidates[c];
+      const CandidateInfo& info = run.info[c];
+      csv << fmt("%g", run.friction) << ',' << c + 1 << ',' << fmt("%.6f", p.cost_seconds) << ','
+          << fmt("%.3f", p.length_m) << ',' << fmt("%.4f", p.length_m / p.cost_seconds) << ','
+          << r.nodes << ',' << r.edges_evaluated << ',' << fmt("%.4f", r.search_seconds) << ','
+          << fmt("%.2f", info.max_slope) << ',' << fmt("%.1f", info.max_z) << ','
+          << fmt("%.1f", info.climb) << '\n';
+    }
+  }
+  write_text_file(file, csv.str());
+}
+
+std::string percent(std::size_t part, std::size_t whole) {
+  return fmt("%.1f", 100.0 * static_cast<double>(part) / static_cast<double>(whole)) + " %";
+}
+
+/// The 3–5 sentences on how the route changes with friction, built from the
+/// measured numbers so that they stay true if the settings change.
+std::string commentary(const Setup& setup, const std::vector<FrictionRun>& runs) {
+  const FrictionRun& high = runs.front();
+  const FrictionRun& low = runs.back();
+  const CandidatePath& bh = high.result.candidates.front();
+  const CandidatePath& bl = low.result.candidates.front();
+  const CandidateInfo& ih = high.info.front();
+  const CandidateInfo& il = low.info.front();
+  const std::size_t nodes = high.result.nodes;
+  const double top = high.vehicle.max_speed;
+  std::ostringstream text;
+  text << "Halving the friction from μ = " << fmt("%g", high.friction) << " to "
+       << fmt("%g", low.friction) << " makes the best route "
+       << fmt("%.0f", 100.0 * (bl.cost_seconds / bh.cost_seconds - 1.0))
+       << " % slower (J = " << fmt("%.1f", bh.cost_seconds) << " s → "
+       << fmt("%.1f", bl.cost_seconds) << " s) and "
+       << fmt("%.0f", 100.0 * (bl.length_m / bh.length_m - 1.0)) << " % longer ("
+       << fmt("%.2f", bh.length_m * 1e-3) << " → " << fmt("%.2f", bl.length_m * 1e-3)
+       << " km): at μ = " << fmt("%g", high.friction) << " it crosses the cone "
+       << fmt("%.1f", ih.summit_distance * 1e-3) << " km " << ih.side << " of the "
+       << fmt("%.0f", setup.summit_z) << " m summit and climbs to " << fmt("%.0f", ih.max_z)
+       << " m, at μ = " << fmt("%g", low.friction) << " it swings round the mountain "
+       << fmt("%.1f", il.summit_distance * 1e-3) << " km " << il.side
+       << " of the summit and never rises above " << fmt("%.0f", il.max_z) << " m. ";
+  text << "The reason is the friction cone: on ground that is planar at the scale of an edge "
+          "the three rules of the search coincide, and a slope θ is passable (in any direction, "
+          "then at any speed) exactly when tan θ ≤ μ — heading across the slope, the sliding "
+          "condition |k_q| ≤ μ k_r fails and v_max = 0 (rule a); heading along the fall line, "
+          "the friction force μ g k_r can neither hold g sin θ uphill (rule b) nor brake it "
+          "downhill (rule c); lateral tip-over (b/h = "
+       << fmt("%g", high.vehicle.half_track / high.vehicle.cg_height)
+       << ", 45°) never binds first because μ < b/h. ";
+  text << "The threshold drops from atan " << fmt("%g", high.friction) << " = "
+       << fmt("%.1f", degrees(std::atan(high.friction))) << "° to atan " << fmt("%g", low.friction)
+       << " = " << fmt("%.1f", degrees(std::atan(low.friction)))
+       << "°, so the share of lattice nodes steeper than it grows from "
+       << percent(high.steep_nodes, nodes) << " (mostly the crater walls and gully sides) to "
+       << percent(low.steep_nodes, nodes) << " (most of the cone above its apron), and with "
+       << "the pockets cut off behind them " << percent(high.unreachable, nodes) << " and "
+       << percent(low.unreachable, nodes) << " of the nodes are unreachable from the start. ";
+  double slowest = kInf;
+  for (const FrictionRun& run : runs) slowest = std::min(slowest, run.info.front().min_edge_speed);
+  if (slowest >= top * (1.0 - 1e-9)) {
+    text << "Speed itself does not change: every edge of both best routes is driven at the "
+         << fmt("%g", top) << " m/s top speed (the 30 m DEM's curvatures are far too gentle for "
+         << "sliding or tip-over to bind below it: contact on a crest, for one, is lost at "
+         << fmt("%g", top) << " m/s only if its radius is under v²/g ≈ "
+         << fmt("%.0f", top * top / high.vehicle.gravity) << " m), so J = length / "
+         << fmt("%g", top) << " m/s and friction acts purely by removing terrain. ";
+  } else {
+    text << "The slowest edge of either best route is driven at " << fmt("%.1f", slowest)
+         << " m/s against the " << fmt("%g", top) << " m/s top speed. ";
+  }
+  text << "The steepest terrain under the best routes, sampled at the search's own edge "
+          "stations, is "
+       << fmt("%.1f", ih.max_slope) << "° at μ = " << fmt("%g", high.friction) << " and "
+       << fmt("%.1f", il.max_slope) << "° at μ = " << fmt("%g", low.friction);
+  if (ih.speed_only_stations + il.speed_only_stations > 0) {
+    text << " (" << ih.speed_only_stations << " and " << il.speed_only_stations
+         << " stations steeper than atan μ, where the extra normal load κ_n v² of a concave "
+            "stretch at speed lets the vehicle climb or brake although it could not stand "
+            "there at rest; see the observations below).";
+  } else {
+    text << ", within the thresholds.";
+  }
+  return text.str();
+}
+
+void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
+                  const std::vector<ControlRun>& controls, const ExperimentContext& context,
+                  double total_seconds, double contour_step) {
+  const GlobalSearchResult& r0 = runs.front().result;
+  const double distance = (setup.goal - setup.start).norm();
+  const double separation = default_separation(r0);
+  const Vec2 o = setup.origin();
+  std::ostringstream md;
+  md << "# Global search: distinct minimum-time corridors across Mount St. Helens\n\n"
+     << "The global stage of the planner (`talus::global_search`) on a real DEM at its true "
+        "scale, for a car-like vehicle at two tyre frictions — the analogue of the "
+        "global-optimal-path figure of Iagnemma, Shimoda and Shiller (IROS 2008).\n\n"
+     << "## What was run\n\n"
+     << "- Terrain: `data/terrain/" << kDemStem
+     << ".asc` (USGS 30 m DEM of Mount St. Helens after the 1980 eruption, NAD27 / UTM 10N; "
+        "provenance in `data/terrain/README.md`), cropped to "
+     << kCrop.ncols << " × " << kCrop.nrows << " nodes (DEM columns " << kCrop.col << "–"
+     << kCrop.col + kCrop.ncols - 1 << " from the west, rows " << kCrop.row << "–"
+     << kCrop.row + kCrop.nrows - 1 << " from the south): " << fmt("%.2f", setup.width() * 1e-3)
+     << " × " << fmt("%.2f", setup.height() * 1e-3) << " km, elevation " << fmt("%.0f", setup.zmin)
+     << "–" << fmt("%.0f", setup.zmax) << " m, summit " << fmt("%.0f", setup.summit_z) << " m at ("
+     << fmt("%.2f", (setup.summit.x() - o.x()) * 1e-3) << ", "
+     << fmt("%.2f", (setup.summit.y() - o.y()) * 1e-3)
+     << ") km on the crater's south rim. True scale: slopes and curvatures are those of the "
+        "mountain.\n"
+     << "- Surface: `BPatch::fit_smoothing` with λ = " << fmt("%g", kSmoothingLambda)
+     << " (about one cell of smoothing), fitted in " << sig3(setup.fit_seconds)
+     << " s. Why not the interpolating fit: this early DEM carries an east–west striping "
+        "artefact (going north along a column on the flanks, one-cell steps of 15–25 m "
+        "alternate with flat or reversed cells; over the crop the mean |second difference| of the "
+        "nodes is "
+     << fmt("%.1f", setup.roughness_y) << " m along y against " << fmt("%.1f", setup.roughness_x)
+     << " m along x). The interpolating fit reproduces every step, and each step steeper than atan "
+        "μ becomes "
+        "a one-row untraversable bar across a passable flank. The control run below shows the "
+        "effect.\n"
+     << "- Vehicle: point mass, μ = 0.7 and μ = 0.35, centre-of-mass height h = 0.8 m, half "
+        "track b = 0.8 m, max speed 20 m/s, g = 9.81 m/s², no drive or brake limit "
+        "(friction alone bounds the tangential force).\n"
+     << "- Start (" << fmt("%.3f", (setup.start.x() - o.x()) * 1e-3) << ", "
+     << fmt("%.3f", (setup.start.y() - o.y()) * 1e-3) << ") km and goal ("
+     << fmt("%.3f", (setup.goal.x() - o.x()) * 1e-3) << ", "
+     << fmt("%.3f", (setup.goal.y() - o.y()) * 1e-3)
+     << ") km from the crop's south-west node (DEM nodes (" << fmt("%g", kStart.i) << ", "
+     << fmt("%g", kStart.j) << ") and (" << fmt("%g", kGoal.i) << ", " << fmt("%g", kGoal.j)
+     << ")): gentle ground west and east of the cone, " << fmt("%.2f", distance * 1e-3)
+     << " km apart, the straight line between them crossing the crater. They were chosen in "
+        "the one region of the crop that stays connected at μ = 0.35 (the lowland apron south "
+        "of the cone, which reaches up its west and east sides), so both runs succeed.\n"
+     << "- Search: `global_search` with candidates = " << kCandidates << ", connectivity "
+     << kConnectivity << ", lattice spacing " << fmt("%g", r0.spacing) << " m"
+     << (context.quick ? " (quick mode: 3 cells)" : " (= the cell size)") << ", " << r0.nx << " × "
+     << r0.ny
+     << " nodes, cost_fields = true, max_cost_ratio 2 (default). Cost J = ∫ ds / v_max along "
+        "straight lattice edges lifted onto the surface (Simpson's rule, stations at most half a "
+        "spacing apart); an edge is untraversable in a direction if at some station no speed "
+        "satisfies the speed limits (a), or the vehicle can neither climb nor hold its speed at "
+        "any admissible speed (b), or cannot brake at any admissible speed (c).\n"
+     << "- Distinctness (as documented in `global_search.hpp`): lattice nodes are taken in "
+        "increasing order of T_start + T_goal, the cost of the best route through them, up to "
+        "2 J*; a node's route (start tree + goal tree) is accepted if the node is at least the "
+        "separation away from every accepted candidate and the route's symmetric Hausdorff "
+        "distance to each of them is at least the separation — here the default max(10 % of "
+        "the start–goal distance, 3 spacings) = "
+     << fmt("%.0f", separation) << " m.\n"
+     << "- Relief: the smoothing patch on a raster, hypsometric tint × hillshade (sun azimuth "
+        "315°, altitude 45°), washed towards white; contours every "
+     << fmt("%g", contour_step)
+     << " m traced by gnuplot. Every figure's gnuplot script and data sit beside it "
+        "(`gnuplot <name>.gp` in this folder re-renders it).\n"
+     << "- Total run time " << fmt("%.1f", total_seconds)
+     << " s on this machine (searches, fits, data files and gnuplot).\n\n"
+     << "## Candidates\n\n"
+     << "Numbers also in `summary.csv`; vertices in `candidates_mu<μ>.csv` (absolute UTM "
+        "coordinates, z on the smoothing patch). Mean speed = length / J. Max slope: steepest "
+        "terrain slope at the search's edge stations along the route. Passes summit: distance "
+        "and compass direction from the summit of the point where the route crosses the line "
+        "through the summit perpendicular to the start→goal axis. Hausdorff / shared: "
+        "symmetric Hausdorff distance to candidate 1 (the quantity the distinctness rule "
+        "tests) and the share of the route's vertices within "
+     << fmt("%.0f", kSharedFraction * separation) << " m (a quarter of the separation) of "
+     << "candidate 1, i.e. in its corridor.\n\n"
+     << "| μ | candidate | J [s] | length [km] | mean speed [m/s] | max slope [°] | highest "
+        "point [m] | total climb [m] | passes summit | Hausdorff to 1 [m] | shared with 1 |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const FrictionRun& run : runs) {
+    for (std::size_t c = 0; c < run.result.candidates.size(); ++c) {
+      const CandidatePath& p = run.result.candidates[c];
+      const CandidateInfo& info = run.info[c];
+      md << "| " << fmt("%g", run.friction) << " | " << c + 1 << " | "
+         << fmt("%.1f", p.cost_seconds) << " | " << fmt("%.2f", p.length_m * 1e-3) << " | "
+         << fmt("%.2f", p.length_m / p.cost_seconds) << " | " << fmt("%.1f", info.max_slope)
+         << " | " << fmt("%.0f", info.max_z) << " | " << fmt("%.0f", info.climb) << " | "
+         << fmt("%.1f", info.summit_distance * 1e-3) << " km " << info.side << " | "
+         << (c == 0 ? "–" : fmt("%.0f", info.hausdorff_to_best)) << " | "
+         << (c == 0 ? "–" : fmt("%.0f", 100.0 * info.shared_with_best) + " %") << " |\n";
+    }
+  }
+  md << "\n| μ | lattice nodes | edges evaluated | reachable from start | steeper than atan μ | "
+        "search [s] |\n|---|---|---|---|---|---|\n";
+  for (const FrictionRun& run : runs) {
+    const GlobalSearchResult& r = run.result;
+    md << "| " << fmt("%g", run.friction) << " | " << r.nodes << " | " << r.edges_evaluated << " | "
+       << r.reachable_nodes << " (" << percent(r.reachable_nodes, r.nodes) << ") | "
+       << run.steep_nodes << " (" << percent(run.steep_nodes, r.nodes) << ") | "
+       << fmt("%.2f", r.search_seconds) << " |\n";
+  }
+  md << "\nControl run on the interpolating fit (same lattice, start and goal; best route "
+        "only):\n\n"
+     << "| μ | best J [s] | length [km] | steeper than atan μ | unreachable | J vs smoothing "
+        "fit |\n|---|---|---|---|---|---|\n";
+  for (std::size_t k = 0; k < controls.size(); ++k) {
+    const ControlRun& c = controls[k];
+    const CandidatePath& best = runs[k].result.candidates.front();
+    md << "| " << fmt("%g", c.friction) << " | "
+       << (c.ok ? fmt("%.1f", c.cost) : std::string("unreachable")) << " | "
+       << (c.ok ? fmt("%.2f", c.length * 1e-3) : std::string("–")) << " | "
+       << percent(c.steep_nodes, c.nodes) << " | " << percent(c.unreachable, c.nodes) << " | "
+       << (c.ok ? fmt("%+.0f", 100.0 * (c.cost / best.cost_seconds - 1.0)) + " %"
+                : std::string("–"))
+       << " |\n";
+  }
+  md << "\n## What the figures show\n\n" << commentary(setup, runs) << "\n\n";
+
+  // Observations on the search's behaviour, measured rather than asserted.
+  md << "## Observations on the search\n\n";
+  for (const FrictionRun& run : runs) {
+    const std::string mu = fmt("%g", run.friction);
+    const GlobalSearchResult& r = run.result;
+    double worst_check = 0.0;
+    bool any_reversal = false;
+    for (std::size_t c = 0; c < r.candidates.size(); ++c) {
+      worst_check = std::max(worst_check,
+                             std::abs(run.info[c].recomputed_cost - r.candidates[c].cost_seconds) /
+                                 r.candidates[c].cost_seconds);
+      any_reversal = any_reversal || run.info[c].reversals;
+    }
+    md << "- μ = " << mu << ": J recomputed edge by edge with the public `edge_cost` agrees with "
+       << "`cost_seconds` to " << fmt("%.1e", worst_check) << " (relative); "
+       << (any_reversal ? "**a candidate revisits a lattice node** (its route goes out and back)"
+                        : "no candidate revisits a lattice node")
+       << ".";
+    for (std::size_t c = 1; c < r.candidates.size(); ++c) {
+      const CandidateInfo& info = run.info[c];
+      if (info.shared_with_best >= 0.5) {
+        md << " Candidate " << c + 1 << " passes the Hausdorff rule ("
+           << fmt("%.0f", info.hausdorff_to_best) << " m against " << fmt("%.0f", separation)
+           << " m) but " << fmt("%.0f", 100.0 * info.shared_with_best)
+           << " % of its vertices lie within " << fmt("%.0f", kSharedFraction * separation)
+           << " m of candidate 1: a variant of the same corridor with one bulge, not a "
+              "different way round.";
+      }
+    }
+    std::size_t steep = 0, speed_only = 0, concave = 0;
+    for (const CandidateInfo& info : run.info) {
+      steep += info.steep_stations;
+      speed_only += info.speed_only_stations;
+      concave += info.concave_speed_only;
+    }
+    if (steep > 0) {
+      md << " Of the candidates' edge stations, " << steep << " are steeper than atan " << mu
+         << " = " << fmt("%.1f", degrees(std::atan(run.friction))) << "°; at " << speed_only
+         << " of them the vehicle could not stand still (at v = 0, a_max < 0 uphill or "
+            "a_min > 0 downhill), and "
+         << concave
+         << " of those lie on a concave stretch of the edge (κ_n > 0). The edges "
+            "pass rules (b) and (c) because these ask for *some* admissible speed at which the "
+            "vehicle can climb or brake, and at the top speed κ_n v² adds normal load. The "
+            "search's cost assumes the top speed there, so the local stage must carry speed "
+            "through these spots; a profile that has to slow down or start there will find "
+            "them infeasible.";
+    }
+    md << "\n";
+  }
+  md << "\n## Figures\n\n";
+  for (const FrictionRun& run : runs) {
+    const std::string tag = friction_tag(run.friction);
+    md << "### μ = " << fmt("%g", run.friction) << "\n\n"
+       << "![candidate routes at μ = " << fmt("%g", run.friction) << "](routes_" << tag
+       << ".png)\n\n"
+       << "![cost-to-go fields at μ = " << fmt("%g", run.friction) << "](fields_" << tag
+       << ".png)\n\n";
+  }
+  md << "### Friction comparison\n\n![best route at each friction](compare.png)\n";
+  write_text_file(context.output_dir / "report.md", md.str());
+}
+
+}  // namespace
+
+void run_global_search_experiment(const ExperimentContext& context) {
+  const auto t_start = Clock::now();
+  require_gnuplot();
+  const fs::path out_dir = context.output_dir;
+
+  const fs::path dem_file = context.data_dir / "terrain" / (std::string(kDemStem) + ".asc");
+  const ElevationGrid dem = read_esri_ascii(dem_file.string());
+  ElevationGrid cropped = crop_grid(dem, kCrop);
+  const auto fit_start = Clock::now();
+  BPatch patch = BPatch::fit_smoothing(cropped, kSmoothingLambda);
+  const double fit_seconds = std::chrono::duration<double>(Clock::now() - fit_start).count();
+  BPatch control = BPatch::interpolate(cropped);
+  Setup setup(std::move(cropped), std::move(patch), std::move(control));
+  setup.fit_seconds = fit_seconds;
+  const auto range = setup.dem_crop.elevation_range();
+  if (!range) throw InputError("global-search: the crop of " + dem_file.string() + " is empty");
+  setup.zmin = range->first;
+  setup.zmax = range->second;
+  std::tie(setup.roughness_x, setup.roughness_y) = second_differences(setup.dem_crop);
+  setup.start = dem_position(dem, kStart);
+  setup.goal = dem_position(dem, kGoal);
+  for (std::size_t j = 0; j < setup.dem_crop.nrows(); ++j)
+    for (std::size_t i = 0; i < setup.dem_crop.ncols(); ++i)
+      if (setup.dem_crop.at(i, j) > setup.summit_z || (i == 0 && j == 0)) {
+        setup.summit_z = setup.dem_crop.at(i, j);
+        setup.summit = setup.dem_crop.node_position(i, j);
+      }
+  setup.spacing = dem.cellsize() * (context.quick ? kQuickLatticeCells : 1.0);
+
+  GlobalSearchOptions options;
+  options.lattice_spacing = setup.spacing;
+  options.connectivity = kConnectivity;
+  options.candidates = kCandidates;
+  options.cost_fields = true;
+
+  std::vector<FrictionRun> runs;
+  for (const double mu : kFrictions) {
+    runs.push_back(run_search(setup, mu, options));
+    const FrictionRun& run = runs.back();
+    std::cout << "global-search: μ = " << mu << ": " << run.result.candidates.size()
+              << " candidates, best J = " << fmt("%.2f", run.result.candidates.front().cost_seconds)
+              << " s, search " << fmt("%.2f", run.result.search_seconds) << " s ("
+              << run.result.nodes << " nodes, " << run.result.edges_evaluated << " edges)\n";
+  }
+
+  std::vector<ControlRun> controls;
+  for (const double mu : kFrictions) controls.push_back(run_control(setup, mu, options));
+
+  const double contour_step =
+      write_relief(setup, context.quick ? kQuickRasterMaxSamples : kRasterMaxSamples, out_dir);
+  write_endpoints(setup, out_dir);
+  for (const FrictionRun& run : runs) {
+    const std::string tag = friction_tag(run.friction);
+    write_candidates_csv(setup, run, out_dir / ("candidates_" + tag + ".csv"));
+    write_route_blocks(setup, run, out_dir / ("routes_" + tag + ".dat"));
+    draw_routes(setup, run, contour_step, out_dir);
+    draw_fields(setup, run, out_dir);
+  }
+  draw_comparison(setup, runs, contour_step, out_dir);
+  write_summary(runs, out_dir / "summary.csv");
+  const double total = std::chrono::duration<double>(Clock::now() - t_start).count();
+  write_report(setup, runs, controls, context, total, contour_step);
+  std::cout << "global-search: wrote " << out_dir.string() << " in " << fmt("%.1f", total)
+            << " s\n";
+}
+
+}  // namespace talus::experiments

@@ -211,6 +211,13 @@ double point_to_polyline(const Vec2& p, const std::vector<Vec2>& line) {
   return line.size() == 1 ? (p - line[0]).norm() : best;
 }
 
+/// Share of `a`'s vertices that lie within `radius` of the polyline `b`.
+double shared_fraction(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double radius) {
+  std::size_t shared = 0;
+  for (const Vec2& p : a) shared += point_to_polyline(p, b) < radius;
+  return a.empty() ? 0.0 : static_cast<double>(shared) / static_cast<double>(a.size());
+}
+
 /// Symmetric Hausdorff distance between two polylines (vertices against segments).
 double hausdorff(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   double d = 0.0;
@@ -377,7 +384,13 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
     CandidatePath candidate;
     for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
     bool distinct = true;
-    for (const CandidatePath& c : result.candidates) distinct = distinct && hausdorff(candidate.vertices, c.vertices) >= separation;
+    // Distinct = somewhere at least `separation` away (Hausdorff) AND at most
+    // half of it within separation / 2 of an accepted candidate: without the
+    // second rule the best corridor with one bulge passed as an alternative.
+    for (const CandidatePath& c : result.candidates) {
+      distinct = distinct && hausdorff(candidate.vertices, c.vertices) >= separation &&
+                 shared_fraction(candidate.vertices, c.vertices, 0.5 * separation) <= 0.5;
+    }
     if (!distinct) continue;
     candidate.cost_seconds = from_start.cost[node] + to_goal.cost[node];
     for (std::size_t k = 0; k + 1 < candidate.vertices.size(); ++k) {

@@ -28,8 +28,14 @@ struct GlobalSearchOptions {
   double lattice_spacing = 0.0;  ///< node spacing [m]; 0 = the terrain's cell size
   int connectivity = 16;         ///< 8, 16 or 32 neighbours per node
   std::size_t candidates = 3;    ///< how many distinct candidates to return (>= 1)
-  /// Minimum Hausdorff distance between two candidates [m]; 0 = 10 % of the
-  /// start–goal distance, and at least 3 lattice spacings.
+  /// Separation d [m] of distinct candidates; 0 = 10 % of the start–goal
+  /// distance, and at least 3 lattice spacings. Two paths are distinct when
+  /// their Hausdorff distance is at least d AND at most half of the new
+  /// path's vertices lie within d/2 of the other (one bulge off the same
+  /// corridor is not an alternative route). Candidates are grown from the
+  /// lattice nodes in increasing order of the best cost through them
+  /// (cost_from_start + cost_to_goal), skipping nodes within d of an
+  /// accepted candidate (Shiller, Fujita, Ophir, Nakamura 2004).
   double distinctness = 0.0;
   /// Candidates cost at most this multiple of the best (>= 1).
   double max_cost_ratio = 2.0;

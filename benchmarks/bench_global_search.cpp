@@ -27,7 +27,12 @@ const Case& terrain_case(std::size_t n) {
     options.seed = 3;
     talus::Vehicle vehicle;
     vehicle.max_speed = 10.0;
-    it = cases.emplace(n, Case{talus::BPatch::fit_smoothing(talus::generate_fractal_terrain(options), 1.0), vehicle}).first;
+    it =
+        cases
+            .emplace(
+                n, Case{talus::BPatch::fit_smoothing(talus::generate_fractal_terrain(options), 1.0),
+                        vehicle})
+            .first;
   }
   return it->second;
 }
@@ -42,7 +47,8 @@ void run(benchmark::State& state, std::size_t candidates, bool fields) {
   options.cost_fields = fields;
   talus::GlobalSearchResult result;
   for (auto _ : state) {
-    result = talus::global_search(c.terrain, c.vehicle, {0.1 * w, 0.1 * w}, {0.9 * w, 0.9 * w}, options);
+    result =
+        talus::global_search(c.terrain, c.vehicle, {0.1 * w, 0.1 * w}, {0.9 * w, 0.9 * w}, options);
     benchmark::DoNotOptimize(result.candidates.data());
   }
   if (result.status != talus::GlobalSearchStatus::kOk) state.SkipWithError(result.message.c_str());
@@ -51,9 +57,25 @@ void run(benchmark::State& state, std::size_t candidates, bool fields) {
   state.counters["candidates"] = static_cast<double>(result.candidates.size());
 }
 
-void BM_GlobalSearchFields(benchmark::State& state) { run(state, 3, true); }
-void BM_GlobalSearchAStar(benchmark::State& state) { run(state, 1, false); }
-BENCHMARK(BM_GlobalSearchFields)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->Iterations(2);
-BENCHMARK(BM_GlobalSearchAStar)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->Iterations(2);
+void BM_GlobalSearchFields(benchmark::State& state) {
+  run(state, 3, true);
+}
+void BM_GlobalSearchAStar(benchmark::State& state) {
+  run(state, 1, false);
+}
+BENCHMARK(BM_GlobalSearchFields)
+    ->Arg(128)
+    ->Arg(256)
+    ->Arg(512)
+    ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+BENCHMARK(BM_GlobalSearchAStar)
+    ->Arg(128)
+    ->Arg(256)
+    ->Arg(512)
+    ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
 
 }  // namespace

@@ -26,7 +26,8 @@ talus::SurfacePath make_path(const talus::ElevationGrid& grid, const talus::BPat
                                   {0.50, 0.60}, {0.62, 0.72}, {0.78, 0.68}, {0.90, 0.88}};
   const double wx = grid.x_max() - grid.x_min(), wy = grid.y_max() - grid.y_min();
   std::vector<Vec2> through;
-  for (const auto& f : fractions) through.emplace_back(grid.x_min() + f[0] * wx, grid.y_min() + f[1] * wy);
+  for (const auto& f : fractions)
+    through.emplace_back(grid.x_min() + f[0] * wx, grid.y_min() + f[1] * wy);
   return talus::SurfacePath(patch, talus::Curve2::interpolate(through));
 }
 
@@ -50,11 +51,15 @@ void BM_VelocityLimitsAlongPath(benchmark::State& state) {
     benchmark::DoNotOptimize(limits.all_limits().data());
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));
-  state.counters["time_per_station"] = benchmark::Counter(
-      static_cast<double>(state.iterations() * state.range(0)),
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["time_per_station"] =
+      benchmark::Counter(static_cast<double>(state.iterations() * state.range(0)),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_VelocityLimitsAlongPath)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VelocityLimitsAlongPath)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_AccelerationBounds(benchmark::State& state) {
   const Setup& s = setup();
@@ -70,7 +75,8 @@ BENCHMARK(BM_AccelerationBounds);
 
 void BM_ExactArcLengthSampling(benchmark::State& state) {
   const Setup& s = setup();
-  for (auto _ : state) benchmark::DoNotOptimize(s.path->sample(static_cast<std::size_t>(state.range(0))));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(s.path->sample(static_cast<std::size_t>(state.range(0))));
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 BENCHMARK(BM_ExactArcLengthSampling)->Arg(10000)->Unit(benchmark::kMillisecond);

@@ -39,8 +39,8 @@ const Setup& setup() {
 
 const talus::SurfacePath& path() {
   static const talus::SurfacePath p(
-      setup().patch, talus::Curve2::interpolate({Vec2(5, 10), Vec2(30, 40), Vec2(55, 30), Vec2(75, 60),
-                                                 Vec2(95, 45), Vec2(115, 70)}));
+      setup().patch, talus::Curve2::interpolate({Vec2(5, 10), Vec2(30, 40), Vec2(55, 30),
+                                                 Vec2(75, 60), Vec2(95, 45), Vec2(115, 70)}));
   return p;
 }
 
@@ -55,9 +55,9 @@ void BM_ProfileOnly(benchmark::State& state) {
   }
   if (profile.status != talus::ProfileStatus::kOk) state.SkipWithError(profile.message.c_str());
   state.SetItemsProcessed(state.iterations() * state.range(0));
-  state.counters["time_per_station"] = benchmark::Counter(
-      static_cast<double>(state.iterations() * state.range(0)),
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["time_per_station"] =
+      benchmark::Counter(static_cast<double>(state.iterations() * state.range(0)),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_ProfileOnly)->RangeMultiplier(10)->Range(100, 100000)->Unit(benchmark::kMicrosecond);
 
@@ -72,9 +72,9 @@ void BM_LimitsAndProfile(benchmark::State& state) {
     benchmark::DoNotOptimize(profile.travel_time);
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));
-  state.counters["time_per_station"] = benchmark::Counter(
-      static_cast<double>(state.iterations() * state.range(0)),
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["time_per_station"] =
+      benchmark::Counter(static_cast<double>(state.iterations() * state.range(0)),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_LimitsAndProfile)->Arg(10000)->Unit(benchmark::kMicrosecond);
 

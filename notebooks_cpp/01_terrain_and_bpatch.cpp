@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   try {
     // 1. A real DEM: West Bijou Creek escarpment (NASADEM, 25 m cells). The
     //    reader is strict; nodes are cell centres, rows counted from the south.
-    const ElevationGrid grid = read_esri_ascii(data + "/terrain/west_bijou_escarpment_nasadem25m.asc");
+    const ElevationGrid grid =
+        read_esri_ascii(data + "/terrain/west_bijou_escarpment_nasadem25m.asc");
     const auto range = grid.elevation_range();
     std::printf("1. Grid: %zu x %zu nodes, %.0f m cells, elevation %.0f .. %.0f m\n", grid.ncols(),
                 grid.nrows(), grid.cellsize(), range->first, range->second);
@@ -28,24 +29,28 @@ int main(int argc, char** argv) {
     const BPatch exact = BPatch::interpolate(grid);
     const BPatch smooth = BPatch::fit_smoothing(grid, 1.0);
     const BPatchFitReport re = exact.residuals(grid), rs = smooth.residuals(grid);
-    std::printf("2. Interpolating fit: max node residual %.2e m; smoothing fit (lambda 1): max %.2f m, "
-                "RMS %.2f m\n", re.max_node_residual, rs.max_node_residual, rs.rms_residual);
+    std::printf(
+        "2. Interpolating fit: max node residual %.2e m; smoothing fit (lambda 1): max %.2f m, "
+        "RMS %.2f m\n",
+        re.max_node_residual, rs.max_node_residual, rs.rms_residual);
 
     // 3. A path is a planar B-spline lifted onto the surface. Here: a curve
     //    through four points across the escarpment.
     const double x0 = grid.x_min(), y0 = grid.y_min();
-    const Curve2 curve = Curve2::interpolate({Vec2(x0 + 200, y0 + 300), Vec2(x0 + 1000, y0 + 900),
-                                              Vec2(x0 + 1900, y0 + 700), Vec2(x0 + 2800, y0 + 1500)});
+    const Curve2 curve =
+        Curve2::interpolate({Vec2(x0 + 200, y0 + 300), Vec2(x0 + 1000, y0 + 900),
+                             Vec2(x0 + 1900, y0 + 700), Vec2(x0 + 2800, y0 + 1500)});
     const SurfacePath path(smooth, curve);
-    std::printf("3. Path: 3-D length %.1f m (its planar chord sum is shorter: it climbs and turns)\n",
-                path.length());
+    std::printf(
+        "3. Path: 3-D length %.1f m (its planar chord sum is shorter: it climbs and turns)\n",
+        path.length());
 
     // 4. At each station the Darboux frame (t, q, r), the normal and geodesic
     //    curvatures and the vertical's components k_t, k_q, k_r — the inputs of
     //    the velocity limits (see bspline/include/talus/bspline/surface_path.hpp
     //    for the sign conventions).
-    std::printf("4. Stations:\n   %8s %8s %8s %10s %10s %7s %7s %7s\n", "s [m]", "z [m]",
-                "slope", "kappa_n", "kappa_g", "k_t", "k_q", "k_r");
+    std::printf("4. Stations:\n   %8s %8s %8s %10s %10s %7s %7s %7s\n", "s [m]", "z [m]", "slope",
+                "kappa_n", "kappa_g", "k_t", "k_q", "k_r");
     for (const PathFrame& f : path.sample(9)) {
       std::printf("   %8.1f %8.1f %7.2f° %10.2e %10.2e %7.3f %7.3f %7.3f\n", f.s, f.point.z(),
                   std::acos(f.k_r) * 180.0 / 3.14159265358979, f.kappa_n, f.kappa_g, f.k_t, f.k_q,

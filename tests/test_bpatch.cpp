@@ -26,8 +26,10 @@ ElevationGrid sample(const Field& f, std::size_t nc, std::size_t nr, double h, d
 
 // A full bicubic polynomial (all 16 monomials x^a y^b, a, b <= 3).
 double bicubic(double x, double y) {
-  const double c[4][4] = {{1.0, -0.5, 0.2, 0.01}, {0.3, 0.07, -0.02, 0.003},
-                          {-0.04, 0.01, 0.005, -0.001}, {0.002, -0.0007, 0.0003, 0.0001}};
+  const double c[4][4] = {{1.0, -0.5, 0.2, 0.01},
+                          {0.3, 0.07, -0.02, 0.003},
+                          {-0.04, 0.01, 0.005, -0.001},
+                          {0.002, -0.0007, 0.0003, 0.0001}};
   double z = 0.0;
   for (int a = 0; a < 4; ++a)
     for (int b = 0; b < 4; ++b) z += c[a][b] * std::pow(x, a) * std::pow(y, b);
@@ -35,7 +37,8 @@ double bicubic(double x, double y) {
 }
 
 TEST(BPatch, InterpolationIsExactAtEveryNode) {
-  const ElevationGrid grid = sample([](double x, double y) { return std::sin(x) * std::cos(0.7 * y) + 0.1 * x; }, 23, 17, 0.4);
+  const ElevationGrid grid = sample(
+      [](double x, double y) { return std::sin(x) * std::cos(0.7 * y) + 0.1 * x; }, 23, 17, 0.4);
   const BPatch patch = BPatch::interpolate(grid);
   for (std::size_t j = 0; j < grid.nrows(); ++j)
     for (std::size_t i = 0; i < grid.ncols(); ++i)
@@ -60,7 +63,8 @@ TEST(BPatch, InterpolationReproducesBicubicPolynomialsWithDerivatives) {
     const double zxx = (bicubic(x + e, y) - 2 * bicubic(x, y) + bicubic(x - e, y)) / (e * e);
     const double zyy = (bicubic(x, y + e) - 2 * bicubic(x, y) + bicubic(x, y - e)) / (e * e);
     const double zxy = (bicubic(x + e, y + e) - bicubic(x + e, y - e) - bicubic(x - e, y + e) +
-                        bicubic(x - e, y - e)) / (4 * e * e);
+                        bicubic(x - e, y - e)) /
+                       (4 * e * e);
     EXPECT_NEAR(sp.gradient.x(), zx, 1e-6);
     EXPECT_NEAR(sp.gradient.y(), zy, 1e-6);
     EXPECT_NEAR(sp.hessian(0, 0), zxx, 1e-4);
@@ -71,8 +75,8 @@ TEST(BPatch, InterpolationReproducesBicubicPolynomialsWithDerivatives) {
 }
 
 TEST(BPatch, DerivativesMatchFiniteDifferencesOnARealDem) {
-  const ElevationGrid grid =
-      read_esri_ascii(std::string(TALUS_DATA_DIR) + "/terrain/west_bijou_escarpment_nasadem25m.asc");
+  const ElevationGrid grid = read_esri_ascii(std::string(TALUS_DATA_DIR) +
+                                             "/terrain/west_bijou_escarpment_nasadem25m.asc");
   const BPatch patch = BPatch::interpolate(grid);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> ux(patch.x_min() + 1, patch.x_max() - 1),
@@ -93,7 +97,8 @@ TEST(BPatch, DerivativesMatchFiniteDifferencesOnARealDem) {
 }
 
 TEST(BPatch, SurfaceIsTwiceContinuouslyDifferentiableAcrossCellEdges) {
-  const ElevationGrid grid = sample([](double x, double y) { return std::exp(-0.1 * (x * x + y * y)); }, 15, 15, 0.7, -5, -5);
+  const ElevationGrid grid = sample(
+      [](double x, double y) { return std::exp(-0.1 * (x * x + y * y)); }, 15, 15, 0.7, -5, -5);
   const BPatch patch = BPatch::interpolate(grid);
   const double edge = grid.node_position(6, 0).x(), e = 1e-9;
   for (double y : {-4.0, -1.3, 0.2, 3.9}) {
@@ -142,7 +147,8 @@ TEST(BPatchSmoothing, ReproducesAPlaneExactlyForAnyLambda) {
 TEST(BPatchSmoothing, LargerLambdaSmoothsMoreAndSmallLambdaApproachesInterpolation) {
   std::mt19937_64 rng(5);
   std::normal_distribution<double> noise(0.0, 0.5);
-  ElevationGrid grid = sample([](double x, double y) { return std::sin(0.3 * x) + std::cos(0.2 * y); }, 30, 25, 1.0);
+  ElevationGrid grid =
+      sample([](double x, double y) { return std::sin(0.3 * x) + std::cos(0.2 * y); }, 30, 25, 1.0);
   for (std::size_t j = 0; j < grid.nrows(); ++j)
     for (std::size_t i = 0; i < grid.ncols(); ++i) grid.at(i, j) += noise(rng);
   double previous = 0.0;

@@ -19,8 +19,7 @@ TEST(KnotVector, PartitionOfUnityForClampedAndUniformKnots) {
     for (const KnotVector& kv : {irregular_clamped(p), KnotVector::uniform(p, -1.0, 0.25, 12)}) {
       Eigen::MatrixXd basis(1, p + 1);
       for (int k = 0; k <= 200; ++k) {
-        const double t =
-            kv.domain_begin() + (kv.domain_end() - kv.domain_begin()) * k / 200.0;
+        const double t = kv.domain_begin() + (kv.domain_end() - kv.domain_begin()) * k / 200.0;
         kv.basis_derivatives(kv.find_span(t), t, basis);
         EXPECT_NEAR(basis.sum(), 1.0, 1e-14) << "degree " << p << " t " << t;
         EXPECT_GE(basis.minCoeff(), -1e-15);
@@ -57,8 +56,8 @@ TEST(KnotVector, DerivativesMatchFiniteDifferences) {
 TEST(KnotVector, RejectsBadInput) {
   EXPECT_THROW(KnotVector(0, {0, 0, 1, 1}), InputError);
   EXPECT_THROW(KnotVector(3, {0, 0, 0, 1, 1, 1}), InputError);  // too few knots
-  EXPECT_THROW(KnotVector(1, {0, 1, 0.5, 2}), InputError);       // decreasing
-  EXPECT_THROW(KnotVector(1, {0, 0, 0, 0}), InputError);         // empty domain
+  EXPECT_THROW(KnotVector(1, {0, 1, 0.5, 2}), InputError);      // decreasing
+  EXPECT_THROW(KnotVector(1, {0, 0, 0, 0}), InputError);        // empty domain
   EXPECT_THROW(irregular_clamped(3).find_span(-0.1), InputError);
   EXPECT_THROW(irregular_clamped(3).find_span(std::nan("")), InputError);
   EXPECT_EQ(irregular_clamped(3).find_span(3.7), irregular_clamped(3).num_basis() - 1);
@@ -72,9 +71,12 @@ TEST(BSplineCurve, SingleSpanCubicIsTheBezierCurveWithItsDerivatives) {
   const Curve3 curve(KnotVector::clamped(3, {t0, t1}), p);
   for (double t : {2.0, 2.6, 3.3, 4.5}) {
     const double u = (t - t0) / span, v = 1 - u;
-    const Eigen::Vector3d c = v * v * v * p[0] + 3 * u * v * v * p[1] + 3 * u * u * v * p[2] + u * u * u * p[3];
-    const Eigen::Vector3d d1 = 3 * (v * v * (p[1] - p[0]) + 2 * u * v * (p[2] - p[1]) + u * u * (p[3] - p[2])) / span;
-    const Eigen::Vector3d d2 = 6 * (v * (p[2] - 2 * p[1] + p[0]) + u * (p[3] - 2 * p[2] + p[1])) / (span * span);
+    const Eigen::Vector3d c =
+        v * v * v * p[0] + 3 * u * v * v * p[1] + 3 * u * u * v * p[2] + u * u * u * p[3];
+    const Eigen::Vector3d d1 =
+        3 * (v * v * (p[1] - p[0]) + 2 * u * v * (p[2] - p[1]) + u * u * (p[3] - p[2])) / span;
+    const Eigen::Vector3d d2 =
+        6 * (v * (p[2] - 2 * p[1] + p[0]) + u * (p[3] - 2 * p[2] + p[1])) / (span * span);
     const Eigen::Vector3d d3 = 6 * (p[3] - 3 * p[2] + 3 * p[1] - p[0]) / (span * span * span);
     Curve3::Derivatives d;
     curve.derivatives(t, 3, d);
@@ -96,7 +98,8 @@ TEST(BSplineCurve, InterpolationPassesThroughEveryPoint) {
     // Recompute the chord-length parameters and check the points.
     double total = 0.0;
     std::vector<double> u{0.0};
-    for (std::size_t k = 1; k < points.size(); ++k) u.push_back(total += (points[k] - points[k - 1]).norm());
+    for (std::size_t k = 1; k < points.size(); ++k)
+      u.push_back(total += (points[k] - points[k - 1]).norm());
     for (std::size_t k = 0; k < points.size(); ++k) {
       EXPECT_LT((curve.evaluate(u[k] / total) - points[k]).norm(), 1e-10) << "degree " << degree;
     }

@@ -1,13 +1,13 @@
 // End-to-end tests of the `talus` executable: output contracts and errors.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <unistd.h>
 
 #include "talus/core/esri_ascii.hpp"
 
@@ -15,7 +15,8 @@ namespace {
 
 /// A scratch folder of this test process (ctest runs tests in parallel).
 std::filesystem::path scratch_dir() {
-  const auto dir = std::filesystem::temp_directory_path() / ("talus_cli_test_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("talus_cli_test_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   return dir;
 }
@@ -36,7 +37,8 @@ RunResult run_talus(const std::string& args) {
   if (!pipe) return result;
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.out.append(buffer.data(), n);
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.out.append(buffer.data(), n);
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::ifstream err(err_file);
@@ -44,14 +46,17 @@ RunResult run_talus(const std::string& args) {
   return result;
 }
 
-std::string dem(const char* name) { return std::string(TALUS_DATA_DIR) + "/terrain/" + name; }
+std::string dem(const char* name) {
+  return std::string(TALUS_DATA_DIR) + "/terrain/" + name;
+}
 
 std::size_t count_lines(const std::string& s) {
   return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
 }
 
 TEST(Cli, TerrainInfoPrintsTheDocumentedJson) {
-  const RunResult r = run_talus("terrain info '" + dem("west_bijou_escarpment_nasadem25m.asc") + "'");
+  const RunResult r =
+      run_talus("terrain info '" + dem("west_bijou_escarpment_nasadem25m.asc") + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j.at("ncols"), 122);
@@ -84,18 +89,20 @@ TEST(Cli, GeneratedTerrainsAreReproducibleAndReadable) {
   const auto dir = scratch_dir();
   const std::string a = (dir / "a.asc").string(), b = (dir / "b.asc").string();
   for (const std::string& out : {a, b}) {
-    const RunResult r = run_talus("terrain generate fractal --ncols 65 --nrows 33 --seed 9 -o '" + out + "'");
+    const RunResult r =
+        run_talus("terrain generate fractal --ncols 65 --nrows 33 --seed 9 -o '" + out + "'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   std::ifstream fa(a), fb(b);
-  const std::string ta((std::istreambuf_iterator<char>(fa)), {}), tb((std::istreambuf_iterator<char>(fb)), {});
+  const std::string ta((std::istreambuf_iterator<char>(fa)), {}),
+      tb((std::istreambuf_iterator<char>(fb)), {});
   EXPECT_EQ(ta, tb);
   const talus::ElevationGrid grid = talus::read_esri_ascii(a);
   EXPECT_EQ(grid.ncols(), 65u);
   EXPECT_EQ(grid.nrows(), 33u);
-  for (const char* kind : {"plane --slope 0.2", "cylinder --radius 500 --dip", "sphere-cap --radius 500",
-                           "gaussian-hills --hill 60,60,5,10 --hill 20,30,-2,5", "bowl",
-                           "eldershaw-yim"}) {
+  for (const char* kind :
+       {"plane --slope 0.2", "cylinder --radius 500 --dip", "sphere-cap --radius 500",
+        "gaussian-hills --hill 60,60,5,10 --hill 20,30,-2,5", "bowl", "eldershaw-yim"}) {
     const RunResult r = run_talus(std::string("terrain generate ") + kind + " -o '" + a + "'");
     EXPECT_EQ(r.exit_code, 0) << kind << ": " << r.err;
     EXPECT_NO_THROW(talus::read_esri_ascii(a)) << kind;
@@ -108,10 +115,13 @@ TEST(Cli, BadInputGivesOneLineOnStderrAndExitCodeOne) {
   std::ofstream(bad) << "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n4 oops 6\n";
   for (const std::string& args :
        {"terrain info '" + bad + "'", std::string("terrain info /nonexistent.asc"),
-        "terrain fit '" + bad + "'", "terrain fit '" + dem("rub_al_khali_dunes_srtm90m.asc") + "' --smoothing -1",
-        std::string("terrain generate fractal --fractal-dimension 3.5 -o '") + (dir / "x.asc").string() + "'",
+        "terrain fit '" + bad + "'",
+        "terrain fit '" + dem("rub_al_khali_dunes_srtm90m.asc") + "' --smoothing -1",
+        std::string("terrain generate fractal --fractal-dimension 3.5 -o '") +
+            (dir / "x.asc").string() + "'",
         std::string("terrain generate sphere-cap --radius 1 -o '") + (dir / "x.asc").string() + "'",
-        std::string("terrain frobnicate"), std::string("experiment no-such-experiment --out '") + dir.string() + "'"}) {
+        std::string("terrain frobnicate"),
+        std::string("experiment no-such-experiment --out '") + dir.string() + "'"}) {
     const RunResult r = run_talus(args);
     EXPECT_EQ(r.exit_code, 1) << args;
     EXPECT_EQ(count_lines(r.err), 1u) << args << ": " << r.err;
@@ -128,8 +138,8 @@ TEST(Cli, ExperimentListNamesTheGallery) {
 }
 
 TEST(Cli, HelpWorksEverywhere) {
-  for (const char* args : {"--help", "terrain --help", "terrain fit --help", "terrain generate fractal --help",
-                           "experiment --help"}) {
+  for (const char* args : {"--help", "terrain --help", "terrain fit --help",
+                           "terrain generate fractal --help", "experiment --help"}) {
     const RunResult r = run_talus(args);
     EXPECT_EQ(r.exit_code, 0) << args;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << args;

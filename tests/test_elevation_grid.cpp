@@ -49,7 +49,8 @@ TEST(ElevationGrid, NearestFillTakesTheClosestValidValue) {
   const ElevationGrid filled = fill_voids(grid, VoidFill::kNearest);
   EXPECT_EQ(filled.void_count(), 0u);
   EXPECT_DOUBLE_EQ(filled.at(4, 1), 3.0);  // neighbours: (3,1)=3, (3,0)=3, (4,0)=4; (3,0) is first
-  EXPECT_DOUBLE_EQ(filled.at(0, 0), 1.0);  // ties at equal distance go to the first valid node in scan order
+  EXPECT_DOUBLE_EQ(filled.at(0, 0),
+                   1.0);  // ties at equal distance go to the first valid node in scan order
 }
 
 TEST(ElevationGrid, FillingAnAllVoidGridIsAnError) {

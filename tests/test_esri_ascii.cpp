@@ -43,9 +43,9 @@ TEST(EsriAscii, ReadsCornerHeaderAndFlipsRowsToSouthFirst) {
 }
 
 TEST(EsriAscii, ReadsCentreHeaderAnyCaseAnyWhitespaceAndNoNodataKey) {
-  const ElevationGrid grid =
-      parse("NCOLS\t2\r\n  nrows 2\r\nXLLCENTER 1.5\r\nyllcenter -2.5\r\nCellSize 0.5\r\n"
-            "1.5 2e1\r\n\r\n  -3 +4\r\n");
+  const ElevationGrid grid = parse(
+      "NCOLS\t2\r\n  nrows 2\r\nXLLCENTER 1.5\r\nyllcenter -2.5\r\nCellSize 0.5\r\n"
+      "1.5 2e1\r\n\r\n  -3 +4\r\n");
   EXPECT_DOUBLE_EQ(grid.x_min(), 1.5);
   EXPECT_DOUBLE_EQ(grid.y_min(), -2.5);
   EXPECT_DOUBLE_EQ(grid.at(1, 1), 20.0);
@@ -122,10 +122,9 @@ TEST(EsriAscii, RejectsFilesThatAreNotGrids) {
 }
 
 TEST(EsriAscii, EveryBundledDemLoadsWithoutVoids) {
-  for (const char* name :
-       {"bigtujunga_srtm30m", "mount_st_helens_usgs30m", "rub_al_khali_dunes_srtm90m",
-        "west_bijou_escarpment_nasadem25m", "mars_gale_mola_megdr15km",
-        "mars_valles_marineris_mola_megdr15km"}) {
+  for (const char* name : {"bigtujunga_srtm30m", "mount_st_helens_usgs30m",
+                           "rub_al_khali_dunes_srtm90m", "west_bijou_escarpment_nasadem25m",
+                           "mars_gale_mola_megdr15km", "mars_valles_marineris_mola_megdr15km"}) {
     const ElevationGrid grid =
         read_esri_ascii(std::string(TALUS_DATA_DIR) + "/terrain/" + name + ".asc");
     EXPECT_EQ(grid.void_count(), 0u) << name;

@@ -9,7 +9,8 @@
 namespace talus {
 namespace {
 
-ElevationGrid sample(const std::function<double(double, double)>& f, double w, double h, double cell) {
+ElevationGrid sample(const std::function<double(double, double)>& f, double w, double h,
+                     double cell) {
   const auto nc = static_cast<std::size_t>(std::lround(w / cell)) + 1;
   const auto nr = static_cast<std::size_t>(std::lround(h / cell)) + 1;
   ElevationGrid grid(nc, nr, cell, 0.0, 0.0);
@@ -31,7 +32,8 @@ Vehicle rover(double mu = 0.7) {
 }
 
 /// J recomputed independently along a candidate's vertices.
-double recomputed_cost(const BPatch& terrain, const Vehicle& v, const CandidatePath& c, double spacing) {
+double recomputed_cost(const BPatch& terrain, const Vehicle& v, const CandidatePath& c,
+                       double spacing) {
   double total = 0.0;
   for (std::size_t k = 0; k + 1 < c.vertices.size(); ++k) {
     const Vec2 a = c.vertices[k], b = c.vertices[k + 1];
@@ -54,8 +56,10 @@ TEST(GlobalSearch, FlatTerrainGivesTheStraightLineAtMaxSpeed) {
 }
 
 TEST(GlobalSearch, AStarFindsTheSameCostAsTheFullFields) {
-  const BPatch terrain = BPatch::interpolate(sample(
-      [](double x, double y) { return 3.0 * std::sin(0.15 * x) * std::cos(0.11 * y) + 0.002 * x * y; }, 80, 60, 1.0));
+  const BPatch terrain = BPatch::interpolate(
+      sample([](double x,
+                double y) { return 3.0 * std::sin(0.15 * x) * std::cos(0.11 * y) + 0.002 * x * y; },
+             80, 60, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
   const GlobalSearchResult full = global_search(terrain, rover(0.6), {5, 5}, {75, 55}, options);
@@ -72,7 +76,8 @@ TEST(GlobalSearch, DiagonalOnFlatTerrainUsesKnightMovesWith16Neighbours) {
   GlobalSearchOptions options;
   options.candidates = 1;
   options.connectivity = 16;
-  const GlobalSearchResult r = global_search(flat, rover(), {5, 5}, {45, 25}, options);  // slope 1/2
+  const GlobalSearchResult r =
+      global_search(flat, rover(), {5, 5}, {45, 25}, options);  // slope 1/2
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk);
   EXPECT_NEAR(r.candidates[0].cost_seconds, std::hypot(40.0, 20.0) / 10.0, 1e-9);
   options.connectivity = 8;
@@ -83,7 +88,10 @@ TEST(GlobalSearch, DiagonalOnFlatTerrainUsesKnightMovesWith16Neighbours) {
 /// A Gaussian hill between start and goal.
 BPatch hill(double height, double sigma) {
   return BPatch::interpolate(sample(
-      [&](double x, double y) { return height * std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * sigma * sigma)); },
+      [&](double x, double y) {
+        return height *
+               std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * sigma * sigma));
+      },
       80, 60, 1.0));
 }
 
@@ -99,12 +107,14 @@ TEST(GlobalSearch, HighFrictionCrossesTheHillLowFrictionGoesAround) {
   const GlobalSearchResult grippy = global_search(terrain, rover(1.5), {5, 30}, {75, 30}, options);
   ASSERT_EQ(grippy.status, GlobalSearchStatus::kOk) << grippy.message;
   EXPECT_GT(max_height_on(grippy.candidates[0]), 3.0);  // over the top
-  const GlobalSearchResult slippery = global_search(terrain, rover(0.25), {5, 30}, {75, 30}, options);
+  const GlobalSearchResult slippery =
+      global_search(terrain, rover(0.25), {5, 30}, {75, 30}, options);
   ASSERT_EQ(slippery.status, GlobalSearchStatus::kOk) << slippery.message;
   EXPECT_LT(max_height_on(slippery.candidates[0]), 1.0);  // around it
   for (const GlobalSearchResult* r : {&grippy, &slippery}) {
-    EXPECT_NEAR(recomputed_cost(terrain, r == &grippy ? rover(1.5) : rover(0.25), r->candidates[0], 1.0),
-                r->candidates[0].cost_seconds, 1e-9 * r->candidates[0].cost_seconds);
+    EXPECT_NEAR(
+        recomputed_cost(terrain, r == &grippy ? rover(1.5) : rover(0.25), r->candidates[0], 1.0),
+        r->candidates[0].cost_seconds, 1e-9 * r->candidates[0].cost_seconds);
   }
 }
 
@@ -115,7 +125,8 @@ TEST(GlobalSearch, SymmetricTerrainGivesTwoMirrorCandidatesOfEqualCost) {
   const GlobalSearchResult r = global_search(terrain, rover(0.5), {5, 30}, {75, 30}, options);
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
   ASSERT_EQ(r.candidates.size(), 2u);
-  EXPECT_NEAR(r.candidates[0].cost_seconds, r.candidates[1].cost_seconds, 1e-6 * r.candidates[0].cost_seconds);
+  EXPECT_NEAR(r.candidates[0].cost_seconds, r.candidates[1].cost_seconds,
+              1e-6 * r.candidates[0].cost_seconds);
   // One passes north of the hill, the other south.
   double north = 0, south = 0;
   for (const CandidatePath& c : r.candidates) {
@@ -132,7 +143,8 @@ TEST(GlobalSearch, RidgeWithOneGapIsCrossedThroughTheGap) {
   const BPatch terrain = BPatch::interpolate(sample(
       [](double x, double y) {
         const double ridge = 8.0 * std::exp(-(x - 40) * (x - 40) / 8.0);
-        const double gap = (y > 45 && y < 52) ? 1.0 - std::exp(-std::pow(std::min(y - 45, 52 - y), 2) / 2.0) : 0.0;
+        const double gap =
+            (y > 45 && y < 52) ? 1.0 - std::exp(-std::pow(std::min(y - 45, 52 - y), 2) / 2.0) : 0.0;
         return ridge * (1.0 - 0.97 * gap);
       },
       80, 60, 1.0));
@@ -141,7 +153,8 @@ TEST(GlobalSearch, RidgeWithOneGapIsCrossedThroughTheGap) {
   const GlobalSearchResult r = global_search(terrain, rover(0.6), {10, 15}, {70, 15}, options);
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
   bool through_gap = false;
-  for (const Vec2& p : r.candidates[0].vertices) through_gap = through_gap || (std::abs(p.x() - 40) < 1.5 && p.y() > 44 && p.y() < 53);
+  for (const Vec2& p : r.candidates[0].vertices)
+    through_gap = through_gap || (std::abs(p.x() - 40) < 1.5 && p.y() > 44 && p.y() < 53);
   EXPECT_TRUE(through_gap);
 }
 
@@ -169,7 +182,8 @@ TEST(GlobalSearch, BadInputIsAnInputError) {
   options.connectivity = 12;
   EXPECT_THROW(global_search(flat, rover(), {5, 5}, {20, 20}, options), InputError);
   // Start on a slope steeper than friction.
-  const BPatch steep = BPatch::interpolate(sample([](double x, double y) { return x < 20 ? 2.0 * y : 0.0; }, 40, 40, 1.0));
+  const BPatch steep = BPatch::interpolate(
+      sample([](double x, double y) { return x < 20 ? 2.0 * y : 0.0; }, 40, 40, 1.0));
   GlobalSearchOptions ok;
   EXPECT_THROW(global_search(steep, rover(0.5), {10, 20}, {35, 20}, ok), InputError);
 }
@@ -177,7 +191,8 @@ TEST(GlobalSearch, BadInputIsAnInputError) {
 TEST(GlobalSearch, SlopeSteeperThanFrictionCanBeNeitherClimbedNorDescended) {
   // A plane of slope 0.5 with mu = 0.4: sliding limits do not bind on the fall
   // line, but the vehicle can neither climb it nor stop descending it.
-  const BPatch plane = BPatch::interpolate(sample([](double x, double) { return 0.5 * x; }, 20, 20, 1.0));
+  const BPatch plane =
+      BPatch::interpolate(sample([](double x, double) { return 0.5 * x; }, 20, 20, 1.0));
   const EdgeCost c = edge_cost(plane, rover(0.4), {5, 10}, {6, 10}, 5);
   EXPECT_EQ(c.forward, INFINITY);
   EXPECT_EQ(c.backward, INFINITY);

@@ -33,7 +33,9 @@ Curve2 circle(const Vec2& centre, double a, double b, int points = 400) {
   return Curve2::interpolate(pts);
 }
 
-Curve2 segment(const Vec2& a, const Vec2& b) { return Curve2::interpolate({a, b}); }
+Curve2 segment(const Vec2& a, const Vec2& b) {
+  return Curve2::interpolate({a, b});
+}
 
 /// Exact derivatives of the spherical cap z = sqrt(R^2 - x^2 - y^2).
 SurfacePoint sphere_point(double R, const Vec2& p) {
@@ -145,7 +147,8 @@ TEST(SurfacePath, SphereCapOnAFittedPatch) {
     // kappa^2 = kappa_n^2 + kappa_g^2 for a circle of radius a.
     EXPECT_NEAR(f.kappa_g, std::sqrt(1.0 / (a * a) - 1.0 / (R * R)), 1e-4);
   }
-  const PathFrame top = SurfacePath(cap, segment({-5, -5}, {5, 5})).frame_at_arc_length(0.5 * 14.15);
+  const PathFrame top =
+      SurfacePath(cap, segment({-5, -5}, {5, 5})).frame_at_arc_length(0.5 * 14.15);
   EXPECT_NEAR(top.kappa_n, -1.0 / R, 1e-3 / R);
   EXPECT_NEAR(top.kappa_g, 0.0, 1e-5);
 }
@@ -155,7 +158,8 @@ TEST(SurfacePath, CylinderCrestAlongAndAcrossTheAxis) {
   const BPatch crest = BPatch::interpolate(
       sample([&](double, double y) { return std::sqrt(R * R - y * y) - R; }, 10, 0.25));
   // Along the axis, offset y0: a straight ruling with a side slope.
-  const double y0 = -6.0, slope = std::asin(-y0 / R);  // ground rises towards the axis (to the left)
+  const double y0 = -6.0,
+               slope = std::asin(-y0 / R);  // ground rises towards the axis (to the left)
   const PathFrame along = SurfacePath(crest, segment({-8, y0}, {8, y0})).frame_at_arc_length(8.0);
   EXPECT_NEAR(along.kappa_n, 0.0, 1e-6);
   EXPECT_NEAR(along.kappa_g, 0.0, 1e-6);
@@ -174,7 +178,8 @@ TEST(SurfacePath, CylinderCrestAlongAndAcrossTheAxis) {
 TEST(SurfacePath, ArcLengthInverseRoundTrips) {
   const BPatch cap = BPatch::interpolate(
       sample([](double x, double y) { return 0.1 * x * x - 0.05 * x * y + std::sin(y); }, 10, 0.5));
-  const SurfacePath path(cap, Curve2::interpolate({Vec2(-8, -8), Vec2(-2, 0), Vec2(3, -4), Vec2(8, 7)}));
+  const SurfacePath path(cap,
+                         Curve2::interpolate({Vec2(-8, -8), Vec2(-2, 0), Vec2(3, -4), Vec2(8, 7)}));
   for (double s = 0; s <= path.length(); s += path.length() / 13) {
     const PathFrame f = path.frame_at_arc_length(s);
     EXPECT_NEAR(path.frame_at_parameter(f.parameter).s, s, 1e-9 * path.length());
@@ -200,7 +205,8 @@ namespace talus {
 namespace {
 
 TEST(SurfacePath, CopiesAndMovesStayValidAfterTheOriginalIsGone) {
-  const BPatch flat = BPatch::interpolate(sample([](double x, double) { return 0.1 * x; }, 10, 1.0));
+  const BPatch flat =
+      BPatch::interpolate(sample([](double x, double) { return 0.1 * x; }, 10, 1.0));
   std::vector<SurfacePath> paths;
   {
     SurfacePath original(flat, segment({-5, 0}, {5, 0}));

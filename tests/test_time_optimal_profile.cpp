@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <memory>
+#include <numbers>
 #include <random>
 
 #include "../optimal/src/step_controls.hpp"
@@ -43,10 +43,12 @@ ElevationGrid sample(const std::function<double(double, double)>& f, double x0, 
 }
 
 /// The library's default spacing (the issue: analytic times within 0.5 % at the default spacing).
-std::size_t stations_for(double length) { return static_cast<std::size_t>(length / kDefaultStationSpacing) + 1; }
+std::size_t stations_for(double length) {
+  return static_cast<std::size_t>(length / kDefaultStationSpacing) + 1;
+}
 
-TimeOptimalProfile solve_straight(const BPatch& patch, const Vec2& a, const Vec2& b, const Vehicle& v,
-                                  double v0 = 0.0, double v1 = 0.0) {
+TimeOptimalProfile solve_straight(const BPatch& patch, const Vec2& a, const Vec2& b,
+                                  const Vehicle& v, double v0 = 0.0, double v1 = 0.0) {
   const SurfacePath path(patch, Curve2::interpolate({a, b}));
   const VelocityLimits limits(v, path, stations_for(path.length()));
   TimeOptimalProfileSolver solver;
@@ -58,7 +60,8 @@ void expect_within_half_percent(double actual, double expected) {
 }
 
 TEST(TimeOptimalProfile, FlatStraightLineRestToRest) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
+  const BPatch flat =
+      BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
   const double L = 200.0, mu = 0.7;
   const TimeOptimalProfile p = solve_straight(flat, {5, 0}, {5 + L, 0}, vehicle(mu));
   ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
@@ -75,7 +78,8 @@ TEST(TimeOptimalProfile, FlatStraightLineRestToRest) {
 }
 
 TEST(TimeOptimalProfile, DriveBrakeAndSpeedLimitsGiveATrapezoid) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
+  const BPatch flat =
+      BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
   const double L = 200.0, A = 2.0, D = 4.0, V = 10.0;
   const TimeOptimalProfile p = solve_straight(flat, {5, 0}, {5 + L, 0}, vehicle(0.9, A, D, V));
   ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
@@ -96,7 +100,8 @@ TEST(TimeOptimalProfile, StraightUpAndDownAnInclinedPlane) {
   for (const bool up : {true, false}) {
     const Vec2 a = up ? Vec2(5, 0) : Vec2(5 + run, 0), b = up ? Vec2(5 + run, 0) : Vec2(5, 0);
     const TimeOptimalProfile p = solve_straight(plane, a, b, vehicle(mu));
-    ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message << " up=" << up << " n=" << p.s.size() << " L=" << p.s.back();
+    ASSERT_EQ(p.status, ProfileStatus::kOk)
+        << p.message << " up=" << up << " n=" << p.s.size() << " L=" << p.s.back();
     const double s = up ? 1.0 : -1.0;
     const double acc = kG * (mu * std::cos(alpha) - s * std::sin(alpha));
     const double dec = kG * (mu * std::cos(alpha) + s * std::sin(alpha));
@@ -107,9 +112,11 @@ TEST(TimeOptimalProfile, StraightUpAndDownAnInclinedPlane) {
 
 TEST(TimeOptimalProfile, FlatCircleAtItsSteadySpeedStaysThere) {
   const double r = 20.0, mu = 0.6;
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, -25, -25, 25, 25, 1.0));
+  const BPatch flat =
+      BPatch::interpolate(sample([](double, double) { return 0.0; }, -25, -25, 25, 25, 1.0));
   std::vector<Vec2> pts;
-  for (int k = 0; k <= 200; ++k) pts.emplace_back(r * std::cos(2 * kPi * k / 200), r * std::sin(2 * kPi * k / 200));
+  for (int k = 0; k <= 200; ++k)
+    pts.emplace_back(r * std::cos(2 * kPi * k / 200), r * std::sin(2 * kPi * k / 200));
   const SurfacePath path(flat, Curve2::interpolate(pts));
   const VelocityLimits limits(vehicle(mu), path, stations_for(path.length()));
   // The limit along the fitted circle wobbles by ~1e-5 relative: enter at the smallest one.
@@ -129,7 +136,8 @@ TEST(TimeOptimalProfile, CrestForcesSlowingToTheContactLimit) {
   // much faster than sqrt(g R cos(alpha)) and must slow down for the crest.
   const double R = 20.0, half = 12.0;
   const auto z = [&](double x, double) {
-    const double d = std::clamp(x - 30.0, -half, half), slope = half / std::sqrt(R * R - half * half);
+    const double d = std::clamp(x - 30.0, -half, half),
+                 slope = half / std::sqrt(R * R - half * half);
     const double cap = std::sqrt(R * R - d * d) - R;
     return cap - slope * (std::abs(x - 30.0) - std::abs(d));  // continues with the edge slope
   };
@@ -142,19 +150,23 @@ TEST(TimeOptimalProfile, CrestForcesSlowingToTheContactLimit) {
   std::size_t touching = 0, top = 0;
   for (std::size_t k = 0; k < p.v.size(); ++k) {
     EXPECT_LE(p.v[k], p.v_max[k] * (1 + 1e-9));
-    if (limits.limits(k).upper_binding == Constraint::kContact && p.v[k] >= 0.99 * p.v_max[k]) ++touching;
-    if (std::abs(limits.frame(k).point.x() - 30.0) < std::abs(limits.frame(top).point.x() - 30.0)) top = k;
+    if (limits.limits(k).upper_binding == Constraint::kContact && p.v[k] >= 0.99 * p.v_max[k])
+      ++touching;
+    if (std::abs(limits.frame(k).point.x() - 30.0) < std::abs(limits.frame(top).point.x() - 30.0))
+      top = k;
   }
   EXPECT_GT(touching, 0u) << "the profile never reaches the contact limit";
   expect_within_half_percent(limits.limits(top).v_max, std::sqrt(kG * R));
   EXPECT_LE(p.v[top], std::sqrt(kG * R) * 1.005);
   // On the crest the vehicle is slower than the flat-ground profile would allow there.
-  const double flat_peak = std::sqrt(2.0 * 2.0 * kG * 29.0);  // accelerate at 2 g over half the path
+  const double flat_peak =
+      std::sqrt(2.0 * 2.0 * kG * 29.0);  // accelerate at 2 g over half the path
   EXPECT_LT(p.v[top], 0.5 * flat_peak);
 }
 
 TEST(TimeOptimalProfile, StartOrEndAboveTheLimitIsAnInputError) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
+  const BPatch flat =
+      BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
   const SurfacePath path(flat, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
   const VelocityLimits limits(vehicle(0.7, INFINITY, INFINITY, 10.0), path, 51);
   TimeOptimalProfileSolver solver;
@@ -185,7 +197,8 @@ TEST(TimeOptimalProfile, UntraversableStationIsReportedWithItsConstraint) {
 }
 
 TEST(TimeOptimalProfile, NearlyCoincidentStationsAreMerged) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
+  const BPatch flat =
+      BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
   const SurfacePath path(flat, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
   // 5e7 stations would be 1e-9 m apart; use a huge count on a tiny path instead.
   const SurfacePath tiny(flat, Curve2::interpolate({Vec2(5, 0), Vec2(5 + 2e-8, 0)}));
@@ -247,16 +260,29 @@ TEST(TimeOptimalProfile, InvariantsOnRandomFractalPaths) {
         const double ds_prev = p.s[k] - p.s[k - 1];
         const double u_in = (x_up - p.v[k - 1] * p.v[k - 1]) / (2 * ds_prev);
         const double u_out = (p.v[k + 1] * p.v[k + 1] - x_up) / (2 * ds);
-        const bool in_ok = !detail::admissible_controls(c, limits.geometry(k - 1), p.v[k - 1] * p.v[k - 1], 0, 0, INFINITY).empty() &&
-                           [&] { auto a = detail::admissible_controls(c, limits.geometry(k - 1), p.v[k - 1] * p.v[k - 1], 0, 0, INFINITY);
-                                 auto b = detail::admissible_controls(c, limits.geometry(k), x_up, 0, 0, p.v_max[k] * p.v_max[k]);
-                                 return u_in >= std::max(a.lower, b.lower) && u_in <= std::min(a.upper, b.upper); }();
-        const bool out_ok = [&] { auto a = detail::admissible_controls(c, limits.geometry(k), x_up, 0, 0, p.v_max[k] * p.v_max[k]);
-                                  auto b = detail::admissible_controls(c, limits.geometry(k + 1), p.v[k + 1] * p.v[k + 1], 0, 0, INFINITY);
-                                  return u_out >= std::max(a.lower, b.lower) && u_out <= std::min(a.upper, b.upper); }();
-        EXPECT_FALSE(in_ok && out_ok) << "station " << k << " could go faster: v " << p.v[k - 1] << " " << p.v[k] << " "
-                                      << p.v[k + 1] << " vmax " << p.v_max[k] << " a " << p.a[k - 1] << " " << p.a[k]
-                                      << " ctrl " << to_string(p.control[k - 1]) << " " << to_string(p.control[k]) << " n " << p.v.size();
+        const bool in_ok =
+            !detail::admissible_controls(c, limits.geometry(k - 1), p.v[k - 1] * p.v[k - 1], 0, 0,
+                                         INFINITY)
+                 .empty() &&
+            [&] {
+              auto a = detail::admissible_controls(c, limits.geometry(k - 1),
+                                                   p.v[k - 1] * p.v[k - 1], 0, 0, INFINITY);
+              auto b = detail::admissible_controls(c, limits.geometry(k), x_up, 0, 0,
+                                                   p.v_max[k] * p.v_max[k]);
+              return u_in >= std::max(a.lower, b.lower) && u_in <= std::min(a.upper, b.upper);
+            }();
+        const bool out_ok = [&] {
+          auto a = detail::admissible_controls(c, limits.geometry(k), x_up, 0, 0,
+                                               p.v_max[k] * p.v_max[k]);
+          auto b = detail::admissible_controls(c, limits.geometry(k + 1), p.v[k + 1] * p.v[k + 1],
+                                               0, 0, INFINITY);
+          return u_out >= std::max(a.lower, b.lower) && u_out <= std::min(a.upper, b.upper);
+        }();
+        EXPECT_FALSE(in_ok && out_ok)
+            << "station " << k << " could go faster: v " << p.v[k - 1] << " " << p.v[k] << " "
+            << p.v[k + 1] << " vmax " << p.v_max[k] << " a " << p.a[k - 1] << " " << p.a[k]
+            << " ctrl " << to_string(p.control[k - 1]) << " " << to_string(p.control[k]) << " n "
+            << p.v.size();
       }
     }
   }

@@ -56,7 +56,8 @@ TEST(SpeedLimits, FlatCircleSlidingLimitIsSqrtMuGR) {
   EXPECT_EQ(l.v_min, 0.0);
   EXPECT_EQ(l.lower_binding, Constraint::kNone);
   // Turning right is symmetric.
-  EXPECT_DOUBLE_EQ(speed_limits(point_mass(mu, 0.5, 2.0), {0.0, -1.0 / r, 0.0, 0.0, 1.0}).v_max, l.v_max);
+  EXPECT_DOUBLE_EQ(speed_limits(point_mass(mu, 0.5, 2.0), {0.0, -1.0 / r, 0.0, 0.0, 1.0}).v_max,
+                   l.v_max);
 }
 
 TEST(SpeedLimits, FlatCircleTipoverLimitWhenTrackIsNarrow) {
@@ -89,7 +90,8 @@ TEST(SpeedLimits, BankedTrackMatchesTheTextbookFormula) {
   for (double theta_deg : {5.0, 15.0, 25.0}) {
     const double th = theta_deg * kPi / 180.0;
     const SpeedLimits l = speed_limits(point_mass(mu, 0.3, 5.0), banked_circle(r, th));
-    const double v2 = r * kG * (std::sin(th) + mu * std::cos(th)) / (std::cos(th) - mu * std::sin(th));
+    const double v2 =
+        r * kG * (std::sin(th) + mu * std::cos(th)) / (std::cos(th) - mu * std::sin(th));
     expect_within_half_percent(l.v_max, std::sqrt(v2), "bank " + std::to_string(theta_deg));
     EXPECT_EQ(l.upper_binding, Constraint::kSliding);
     EXPECT_EQ(l.v_min, 0.0);  // tan(theta) < mu: it can stand still on the bank
@@ -101,7 +103,8 @@ TEST(SpeedLimits, SteepBankHasALowerSpeedBound) {
   const double r = 40.0, mu = 0.5, th = 35.0 * kPi / 180.0;
   const SpeedLimits l = speed_limits(point_mass(mu, 0.3, 5.0), banked_circle(r, th));
   ASSERT_TRUE(l.traversable);
-  const double v2_min = r * kG * (std::sin(th) - mu * std::cos(th)) / (std::cos(th) + mu * std::sin(th));
+  const double v2_min =
+      r * kG * (std::sin(th) - mu * std::cos(th)) / (std::cos(th) + mu * std::sin(th));
   expect_within_half_percent(l.v_min, std::sqrt(v2_min));
   EXPECT_EQ(l.lower_binding, Constraint::kSliding);
   EXPECT_GT(l.v_max, l.v_min);
@@ -140,7 +143,8 @@ TEST(SpeedLimits, SideSlopeSteeperThanFrictionIsNotTraversable) {
   EXPECT_FALSE(tip.traversable);
   EXPECT_EQ(tip.upper_binding, Constraint::kTipover);
   // Numerically straight (curvature 1e-15) must read the same, not "traversable above 1e8 m/s".
-  const SpeedLimits almost = speed_limits(point_mass(0.6, 0.3, 1.0), {1e-15, 1e-15, 0.0, std::sin(alpha), std::cos(alpha)});
+  const SpeedLimits almost = speed_limits(point_mass(0.6, 0.3, 1.0),
+                                          {1e-15, 1e-15, 0.0, std::sin(alpha), std::cos(alpha)});
   EXPECT_FALSE(almost.traversable);
 }
 
@@ -172,7 +176,8 @@ TEST(AccelerationBounds, DriveAndBrakeLimitTheTractionForce) {
   EXPECT_EQ(flat.upper_binding, Constraint::kDrive);
   EXPECT_EQ(flat.lower_binding, Constraint::kBrake);
   // Uphill the same drive force leaves g sin(alpha) less for acceleration.
-  const AccelerationBounds up = acceleration_bounds(v, {0.0, 0.0, std::sin(alpha), 0.0, std::cos(alpha)}, 3.0);
+  const AccelerationBounds up =
+      acceleration_bounds(v, {0.0, 0.0, std::sin(alpha), 0.0, std::cos(alpha)}, 3.0);
   expect_within_half_percent(up.a_max, 2.0 - kG * std::sin(alpha));
   expect_within_half_percent(up.a_min, -4.0 - kG * std::sin(alpha));
 }
@@ -181,8 +186,12 @@ TEST(AccelerationBounds, SlopeSteeperThanFrictionCannotBeClimbedOrDescendedToASt
   const double mu = 0.5, alpha = std::atan(0.6);
   const Vehicle v = point_mass(mu, 0.5, 0.6);
   for (double speed : {0.0, 2.0, 10.0, 40.0}) {
-    EXPECT_LT(acceleration_bounds(v, {0.0, 0.0, std::sin(alpha), 0.0, std::cos(alpha)}, speed).a_max, 0.0);
-    EXPECT_GT(acceleration_bounds(v, {0.0, 0.0, -std::sin(alpha), 0.0, std::cos(alpha)}, speed).a_min, 0.0);
+    EXPECT_LT(
+        acceleration_bounds(v, {0.0, 0.0, std::sin(alpha), 0.0, std::cos(alpha)}, speed).a_max,
+        0.0);
+    EXPECT_GT(
+        acceleration_bounds(v, {0.0, 0.0, -std::sin(alpha), 0.0, std::cos(alpha)}, speed).a_min,
+        0.0);
   }
 }
 
@@ -218,7 +227,8 @@ TEST(RigidBody, LongVehicleAgreesWithThePointMassLaterally) {
     EXPECT_EQ(a.upper_binding, b.upper_binding);
     if (a.traversable && std::isfinite(a.v_max)) {
       const double speed = 0.5 * (a.v_min + a.v_max);
-      const AccelerationBounds aa = acceleration_bounds(pm, g, speed), bb = acceleration_bounds(rb, g, speed);
+      const AccelerationBounds aa = acceleration_bounds(pm, g, speed),
+                               bb = acceleration_bounds(rb, g, speed);
       EXPECT_DOUBLE_EQ(aa.a_max, bb.a_max);
       EXPECT_DOUBLE_EQ(aa.a_min, bb.a_min);
     }
@@ -246,7 +256,8 @@ TEST(VelocityLimits, FlatCirclePathAtEveryStation) {
   ASSERT_EQ(limits.size(), 500u);
   EXPECT_EQ(limits.first_untraversable(), limits.size());
   for (std::size_t k = 0; k < limits.size(); ++k) {
-    expect_within_half_percent(limits.limits(k).v_max, std::sqrt(mu * kG * r), "station " + std::to_string(k));
+    expect_within_half_percent(limits.limits(k).v_max, std::sqrt(mu * kG * r),
+                               "station " + std::to_string(k));
   }
   EXPECT_NEAR(limits.frame(limits.size() - 1).s, 2 * kPi * r, 1e-6);
 }
@@ -257,22 +268,25 @@ TEST(VelocityLimits, BankedBowlPathAgreesWithTheFormula) {
       sample([&](double x, double y) { return std::tan(theta) * std::hypot(x, y); }, 30, 0.5));
   const SurfacePath path(cone, circle(r));
   const VelocityLimits limits(point_mass(mu, 0.3, 5.0), path, 200);
-  const double v2 = r * kG * (std::sin(theta) + mu * std::cos(theta)) / (std::cos(theta) - mu * std::sin(theta));
+  const double v2 =
+      r * kG * (std::sin(theta) + mu * std::cos(theta)) / (std::cos(theta) - mu * std::sin(theta));
   for (std::size_t k = 0; k < limits.size(); k += 17) {
     expect_within_half_percent(limits.limits(k).v_max, std::sqrt(v2));
   }
 }
 
 TEST(VelocityLimits, FastSamplingArcLengthMatchesTheExactMap) {
-  const BPatch hills = BPatch::interpolate(
-      sample([](double x, double y) { return 3 * std::sin(0.1 * x) * std::cos(0.13 * y); }, 40, 1.0));
-  const SurfacePath path(hills, Curve2::interpolate({Vec2(-35, -30), Vec2(-10, 5), Vec2(12, -8), Vec2(33, 30)}));
+  const BPatch hills = BPatch::interpolate(sample(
+      [](double x, double y) { return 3 * std::sin(0.1 * x) * std::cos(0.13 * y); }, 40, 1.0));
+  const SurfacePath path(
+      hills, Curve2::interpolate({Vec2(-35, -30), Vec2(-10, 5), Vec2(12, -8), Vec2(33, 30)}));
   for (std::size_t n : {5u, 200u, 5000u}) {
     std::vector<PathFrame> frames;
     path.sample_uniform_parameter(n, frames);
     ASSERT_EQ(frames.size(), n);
     for (std::size_t k = 0; k < n; k += std::max<std::size_t>(1, n / 7)) {
-      EXPECT_NEAR(frames[k].s, path.frame_at_parameter(frames[k].parameter).s, 1e-6) << n << " " << k;
+      EXPECT_NEAR(frames[k].s, path.frame_at_parameter(frames[k].parameter).s, 1e-6)
+          << n << " " << k;
     }
     EXPECT_DOUBLE_EQ(frames.back().s, path.length());
   }
@@ -281,13 +295,15 @@ TEST(VelocityLimits, FastSamplingArcLengthMatchesTheExactMap) {
 TEST(VehicleFile, ParsesYamlAndJson) {
   const Vehicle v = parse_vehicle(
       "model: rigid_body\nfriction: 0.8\ncg_height: 0.5\nhalf_track: 0.6\nhalf_wheelbase: 1.2\n"
-      "max_speed: 15\nmax_accel: 3\nmax_decel: 6\n", "v.yaml");
+      "max_speed: 15\nmax_accel: 3\nmax_decel: 6\n",
+      "v.yaml");
   EXPECT_EQ(v.model, VehicleModel::kRigidBody);
   EXPECT_DOUBLE_EQ(v.gravity, 9.81);
   EXPECT_DOUBLE_EQ(v.half_wheelbase, 1.2);
   EXPECT_DOUBLE_EQ(v.max_decel, 6.0);
   const Vehicle j = parse_vehicle(
-      R"({"model": "point_mass", "gravity": 3.71, "friction": 0.5, "cg_height": 0.4, "half_track": 0.5})", "v.json");
+      R"({"model": "point_mass", "gravity": 3.71, "friction": 0.5, "cg_height": 0.4, "half_track": 0.5})",
+      "v.json");
   EXPECT_EQ(j.model, VehicleModel::kPointMass);
   EXPECT_DOUBLE_EQ(j.gravity, 3.71);
   EXPECT_TRUE(std::isinf(j.max_speed));
@@ -305,11 +321,15 @@ TEST(VehicleFile, RejectsBadFilesWithClearMessages) {
     }
   };
   expect_error(base + "wheels: 4\n", "unknown key 'wheels'");
-  expect_error("model: point_mass\ncg_height: 0.5\nhalf_track: 0.6\n", "missing required key 'friction'");
-  expect_error("model: rigid_body\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n", "half_wheelbase");
+  expect_error("model: point_mass\ncg_height: 0.5\nhalf_track: 0.6\n",
+               "missing required key 'friction'");
+  expect_error("model: rigid_body\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n",
+               "half_wheelbase");
   expect_error("friction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n", "'model'");
-  expect_error("model: tank\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n", "point_mass or rigid_body");
-  expect_error("model: point_mass\nfriction: 0\ncg_height: 0.5\nhalf_track: 0.6\n", "friction must be a positive");
+  expect_error("model: tank\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n",
+               "point_mass or rigid_body");
+  expect_error("model: point_mass\nfriction: 0\ncg_height: 0.5\nhalf_track: 0.6\n",
+               "friction must be a positive");
   expect_error("model: point_mass\nfriction: -0.3\ncg_height: 0.5\nhalf_track: 0.6\n", "friction");
   expect_error("model: point_mass\nfriction: 0.7\ncg_height: -1\nhalf_track: 0.6\n", "cg_height");
   expect_error("model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0\n", "half_track");

@@ -77,7 +77,10 @@ double ArcLengthTable::parameter(double s, const SpeedFunction& speed) const {
   for (int iteration = 0; iteration < 60; ++iteration) {
     const double f = cumulative_[k] + integrate(speed, parameters_[k], t) - s;
     if (std::abs(f) <= 1e-12 * std::max(1.0, total)) break;
-    if (f > 0) hi = t; else lo = t;
+    if (f > 0)
+      hi = t;
+    else
+      lo = t;
     const double v = speed(t);
     double next = v > 0 ? t - f / v : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);

@@ -73,7 +73,8 @@ BPatch BPatch::interpolate(const ElevationGrid& grid) {
   // Tensor-product system A_x C A_y^T = Z, solved one axis at a time.
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(static_cast<long>(nc) + 2, static_cast<long>(nr));
   for (std::size_t j = 0; j < nr; ++j)
-    for (std::size_t i = 0; i < nc; ++i) rhs(static_cast<long>(i) + 1, static_cast<long>(j)) = grid.at(i, j);
+    for (std::size_t i = 0; i < nc; ++i)
+      rhs(static_cast<long>(i) + 1, static_cast<long>(j)) = grid.at(i, j);
 
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_x(interpolation_matrix(nc));
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_y(interpolation_matrix(nr));
@@ -81,7 +82,8 @@ BPatch BPatch::interpolate(const ElevationGrid& grid) {
     throw SolverError("B-patch interpolation: the 1-D collocation matrix is singular");
   }
   const Eigen::MatrixXd half = lu_x.solve(rhs);  // (nc+2) × nr
-  Eigen::MatrixXd rhs_y = Eigen::MatrixXd::Zero(static_cast<long>(nr) + 2, static_cast<long>(nc) + 2);
+  Eigen::MatrixXd rhs_y =
+      Eigen::MatrixXd::Zero(static_cast<long>(nr) + 2, static_cast<long>(nc) + 2);
   rhs_y.middleRows(1, static_cast<long>(nr)) = half.transpose();
   const Eigen::MatrixXd control_t = lu_y.solve(rhs_y);  // (nr+2) × (nc+2)
   return BPatch(grid, control_t.transpose());

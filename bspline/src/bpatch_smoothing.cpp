@@ -95,8 +95,7 @@ BPatch BPatch::fit_smoothing(const ElevationGrid& grid, double lambda) {
   const SparseMatrix energy = SparseMatrix(Eigen::kroneckerProduct(gy.value, gx.second)) +
                               2.0 * SparseMatrix(Eigen::kroneckerProduct(gy.first, gx.first)) +
                               SparseMatrix(Eigen::kroneckerProduct(gy.second, gx.value));
-  const SparseMatrix normal =
-      SparseMatrix(collocation.transpose() * collocation) + lambda * energy;
+  const SparseMatrix normal = SparseMatrix(collocation.transpose() * collocation) + lambda * energy;
   const Eigen::VectorXd rhs = collocation.transpose() * data;
 
   Eigen::CholmodSupernodalLLT<SparseMatrix> cholesky;
@@ -107,8 +106,9 @@ BPatch BPatch::fit_smoothing(const ElevationGrid& grid, double lambda) {
   cholesky.cholmod().method[0].ordering = CHOLMOD_AMD;
   cholesky.compute(normal);
   if (cholesky.info() != Eigen::Success) {
-    throw SolverError("smoothing B-patch fit: CHOLMOD could not factor the normal equations "
-                      "(are the valid nodes collinear?)");
+    throw SolverError(
+        "smoothing B-patch fit: CHOLMOD could not factor the normal equations "
+        "(are the valid nodes collinear?)");
   }
   const Eigen::VectorXd solution = cholesky.solve(rhs);
   if (cholesky.info() != Eigen::Success || !solution.allFinite()) {

@@ -40,7 +40,8 @@ void BSplineCurve<Dim>::build_taylor_coefficients() {
     for (int k = 0; k <= p; ++k) {
       if (k > 0) factorial *= k;
       for (int j = 0; j <= p; ++j) {
-        c.col(k) += basis(k, j) / factorial * control_points_[span - first_span + static_cast<std::size_t>(j)];
+        c.col(k) += basis(k, j) / factorial *
+                    control_points_[span - first_span + static_cast<std::size_t>(j)];
       }
     }
   }
@@ -76,7 +77,8 @@ void BSplineCurve<Dim>::derivatives(double t, int order, Derivatives& out) const
 template <int Dim>
 BSplineCurve<Dim> BSplineCurve<Dim>::interpolate(const std::vector<Point>& points, int degree) {
   const std::size_t n = points.size();
-  if (n < 2) throw InputError("curve interpolation needs at least 2 points, got " + std::to_string(n));
+  if (n < 2)
+    throw InputError("curve interpolation needs at least 2 points, got " + std::to_string(n));
   std::vector<double> params(n, 0.0);
   for (std::size_t k = 1; k < n; ++k) {
     if (!points[k].allFinite() || !points[k - 1].allFinite()) {
@@ -116,7 +118,8 @@ BSplineCurve<Dim> BSplineCurve<Dim>::interpolate(const std::vector<Point>& point
   Eigen::SparseMatrix<double> a(static_cast<long>(n), static_cast<long>(n));
   a.setFromTriplets(entries.begin(), entries.end());
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(a);
-  if (lu.info() != Eigen::Success) throw SolverError("curve interpolation: singular collocation matrix");
+  if (lu.info() != Eigen::Success)
+    throw SolverError("curve interpolation: singular collocation matrix");
   Eigen::MatrixXd rhs(static_cast<long>(n), Dim);
   for (std::size_t k = 0; k < n; ++k) rhs.row(static_cast<long>(k)) = points[k].transpose();
   const Eigen::MatrixXd solution = lu.solve(rhs);

@@ -105,7 +105,8 @@ PathFrame SurfacePath::frame_at_parameter(double sigma) const {
 }
 
 PathFrame SurfacePath::frame_at_arc_length(double s) const {
-  PathFrame f = frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s, speed_function()));
+  PathFrame f =
+      frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s, speed_function()));
   f.s = s;
   return f;
 }

@@ -62,8 +62,8 @@ bool ElevationGrid::contains(const Vec2& p) const {
 double ElevationGrid::bilinear(const Vec2& p) const {
   if (!contains(p)) {
     std::ostringstream msg;
-    msg << "point (" << p.x() << ", " << p.y() << ") is outside the grid domain [" << x_min_
-        << ", " << x_max() << "] x [" << y_min_ << ", " << y_max() << "]";
+    msg << "point (" << p.x() << ", " << p.y() << ") is outside the grid domain [" << x_min_ << ", "
+        << x_max() << "] x [" << y_min_ << ", " << y_max() << "]";
     throw InputError(msg.str());
   }
   const double u = (p.x() - x_min_) / cellsize_;
@@ -98,7 +98,8 @@ ElevationGrid fill_voids(const ElevationGrid& grid, VoidFill method) {
     for (int dj = -1; dj <= 1; ++dj) {
       for (int di = -1; di <= 1; ++di) {
         const long ni = static_cast<long>(i) + di, nj = static_cast<long>(j) + dj;
-        if (ni < 0 || nj < 0 || ni >= static_cast<long>(nc) || nj >= static_cast<long>(nr)) continue;
+        if (ni < 0 || nj < 0 || ni >= static_cast<long>(nc) || nj >= static_cast<long>(nr))
+          continue;
         const auto ui = static_cast<std::size_t>(ni), uj = static_cast<std::size_t>(nj);
         if (out.valid(ui, uj)) continue;
         out.set(ui, uj, out.at(i, j));

@@ -73,7 +73,8 @@ struct Header {
   std::map<std::string, std::size_t> lines;
 };
 
-Header read_header(Tokenizer& tokens, const std::string& source, std::optional<std::string_view>& first_data) {
+Header read_header(Tokenizer& tokens, const std::string& source,
+                   std::optional<std::string_view>& first_data) {
   static const char* const kKnown[] = {"ncols",     "nrows",     "xllcorner", "xllcenter",
                                        "yllcorner", "yllcenter", "cellsize",  "nodata_value"};
   Header header;
@@ -97,7 +98,8 @@ Header read_header(Tokenizer& tokens, const std::string& source, std::optional<s
     }
     if (header.values.count(key)) fail(source, line, "header key '" + key + "' appears twice");
     auto value_token = tokens.next();
-    if (!value_token || tokens.line() != line) fail(source, line, "header key '" + key + "' has no value");
+    if (!value_token || tokens.line() != line)
+      fail(source, line, "header key '" + key + "' has no value");
     const auto value = parse_number(*value_token);
     if (!value || !std::isfinite(*value)) {
       fail(source, line,
@@ -109,11 +111,11 @@ Header read_header(Tokenizer& tokens, const std::string& source, std::optional<s
   }
 }
 
-std::size_t positive_count(const Header& header, const std::string& key, const std::string& source) {
+std::size_t positive_count(const Header& header, const std::string& key,
+                           const std::string& source) {
   const double v = header.values.at(key);
   if (v < 2 || v != std::floor(v) || v > 1e8) {
-    fail(source, header.lines.at(key),
-         key + " must be an integer >= 2, got " + std::to_string(v));
+    fail(source, header.lines.at(key), key + " must be an integer >= 2, got " + std::to_string(v));
   }
   return static_cast<std::size_t>(v);
 }
@@ -174,8 +176,10 @@ ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) 
       fail(source_name, line, "value '" + std::string(*token) + "' is not a number");
     }
     if (!std::isfinite(*value)) {
-      fail(source_name, line, "value '" + std::string(*token) + "' is not finite (NaN/Inf are not "
-                              "allowed; use NODATA_value for voids)");
+      fail(source_name, line,
+           "value '" + std::string(*token) +
+               "' is not finite (NaN/Inf are not "
+               "allowed; use NODATA_value for voids)");
     }
     const std::size_t row_from_north = count / ncols;
     const std::size_t i = count % ncols;
@@ -190,9 +194,9 @@ ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) 
   }
   if (count < expected) {
     fail(source_name, tokens.line(),
-         "file ends after " + std::to_string(count) + " values, expected ncols x nrows = " +
-             std::to_string(ncols) + " x " + std::to_string(nrows) + " = " +
-             std::to_string(expected));
+         "file ends after " + std::to_string(count) +
+             " values, expected ncols x nrows = " + std::to_string(ncols) + " x " +
+             std::to_string(nrows) + " = " + std::to_string(expected));
   }
   if (per_line.size() == nrows) {
     for (const auto& [line, n] : per_line) {

@@ -2,7 +2,9 @@
 
 namespace talus {
 
-VelocityLimits::VelocityLimits(const Vehicle& vehicle) : vehicle_(vehicle) { vehicle_.validate(); }
+VelocityLimits::VelocityLimits(const Vehicle& vehicle) : vehicle_(vehicle) {
+  vehicle_.validate();
+}
 
 VelocityLimits::VelocityLimits(const Vehicle& vehicle, const SurfacePath& path,
                                std::size_t stations)

@@ -52,11 +52,12 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   } catch (const YAML::Exception& e) {
     throw InputError(source + ": not valid YAML/JSON: " + e.what());
   }
-  if (!root.IsMap()) throw InputError(source + ": a vehicle file must be a mapping of keys to values");
+  if (!root.IsMap())
+    throw InputError(source + ": a vehicle file must be a mapping of keys to values");
 
-  static const std::set<std::string> kKnown = {"model",     "gravity",        "friction",
-                                               "cg_height", "half_track",     "half_wheelbase",
-                                               "max_speed", "max_accel",      "max_decel"};
+  static const std::set<std::string> kKnown = {"model",     "gravity",    "friction",
+                                               "cg_height", "half_track", "half_wheelbase",
+                                               "max_speed", "max_accel",  "max_decel"};
   std::set<std::string> seen;
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>("");
@@ -68,14 +69,16 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
     seen.insert(key);
   }
   Vehicle v;
-  if (!seen.count("model")) throw InputError(source + ": missing required key 'model' (point_mass or rigid_body)");
+  if (!seen.count("model"))
+    throw InputError(source + ": missing required key 'model' (point_mass or rigid_body)");
   const std::string model = root["model"].as<std::string>("");
   if (model == "point_mass") {
     v.model = VehicleModel::kPointMass;
   } else if (model == "rigid_body") {
     v.model = VehicleModel::kRigidBody;
   } else {
-    throw InputError(source + ": key 'model' must be point_mass or rigid_body, got '" + model + "'");
+    throw InputError(source + ": key 'model' must be point_mass or rigid_body, got '" + model +
+                     "'");
   }
   std::vector<std::string> required = {"friction", "cg_height", "half_track"};
   if (v.model == VehicleModel::kRigidBody) required.push_back("half_wheelbase");

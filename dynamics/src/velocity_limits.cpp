@@ -38,14 +38,22 @@ SquaredSpeedInterval lateral_ratio_condition(double m, double g, const StationGe
 
 std::string_view to_string(Constraint constraint) {
   switch (constraint) {
-    case Constraint::kNone: return "none";
-    case Constraint::kSliding: return "sliding";
-    case Constraint::kTipover: return "tipover";
-    case Constraint::kContact: return "contact";
-    case Constraint::kMaxSpeed: return "max_speed";
-    case Constraint::kPitchover: return "pitchover";
-    case Constraint::kDrive: return "drive";
-    case Constraint::kBrake: return "brake";
+    case Constraint::kNone:
+      return "none";
+    case Constraint::kSliding:
+      return "sliding";
+    case Constraint::kTipover:
+      return "tipover";
+    case Constraint::kContact:
+      return "contact";
+    case Constraint::kMaxSpeed:
+      return "max_speed";
+    case Constraint::kPitchover:
+      return "pitchover";
+    case Constraint::kDrive:
+      return "drive";
+    case Constraint::kBrake:
+      return "brake";
   }
   return "unknown";
 }

@@ -18,8 +18,8 @@ struct ExperimentContext {
 
 /// One registered experiment.
 struct Experiment {
-  std::string name;         ///< command-line name, e.g. "terrain-gallery"
-  std::string description;  ///< one line for `talus experiment list`
+  std::string name;                                   ///< command-line name, e.g. "terrain-gallery"
+  std::string description;                            ///< one line for `talus experiment list`
   std::function<void(const ExperimentContext&)> run;  ///< throws talus::Error on failure
 };
 

@@ -49,30 +49,45 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   };
 
   CLI::App* fractal = generate->add_subcommand(
-      "fractal", "fractional Brownian surface (Iagnemma-Shimoda-Shiller defaults: D 2.05, 0.24 m "
-                 "spacing, 4.2 m height scale)");
+      "fractal",
+      "fractional Brownian surface (Iagnemma-Shimoda-Shiller defaults: D 2.05, 0.24 m "
+      "spacing, 4.2 m height scale)");
   add_shape_options(*fractal, o.fractal.shape);
-  fractal->add_option("--fractal-dimension", o.fractal.fractal_dimension, "D in (2, 3)")->capture_default_str();
-  fractal->add_option("--height-scale", o.fractal.height_scale, "peak-to-peak range of the fractal part [m]")->capture_default_str();
-  fractal->add_option("--undulation-amplitude", o.fractal.undulation_amplitude, "[m]")->capture_default_str();
-  fractal->add_option("--undulation-wavelength", o.fractal.undulation_wavelength, "[m], 0 = grid's longer side")->capture_default_str();
-  fractal->add_option("--peaks", o.fractal.peaks, "number of discrete Gaussian peaks")->capture_default_str();
+  fractal->add_option("--fractal-dimension", o.fractal.fractal_dimension, "D in (2, 3)")
+      ->capture_default_str();
+  fractal
+      ->add_option("--height-scale", o.fractal.height_scale,
+                   "peak-to-peak range of the fractal part [m]")
+      ->capture_default_str();
+  fractal->add_option("--undulation-amplitude", o.fractal.undulation_amplitude, "[m]")
+      ->capture_default_str();
+  fractal
+      ->add_option("--undulation-wavelength", o.fractal.undulation_wavelength,
+                   "[m], 0 = grid's longer side")
+      ->capture_default_str();
+  fractal->add_option("--peaks", o.fractal.peaks, "number of discrete Gaussian peaks")
+      ->capture_default_str();
   fractal->add_option("--peak-height", o.fractal.peak_height, "[m]")->capture_default_str();
-  fractal->add_option("--peak-radius", o.fractal.peak_radius, "Gaussian standard deviation [m]")->capture_default_str();
+  fractal->add_option("--peak-radius", o.fractal.peak_radius, "Gaussian standard deviation [m]")
+      ->capture_default_str();
   fractal->add_option("--seed", o.fractal.seed, "random seed")->capture_default_str();
   output(fractal);
 
   CLI::App* plane = generate->add_subcommand("plane", "inclined plane");
   add_shape_options(*plane, o.plane.shape);
   plane->add_option("--slope", o.plane.slope, "inclination [rad]")->capture_default_str();
-  plane->add_option("--aspect", o.plane.aspect, "direction of steepest ascent [rad, CCW from east]")->capture_default_str();
-  plane->add_option("--z0", o.plane.z0, "elevation at the grid's centre [m]")->capture_default_str();
+  plane->add_option("--aspect", o.plane.aspect, "direction of steepest ascent [rad, CCW from east]")
+      ->capture_default_str();
+  plane->add_option("--z0", o.plane.z0, "elevation at the grid's centre [m]")
+      ->capture_default_str();
   output(plane);
 
-  CLI::App* cylinder = generate->add_subcommand("cylinder", "horizontal circular cylinder: crest or dip");
+  CLI::App* cylinder =
+      generate->add_subcommand("cylinder", "horizontal circular cylinder: crest or dip");
   add_shape_options(*cylinder, o.cylinder.shape);
   cylinder->add_option("--radius", o.cylinder.radius, "[m]")->capture_default_str();
-  cylinder->add_option("--axis", o.cylinder.axis_direction, "axis direction [rad, CCW from east]")->capture_default_str();
+  cylinder->add_option("--axis", o.cylinder.axis_direction, "axis direction [rad, CCW from east]")
+      ->capture_default_str();
   cylinder->add_flag("--dip", o.dip, "concave up (a dip) instead of a crest");
   cylinder->add_option("--z0", o.cylinder.z0, "elevation on the axis [m]")->capture_default_str();
   output(cylinder);
@@ -83,7 +98,8 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   sphere->add_option("--z0", o.sphere.z0, "elevation at the top [m]")->capture_default_str();
   output(sphere);
 
-  CLI::App* hills = generate->add_subcommand("gaussian-hills", "sum of Gaussian hills on a flat base");
+  CLI::App* hills =
+      generate->add_subcommand("gaussian-hills", "sum of Gaussian hills on a flat base");
   add_shape_options(*hills, o.hills.shape);
   hills->add_option("--hill", o.hill_specs, "X,Y,HEIGHT,SIGMA in metres (repeatable)")
       ->delimiter(',')
@@ -94,7 +110,8 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
 
   CLI::App* bowl = generate->add_subcommand("bowl", "paraboloid bowl");
   add_shape_options(*bowl, o.bowl.shape);
-  bowl->add_option("--curvature", o.bowl.curvature, "second derivative at the centre [1/m]")->capture_default_str();
+  bowl->add_option("--curvature", o.bowl.curvature, "second derivative at the centre [1/m]")
+      ->capture_default_str();
   bowl->add_option("--z0", o.bowl.z0, "[m]")->capture_default_str();
   output(bowl);
 
@@ -103,7 +120,8 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   add_shape_options(*ey, o.eldershaw_yim.shape);
   ey->add_option("--plateau-height", o.eldershaw_yim.plateau_height, "[m]")->capture_default_str();
   ey->add_option("--peak-height", o.eldershaw_yim.peak_height, "[m]")->capture_default_str();
-  ey->add_option("--roughness", o.eldershaw_yim.roughness, "standard deviation [m]")->capture_default_str();
+  ey->add_option("--roughness", o.eldershaw_yim.roughness, "standard deviation [m]")
+      ->capture_default_str();
   ey->add_option("--seed", o.eldershaw_yim.seed, "random seed")->capture_default_str();
   output(ey);
 
@@ -133,8 +151,9 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Talus: time-optimal trajectory planning of ground vehicles over rough terrain.\n"
-               "Units are SI; x east, y north, z up (see README, Conventions)."};
+  CLI::App app{
+      "Talus: time-optimal trajectory planning of ground vehicles over rough terrain.\n"
+      "Units are SI; x east, y north, z up (see README, Conventions)."};
   app.name("talus");
   app.require_subcommand(1);
 
@@ -143,16 +162,18 @@ int main(int argc, char** argv) {
 
   std::string info_path;
   CLI::App* info = terrain->add_subcommand(
-      "info", "print JSON: ncols, nrows, cellsize, xmin, xmax, ymin, ymax (node domain: the "
-              "centres of the edge cells), zmin, zmax, voids");
+      "info",
+      "print JSON: ncols, nrows, cellsize, xmin, xmax, ymin, ymax (node domain: the "
+      "centres of the edge cells), zmin, zmax, voids");
   info->add_option("FILE", info_path, "ESRI ASCII grid (.asc)")->required();
   info->callback([&info_path]() { std::cout << ex::terrain_info(info_path).dump(2) << "\n"; });
 
   ex::TerrainFitRequest fit_request;
   std::string fill;
   CLI::App* fit = terrain->add_subcommand(
-      "fit", "fit a bicubic B-patch and print JSON: max_node_residual, rms_residual [m], "
-             "fit_seconds, patches");
+      "fit",
+      "fit a bicubic B-patch and print JSON: max_node_residual, rms_residual [m], "
+      "fit_seconds, patches");
   fit->add_option("FILE", fit_request.path, "ESRI ASCII grid (.asc)")->required();
   fit->add_option("--smoothing", fit_request.smoothing,
                   "curvature weight lambda > 0 (dimensionless) of the smoothing fit; without it "
@@ -307,7 +328,8 @@ int main(int argc, char** argv) {
   experiment->callback([&]() {
     const std::vector<ex::Experiment> experiments = ex::all_experiments();
     if (experiment_name == "list") {
-      for (const ex::Experiment& e : experiments) std::cout << e.name << "\t" << e.description << "\n";
+      for (const ex::Experiment& e : experiments)
+        std::cout << e.name << "\t" << e.description << "\n";
       return;
     }
     for (const ex::Experiment& e : experiments) {
@@ -321,8 +343,7 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << (context.output_dir / "report.md").string() << "\n";
       return;
     }
-    throw InputError("unknown experiment '" + experiment_name +
-                     "' (run `talus experiment list`)");
+    throw InputError("unknown experiment '" + experiment_name + "' (run `talus experiment list`)");
   });
 
   try {

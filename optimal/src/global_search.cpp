@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
-#include <cstring>
 #include <sstream>
 
 #include "talus/bspline/surface_path.hpp"
@@ -29,15 +29,18 @@ struct TangentialForces {
   double drive = -kInf, brake = -kInf;
 };
 
-TangentialForces tangential_forces(const Vehicle& vehicle, const StationGeometry& g, const SpeedLimits& l) {
+TangentialForces tangential_forces(const Vehicle& vehicle, const StationGeometry& g,
+                                   const SpeedLimits& l) {
   TangentialForces out;
-  const double pitch_ratio = vehicle.model == VehicleModel::kRigidBody ? vehicle.half_wheelbase / vehicle.cg_height : kInf;
+  const double pitch_ratio =
+      vehicle.model == VehicleModel::kRigidBody ? vehicle.half_wheelbase / vehicle.cg_height : kInf;
   for (const double v : {l.v_min, l.v_max}) {
     const double x = v * v;
     const double normal = std::max(vehicle.gravity * g.k_r + g.kappa_n * x, 0.0);
     const double lateral = vehicle.gravity * g.k_q + g.kappa_g * x;
     const double friction = vehicle.friction * normal;
-    const double width = std::min(std::sqrt(std::max(friction * friction - lateral * lateral, 0.0)), pitch_ratio * normal);
+    const double width = std::min(std::sqrt(std::max(friction * friction - lateral * lateral, 0.0)),
+                                  pitch_ratio * normal);
     out.drive = std::max(out.drive, std::min(width, vehicle.max_accel));
     out.brake = std::max(out.brake, std::min(width, vehicle.max_decel));
   }
@@ -54,9 +57,9 @@ EdgeCost edge_cost_impl(const BPatch& terrain, const Vehicle& vehicle, const Vec
     const double tau = static_cast<double>(k) / (stations - 1);
     const Vec2 p = (k == stations - 1) ? b : Vec2(a + tau * d1);
     if (!terrain.on_data(p)) return {kInf, kInf, kInf};
-    const SurfacePoint sp = (k == 0 && at_a)                  ? *at_a
+    const SurfacePoint sp = (k == 0 && at_a)              ? *at_a
                             : (k == stations - 1 && at_b) ? *at_b
-                                                              : terrain.evaluate(p);
+                                                          : terrain.evaluate(p);
     const PathFrame f = lift_to_surface(p, sp, d1, Vec2::Zero());
     const StationGeometry g = StationGeometry::from(f);
     const SpeedLimits l = speed_limits(vehicle, g);
@@ -95,7 +98,8 @@ namespace {
 std::vector<std::pair<int, int>> neighbour_offsets(int connectivity) {
   std::vector<std::pair<int, int>> positive = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
   if (connectivity >= 16) {
-    for (const auto& o : std::vector<std::pair<int, int>>{{2, 1}, {1, 2}, {-1, 2}, {-2, 1}}) positive.push_back(o);
+    for (const auto& o : std::vector<std::pair<int, int>>{{2, 1}, {1, 2}, {-1, 2}, {-2, 1}})
+      positive.push_back(o);
   }
   if (connectivity >= 32) {
     for (const auto& o : std::vector<std::pair<int, int>>{
@@ -112,10 +116,17 @@ std::vector<std::pair<int, int>> neighbour_offsets(int connectivity) {
 class Lattice {
  public:
   Lattice(const BPatch& terrain, const Vehicle& vehicle, double spacing, int connectivity)
-      : terrain_(terrain), vehicle_(vehicle), spacing_(spacing), offsets_(neighbour_offsets(connectivity)) {
+      : terrain_(terrain),
+        vehicle_(vehicle),
+        spacing_(spacing),
+        offsets_(neighbour_offsets(connectivity)) {
     origin_ = Vec2(terrain.x_min(), terrain.y_min());
-    nx_ = static_cast<std::size_t>(std::floor((terrain.x_max() - terrain.x_min()) / spacing + 1e-9)) + 1;
-    ny_ = static_cast<std::size_t>(std::floor((terrain.y_max() - terrain.y_min()) / spacing + 1e-9)) + 1;
+    nx_ =
+        static_cast<std::size_t>(std::floor((terrain.x_max() - terrain.x_min()) / spacing + 1e-9)) +
+        1;
+    ny_ =
+        static_cast<std::size_t>(std::floor((terrain.y_max() - terrain.y_min()) / spacing + 1e-9)) +
+        1;
     if (nx_ < 2 || ny_ < 2) throw InputError("lattice spacing is larger than the terrain");
     if (nx_ * ny_ > 50'000'000) throw InputError("lattice too large: increase --lattice-spacing");
     half_ = offsets_.size() / 2;
@@ -138,8 +149,10 @@ class Lattice {
     return origin_ + spacing_ * Vec2(static_cast<double>(n % nx_), static_cast<double>(n / nx_));
   }
   std::uint32_t nearest(const Vec2& p) const {
-    const auto i = static_cast<std::size_t>(std::clamp(std::lround((p.x() - origin_.x()) / spacing_), 0L, static_cast<long>(nx_) - 1));
-    const auto j = static_cast<std::size_t>(std::clamp(std::lround((p.y() - origin_.y()) / spacing_), 0L, static_cast<long>(ny_) - 1));
+    const auto i = static_cast<std::size_t>(
+        std::clamp(std::lround((p.x() - origin_.x()) / spacing_), 0L, static_cast<long>(nx_) - 1));
+    const auto j = static_cast<std::size_t>(
+        std::clamp(std::lround((p.y() - origin_.y()) / spacing_), 0L, static_cast<long>(ny_) - 1));
     return static_cast<std::uint32_t>(j * nx_ + i);
   }
   std::size_t edges_evaluated() const { return evaluated_; }
@@ -149,7 +162,8 @@ class Lattice {
     const auto [dx, dy] = offsets_[k];
     const long i = static_cast<long>(n % nx_) + dx, j = static_cast<long>(n / nx_) + dy;
     if (i < 0 || j < 0 || i >= static_cast<long>(nx_) || j >= static_cast<long>(ny_)) return kInf;
-    const auto m = static_cast<std::uint32_t>(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i));
+    const auto m =
+        static_cast<std::uint32_t>(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i));
     if (k < half_) return ensure(n, m, k).first;
     return ensure(m, n, k - half_).second;  // m -> n is positive: n -> m is its backward
   }
@@ -158,7 +172,8 @@ class Lattice {
     const auto [dx, dy] = offsets_[k];
     const long i = static_cast<long>(n % nx_) + dx, j = static_cast<long>(n / nx_) + dy;
     if (i < 0 || j < 0 || i >= static_cast<long>(nx_) || j >= static_cast<long>(ny_)) return kInf;
-    const auto m = static_cast<std::uint32_t>(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i));
+    const auto m =
+        static_cast<std::uint32_t>(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i));
     if (k < half_) return ensure(n, m, k).second;  // m -> n is the backward of n -> m
     return ensure(m, n, k - half_).first;
   }
@@ -180,7 +195,8 @@ class Lattice {
       EdgeCost c{kInf, kInf, kInf};
       if (on_data_[a] && on_data_[b]) {
         const Vec2 pa = position(a), pb = position(b);
-        c = edge_cost_impl(terrain_, vehicle_, pa, pb, stations_for((pb - pa).norm()), &surface_[a], &surface_[b]);
+        c = edge_cost_impl(terrain_, vehicle_, pa, pb, stations_for((pb - pa).norm()), &surface_[a],
+                           &surface_[b]);
       }
       forward_[slot] = c.forward;
       backward_[slot] = c.backward;
@@ -230,19 +246,24 @@ double hausdorff(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
 
 void GlobalSearchOptions::validate() const {
   if (!(lattice_spacing >= 0.0) || !std::isfinite(lattice_spacing)) {
-    throw InputError("GlobalSearchOptions.lattice_spacing must be >= 0 (0 = cell size), got " + std::to_string(lattice_spacing));
+    throw InputError("GlobalSearchOptions.lattice_spacing must be >= 0 (0 = cell size), got " +
+                     std::to_string(lattice_spacing));
   }
   if (connectivity != 8 && connectivity != 16 && connectivity != 32) {
-    throw InputError("GlobalSearchOptions.connectivity must be 8, 16 or 32, got " + std::to_string(connectivity));
+    throw InputError("GlobalSearchOptions.connectivity must be 8, 16 or 32, got " +
+                     std::to_string(connectivity));
   }
   if (candidates < 1) throw InputError("GlobalSearchOptions.candidates must be >= 1");
   if (!(distinctness >= 0.0)) throw InputError("GlobalSearchOptions.distinctness must be >= 0");
   if (!(max_cost_ratio >= 1.0)) throw InputError("GlobalSearchOptions.max_cost_ratio must be >= 1");
 }
 
-EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a, const Vec2& b, int stations) {
-  if (stations < 3 || stations % 2 == 0) throw InputError("edge_cost: stations must be odd and >= 3");
-  if (!terrain.contains(a) || !terrain.contains(b)) throw InputError("edge_cost: edge leaves the terrain");
+EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a, const Vec2& b,
+                   int stations) {
+  if (stations < 3 || stations % 2 == 0)
+    throw InputError("edge_cost: stations must be odd and >= 3");
+  if (!terrain.contains(a) || !terrain.contains(b))
+    throw InputError("edge_cost: edge leaves the terrain");
   return edge_cost_impl(terrain, vehicle, a, b, stations, nullptr, nullptr);
 }
 
@@ -252,15 +273,17 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   options.validate();
   vehicle.validate();
   if (!std::isfinite(vehicle.max_speed)) {
-    throw InputError("the global search needs a vehicle with a finite max_speed: its cost is the time "
-                     "at the speed limit, and an unlimited straight road would cost nothing");
+    throw InputError(
+        "the global search needs a vehicle with a finite max_speed: its cost is the time "
+        "at the speed limit, and an unlimited straight road would cost nothing");
   }
   const auto check_point = [&terrain](const char* which, const Vec2& p) {
     std::ostringstream msg;
     msg.precision(12);
     if (!p.allFinite() || !terrain.contains(p)) {
-      msg << which << " (" << p.x() << ", " << p.y() << ") is off the map [" << terrain.x_min() << ", "
-          << terrain.x_max() << "] x [" << terrain.y_min() << ", " << terrain.y_max() << "]";
+      msg << which << " (" << p.x() << ", " << p.y() << ") is off the map [" << terrain.x_min()
+          << ", " << terrain.x_max() << "] x [" << terrain.y_min() << ", " << terrain.y_max()
+          << "]";
       throw InputError(msg.str());
     }
     if (!terrain.on_data(p)) {
@@ -271,7 +294,8 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   check_point("start", start);
   check_point("goal", goal);
 
-  const double spacing = options.lattice_spacing > 0.0 ? options.lattice_spacing : terrain.cellsize();
+  const double spacing =
+      options.lattice_spacing > 0.0 ? options.lattice_spacing : terrain.cellsize();
   Lattice lattice(terrain, vehicle, spacing, options.connectivity);
   GlobalSearchResult result;
   result.nodes = lattice.size();
@@ -285,14 +309,17 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   for (const auto& [which, node] : {std::pair{"start", s}, std::pair{"goal", g}}) {
     bool any = false;
     for (std::size_t k = 0; k < lattice.offsets() && !any; ++k) {
-      any = std::strcmp(which, "start") == 0 ? lattice.cost(node, k) < kInf : lattice.cost_into(node, k) < kInf;
+      any = std::strcmp(which, "start") == 0 ? lattice.cost(node, k) < kInf
+                                             : lattice.cost_into(node, k) < kInf;
     }
     if (!any) {
       std::ostringstream msg;
       msg.precision(12);
       const Vec2 p = lattice.position(node);
-      msg << which << " node (" << p.x() << ", " << p.y() << ") is on untraversable terrain: every lattice edge "
-          << (std::strcmp(which, "start") == 0 ? "from" : "into") << " it is too steep or unstable for the vehicle";
+      msg << which << " node (" << p.x() << ", " << p.y()
+          << ") is on untraversable terrain: every lattice edge "
+          << (std::strcmp(which, "start") == 0 ? "from" : "into")
+          << " it is too steep or unstable for the vehicle";
       throw InputError(msg.str());
     }
   }
@@ -314,14 +341,16 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
     const Vec2 goal_position = lattice.position(g);
     const double inverse_speed = 1.0 / vehicle.max_speed;
     const ShortestPathTree tree = shortest_paths(n, s, forward, g, [&](std::uint32_t node) {
-      return (lattice.position(node) - goal_position).norm() * inverse_speed;  // 3-D length >= planar
+      return (lattice.position(node) - goal_position).norm() *
+             inverse_speed;  // 3-D length >= planar
     });
     result.expanded = tree.expanded;
     result.edges_evaluated = lattice.edges_evaluated();
     if (!(tree.cost[g] < kInf)) {
       result.status = GlobalSearchStatus::kUnreachable;
       result.reachable_nodes = tree.expanded;
-      result.message = "goal unreachable: the search exhausted the " + std::to_string(tree.expanded) +
+      result.message = "goal unreachable: the search exhausted the " +
+                       std::to_string(tree.expanded) +
                        " lattice nodes reachable from the start without finding it";
     } else {
       CandidatePath candidate;
@@ -329,29 +358,34 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
       candidate.cost_seconds = tree.cost[g];
       for (std::size_t k = 0; k + 1 < candidate.vertices.size(); ++k) {
         const Vec2 a = candidate.vertices[k], b = candidate.vertices[k + 1];
-        candidate.length_m += edge_cost_impl(terrain, vehicle, a, b, lattice.stations_for((b - a).norm()), nullptr, nullptr).length;
+        candidate.length_m += edge_cost_impl(terrain, vehicle, a, b,
+                                             lattice.stations_for((b - a).norm()), nullptr, nullptr)
+                                  .length;
       }
       result.candidates.push_back(std::move(candidate));
       result.status = GlobalSearchStatus::kOk;
       result.reachable_nodes = tree.expanded;
     }
-    result.search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.search_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
   }
   const ShortestPathTree from_start = shortest_paths(n, s, forward);
   result.expanded += from_start.expanded;
-  result.reachable_nodes = static_cast<std::size_t>(
-      std::count_if(from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
+  result.reachable_nodes = static_cast<std::size_t>(std::count_if(
+      from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
   if (!(from_start.cost[g] < kInf)) {
     std::ostringstream msg;
-    msg << "goal unreachable: from the start the vehicle can reach " << result.reachable_nodes << " of "
-        << n << " lattice nodes (" << 100.0 * static_cast<double>(result.reachable_nodes) / static_cast<double>(n)
+    msg << "goal unreachable: from the start the vehicle can reach " << result.reachable_nodes
+        << " of " << n << " lattice nodes ("
+        << 100.0 * static_cast<double>(result.reachable_nodes) / static_cast<double>(n)
         << " % of the terrain), and the goal is not among them";
     result.status = GlobalSearchStatus::kUnreachable;
     result.message = msg.str();
     result.cost_from_start = from_start.cost;
     result.edges_evaluated = lattice.edges_evaluated();
-    result.search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.search_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
   }
   const ShortestPathTree to_goal = shortest_paths(n, g, reverse);
@@ -361,26 +395,31 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   // node's path (start tree + goal tree) is accepted if it is far enough, in
   // Hausdorff distance, from every accepted one.
   const double best = from_start.cost[g];
-  const double separation = options.distinctness > 0.0
-                                ? options.distinctness
-                                : std::max(0.1 * (result.goal_node - result.start_node).norm(), 3.0 * spacing);
+  const double separation =
+      options.distinctness > 0.0
+          ? options.distinctness
+          : std::max(0.1 * (result.goal_node - result.start_node).norm(), 3.0 * spacing);
   std::vector<std::uint32_t> order;
   for (std::uint32_t k = 0; k < n; ++k) {
     const double through = from_start.cost[k] + to_goal.cost[k];
     if (through <= best * options.max_cost_ratio * (1 + 1e-12)) order.push_back(k);
   }
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const double ca = from_start.cost[a] + to_goal.cost[a], cb = from_start.cost[b] + to_goal.cost[b];
+    const double ca = from_start.cost[a] + to_goal.cost[a],
+                 cb = from_start.cost[b] + to_goal.cost[b];
     return ca != cb ? ca < cb : a < b;  // ties by node id: deterministic
   });
   for (const std::uint32_t node : order) {
     if (result.candidates.size() >= options.candidates) break;
     const Vec2 p = lattice.position(node);
     bool near = false;
-    for (const CandidatePath& c : result.candidates) near = near || point_to_polyline(p, c.vertices) < separation;
+    for (const CandidatePath& c : result.candidates)
+      near = near || point_to_polyline(p, c.vertices) < separation;
     if (near) continue;
     std::vector<std::uint32_t> ids = from_start.path_to(node);
-    for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone; m = to_goal.parent[m]) ids.push_back(m);
+    for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone;
+         m = to_goal.parent[m])
+      ids.push_back(m);
     CandidatePath candidate;
     for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
     bool distinct = true;
@@ -395,7 +434,9 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
     candidate.cost_seconds = from_start.cost[node] + to_goal.cost[node];
     for (std::size_t k = 0; k + 1 < candidate.vertices.size(); ++k) {
       const Vec2 a = candidate.vertices[k], b = candidate.vertices[k + 1];
-      candidate.length_m += edge_cost_impl(terrain, vehicle, a, b, lattice.stations_for((b - a).norm()), nullptr, nullptr).length;
+      candidate.length_m += edge_cost_impl(terrain, vehicle, a, b,
+                                           lattice.stations_for((b - a).norm()), nullptr, nullptr)
+                                .length;
     }
     result.candidates.push_back(std::move(candidate));
   }
@@ -403,7 +444,8 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   result.cost_from_start = from_start.cost;
   result.cost_to_goal = to_goal.cost;
   result.edges_evaluated = lattice.edges_evaluated();
-  result.search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.search_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }
 

@@ -64,8 +64,7 @@ struct VehicleConstants {
 /// quadratic's roots are widened by `slack` (relative) so that a state exactly
 /// on the limit curve, computed in floating point, stays admissible.
 inline ControlInterval admissible_controls(const VehicleConstants& c, const StationGeometry& s,
-                                           double y0, double beta, double x_lower,
-                                           double x_upper) {
+                                           double y0, double beta, double x_lower, double x_upper) {
   ControlInterval out;
   // State bounds on y0 + beta u, widened by rounding: a state pinned to one
   // value (the end speed, a boundary of the controllable set) must not come

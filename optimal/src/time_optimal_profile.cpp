@@ -47,7 +47,8 @@ struct Step {
 /// curve tangent to the braking curve).
 template <typename Feasible>
 double bisect_boundary(double a, double b, Feasible&& feasible) {
-  for (int iteration = 0; iteration < 200 && std::abs(b - a) > 1e-13 * (1.0 + std::abs(a)); ++iteration) {
+  for (int iteration = 0; iteration < 200 && std::abs(b - a) > 1e-13 * (1.0 + std::abs(a));
+       ++iteration) {
     const double mid = 0.5 * (a + b);
     (feasible(mid) ? a : b) = mid;
   }
@@ -64,18 +65,23 @@ std::string station_text(std::size_t station, double s) {
 
 void ProfileOptions::validate() const {
   if (!(start_speed >= 0.0) || !std::isfinite(start_speed)) {
-    throw InputError("ProfileOptions.start_speed must be finite and >= 0, got " + std::to_string(start_speed));
+    throw InputError("ProfileOptions.start_speed must be finite and >= 0, got " +
+                     std::to_string(start_speed));
   }
   if (!(end_speed >= 0.0) || !std::isfinite(end_speed)) {
-    throw InputError("ProfileOptions.end_speed must be finite and >= 0, got " + std::to_string(end_speed));
+    throw InputError("ProfileOptions.end_speed must be finite and >= 0, got " +
+                     std::to_string(end_speed));
   }
 }
 
 std::string_view to_string(ControlKind kind) {
   switch (kind) {
-    case ControlKind::kAccelerate: return "accelerate";
-    case ControlKind::kDecelerate: return "decelerate";
-    case ControlKind::kLimit: return "limit";
+    case ControlKind::kAccelerate:
+      return "accelerate";
+    case ControlKind::kDecelerate:
+      return "decelerate";
+    case ControlKind::kLimit:
+      return "limit";
   }
   return "unknown";
 }
@@ -142,14 +148,15 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
     const SpeedLimits& l = limits.limits(station);
     if (speed > l.v_max * (1.0 + 1e-9) + 1e-12) {
       std::ostringstream msg;
-      msg << which << " speed " << speed << " m/s is above the speed limit " << l.v_max
-          << " m/s (" << to_string(l.upper_binding) << ") at " << station_text(station, out.s[station]);
+      msg << which << " speed " << speed << " m/s is above the speed limit " << l.v_max << " m/s ("
+          << to_string(l.upper_binding) << ") at " << station_text(station, out.s[station]);
       throw InputError(msg.str());
     }
     if (speed < l.v_min * (1.0 - 1e-9) - 1e-12) {
       std::ostringstream msg;
       msg << which << " speed " << speed << " m/s is below the minimum speed " << l.v_min
-          << " m/s (" << to_string(l.lower_binding) << ") at " << station_text(station, out.s[station]);
+          << " m/s (" << to_string(l.lower_binding) << ") at "
+          << station_text(station, out.s[station]);
       throw InputError(msg.str());
     }
   };
@@ -244,8 +251,9 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
     const std::size_t i0 = kept_[jj], i1 = kept_[jj + 1];
     const Step step{constants, limits.geometry(i0), limits.geometry(i1), out.s[i1] - out.s[i0]};
     const ControlInterval own = detail::known_state_controls(constants, step.from, x);
-    const ControlInterval u = intersect(own, admissible_controls(constants, step.to, x, 2.0 * step.length,
-                                                                 lower_[jj + 1], upper_[jj + 1]));
+    const ControlInterval u =
+        intersect(own, admissible_controls(constants, step.to, x, 2.0 * step.length, lower_[jj + 1],
+                                           upper_[jj + 1]));
     if (u.empty()) {
       fail(i0, limits.limits(i0).upper_binding,
            "numerical failure: no admissible control at " + station_text(i0, out.s[i0]) +
@@ -253,9 +261,11 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
       return;
     }
     const double control = u.upper;
-    const double x_next = std::clamp(x + 2.0 * step.length * control, lower_[jj + 1], upper_[jj + 1]);
+    const double x_next =
+        std::clamp(x + 2.0 * step.length * control, lower_[jj + 1], upper_[jj + 1]);
     // The step's own bounds are those at both of its ends.
-    const ControlInterval bounds = intersect(own, detail::known_state_controls(constants, step.to, x_next));
+    const ControlInterval bounds =
+        intersect(own, detail::known_state_controls(constants, step.to, x_next));
     const double tolerance = 1e-7 * (1.0 + std::abs(control));
     out.control[i0] = control >= bounds.upper - tolerance   ? ControlKind::kAccelerate
                       : control <= bounds.lower + tolerance ? ControlKind::kDecelerate
@@ -264,7 +274,8 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
     const double v0 = std::sqrt(x), v1 = std::sqrt(std::max(x_next, 0.0));
     if (!(v0 + v1 > 0.0)) {
       fail(i0, limits.limits(i0).upper_binding,
-           "the vehicle comes to a standstill between " + station_text(i0, out.s[i0]) + " and the next station");
+           "the vehicle comes to a standstill between " + station_text(i0, out.s[i0]) +
+               " and the next station");
       return;
     }
     out.t[i1] = out.t[i0] + 2.0 * step.length / (v0 + v1);
@@ -285,7 +296,8 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
   out.control[n - 1] = out.control[kept_[m - 2]];
   for (std::size_t jj = 1; jj + 1 < m; ++jj) {
     const ControlKind before = out.control[kept_[jj - 1]], after = out.control[kept_[jj]];
-    if (before != after) out.switching_points.push_back({kept_[jj], out.s[kept_[jj]], before, after});
+    if (before != after)
+      out.switching_points.push_back({kept_[jj], out.s[kept_[jj]], before, after});
   }
   out.travel_time = out.t[n - 1];
   out.status = ProfileStatus::kOk;

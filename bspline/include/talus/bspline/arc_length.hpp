@@ -18,7 +18,8 @@ class ArcLengthTable {
 
   /// `breakpoints`: strictly increasing parameters where the speed may be
   /// non-smooth (the knots); each interval is split into `subdivisions` pieces.
-  ArcLengthTable(const std::vector<double>& breakpoints, int subdivisions, const SpeedFunction& speed);
+  ArcLengthTable(const std::vector<double>& breakpoints, int subdivisions,
+                 const SpeedFunction& speed);
 
   double length() const { return cumulative_.back(); }
   double parameter_begin() const { return parameters_.front(); }

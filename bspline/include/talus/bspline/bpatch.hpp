@@ -26,9 +26,9 @@ namespace talus {
 
 /// Elevation and its first and second derivatives at one point.
 struct SurfacePoint {
-  double z = 0.0;                  ///< elevation [m]
-  Vec2 gradient = Vec2::Zero();    ///< (z_x, z_y) [-]
-  Mat2 hessian = Mat2::Zero();     ///< [[z_xx, z_xy], [z_xy, z_yy]] [1/m]
+  double z = 0.0;                ///< elevation [m]
+  Vec2 gradient = Vec2::Zero();  ///< (z_x, z_y) [-]
+  Mat2 hessian = Mat2::Zero();   ///< [[z_xx, z_xy], [z_xy, z_yy]] [1/m]
 };
 
 /// How fit_smoothing() and interpolate() treat NODATA nodes.

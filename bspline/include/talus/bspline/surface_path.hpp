@@ -29,16 +29,16 @@ namespace talus {
 
 /// Geometry at one station of a path on the surface.
 struct PathFrame {
-  double parameter = 0.0;  ///< curve parameter σ
-  double s = 0.0;          ///< 3-D arc length from the start [m] (0 from lift_to_surface)
-  double speed = 0.0;      ///< ds/dσ [m per unit σ]
-  double speed_rate = 0.0; ///< d²s/dσ², for arc-length quadrature between stations
+  double parameter = 0.0;   ///< curve parameter σ
+  double s = 0.0;           ///< 3-D arc length from the start [m] (0 from lift_to_surface)
+  double speed = 0.0;       ///< ds/dσ [m per unit σ]
+  double speed_rate = 0.0;  ///< d²s/dσ², for arc-length quadrature between stations
   Vec3 point = Vec3::Zero();
-  Vec3 tangent = Vec3::Zero();  ///< t
-  Vec3 lateral = Vec3::Zero();  ///< q = r × t
-  Vec3 normal = Vec3::Zero();   ///< r
-  double kappa_n = 0.0;  ///< normal curvature [1/m]
-  double kappa_g = 0.0;  ///< geodesic curvature [1/m]
+  Vec3 tangent = Vec3::Zero();             ///< t
+  Vec3 lateral = Vec3::Zero();             ///< q = r × t
+  Vec3 normal = Vec3::Zero();              ///< r
+  double kappa_n = 0.0;                    ///< normal curvature [1/m]
+  double kappa_g = 0.0;                    ///< geodesic curvature [1/m]
   double k_t = 0.0, k_q = 0.0, k_r = 0.0;  ///< vertical unit vector in (t, q, r)
 };
 

@@ -66,7 +66,8 @@ class ElevationGrid {
 
 /// Ways to fill NODATA nodes, used only when the caller names one.
 enum class VoidFill {
-  kNearest,  ///< each void takes the value of the nearest valid node (grid distance, ties by scan order)
+  kNearest,  ///< each void takes the value of the nearest valid node (grid distance, ties by scan
+             ///< order)
 };
 
 /// A copy of `grid` with every NODATA node filled by `method`.

@@ -18,10 +18,11 @@ namespace talus {
 /// Distances and predecessors of a single-source search.
 struct ShortestPathTree {
   static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  std::vector<double> cost;           ///< cost from the source; +inf where unreached
-  std::vector<std::uint32_t> parent;  ///< predecessor on a best path; kNone at the source / unreached
-  std::size_t expanded = 0;           ///< nodes taken off the queue
-  std::size_t relaxed = 0;            ///< edges looked at
+  std::vector<double> cost;  ///< cost from the source; +inf where unreached
+  std::vector<std::uint32_t>
+      parent;                ///< predecessor on a best path; kNone at the source / unreached
+  std::size_t expanded = 0;  ///< nodes taken off the queue
+  std::size_t relaxed = 0;   ///< edges looked at
   /// Node ids from the source to `node` (empty if unreached).
   std::vector<std::uint32_t> path_to(std::uint32_t node) const {
     std::vector<std::uint32_t> path;

@@ -31,8 +31,8 @@ struct GridShape {
 /// diameters (0.24 m), height scale 35 wheel diameters (4.2 m).
 struct FractalTerrainOptions {
   GridShape shape{129, 129, 0.24, 0.0, 0.0};
-  double fractal_dimension = 2.05;  ///< D in (2, 3); Hurst exponent H = 3 - D
-  double height_scale = 4.2;        ///< peak-to-peak range of the fractal part [m] (>= 0)
+  double fractal_dimension = 2.05;     ///< D in (2, 3); Hurst exponent H = 3 - D
+  double height_scale = 4.2;           ///< peak-to-peak range of the fractal part [m] (>= 0)
   double undulation_amplitude = 0.0;   ///< amplitude of the gross undulation [m] (>= 0)
   double undulation_wavelength = 0.0;  ///< its wavelength [m]; 0 = the grid's longer side
   std::size_t peaks = 0;               ///< number of discrete peaks added

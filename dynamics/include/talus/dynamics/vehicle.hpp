@@ -16,12 +16,16 @@ enum class VehicleModel {
 /// A ground vehicle, SI units. Every field has its YAML key in brackets.
 struct Vehicle {
   VehicleModel model = VehicleModel::kPointMass;  ///< [model] point_mass | rigid_body
-  double gravity = 9.81;       ///< [gravity] g [m/s^2] (> 0)
-  double friction = 0.7;       ///< [friction] tyre–terrain coefficient mu (> 0); required
-  double cg_height = 0.5;      ///< [cg_height] h, centre of mass above the ground plane [m] (> 0); required
-  double half_track = 0.6;     ///< [half_track] b, centre of mass to the wheel contact line, lateral [m] (> 0); required
-  double half_wheelbase = 1.0; ///< [half_wheelbase] l, centre of mass to the axles [m] (> 0); rigid_body only, required there
-  double max_speed = std::numeric_limits<double>::infinity();  ///< [max_speed] [m/s] (> 0); omitted = unlimited
+  double gravity = 9.81;                          ///< [gravity] g [m/s^2] (> 0)
+  double friction = 0.7;  ///< [friction] tyre–terrain coefficient mu (> 0); required
+  double cg_height =
+      0.5;  ///< [cg_height] h, centre of mass above the ground plane [m] (> 0); required
+  double half_track = 0.6;  ///< [half_track] b, centre of mass to the wheel contact line, lateral
+                            ///< [m] (> 0); required
+  double half_wheelbase = 1.0;  ///< [half_wheelbase] l, centre of mass to the axles [m] (> 0);
+                                ///< rigid_body only, required there
+  double max_speed =
+      std::numeric_limits<double>::infinity();  ///< [max_speed] [m/s] (> 0); omitted = unlimited
   /// [max_accel] drive limit [m/s^2] (> 0); omitted = unlimited. It bounds the
   /// tangential traction force per unit mass, f_t = s̈ + g k_t <= max_accel, so
   /// it equals the largest s̈ on level ground and shrinks by g sin(α) uphill.

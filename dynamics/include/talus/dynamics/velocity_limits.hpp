@@ -56,7 +56,7 @@ std::string_view to_string(Constraint constraint);
 
 /// The path geometry one station's limits depend on (see surface_path.hpp).
 struct StationGeometry {
-  double kappa_n = 0.0, kappa_g = 0.0;    ///< [1/m]
+  double kappa_n = 0.0, kappa_g = 0.0;     ///< [1/m]
   double k_t = 0.0, k_q = 0.0, k_r = 1.0;  ///< vertical unit vector in (t, q, r)
   static StationGeometry from(const PathFrame& frame) {
     return {frame.kappa_n, frame.kappa_g, frame.k_t, frame.k_q, frame.k_r};
@@ -74,8 +74,8 @@ struct SquaredSpeedInterval {
 struct SpeedLimits {
   double v_min = 0.0;  ///< [m/s]; > 0 only where the vehicle must keep speed up
   double v_max = std::numeric_limits<double>::infinity();  ///< [m/s]; 0 = not traversable
-  Constraint lower_binding = Constraint::kNone;  ///< what sets v_min
-  Constraint upper_binding = Constraint::kNone;  ///< what sets v_max (or makes it 0)
+  Constraint lower_binding = Constraint::kNone;            ///< what sets v_min
+  Constraint upper_binding = Constraint::kNone;            ///< what sets v_max (or makes it 0)
   bool traversable = true;  ///< false: no speed satisfies every constraint (v_min = v_max = 0)
   /// Each constraint's own interval, for plots and diagnostics.
   SquaredSpeedInterval sliding, tipover, contact;
@@ -86,12 +86,12 @@ SpeedLimits speed_limits(const Vehicle& vehicle, const StationGeometry& g);
 
 /// Admissible tangential accelerations s̈ at one station and speed.
 struct AccelerationBounds {
-  double a_min = 0.0;  ///< [m/s²]
-  double a_max = 0.0;  ///< [m/s²]
+  double a_min = 0.0;     ///< [m/s²]
+  double a_max = 0.0;     ///< [m/s²]
   bool feasible = false;  ///< false: no s̈ is admissible at this speed (a_min/a_max meaningless)
   Constraint lower_binding = Constraint::kNone;  ///< sliding, pitchover or brake
   Constraint upper_binding = Constraint::kNone;  ///< sliding, pitchover or drive
-  Constraint violated = Constraint::kNone;  ///< when infeasible: which constraint fails
+  Constraint violated = Constraint::kNone;       ///< when infeasible: which constraint fails
 };
 
 /// [a_min, a_max] of `vehicle` at a station with geometry `g` moving at

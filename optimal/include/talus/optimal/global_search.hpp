@@ -77,7 +77,7 @@ EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a,
 struct GlobalSearchResult {
   GlobalSearchStatus status = GlobalSearchStatus::kUnreachable;
   std::string message;
-  std::vector<CandidatePath> candidates;  ///< ordered by cost, best first
+  std::vector<CandidatePath> candidates;                     ///< ordered by cost, best first
   Vec2 start_node = Vec2::Zero(), goal_node = Vec2::Zero();  ///< the snapped start and goal
   // Diagnostics.
   std::size_t nodes = 0;            ///< lattice nodes

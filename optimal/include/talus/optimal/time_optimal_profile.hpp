@@ -65,17 +65,18 @@ struct TimeOptimalProfile {
   ProfileStatus status = ProfileStatus::kInfeasible;
   std::string message;  ///< human-readable reason when infeasible
   double travel_time = std::numeric_limits<double>::infinity();  ///< [s]
-  std::vector<double> s;      ///< arc length [m]
-  std::vector<double> v;      ///< speed ṡ [m/s]
-  std::vector<double> a;      ///< s̈ of the step that starts at the station [m/s²] (last: previous step's)
-  std::vector<double> t;      ///< time of arrival [s]
-  std::vector<double> v_max;  ///< the speed limit there [m/s]
-  std::vector<Constraint> binding;      ///< what sets v_max there
-  std::vector<ControlKind> control;     ///< control of the step that starts at the station
+  std::vector<double> s;                                         ///< arc length [m]
+  std::vector<double> v;                                         ///< speed ṡ [m/s]
+  std::vector<double>
+      a;  ///< s̈ of the step that starts at the station [m/s²] (last: previous step's)
+  std::vector<double> t;             ///< time of arrival [s]
+  std::vector<double> v_max;         ///< the speed limit there [m/s]
+  std::vector<Constraint> binding;   ///< what sets v_max there
+  std::vector<ControlKind> control;  ///< control of the step that starts at the station
   std::vector<SwitchingPoint> switching_points;
-  std::size_t infeasible_station = 0;   ///< where it fails, when infeasible
+  std::size_t infeasible_station = 0;  ///< where it fails, when infeasible
   Constraint infeasible_binding = Constraint::kNone;
-  std::size_t merged_stations = 0;      ///< stations closer than 1e-9 m to the previous one
+  std::size_t merged_stations = 0;  ///< stations closer than 1e-9 m to the previous one
 };
 
 /// Solves along `limits`. Reuse one solver for many paths: its workspace
@@ -88,8 +89,8 @@ class TimeOptimalProfileSolver {
   void solve(const VelocityLimits& limits, const ProfileOptions& options, TimeOptimalProfile& out);
 
  private:
-  std::vector<double> lower_, upper_;       // controllable sets K_i in x = ṡ²
-  std::vector<std::size_t> kept_;           // stations after merging near-duplicates
+  std::vector<double> lower_, upper_;  // controllable sets K_i in x = ṡ²
+  std::vector<std::size_t> kept_;      // stations after merging near-duplicates
 };
 
 }  // namespace talus

@@ -227,6 +227,19 @@ double point_to_polyline(const Vec2& p, const std::vector<Vec2>& line) {
   return line.size() == 1 ? (p - line[0]).norm() : best;
 }
 
+/// 3-D length on the surface of a lattice polyline, by the edges' own quadrature.
+double surface_length(const BPatch& terrain, const Vehicle& vehicle,
+                      const std::vector<Vec2>& vertices, double spacing) {
+  double length = 0.0;
+  for (std::size_t k = 0; k + 1 < vertices.size(); ++k) {
+    const Vec2 a = vertices[k], b = vertices[k + 1];
+    length += edge_cost_impl(terrain, vehicle, a, b, edge_stations((b - a).norm(), spacing),
+                             nullptr, nullptr)
+                  .length;
+  }
+  return length;
+}
+
 /// Share of `a`'s vertices that lie within `radius` of the polyline `b`.
 double shared_fraction(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double radius) {
   std::size_t shared = 0;
@@ -356,12 +369,7 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
       CandidatePath candidate;
       for (std::uint32_t id : tree.path_to(g)) candidate.vertices.push_back(lattice.position(id));
       candidate.cost_seconds = tree.cost[g];
-      for (std::size_t k = 0; k + 1 < candidate.vertices.size(); ++k) {
-        const Vec2 a = candidate.vertices[k], b = candidate.vertices[k + 1];
-        candidate.length_m += edge_cost_impl(terrain, vehicle, a, b,
-                                             lattice.stations_for((b - a).norm()), nullptr, nullptr)
-                                  .length;
-      }
+      candidate.length_m = surface_length(terrain, vehicle, candidate.vertices, spacing);
       result.candidates.push_back(std::move(candidate));
       result.status = GlobalSearchStatus::kOk;
       result.reachable_nodes = tree.expanded;
@@ -432,12 +440,7 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
     }
     if (!distinct) continue;
     candidate.cost_seconds = from_start.cost[node] + to_goal.cost[node];
-    for (std::size_t k = 0; k + 1 < candidate.vertices.size(); ++k) {
-      const Vec2 a = candidate.vertices[k], b = candidate.vertices[k + 1];
-      candidate.length_m += edge_cost_impl(terrain, vehicle, a, b,
-                                           lattice.stations_for((b - a).norm()), nullptr, nullptr)
-                                .length;
-    }
+    candidate.length_m = surface_length(terrain, vehicle, candidate.vertices, spacing);
     result.candidates.push_back(std::move(candidate));
   }
   result.status = GlobalSearchStatus::kOk;

@@ -33,9 +33,34 @@ if [[ ! -x "$talus" ]]; then
 fi
 
 mkdir -p "$out_dir"
-"$talus" terrain fit data/terrain/west_bijou_escarpment_nasadem25m.asc --smoothing 1
-"$talus" experiment terrain-gallery --out "$out_dir"
+terrain=data/terrain/west_bijou_escarpment_nasadem25m.asc
+vehicle=data/vehicles/rover.yaml
+
+# 1. The terrain model: fit the B-patch to a real DEM (NASADEM, 25 m cells).
+"$talus" terrain fit "$terrain" --smoothing 1
+
+# 2. Until the B-spline optimiser lands, the main job is the two stages that
+#    exist: the global minimum-time search across the DEM (south-west to
+#    north-east corner), then the exact time-optimal velocity profile along
+#    the best candidate (rest to rest).
+"$talus" plan --terrain "$terrain" --vehicle "$vehicle" --stage global \
+  --start 556608.707595,4373160.214932 --goal 559633.707595,4375185.214932 \
+  --out "$out_dir/plan" > /dev/null
+echo "x,y" > "$out_dir/plan/best_candidate.csv"
+awk -F, 'NR > 1 && $1 == 0 { print $2 "," $3 }' "$out_dir/plan/candidates.csv" \
+  >> "$out_dir/plan/best_candidate.csv"
+"$talus" profile --terrain "$terrain" --vehicle "$vehicle" \
+  --path "$out_dir/plan/best_candidate.csv" -o "$out_dir/plan/profile.csv" \
+  > "$out_dir/plan/profile.json"
+echo "global search: $(grep -c '' "$out_dir/plan/candidates.csv") candidate vertices; profile:"
+head -c 400 "$out_dir/plan/profile.json"; echo " ..."
+
+# 3. Figures: the profile under its limit curve, the global search on a
+#    volcano, and the terrain gallery.
+for experiment in optimal-profile global-search terrain-gallery; do
+  "$talus" experiment "$experiment" --out "$out_dir"
+done
 
 echo
-echo "Figures are in: $out_dir"
-find "$out_dir" -type f \( -name '*.png' -o -name '*.svg' -o -name '*.pdf' \) | sort | sed 's/^/  /'
+echo "Results are in: $out_dir"
+find "$out_dir" -type f \( -name '*.png' -o -name 'report.md' -o -name 'summary.json' \) | sort | sed 's/^/  /'

@@ -207,7 +207,15 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
     }
     // Lower end, symmetrically.
     double lo = kInfinity;
-    if (feasible(x_min)) {
+    // Common case first: standing still at both ends is admissible and K_{j+1}
+    // reaches down to rest, so u = 0 from rest stays at rest (two cheap checks).
+    const auto can_stand = [&](const StationGeometry& g) {
+      const ControlInterval u = detail::known_state_controls(constants, g, 0.0);
+      return u.lower <= 0.0 && u.upper >= 0.0;
+    };
+    if (x_min == 0.0 && next_lo == 0.0 && can_stand(step.from) && can_stand(step.to)) {
+      lo = 0.0;
+    } else if (feasible(x_min)) {
       lo = x_min;
     } else if (hi > -kInfinity) {
       for (const double target : {next_lo, next_hi}) {

@@ -7,21 +7,15 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "terrain_test_support.hpp"
 
 namespace talus {
 namespace {
 
-using Field = std::function<double(double, double)>;
-
-ElevationGrid sample(const Field& f, std::size_t nc, std::size_t nr, double h, double x0 = 3.0,
-                     double y0 = -2.0) {
-  ElevationGrid grid(nc, nr, h, x0, y0);
-  for (std::size_t j = 0; j < nr; ++j)
-    for (std::size_t i = 0; i < nc; ++i) {
-      const Vec2 p = grid.node_position(i, j);
-      grid.at(i, j) = f(p.x(), p.y());
-    }
-  return grid;
+/// The tests' grids: nc x nr nodes at spacing h, off the origin unless told otherwise.
+ElevationGrid sample(const terrain_test::HeightFunction& f, std::size_t nc, std::size_t nr,
+                     double h, double x0 = 3.0, double y0 = -2.0) {
+  return terrain_test::grid_of_nodes(f, nc, nr, h, x0, y0);
 }
 
 // A full bicubic polynomial (all 16 monomials x^a y^b, a, b <= 3).

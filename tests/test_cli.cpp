@@ -1,57 +1,19 @@
 // End-to-end tests of the `talus` executable: output contracts and errors.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_test_support.hpp"
 #include "talus/core/esri_ascii.hpp"
 
+namespace talus::cli_test {
 namespace {
 
-/// A scratch folder of this test process (ctest runs tests in parallel).
-std::filesystem::path scratch_dir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("talus_cli_test_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-struct RunResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-/// Runs `talus ARGS`, capturing stdout and stderr separately.
-RunResult run_talus(const std::string& args) {
-  const auto dir = scratch_dir();
-  const std::string err_file = (dir / "stderr.txt").string();
-  const std::string command = std::string("'") + TALUS_CLI + "' " + args + " 2>'" + err_file + "'";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_file);
-  result.err.assign(std::istreambuf_iterator<char>(err), {});
-  return result;
-}
-
 std::string dem(const char* name) {
-  return std::string(TALUS_DATA_DIR) + "/terrain/" + name;
-}
-
-std::size_t count_lines(const std::string& s) {
-  return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+  return data_file(std::string("terrain/") + name);
 }
 
 TEST(Cli, TerrainInfoPrintsTheDocumentedJson) {
@@ -93,10 +55,7 @@ TEST(Cli, GeneratedTerrainsAreReproducibleAndReadable) {
         run_talus("terrain generate fractal --ncols 65 --nrows 33 --seed 9 -o '" + out + "'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
-  std::ifstream fa(a), fb(b);
-  const std::string ta((std::istreambuf_iterator<char>(fa)), {}),
-      tb((std::istreambuf_iterator<char>(fb)), {});
-  EXPECT_EQ(ta, tb);
+  EXPECT_EQ(read_text(a), read_text(b));
   const talus::ElevationGrid grid = talus::read_esri_ascii(a);
   EXPECT_EQ(grid.ncols(), 65u);
   EXPECT_EQ(grid.nrows(), 33u);
@@ -147,3 +106,4 @@ TEST(Cli, HelpWorksEverywhere) {
 }
 
 }  // namespace
+}  // namespace talus::cli_test

@@ -2,12 +2,9 @@
 // bundled examples, known answers on generated flat terrain, and errors.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -15,64 +12,18 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_test_support.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/esri_ascii.hpp"
 
+namespace talus::cli_test {
 namespace {
 
-/// A scratch folder of this test process (ctest runs tests in parallel).
-std::filesystem::path limits_scratch_dir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("talus_cli_limits_test_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-std::string scratch_file(const std::string& name) {
-  return (limits_scratch_dir() / name).string();
-}
-
-struct LimitsRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-/// Runs `talus ARGS`, capturing stdout and stderr separately.
-LimitsRun run_talus_limits(const std::string& args) {
-  const std::string err_file = scratch_file("stderr.txt");
-  const std::string command = std::string("'") + TALUS_CLI + "' " + args + " 2>'" + err_file + "'";
-  LimitsRun result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_file);
-  result.err.assign(std::istreambuf_iterator<char>(err), {});
-  return result;
-}
-
-std::string data_file(const std::string& relative) {
-  return std::string(TALUS_DATA_DIR) + "/" + relative;
-}
 const std::string kExampleTerrain = "terrain/west_bijou_escarpment_nasadem25m.asc";
 const std::string kExamplePath = "paths/west_bijou_traverse.csv";
-
-std::string quote(const std::string& s) {
-  return "'" + s + "'";
-}
-
-void write_text(const std::string& file, const std::string& text) {
-  std::ofstream(file) << text;
-}
 
 /// One parsed row of the limits CSV.
 struct LimitsRow {
@@ -81,36 +32,16 @@ struct LimitsRow {
   double k_t, k_q, k_r, kappa_n, kappa_g;
 };
 
-double parse_field(const std::string& field) {
-  char* end = nullptr;
-  const double value = std::strtod(field.c_str(), &end);
-  if (field.empty() || *end != '\0') {
-    ADD_FAILURE() << "not a number: '" << field << "'";
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  return value;
-}
-
 const char* const kExpectedHeader = "s,x,y,z,v_min,v_max,binding,k_t,k_q,k_r,kappa_n,kappa_g";
 
 /// Reads the CSV, checking the header and the column count of every row.
 std::vector<LimitsRow> read_limits_csv(const std::string& file) {
-  std::ifstream in(file);
-  std::string line;
-  EXPECT_TRUE(std::getline(in, line)) << file << " is empty";
-  EXPECT_EQ(line, kExpectedHeader);
   std::vector<LimitsRow> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell);
-    if (f.size() != 12) {
-      ADD_FAILURE() << "row " << rows.size() << " has " << f.size() << " columns: " << line;
-      continue;
-    }
-    rows.push_back({parse_field(f[0]), parse_field(f[1]), parse_field(f[2]), parse_field(f[3]),
-                    parse_field(f[4]), parse_field(f[5]), f[6], parse_field(f[7]),
-                    parse_field(f[8]), parse_field(f[9]), parse_field(f[10]), parse_field(f[11])});
+  for (const std::vector<std::string>& f : read_csv(file, kExpectedHeader)) {
+    rows.push_back({parse_number(f[0]), parse_number(f[1]), parse_number(f[2]), parse_number(f[3]),
+                    parse_number(f[4]), parse_number(f[5]), f[6], parse_number(f[7]),
+                    parse_number(f[8]), parse_number(f[9]), parse_number(f[10]),
+                    parse_number(f[11])});
   }
   return rows;
 }
@@ -164,52 +95,23 @@ void expect_consistent(const std::vector<LimitsRow>& rows, const nlohmann::json&
 
 /// Runs a limits command that must succeed and returns its JSON summary.
 nlohmann::json run_limits_ok(const std::string& args) {
-  const LimitsRun r = run_talus_limits("limits " + args);
+  const RunResult r = run_talus("limits " + args);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
-  try {
-    return nlohmann::json::parse(r.out);
-  } catch (const nlohmann::json::exception& e) {
-    ADD_FAILURE() << "stdout is not JSON: " << e.what() << "\n" << r.out;
-    return nlohmann::json::object({{"stations", 0}});
-  }
-}
-
-/// A flat 121 m x 121 m plane at 1 m spacing, (0, 0) at its south-west node.
-std::string flat_terrain() {
-  const std::string file = scratch_file("flat.asc");
-  const LimitsRun r = run_talus_limits(
-      "terrain generate plane --slope 0 --ncols 121 --nrows 121 --cellsize 1 -o " + quote(file));
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return file;
+  return parse_json(r.out, "stdout", nlohmann::json::object({{"stations", 0}}));
 }
 
 /// A point mass with friction mu, tip-over ratio b/h = 1.2 and no top speed.
 std::string unlimited_vehicle(double mu = 0.7) {
-  const std::string file = scratch_file("unlimited.yaml");
-  std::ostringstream text;
-  text << "model: point_mass\nfriction: " << mu << "\ncg_height: 0.5\nhalf_track: 0.6\n";
-  write_text(file, text.str());
-  return file;
-}
-
-std::string write_points(const std::string& name,
-                         const std::vector<std::array<double, 2>>& points) {
-  std::ostringstream text;
-  text.precision(17);
-  text << "x,y\n";
-  for (const auto& p : points) text << p[0] << "," << p[1] << "\n";
-  const std::string file = scratch_file(name);
-  write_text(file, text.str());
-  return file;
+  return point_mass_vehicle("unlimited.yaml", mu);
 }
 
 TEST(CliLimits, ExampleFilesGiveTheDocumentedCsvAndJson) {
   const std::string out = scratch_file("example.csv");
   const nlohmann::json j =
-      run_limits_ok("--terrain " + quote(data_file(kExampleTerrain)) + " --path " +
-                    quote(data_file(kExamplePath)) + " --vehicle " +
-                    quote(data_file("vehicles/rover.yaml")) + " -o " + quote(out));
+      run_limits_ok("--terrain " + quoted(data_file(kExampleTerrain)) + " --path " +
+                    quoted(data_file(kExamplePath)) + " --vehicle " +
+                    quoted(data_file("vehicles/rover.yaml")) + " -o " + quoted(out));
   for (const char* key : {"stations", "length_m", "min_v_max", "untraversable_stations",
                           "binding_counts", "seconds"}) {
     EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
@@ -254,10 +156,10 @@ TEST(CliLimits, ExampleFilesGiveTheDocumentedCsvAndJson) {
 TEST(CliLimits, StationsOptionRigidBodyAndSmoothingFit) {
   const std::string out = scratch_file("rigid.csv");
   const nlohmann::json j =
-      run_limits_ok("--terrain " + quote(data_file(kExampleTerrain)) + " --path " +
-                    quote(data_file(kExamplePath)) + " --vehicle " +
-                    quote(data_file("vehicles/rover_rigid.yaml")) +
-                    " --stations 300 --smoothing 1 -o " + quote(out));
+      run_limits_ok("--terrain " + quoted(data_file(kExampleTerrain)) + " --path " +
+                    quoted(data_file(kExamplePath)) + " --vehicle " +
+                    quoted(data_file("vehicles/rover_rigid.yaml")) +
+                    " --stations 300 --smoothing 1 -o " + quoted(out));
   EXPECT_EQ(j.at("stations"), 300);
   const std::vector<LimitsRow> rows = read_limits_csv(out);
   EXPECT_EQ(rows.size(), 300u);
@@ -273,9 +175,9 @@ TEST(CliLimits, CircleOnFlatGroundIsLimitedBySlidingAtSqrtMuGR) {
   }
   const std::string out = scratch_file("circle.csv");
   const nlohmann::json j =
-      run_limits_ok("--terrain " + quote(flat_terrain()) + " --path " +
-                    quote(write_points("circle_path.csv", points)) + " --vehicle " +
-                    quote(unlimited_vehicle(mu)) + " --stations 400 -o " + quote(out));
+      run_limits_ok("--terrain " + quoted(flat_terrain()) + " --path " +
+                    quoted(write_points("circle_path.csv", points)) + " --vehicle " +
+                    quoted(unlimited_vehicle(mu)) + " --stations 400 -o " + quoted(out));
   const std::vector<LimitsRow> rows = read_limits_csv(out);
   ASSERT_EQ(rows.size(), 400u);
   expect_consistent(rows, j);
@@ -296,14 +198,13 @@ TEST(CliLimits, CircleOnFlatGroundIsLimitedBySlidingAtSqrtMuGR) {
 TEST(CliLimits, StraightPathOnFlatGroundIsUnlimitedAndWritesInf) {
   const std::string out = scratch_file("straight.csv");
   const nlohmann::json j = run_limits_ok(
-      "--terrain " + quote(flat_terrain()) + " --path " +
-      quote(write_points("straight_path.csv", {{{10, 60}}, {{60, 60}}, {{110, 60}}})) +
-      " --vehicle " + quote(unlimited_vehicle()) + " -o " + quote(out));
+      "--terrain " + quoted(flat_terrain()) + " --path " +
+      quoted(write_points("straight_path.csv", {{{10, 60}}, {{60, 60}}, {{110, 60}}})) +
+      " --vehicle " + quoted(unlimited_vehicle()) + " -o " + quoted(out));
   EXPECT_EQ(j.at("stations"), 101);  // default: ceil(100 m) + 1
   EXPECT_TRUE(j.at("min_v_max").is_null());
   EXPECT_EQ(j.at("binding_counts").at("none"), 101);
-  std::ifstream in(out);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string text = read_text(out);
   EXPECT_NE(text.find(",0,inf,none,"), std::string::npos) << text.substr(0, 300);
   const std::vector<LimitsRow> rows = read_limits_csv(out);
   expect_consistent(rows, j);
@@ -314,9 +215,9 @@ TEST(CliLimits, StraightPathOnFlatGroundIsUnlimitedAndWritesInf) {
 TEST(CliLimits, DefaultStationCountIsClampedBelowAt100) {
   const std::string out = scratch_file("short.csv");
   const nlohmann::json j =
-      run_limits_ok("--terrain " + quote(flat_terrain()) + " --path " +
-                    quote(write_points("short_path.csv", {{{10, 10}}, {{30, 10}}})) +
-                    " --vehicle " + quote(unlimited_vehicle()) + " -o " + quote(out));
+      run_limits_ok("--terrain " + quoted(flat_terrain()) + " --path " +
+                    quoted(write_points("short_path.csv", {{{10, 10}}, {{30, 10}}})) +
+                    " --vehicle " + quoted(unlimited_vehicle()) + " -o " + quoted(out));
   EXPECT_EQ(j.at("stations"), 100);
   EXPECT_EQ(read_limits_csv(out).size(), 100u);
 }
@@ -324,14 +225,14 @@ TEST(CliLimits, DefaultStationCountIsClampedBelowAt100) {
 TEST(CliLimits, SideSlopeSteeperThanFrictionIsUntraversable) {
   const std::string terrain = scratch_file("slope.asc");
   // 0.7 rad side slope: tan(0.7) = 0.84 > mu = 0.7, but < b/h = 1.2.
-  const LimitsRun g = run_talus_limits(
-      "terrain generate plane --slope 0.7 --aspect 0 --ncols 41 --nrows 41 -o " + quote(terrain));
+  const RunResult g = run_talus(
+      "terrain generate plane --slope 0.7 --aspect 0 --ncols 41 --nrows 41 -o " + quoted(terrain));
   ASSERT_EQ(g.exit_code, 0) << g.err;
   const std::string out = scratch_file("slope.csv");
-  const nlohmann::json j =
-      run_limits_ok("--terrain " + quote(terrain) + " --path " +
-                    quote(write_points("contour_path.csv", {{{20, 5}}, {{20, 35}}})) +
-                    " --vehicle " + quote(unlimited_vehicle()) + " --stations 50 -o " + quote(out));
+  const nlohmann::json j = run_limits_ok(
+      "--terrain " + quoted(terrain) + " --path " +
+      quoted(write_points("contour_path.csv", {{{20, 5}}, {{20, 35}}})) + " --vehicle " +
+      quoted(unlimited_vehicle()) + " --stations 50 -o " + quoted(out));
   const std::vector<LimitsRow> rows = read_limits_csv(out);
   expect_consistent(rows, j);
   EXPECT_EQ(j.at("untraversable_stations"), 50);
@@ -345,9 +246,9 @@ TEST(CliLimits, SideSlopeSteeperThanFrictionIsUntraversable) {
 }
 
 TEST(CliLimits, BadInputGivesOneLineOnStderrAndExitCodeOne) {
-  const std::string terrain = quote(data_file(kExampleTerrain));
-  const std::string path = quote(data_file(kExamplePath));
-  const std::string rover = quote(data_file("vehicles/rover.yaml"));
+  const std::string terrain = quoted(data_file(kExampleTerrain));
+  const std::string path = quoted(data_file(kExamplePath));
+  const std::string rover = quoted(data_file("vehicles/rover.yaml"));
   const std::string off_map =
       write_points("off_map.csv", {{{556810, 4373910}}, {{557160, 4374060}}, {{560000, 4374100}}});
   const std::string malformed = scratch_file("malformed.csv");
@@ -368,19 +269,15 @@ TEST(CliLimits, BadInputGivesOneLineOnStderrAndExitCodeOne) {
   const std::string out = scratch_file("never_written.csv");
   std::filesystem::remove(out);
 
-  struct Case {
-    std::string args;
-    std::string fragment;  // the message must contain this
-  };
-  const std::string common = " -o " + quote(out);
-  const std::vector<Case> cases = {
-      {"--terrain " + terrain + " --path " + quote(off_map) + " --vehicle " + rover + common,
+  const std::string common = " -o " + quoted(out);
+  const std::vector<ErrorCase> cases = {
+      {"--terrain " + terrain + " --path " + quoted(off_map) + " --vehicle " + rover + common,
        "path point 2 (560000, 4374100)"},
-      {"--terrain " + terrain + " --path " + quote(malformed) + " --vehicle " + rover + common,
+      {"--terrain " + terrain + " --path " + quoted(malformed) + " --vehicle " + rover + common,
        "malformed.csv:3: expected 2 columns x,y, got 1"},
-      {"--terrain " + terrain + " --path " + quote(no_header) + " --vehicle " + rover + common,
+      {"--terrain " + terrain + " --path " + quoted(no_header) + " --vehicle " + rover + common,
        "no_header.csv:1: "},
-      {"--terrain " + terrain + " --path " + path + " --vehicle " + quote(unknown_key) + common,
+      {"--terrain " + terrain + " --path " + path + " --vehicle " + quoted(unknown_key) + common,
        "unknown key 'wheel_radius'"},
       {"--terrain " + terrain + " --path " + path + " --vehicle " + rover + " --stations 1" +
            common,
@@ -391,29 +288,21 @@ TEST(CliLimits, BadInputGivesOneLineOnStderrAndExitCodeOne) {
       {"--terrain " + terrain + " --path " + path + " --vehicle " + rover + " --smoothing -1" +
            common,
        "--smoothing"},
-      {"--terrain " + quote(voids) + " --path " + quote(through_void) + " --vehicle " + rover +
+      {"--terrain " + quoted(voids) + " --path " + quoted(through_void) + " --vehicle " + rover +
            " --smoothing 1" + common,
        "path point 1 (10.5, 10.5)"},
-      {"--terrain " + quote(voids) + " --path " + quote(through_void) + " --vehicle " + rover +
+      {"--terrain " + quoted(voids) + " --path " + quoted(through_void) + " --vehicle " + rover +
            common,
        "NODATA"},
       {"--terrain /nonexistent.asc --path " + path + " --vehicle " + rover + common,
        "/nonexistent.asc"},
       {"--terrain " + terrain + " --path " + path + common, "--vehicle"},
   };
-  for (const Case& c : cases) {
-    const LimitsRun r = run_talus_limits("limits " + c.args);
-    EXPECT_EQ(r.exit_code, 1) << c.args;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": " << r.err;
-    EXPECT_EQ(r.err.rfind("talus: error: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(c.fragment), std::string::npos) << c.fragment << " not in " << r.err;
-    EXPECT_TRUE(r.out.empty()) << r.out;
-    EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
-  }
+  expect_bad_input("limits", cases, out);
 }
 
 TEST(CliLimits, HelpDocumentsTheContract) {
-  const LimitsRun r = run_talus_limits("limits --help");
+  const RunResult r = run_talus("limits --help");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("Usage"), std::string::npos);
   EXPECT_NE(r.out.find("[100, 100000]"), std::string::npos) << r.out;
@@ -422,3 +311,4 @@ TEST(CliLimits, HelpDocumentsTheContract) {
 }
 
 }  // namespace
+}  // namespace talus::cli_test

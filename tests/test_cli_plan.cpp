@@ -4,104 +4,31 @@
 // stdout) behind a wall of hills, input errors (exit 1) and a bundled DEM.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <limits>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_test_support.hpp"
+
+namespace talus::cli_test {
 namespace {
-
-/// A scratch folder of this test process (ctest runs tests in parallel).
-std::filesystem::path plan_scratch_dir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("talus_cli_plan_test_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-std::string plan_scratch(const std::string& name) {
-  return (plan_scratch_dir() / name).string();
-}
-
-std::string plan_quoted(const std::string& s) {
-  return "'" + s + "'";
-}
-
-struct PlanRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-/// Runs `talus ARGS`, capturing stdout and stderr separately.
-PlanRun run_talus_plan(const std::string& args) {
-  const std::string err_file = plan_scratch("stderr.txt");
-  const std::string command = std::string("'") + TALUS_CLI + "' " + args + " 2>'" + err_file + "'";
-  PlanRun result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_file);
-  result.err.assign(std::istreambuf_iterator<char>(err), {});
-  return result;
-}
-
-nlohmann::json parse_plan_json(const std::string& text, const std::string& what) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    ADD_FAILURE() << what << " is not one JSON object: " << e.what() << "\n" << text;
-    return nlohmann::json::object();
-  }
-}
-
-std::string read_plan_file(const std::string& file) {
-  std::ifstream in(file);
-  EXPECT_TRUE(in.good()) << file << " is missing";
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-/// Generates a terrain with `talus terrain generate ARGS -o NAME`.
-std::string plan_terrain(const std::string& name, const std::string& args) {
-  const std::string file = plan_scratch(name);
-  const PlanRun r = run_talus_plan("terrain generate " + args + " -o " + plan_quoted(file));
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return file;
-}
 
 /// 61 x 41 nodes at 1 m spacing, (0, 0) at the south-west node.
 const std::string kPlanShape = "--ncols 61 --nrows 41 --cellsize 1";
 
 std::string plan_flat_terrain() {
-  return plan_terrain("flat.asc", "plane --slope 0 " + kPlanShape);
+  return generate_terrain("flat.asc", "plane --slope 0 " + kPlanShape);
 }
 
 /// A point mass with friction 0.7, b/h = 1.2 and the given top speed (none if 0).
 std::string plan_vehicle(const std::string& name, double max_speed) {
-  const std::string file = plan_scratch(name);
-  std::ostringstream text;
-  text << "model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n";
-  if (max_speed > 0.0) text << "max_speed: " << max_speed << "\n";
-  std::ofstream(file) << text.str();
-  return file;
-}
-
-std::string plan_data(const std::string& relative) {
-  return std::string(TALUS_DATA_DIR) + "/" + relative;
+  return point_mass_vehicle(name, 0.7, max_speed);
 }
 
 struct PlanVertex {
@@ -111,19 +38,8 @@ struct PlanVertex {
 
 /// Reads candidates.csv, checking the exact header and the column count.
 std::vector<PlanVertex> read_plan_candidates(const std::string& file) {
-  std::ifstream in(file);
-  std::string line;
-  EXPECT_TRUE(std::getline(in, line)) << file << " is missing or empty";
-  EXPECT_EQ(line, "candidate,x,y");
   std::vector<PlanVertex> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell);
-    if (f.size() != 3) {
-      ADD_FAILURE() << "row " << rows.size() << " has " << f.size() << " columns: " << line;
-      continue;
-    }
+  for (const std::vector<std::string>& f : read_csv(file, "candidate,x,y")) {
     rows.push_back({std::stoi(f[0]), std::stod(f[1]), std::stod(f[2])});
   }
   return rows;
@@ -172,11 +88,11 @@ void expect_plan_candidates(const nlohmann::json& j, const std::string& dir) {
 nlohmann::json run_plan_and_check(const std::string& args, const std::string& dir,
                                   int expected_exit_code) {
   std::filesystem::remove_all(dir);
-  const PlanRun r = run_talus_plan("plan " + args + " --out " + plan_quoted(dir));
+  const RunResult r = run_talus("plan " + args + " --out " + quoted(dir));
   EXPECT_EQ(r.exit_code, expected_exit_code) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
-  const nlohmann::json j = parse_plan_json(r.out, "stdout");
-  EXPECT_EQ(j, parse_plan_json(read_plan_file(dir + "/summary.json"), "summary.json"));
+  const nlohmann::json j = parse_json(r.out, "stdout");
+  EXPECT_EQ(j, parse_json(read_text(dir + "/summary.json"), "summary.json"));
   for (const char* key : {"status", "message", "candidates", "nodes", "edges_evaluated",
                           "search_seconds", "reachable_nodes", "start_node", "goal_node",
                           "lattice_spacing", "connectivity", "expanded"}) {
@@ -197,10 +113,10 @@ nlohmann::json run_plan_ok(const std::string& args, const std::string& dir) {
 
 TEST(CliPlan, FlatPlaneSameRowCostsDistanceOverMaxSpeed) {
   const std::string terrain = plan_flat_terrain();
-  const std::string args = "--terrain " + plan_quoted(terrain) + " --start 5,20 --goal 55,20" +
-                           " --vehicle " + plan_quoted(plan_vehicle("v10.yaml", 10.0)) +
+  const std::string args = "--terrain " + quoted(terrain) + " --start 5,20 --goal 55,20" +
+                           " --vehicle " + quoted(plan_vehicle("v10.yaml", 10.0)) +
                            " --stage global";
-  const std::string dir = plan_scratch("flat_out");
+  const std::string dir = scratch_file("flat_out");
   const nlohmann::json j = run_plan_ok(args, dir);
   const double expected = 50.0 / 10.0;
   ASSERT_FALSE(j.at("candidates").empty());
@@ -245,11 +161,11 @@ TEST(CliPlan, FlatPlaneSameRowCostsDistanceOverMaxSpeed) {
 
   // The lattice options reach the search: 2.5 m spacing, 8 neighbours, and a
   // start off the lattice snaps to the nearest node.
-  const nlohmann::json coarse = run_plan_ok(
-      "--terrain " + plan_quoted(terrain) + " --start 5.4,19.3 --goal 55,20 --vehicle " +
-          plan_quoted(plan_vehicle("v10.yaml", 10.0)) +
-          " --stage global --lattice-spacing 2.5 --connectivity 8 --candidates 1",
-      plan_scratch("coarse_out"));
+  const nlohmann::json coarse =
+      run_plan_ok("--terrain " + quoted(terrain) + " --start 5.4,19.3 --goal 55,20 --vehicle " +
+                      quoted(plan_vehicle("v10.yaml", 10.0)) +
+                      " --stage global --lattice-spacing 2.5 --connectivity 8 --candidates 1",
+                  scratch_file("coarse_out"));
   EXPECT_EQ(coarse.at("nodes"), 25 * 17);
   EXPECT_EQ(coarse.at("lattice_spacing"), 2.5);
   EXPECT_EQ(coarse.at("connectivity"), 8);
@@ -264,12 +180,12 @@ TEST(CliPlan, GaussianHillGivesTwoCandidatesOneOnEachSide) {
   // Slopes up to 0.6 * 8 / 5 = 0.97 > mu = 0.7 near the hill: the vehicle
   // goes round it, north or south.
   const std::string terrain =
-      plan_terrain("hill.asc", "gaussian-hills --hill 30,20,8,5 " + kPlanShape);
-  const std::string dir = plan_scratch("hill_out");
-  const nlohmann::json j = run_plan_ok(
-      "--terrain " + plan_quoted(terrain) + " --start 5,20 --goal 55,20 --vehicle " +
-          plan_quoted(plan_vehicle("v10.yaml", 10.0)) + " --stage global --candidates 2",
-      dir);
+      generate_terrain("hill.asc", "gaussian-hills --hill 30,20,8,5 " + kPlanShape);
+  const std::string dir = scratch_file("hill_out");
+  const nlohmann::json j =
+      run_plan_ok("--terrain " + quoted(terrain) + " --start 5,20 --goal 55,20 --vehicle " +
+                      quoted(plan_vehicle("v10.yaml", 10.0)) + " --stage global --candidates 2",
+                  dir);
   ASSERT_EQ(j.at("candidates").size(), 2u) << j.dump();
   const std::vector<PlanVertex> rows = read_plan_candidates(dir + "/candidates.csv");
   int north = 0, south = 0;
@@ -292,21 +208,21 @@ TEST(CliPlan, WallOfHillsMakesTheGoalUnreachableWithExitCodeTwo) {
   // a ridge whose flanks (slope up to 6) no vehicle with mu = 0.7 can climb.
   std::string hills = "gaussian-hills " + kPlanShape;
   for (int x = -10; x <= 70; x += 5) hills += " --hill " + std::to_string(x) + ",20,30,3";
-  const std::string terrain = plan_terrain("wall.asc", hills);
-  const std::string dir = plan_scratch("wall_out");
-  const nlohmann::json j = run_plan_and_check(
-      "--terrain " + plan_quoted(terrain) + " --start 30,5 --goal 30,35 --vehicle " +
-          plan_quoted(plan_vehicle("v10.yaml", 10.0)) + " --stage global",
-      dir, 2);
+  const std::string terrain = generate_terrain("wall.asc", hills);
+  const std::string dir = scratch_file("wall_out");
+  const nlohmann::json j =
+      run_plan_and_check("--terrain " + quoted(terrain) + " --start 30,5 --goal 30,35 --vehicle " +
+                             quoted(plan_vehicle("v10.yaml", 10.0)) + " --stage global",
+                         dir, 2);
   EXPECT_EQ(j.value("status", ""), "unreachable") << j.dump();
   EXPECT_TRUE(j.value("candidates", nlohmann::json::array({1})).empty());
   EXPECT_FALSE(j.value("message", "").empty());
   EXPECT_GT(j.value("reachable_nodes", 0), 0);
   EXPECT_LT(j.value("reachable_nodes", 0), j.value("nodes", 0));
-  EXPECT_EQ(read_plan_file(dir + "/candidates.csv"), "candidate,x,y\n");
+  EXPECT_EQ(read_text(dir + "/candidates.csv"), "candidate,x,y\n");
   // fields.csv: nodes beyond the wall are `inf` from the start; the cost to
   // the goal is not computed (`nan`).
-  const std::string fields = read_plan_file(dir + "/fields.csv");
+  const std::string fields = read_text(dir + "/fields.csv");
   EXPECT_EQ(fields.rfind("x,y,cost_from_start,cost_to_goal\n", 0), 0u);
   EXPECT_EQ(std::count(fields.begin(), fields.end(), '\n'), 61 * 41 + 1);
   EXPECT_NE(fields.find("\n30,35,inf,nan\n"), std::string::npos);
@@ -314,19 +230,15 @@ TEST(CliPlan, WallOfHillsMakesTheGoalUnreachableWithExitCodeTwo) {
 }
 
 TEST(CliPlan, BadInputGivesOneLineOnStderrAndExitCodeOne) {
-  const std::string flat = plan_quoted(plan_flat_terrain());
-  const std::string steep = plan_quoted(
-      plan_terrain("steep.asc", "plane --slope 0.8 --ncols 41 --nrows 41 --cellsize 1"));
-  const std::string v10 = " --vehicle " + plan_quoted(plan_vehicle("v10.yaml", 10.0));
-  const std::string unlimited = " --vehicle " + plan_quoted(plan_vehicle("unlimited.yaml", 0.0));
-  const std::string dir = plan_scratch("never_written");
+  const std::string flat = quoted(plan_flat_terrain());
+  const std::string steep =
+      quoted(generate_terrain("steep.asc", "plane --slope 0.8 --ncols 41 --nrows 41 --cellsize 1"));
+  const std::string v10 = " --vehicle " + quoted(plan_vehicle("v10.yaml", 10.0));
+  const std::string unlimited = " --vehicle " + quoted(plan_vehicle("unlimited.yaml", 0.0));
+  const std::string dir = scratch_file("never_written");
   std::filesystem::remove_all(dir);
-  const std::string tail = " --stage global --out " + plan_quoted(dir);
-  struct Case {
-    std::string args;
-    std::string fragment;  // the message must contain this
-  };
-  const std::vector<Case> cases = {
+  const std::string tail = " --stage global --out " + quoted(dir);
+  const std::vector<ErrorCase> cases = {
       {"--terrain " + flat + " --start 70,20 --goal 55,20" + v10 + tail, "--start (70, 20)"},
       {"--terrain " + flat + " --start 5,20 --goal 55,-1" + v10 + tail, "--goal (55, -1)"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --connectivity 12" + tail,
@@ -341,35 +253,27 @@ TEST(CliPlan, BadInputGivesOneLineOnStderrAndExitCodeOne) {
        "--smoothing"},
       {"--terrain /nonexistent.asc --start 5,20 --goal 55,20" + v10 + tail, "/nonexistent.asc"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --stage full --out " +
-           plan_quoted(dir),
+           quoted(dir),
        "--stage"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --stage global", "--out"},
   };
-  for (const Case& c : cases) {
-    const PlanRun r = run_talus_plan("plan " + c.args);
-    EXPECT_EQ(r.exit_code, 1) << c.args;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": " << r.err;
-    EXPECT_EQ(r.err.rfind("talus: error: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(c.fragment), std::string::npos) << c.fragment << " not in " << r.err;
-    EXPECT_TRUE(r.out.empty()) << r.out;
-    EXPECT_FALSE(std::filesystem::exists(dir)) << c.args;
-  }
+  expect_bad_input("plan", cases, dir);
 }
 
 TEST(CliPlan, BundledDemCornerToCornerIsSane) {
   // West Bijou escarpment (NASADEM, 25 m, 122 x 82 nodes), south-west to
   // north-east node, the 15 m/s rover.
-  const std::string terrain = plan_data("terrain/west_bijou_escarpment_nasadem25m.asc");
-  const PlanRun info = run_talus_plan("terrain info " + plan_quoted(terrain));
+  const std::string terrain = data_file("terrain/west_bijou_escarpment_nasadem25m.asc");
+  const RunResult info = run_talus("terrain info " + quoted(terrain));
   ASSERT_EQ(info.exit_code, 0) << info.err;
-  const nlohmann::json d = parse_plan_json(info.out, "terrain info");
+  const nlohmann::json d = parse_json(info.out, "terrain info");
   std::ostringstream args;
   args.precision(17);
-  args << "--terrain " << plan_quoted(terrain) << " --start " << d.at("xmin").get<double>() << ","
+  args << "--terrain " << quoted(terrain) << " --start " << d.at("xmin").get<double>() << ","
        << d.at("ymin").get<double>() << " --goal " << d.at("xmax").get<double>() << ","
-       << d.at("ymax").get<double>() << " --vehicle "
-       << plan_quoted(plan_data("vehicles/rover.yaml")) << " --stage global";
-  const nlohmann::json j = run_plan_ok(args.str(), plan_scratch("bijou_out"));
+       << d.at("ymax").get<double>() << " --vehicle " << quoted(data_file("vehicles/rover.yaml"))
+       << " --stage global";
+  const nlohmann::json j = run_plan_ok(args.str(), scratch_file("bijou_out"));
   EXPECT_EQ(j.at("nodes"), 122 * 82);
   EXPECT_EQ(j.at("candidates").size(), 3u) << j.dump();
   const double dx = d.at("xmax").get<double>() - d.at("xmin").get<double>();
@@ -386,7 +290,7 @@ TEST(CliPlan, BundledDemCornerToCornerIsSane) {
 }
 
 TEST(CliPlan, HelpDocumentsTheContract) {
-  const PlanRun r = run_talus_plan("plan --help");
+  const RunResult r = run_talus("plan --help");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* fragment :
        {"Usage", "--stage", "global", "full", "not available yet", "candidate,x,y", "summary.json",
@@ -397,3 +301,4 @@ TEST(CliPlan, HelpDocumentsTheContract) {
 }
 
 }  // namespace
+}  // namespace talus::cli_test

@@ -3,75 +3,24 @@
 // infeasible outcome (exit code 2, JSON on stdout) and input errors (exit 1).
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <limits>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_test_support.hpp"
+
+namespace talus::cli_test {
 namespace {
 
-/// A scratch folder of this test process (ctest runs tests in parallel).
-std::filesystem::path profile_scratch_dir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("talus_cli_profile_test_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-std::string profile_scratch(const std::string& name) {
-  return (profile_scratch_dir() / name).string();
-}
-
-struct ProfileRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-/// Runs `talus ARGS`, capturing stdout and stderr separately.
-ProfileRun run_talus_profile(const std::string& args) {
-  const std::string err_file = profile_scratch("stderr.txt");
-  const std::string command = std::string("'") + TALUS_CLI + "' " + args + " 2>'" + err_file + "'";
-  ProfileRun result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_file);
-  result.err.assign(std::istreambuf_iterator<char>(err), {});
-  return result;
-}
-
-std::string profile_data(const std::string& relative) {
-  return std::string(TALUS_DATA_DIR) + "/" + relative;
-}
-
-std::string quoted(const std::string& s) {
-  return "'" + s + "'";
-}
-
-void write_profile_text(const std::string& file, const std::string& text) {
-  std::ofstream(file) << text;
-}
-
 const std::string kProfileExampleArgs =
-    "--terrain " + quoted(profile_data("terrain/west_bijou_escarpment_nasadem25m.asc")) +
-    " --path " + quoted(profile_data("paths/west_bijou_traverse.csv"));
+    "--terrain " + quoted(data_file("terrain/west_bijou_escarpment_nasadem25m.asc")) + " --path " +
+    quoted(data_file("paths/west_bijou_traverse.csv"));
 
 /// One parsed row of the profile CSV.
 struct ProfileRow {
@@ -79,55 +28,25 @@ struct ProfileRow {
   std::string binding;
 };
 
-double parse_profile_field(const std::string& field) {
-  char* end = nullptr;
-  const double value = std::strtod(field.c_str(), &end);
-  if (field.empty() || *end != '\0') {
-    ADD_FAILURE() << "not a number: '" << field << "'";
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  return value;
-}
-
 /// Reads the CSV, checking the header and the column count of every row.
 std::vector<ProfileRow> read_profile_csv(const std::string& file) {
-  std::ifstream in(file);
-  std::string line;
-  EXPECT_TRUE(std::getline(in, line)) << file << " is missing or empty";
-  EXPECT_EQ(line, "s,x,y,z,v,a,t,v_max,binding");
   std::vector<ProfileRow> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell);
-    if (f.size() != 9) {
-      ADD_FAILURE() << "row " << rows.size() << " has " << f.size() << " columns: " << line;
-      continue;
-    }
+  for (const std::vector<std::string>& f : read_csv(file, "s,x,y,z,v,a,t,v_max,binding")) {
     ProfileRow r{};
     double* numbers[] = {&r.s, &r.x, &r.y, &r.z, &r.v, &r.a, &r.t, &r.v_max};
-    for (std::size_t c = 0; c < 8; ++c) *numbers[c] = parse_profile_field(f[c]);
+    for (std::size_t c = 0; c < 8; ++c) *numbers[c] = parse_number(f[c]);
     r.binding = f[8];
     rows.push_back(r);
   }
   return rows;
 }
 
-nlohmann::json parse_profile_json(const ProfileRun& r) {
-  try {
-    return nlohmann::json::parse(r.out);
-  } catch (const nlohmann::json::exception& e) {
-    ADD_FAILURE() << "stdout is not one JSON object: " << e.what() << "\n" << r.out;
-    return nlohmann::json::object();
-  }
-}
-
 /// Runs a profile command that must succeed and returns its JSON summary.
 nlohmann::json run_profile_ok(const std::string& args) {
-  const ProfileRun r = run_talus_profile("profile " + args);
+  const RunResult r = run_talus("profile " + args);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
-  return parse_profile_json(r);
+  return parse_json(r.out, "stdout");
 }
 
 /// The keys every summary has, ok or infeasible.
@@ -138,6 +57,18 @@ void expect_profile_keys(const nlohmann::json& j) {
         "merged_stations", "start_speed", "end_speed", "seconds"}) {
     EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
   }
+}
+
+/// The checks of a profile run whose path is infeasible: exit code 2, nothing
+/// on stderr, the JSON summary on stdout. Returns the summary.
+nlohmann::json expect_infeasible(const RunResult& r) {
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const nlohmann::json j = parse_json(r.out, "stdout");
+  expect_profile_keys(j);
+  EXPECT_EQ(j.at("status"), "infeasible");
+  EXPECT_TRUE(j.at("travel_time").is_null());
+  return j;
 }
 
 /// The checks every feasible profile CSV must pass, against its JSON summary.
@@ -193,41 +124,10 @@ void expect_consistent_profile(const std::vector<ProfileRow>& rows, const nlohma
   }
 }
 
-/// A flat 121 m x 121 m plane at 1 m spacing, (0, 0) at its south-west node.
-std::string profile_flat_terrain() {
-  const std::string file = profile_scratch("flat.asc");
-  const ProfileRun r = run_talus_profile(
-      "terrain generate plane --slope 0 --ncols 121 --nrows 121 --cellsize 1 -o " + quoted(file));
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return file;
-}
-
-/// A point mass with friction mu, b/h = 1.2 and no drive, brake or speed limit
-/// (or a top speed, if given).
-std::string profile_vehicle(const std::string& name, double mu, double max_speed = 0.0) {
-  const std::string file = profile_scratch(name);
-  std::ostringstream text;
-  text << "model: point_mass\nfriction: " << mu << "\ncg_height: 0.5\nhalf_track: 0.6\n";
-  if (max_speed > 0.0) text << "max_speed: " << max_speed << "\n";
-  write_profile_text(file, text.str());
-  return file;
-}
-
-std::string profile_points(const std::string& name,
-                           const std::vector<std::array<double, 2>>& points) {
-  std::ostringstream text;
-  text.precision(17);
-  text << "x,y\n";
-  for (const auto& p : points) text << p[0] << "," << p[1] << "\n";
-  const std::string file = profile_scratch(name);
-  write_profile_text(file, text.str());
-  return file;
-}
-
 /// The default station spacing h as `talus profile --help` states it, in
 /// "ceil(length_m / h) + 1".
 double documented_station_spacing() {
-  const ProfileRun r = run_talus_profile("profile --help");
+  const RunResult r = run_talus("profile --help");
   const std::string prefix = "ceil(length_m / ";
   const std::size_t at = r.out.find(prefix);
   if (at == std::string::npos) {
@@ -247,10 +147,10 @@ std::size_t expected_default_stations(double length) {
 }
 
 TEST(CliProfile, ExampleFilesGiveTheDocumentedCsvAndJson) {
-  const std::string out = profile_scratch("example.csv");
+  const std::string out = scratch_file("example.csv");
   const nlohmann::json j =
       run_profile_ok(kProfileExampleArgs + " --vehicle " +
-                     quoted(profile_data("vehicles/rover.yaml")) + " -o " + quoted(out));
+                     quoted(data_file("vehicles/rover.yaml")) + " -o " + quoted(out));
   const std::vector<ProfileRow> rows = read_profile_csv(out);
   expect_consistent_profile(rows, j);
   // Default stations: ceil(3-D length / spacing) + 1.
@@ -278,9 +178,9 @@ TEST(CliProfile, ExampleFilesGiveTheDocumentedCsvAndJson) {
 }
 
 TEST(CliProfile, StationsSmoothingRigidBodyAndStartEndSpeeds) {
-  const std::string out = profile_scratch("rigid.csv");
+  const std::string out = scratch_file("rigid.csv");
   const nlohmann::json j = run_profile_ok(
-      kProfileExampleArgs + " --vehicle " + quoted(profile_data("vehicles/rover_rigid.yaml")) +
+      kProfileExampleArgs + " --vehicle " + quoted(data_file("vehicles/rover_rigid.yaml")) +
       " --stations 300 --smoothing 1 --v0 5 --v1 2.5 -o " + quoted(out));
   EXPECT_EQ(j.at("stations"), 300);
   EXPECT_EQ(j.at("fit"), "smoothing");
@@ -293,11 +193,11 @@ TEST(CliProfile, StationsSmoothingRigidBodyAndStartEndSpeeds) {
 
 TEST(CliProfile, StraightPathOnFlatGroundFromRestToRestTakesTwoSqrtLOverMuG) {
   const double mu = 0.7, g = 9.81, length = 100.0;
-  const std::string out = profile_scratch("straight.csv");
+  const std::string out = scratch_file("straight.csv");
   const nlohmann::json j = run_profile_ok(
-      "--terrain " + quoted(profile_flat_terrain()) + " --path " +
-      quoted(profile_points("straight.csv", {{{10, 60}}, {{110, 60}}})) + " --vehicle " +
-      quoted(profile_vehicle("unlimited.yaml", mu)) + " -o " + quoted(out));
+      "--terrain " + quoted(flat_terrain()) + " --path " +
+      quoted(write_points("straight.csv", {{{10, 60}}, {{110, 60}}})) + " --vehicle " +
+      quoted(point_mass_vehicle("unlimited.yaml", mu)) + " -o " + quoted(out));
   const std::vector<ProfileRow> rows = read_profile_csv(out);
   expect_consistent_profile(rows, j);
   EXPECT_EQ(j.at("stations").get<std::size_t>(), expected_default_stations(length));
@@ -314,18 +214,17 @@ TEST(CliProfile, StraightPathOnFlatGroundFromRestToRestTakesTwoSqrtLOverMuG) {
   EXPECT_NEAR(rows.front().a, mu * g, 1e-9);
   EXPECT_NEAR(rows.back().a, -mu * g, 1e-9);
   // Nothing limits the speed on a straight flat path: v_max is written `inf`.
-  std::ifstream in(out);
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string text = read_text(out);
   EXPECT_NE(text.find(",inf,none\n"), std::string::npos) << text.substr(0, 300);
 }
 
 TEST(CliProfile, StartAndEndSpeedsOnFlatGroundMatchTheBangBangTime) {
   const double mu = 0.7, g = 9.81, length = 100.0, v0 = 5.0, v1 = 3.0;
-  const std::string out = profile_scratch("speeds.csv");
+  const std::string out = scratch_file("speeds.csv");
   const nlohmann::json j = run_profile_ok(
-      "--terrain " + quoted(profile_flat_terrain()) + " --path " +
-      quoted(profile_points("speeds.csv", {{{10, 60}}, {{110, 60}}})) + " --vehicle " +
-      quoted(profile_vehicle("unlimited.yaml", mu)) + " --v0 5 --v1 3 -o " + quoted(out));
+      "--terrain " + quoted(flat_terrain()) + " --path " +
+      quoted(write_points("speeds.csv", {{{10, 60}}, {{110, 60}}})) + " --vehicle " +
+      quoted(point_mass_vehicle("unlimited.yaml", mu)) + " --v0 5 --v1 3 -o " + quoted(out));
   expect_consistent_profile(read_profile_csv(out), j);
   const double a = mu * g;
   const double peak = std::sqrt((2.0 * a * length + v0 * v0 + v1 * v1) / 2.0);
@@ -337,33 +236,27 @@ TEST(CliProfile, StartAndEndSpeedsOnFlatGroundMatchTheBangBangTime) {
 
 TEST(CliProfile, SideSlopeSteeperThanFrictionIsInfeasibleWithExitCodeTwo) {
   // 0.8 rad slope rising to the north: tan(0.8) = 1.03 > mu = 0.6 (< b/h = 1.2).
-  const std::string terrain = profile_scratch("side_slope.asc");
-  const ProfileRun g = run_talus_profile(
+  const std::string terrain = scratch_file("side_slope.asc");
+  const RunResult g = run_talus(
       "terrain generate plane --slope 0.8 --aspect 1.5707963267948966 --ncols 41 --nrows 41 "
       "-o " +
       quoted(terrain));
   ASSERT_EQ(g.exit_code, 0) << g.err;
-  const std::string path = profile_points("east.csv", {{{5, 20}}, {{35, 20}}});
-  const std::string vehicle = profile_vehicle("mu06.yaml", 0.6);
+  const std::string path = write_points("east.csv", {{{5, 20}}, {{35, 20}}});
+  const std::string vehicle = point_mass_vehicle("mu06.yaml", 0.6);
   const std::string args =
       "--terrain " + quoted(terrain) + " --path " + quoted(path) + " --vehicle " + quoted(vehicle);
 
   // talus limits agrees that no station can be passed at any speed.
-  const ProfileRun limits =
-      run_talus_profile("limits " + args + " -o " + quoted(profile_scratch("side_limits.csv")));
+  const RunResult limits =
+      run_talus("limits " + args + " -o " + quoted(scratch_file("side_limits.csv")));
   ASSERT_EQ(limits.exit_code, 0) << limits.err;
-  const nlohmann::json lj = parse_profile_json(limits);
+  const nlohmann::json lj = parse_json(limits.out, "stdout");
   EXPECT_EQ(lj.at("untraversable_stations"), lj.at("stations"));
 
-  const std::string out = profile_scratch("side_profile.csv");
+  const std::string out = scratch_file("side_profile.csv");
   std::filesystem::remove(out);
-  const ProfileRun r = run_talus_profile("profile " + args + " -o " + quoted(out));
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_TRUE(r.err.empty()) << r.err;
-  const nlohmann::json j = parse_profile_json(r);
-  expect_profile_keys(j);
-  EXPECT_EQ(j.at("status"), "infeasible");
-  EXPECT_TRUE(j.at("travel_time").is_null());
+  const nlohmann::json j = expect_infeasible(run_talus("profile " + args + " -o " + quoted(out)));
   EXPECT_FALSE(j.at("message").get<std::string>().empty());
   EXPECT_EQ(j.at("infeasible_binding"), "sliding");
   EXPECT_EQ(j.at("infeasible_station"), 0);
@@ -386,17 +279,11 @@ TEST(CliProfile, SideSlopeSteeperThanFrictionIsInfeasibleWithExitCodeTwo) {
 
 TEST(CliProfile, StartSpeedThatCannotBeBrakedInTimeIsInfeasible) {
   // mu = 0.1: stopping from the 10 m/s top speed takes 100 / (2 * 0.981) = 51 m > 20 m.
-  const std::string args = "--terrain " + quoted(profile_flat_terrain()) + " --path " +
-                           quoted(profile_points("short.csv", {{{10, 10}}, {{30, 10}}})) +
-                           " --vehicle " + quoted(profile_vehicle("slippery.yaml", 0.1, 10.0)) +
-                           " -o " + quoted(profile_scratch("short_profile.csv"));
-  const ProfileRun r = run_talus_profile("profile " + args + " --v0 10");
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_TRUE(r.err.empty()) << r.err;
-  const nlohmann::json j = parse_profile_json(r);
-  expect_profile_keys(j);
-  EXPECT_EQ(j.at("status"), "infeasible");
-  EXPECT_TRUE(j.at("travel_time").is_null());
+  const std::string args = "--terrain " + quoted(flat_terrain()) + " --path " +
+                           quoted(write_points("short.csv", {{{10, 10}}, {{30, 10}}})) +
+                           " --vehicle " + quoted(point_mass_vehicle("slippery.yaml", 0.1, 10.0)) +
+                           " -o " + quoted(scratch_file("short_profile.csv"));
+  const nlohmann::json j = expect_infeasible(run_talus("profile " + args + " --v0 10"));
   EXPECT_EQ(j.at("infeasible_station"), 0);
   EXPECT_NE(j.at("message").get<std::string>().find("start speed"), std::string::npos)
       << j.at("message");
@@ -407,11 +294,11 @@ TEST(CliProfile, StartSpeedThatCannotBeBrakedInTimeIsInfeasible) {
 }
 
 TEST(CliProfile, DefaultStationCountIsClampedBelowAt100) {
-  const std::string out = profile_scratch("tiny.csv");
+  const std::string out = scratch_file("tiny.csv");
   const nlohmann::json j =
-      run_profile_ok("--terrain " + quoted(profile_flat_terrain()) + " --path " +
-                     quoted(profile_points("tiny.csv", {{{10, 10}}, {{14, 13}}})) + " --vehicle " +
-                     quoted(profile_vehicle("unlimited.yaml", 0.7)) + " -o " + quoted(out));
+      run_profile_ok("--terrain " + quoted(flat_terrain()) + " --path " +
+                     quoted(write_points("tiny.csv", {{{10, 10}}, {{14, 13}}})) + " --vehicle " +
+                     quoted(point_mass_vehicle("unlimited.yaml", 0.7)) + " -o " + quoted(out));
   ASSERT_GT(documented_station_spacing(), 0.06);  // so that ceil(5 m / h) + 1 < 100
   EXPECT_EQ(j.at("stations"), 100);
   EXPECT_EQ(read_profile_csv(out).size(), 100u);
@@ -420,15 +307,11 @@ TEST(CliProfile, DefaultStationCountIsClampedBelowAt100) {
 }
 
 TEST(CliProfile, BadInputGivesOneLineOnStderrAndExitCodeOne) {
-  const std::string rover = quoted(profile_data("vehicles/rover.yaml"));
-  const std::string out = profile_scratch("never_written.csv");
+  const std::string rover = quoted(data_file("vehicles/rover.yaml"));
+  const std::string out = scratch_file("never_written.csv");
   std::filesystem::remove(out);
   const std::string common = " -o " + quoted(out);
-  struct Case {
-    std::string args;
-    std::string fragment;  // the message must contain this
-  };
-  const std::vector<Case> cases = {
+  const std::vector<ErrorCase> cases = {
       {kProfileExampleArgs + common, "--vehicle"},
       {kProfileExampleArgs + " --vehicle " + rover + " --v0 20" + common,
        "start speed 20 m/s is above the speed limit 15 m/s (max_speed)"},
@@ -439,24 +322,16 @@ TEST(CliProfile, BadInputGivesOneLineOnStderrAndExitCodeOne) {
       {kProfileExampleArgs + " --vehicle " + rover + " --stations 1" + common,
        "--stations must be at least 2, got 1"},
       {kProfileExampleArgs + " --vehicle " + rover + " --smoothing 0" + common, "--smoothing"},
-      {"--terrain /nonexistent.asc --path " +
-           quoted(profile_data("paths/west_bijou_traverse.csv")) + " --vehicle " + rover + common,
+      {"--terrain /nonexistent.asc --path " + quoted(data_file("paths/west_bijou_traverse.csv")) +
+           " --vehicle " + rover + common,
        "/nonexistent.asc"},
       {kProfileExampleArgs + " --vehicle " + rover, "--output"},
   };
-  for (const Case& c : cases) {
-    const ProfileRun r = run_talus_profile("profile " + c.args);
-    EXPECT_EQ(r.exit_code, 1) << c.args;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": " << r.err;
-    EXPECT_EQ(r.err.rfind("talus: error: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(c.fragment), std::string::npos) << c.fragment << " not in " << r.err;
-    EXPECT_TRUE(r.out.empty()) << r.out;
-    EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
-  }
+  expect_bad_input("profile", cases, out);
 }
 
 TEST(CliProfile, HelpDocumentsTheContract) {
-  const ProfileRun r = run_talus_profile("profile --help");
+  const RunResult r = run_talus("profile --help");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* fragment :
        {"Usage", "s,x,y,z,v,a,t,v_max,binding", "[100, 1000000]", "3-D length", "--v0", "--v1",
@@ -466,3 +341,4 @@ TEST(CliProfile, HelpDocumentsTheContract) {
 }
 
 }  // namespace
+}  // namespace talus::cli_test

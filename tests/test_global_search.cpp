@@ -5,22 +5,12 @@
 
 #include "talus/core/error.hpp"
 #include "talus/optimal/global_search.hpp"
+#include "terrain_test_support.hpp"
 
 namespace talus {
 namespace {
 
-ElevationGrid sample(const std::function<double(double, double)>& f, double w, double h,
-                     double cell) {
-  const auto nc = static_cast<std::size_t>(std::lround(w / cell)) + 1;
-  const auto nr = static_cast<std::size_t>(std::lround(h / cell)) + 1;
-  ElevationGrid grid(nc, nr, cell, 0.0, 0.0);
-  for (std::size_t j = 0; j < nr; ++j)
-    for (std::size_t i = 0; i < nc; ++i) {
-      const Vec2 p = grid.node_position(i, j);
-      grid.at(i, j) = f(p.x(), p.y());
-    }
-  return grid;
-}
+using terrain_test::grid_from_function;
 
 Vehicle rover(double mu = 0.7) {
   Vehicle v;
@@ -44,7 +34,8 @@ double recomputed_cost(const BPatch& terrain, const Vehicle& v, const CandidateP
 }
 
 TEST(GlobalSearch, FlatTerrainGivesTheStraightLineAtMaxSpeed) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 1.0; }, 60, 40, 1.0));
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 1.0; }, 0, 0, 60, 40, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
   const GlobalSearchResult r = global_search(flat, rover(), {5, 20}, {55, 20}, options);
@@ -56,10 +47,11 @@ TEST(GlobalSearch, FlatTerrainGivesTheStraightLineAtMaxSpeed) {
 }
 
 TEST(GlobalSearch, AStarFindsTheSameCostAsTheFullFields) {
-  const BPatch terrain = BPatch::interpolate(
-      sample([](double x,
-                double y) { return 3.0 * std::sin(0.15 * x) * std::cos(0.11 * y) + 0.002 * x * y; },
-             80, 60, 1.0));
+  const BPatch terrain = BPatch::interpolate(grid_from_function(
+      [](double x, double y) {
+        return 3.0 * std::sin(0.15 * x) * std::cos(0.11 * y) + 0.002 * x * y;
+      },
+      0, 0, 80, 60, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
   const GlobalSearchResult full = global_search(terrain, rover(0.6), {5, 5}, {75, 55}, options);
@@ -72,7 +64,8 @@ TEST(GlobalSearch, AStarFindsTheSameCostAsTheFullFields) {
 }
 
 TEST(GlobalSearch, DiagonalOnFlatTerrainUsesKnightMovesWith16Neighbours) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 60, 40, 1.0));
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, 0, 0, 60, 40, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
   options.connectivity = 16;
@@ -87,12 +80,12 @@ TEST(GlobalSearch, DiagonalOnFlatTerrainUsesKnightMovesWith16Neighbours) {
 
 /// A Gaussian hill between start and goal.
 BPatch hill(double height, double sigma) {
-  return BPatch::interpolate(sample(
+  return BPatch::interpolate(grid_from_function(
       [&](double x, double y) {
         return height *
                std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * sigma * sigma));
       },
-      80, 60, 1.0));
+      0, 0, 80, 60, 1.0));
 }
 
 TEST(GlobalSearch, HighFrictionCrossesTheHillLowFrictionGoesAround) {
@@ -140,14 +133,14 @@ TEST(GlobalSearch, SymmetricTerrainGivesTwoMirrorCandidatesOfEqualCost) {
 
 TEST(GlobalSearch, RidgeWithOneGapIsCrossedThroughTheGap) {
   // A steep ridge along x = 40 except for a gap at 45 < y < 52.
-  const BPatch terrain = BPatch::interpolate(sample(
+  const BPatch terrain = BPatch::interpolate(grid_from_function(
       [](double x, double y) {
         const double ridge = 8.0 * std::exp(-(x - 40) * (x - 40) / 8.0);
         const double gap =
             (y > 45 && y < 52) ? 1.0 - std::exp(-std::pow(std::min(y - 45, 52 - y), 2) / 2.0) : 0.0;
         return ridge * (1.0 - 0.97 * gap);
       },
-      80, 60, 1.0));
+      0, 0, 80, 60, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
   const GlobalSearchResult r = global_search(terrain, rover(0.6), {10, 15}, {70, 15}, options);
@@ -160,8 +153,9 @@ TEST(GlobalSearch, RidgeWithOneGapIsCrossedThroughTheGap) {
 
 TEST(GlobalSearch, UnreachableGoalIsAStatusWithTheReachableRegion) {
   // A wall all the way across.
-  const BPatch terrain = BPatch::interpolate(sample(
-      [](double x, double) { return 10.0 * std::exp(-(x - 40) * (x - 40) / 4.0); }, 80, 40, 1.0));
+  const BPatch terrain = BPatch::interpolate(grid_from_function(
+      [](double x, double) { return 10.0 * std::exp(-(x - 40) * (x - 40) / 4.0); }, 0, 0, 80, 40,
+      1.0));
   GlobalSearchOptions options;
   const GlobalSearchResult r = global_search(terrain, rover(0.5), {10, 20}, {70, 20}, options);
   EXPECT_EQ(r.status, GlobalSearchStatus::kUnreachable);
@@ -172,7 +166,8 @@ TEST(GlobalSearch, UnreachableGoalIsAStatusWithTheReachableRegion) {
 }
 
 TEST(GlobalSearch, BadInputIsAnInputError) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 40, 40, 1.0));
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, 0, 0, 40, 40, 1.0));
   GlobalSearchOptions options;
   EXPECT_THROW(global_search(flat, rover(), {-1, 5}, {20, 20}, options), InputError);
   EXPECT_THROW(global_search(flat, rover(), {5, 5}, {20, 41}, options), InputError);
@@ -182,8 +177,8 @@ TEST(GlobalSearch, BadInputIsAnInputError) {
   options.connectivity = 12;
   EXPECT_THROW(global_search(flat, rover(), {5, 5}, {20, 20}, options), InputError);
   // Start on a slope steeper than friction.
-  const BPatch steep = BPatch::interpolate(
-      sample([](double x, double y) { return x < 20 ? 2.0 * y : 0.0; }, 40, 40, 1.0));
+  const BPatch steep = BPatch::interpolate(grid_from_function(
+      [](double x, double y) { return x < 20 ? 2.0 * y : 0.0; }, 0, 0, 40, 40, 1.0));
   GlobalSearchOptions ok;
   EXPECT_THROW(global_search(steep, rover(0.5), {10, 20}, {35, 20}, ok), InputError);
 }
@@ -191,8 +186,8 @@ TEST(GlobalSearch, BadInputIsAnInputError) {
 TEST(GlobalSearch, SlopeSteeperThanFrictionCanBeNeitherClimbedNorDescended) {
   // A plane of slope 0.5 with mu = 0.4: sliding limits do not bind on the fall
   // line, but the vehicle can neither climb it nor stop descending it.
-  const BPatch plane =
-      BPatch::interpolate(sample([](double x, double) { return 0.5 * x; }, 20, 20, 1.0));
+  const BPatch plane = BPatch::interpolate(
+      grid_from_function([](double x, double) { return 0.5 * x; }, 0, 0, 20, 20, 1.0));
   const EdgeCost c = edge_cost(plane, rover(0.4), {5, 10}, {6, 10}, 5);
   EXPECT_EQ(c.forward, INFINITY);
   EXPECT_EQ(c.backward, INFINITY);

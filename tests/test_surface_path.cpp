@@ -6,22 +6,14 @@
 
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
+#include "terrain_test_support.hpp"
 
 namespace talus {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using terrain_test::grid_around_origin;
 
-ElevationGrid sample(const std::function<double(double, double)>& f, double half_width, double h) {
-  const auto n = static_cast<std::size_t>(std::lround(2 * half_width / h)) + 1;
-  ElevationGrid grid(n, n, h, -half_width, -half_width);
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 p = grid.node_position(i, j);
-      grid.at(i, j) = f(p.x(), p.y());
-    }
-  return grid;
-}
+constexpr double kPi = std::numbers::pi;
 
 Curve2 circle(const Vec2& centre, double a, double b, int points = 400) {
   // Closed ellipse (semi-axes a along x, b along y), counter-clockwise.
@@ -89,7 +81,8 @@ TEST(SurfaceFrame, ZeroPlanarVelocityIsAnInputError) {
 }
 
 TEST(SurfacePath, FlatCircleHasGeodesicCurvatureOneOverRadiusAndLengthTwoPiR) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 5.0; }, 10, 1.0));
+  const BPatch flat =
+      BPatch::interpolate(grid_around_origin([](double, double) { return 5.0; }, 10, 1.0));
   const double r = 4.0;
   const SurfacePath path(flat, circle(Vec2(0.5, -0.5), r, r));
   EXPECT_NEAR(path.length(), 2 * kPi * r, 1e-6);
@@ -105,8 +98,8 @@ TEST(SurfacePath, FlatCircleHasGeodesicCurvatureOneOverRadiusAndLengthTwoPiR) {
 
 TEST(SurfacePath, CircleInATiltedPlaneOnAFittedPatch) {
   const double alpha = 0.35, rho = 5.0;
-  const BPatch plane =
-      BPatch::interpolate(sample([&](double x, double) { return std::tan(alpha) * x; }, 10, 0.5));
+  const BPatch plane = BPatch::interpolate(
+      grid_around_origin([&](double x, double) { return std::tan(alpha) * x; }, 10, 0.5));
   const SurfacePath path(plane, circle(Vec2::Zero(), rho * std::cos(alpha), rho));
   EXPECT_NEAR(path.length(), 2 * kPi * rho, 1e-5);
   for (const PathFrame& f : path.sample(25)) {
@@ -118,8 +111,8 @@ TEST(SurfacePath, CircleInATiltedPlaneOnAFittedPatch) {
 
 TEST(SurfacePath, StraightLineUpAPlaneHasSlopeComponents) {
   const double alpha = 0.3;
-  const BPatch plane =
-      BPatch::interpolate(sample([&](double x, double) { return std::tan(alpha) * x; }, 10, 1.0));
+  const BPatch plane = BPatch::interpolate(
+      grid_around_origin([&](double x, double) { return std::tan(alpha) * x; }, 10, 1.0));
   const SurfacePath up(plane, segment({-8, 1}, {8, 1}));
   EXPECT_NEAR(up.length(), 16.0 / std::cos(alpha), 1e-9);
   const PathFrame f = up.frame_at_arc_length(3.0);
@@ -137,8 +130,8 @@ TEST(SurfacePath, StraightLineUpAPlaneHasSlopeComponents) {
 
 TEST(SurfacePath, SphereCapOnAFittedPatch) {
   const double R = 40.0;
-  const BPatch cap = BPatch::interpolate(
-      sample([&](double x, double y) { return std::sqrt(R * R - x * x - y * y); }, 12, 0.25));
+  const BPatch cap = BPatch::interpolate(grid_around_origin(
+      [&](double x, double y) { return std::sqrt(R * R - x * x - y * y); }, 12, 0.25));
   const double a = 6.0;  // planar radius of a circle of latitude
   const SurfacePath path(cap, circle(Vec2::Zero(), a, a));
   EXPECT_NEAR(path.length(), 2 * kPi * a, 1e-4);
@@ -156,7 +149,7 @@ TEST(SurfacePath, SphereCapOnAFittedPatch) {
 TEST(SurfacePath, CylinderCrestAlongAndAcrossTheAxis) {
   const double R = 30.0;  // axis along x at height 0: z = sqrt(R^2 - y^2) - R
   const BPatch crest = BPatch::interpolate(
-      sample([&](double, double y) { return std::sqrt(R * R - y * y) - R; }, 10, 0.25));
+      grid_around_origin([&](double, double y) { return std::sqrt(R * R - y * y) - R; }, 10, 0.25));
   // Along the axis, offset y0: a straight ruling with a side slope.
   const double y0 = -6.0,
                slope = std::asin(-y0 / R);  // ground rises towards the axis (to the left)
@@ -176,8 +169,8 @@ TEST(SurfacePath, CylinderCrestAlongAndAcrossTheAxis) {
 }
 
 TEST(SurfacePath, ArcLengthInverseRoundTrips) {
-  const BPatch cap = BPatch::interpolate(
-      sample([](double x, double y) { return 0.1 * x * x - 0.05 * x * y + std::sin(y); }, 10, 0.5));
+  const BPatch cap = BPatch::interpolate(grid_around_origin(
+      [](double x, double y) { return 0.1 * x * x - 0.05 * x * y + std::sin(y); }, 10, 0.5));
   const SurfacePath path(cap,
                          Curve2::interpolate({Vec2(-8, -8), Vec2(-2, 0), Vec2(3, -4), Vec2(8, 7)}));
   for (double s = 0; s <= path.length(); s += path.length() / 13) {
@@ -189,7 +182,8 @@ TEST(SurfacePath, ArcLengthInverseRoundTrips) {
 }
 
 TEST(SurfacePath, APathLeavingTheTerrainIsAnInputError) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 0.0; }, 5, 1.0));
+  const BPatch flat =
+      BPatch::interpolate(grid_around_origin([](double, double) { return 0.0; }, 5, 1.0));
   try {
     SurfacePath(flat, segment({0, 0}, {7, 0}));
     ADD_FAILURE() << "path off the map accepted";
@@ -206,7 +200,7 @@ namespace {
 
 TEST(SurfacePath, CopiesAndMovesStayValidAfterTheOriginalIsGone) {
   const BPatch flat =
-      BPatch::interpolate(sample([](double x, double) { return 0.1 * x; }, 10, 1.0));
+      BPatch::interpolate(grid_around_origin([](double x, double) { return 0.1 * x; }, 10, 1.0));
   std::vector<SurfacePath> paths;
   {
     SurfacePath original(flat, segment({-5, 0}, {5, 0}));

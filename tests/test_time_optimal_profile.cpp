@@ -10,9 +10,12 @@
 #include "talus/core/error.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
+#include "terrain_test_support.hpp"
 
 namespace talus {
 namespace {
+
+using terrain_test::grid_from_function;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
@@ -27,19 +30,6 @@ Vehicle vehicle(double mu, double max_accel = INFINITY, double max_decel = INFIN
   v.max_decel = max_decel;
   v.max_speed = max_speed;
   return v;
-}
-
-ElevationGrid sample(const std::function<double(double, double)>& f, double x0, double y0,
-                     double x1, double y1, double h) {
-  const auto nc = static_cast<std::size_t>(std::lround((x1 - x0) / h)) + 1;
-  const auto nr = static_cast<std::size_t>(std::lround((y1 - y0) / h)) + 1;
-  ElevationGrid grid(nc, nr, h, x0, y0);
-  for (std::size_t j = 0; j < nr; ++j)
-    for (std::size_t i = 0; i < nc; ++i) {
-      const Vec2 p = grid.node_position(i, j);
-      grid.at(i, j) = f(p.x(), p.y());
-    }
-  return grid;
 }
 
 /// The library's default spacing (the issue: analytic times within 0.5 % at the default spacing).
@@ -60,8 +50,8 @@ void expect_within_half_percent(double actual, double expected) {
 }
 
 TEST(TimeOptimalProfile, FlatStraightLineRestToRest) {
-  const BPatch flat =
-      BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
   const double L = 200.0, mu = 0.7;
   const TimeOptimalProfile p = solve_straight(flat, {5, 0}, {5 + L, 0}, vehicle(mu));
   ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
@@ -78,8 +68,8 @@ TEST(TimeOptimalProfile, FlatStraightLineRestToRest) {
 }
 
 TEST(TimeOptimalProfile, DriveBrakeAndSpeedLimitsGiveATrapezoid) {
-  const BPatch flat =
-      BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
   const double L = 200.0, A = 2.0, D = 4.0, V = 10.0;
   const TimeOptimalProfile p = solve_straight(flat, {5, 0}, {5 + L, 0}, vehicle(0.9, A, D, V));
   ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
@@ -94,8 +84,8 @@ TEST(TimeOptimalProfile, DriveBrakeAndSpeedLimitsGiveATrapezoid) {
 
 TEST(TimeOptimalProfile, StraightUpAndDownAnInclinedPlane) {
   const double alpha = 0.15, mu = 0.8, L = 150.0;
-  const BPatch plane = BPatch::interpolate(
-      sample([&](double x, double) { return std::tan(alpha) * x; }, 0, -5, 160, 5, 1.0));
+  const BPatch plane = BPatch::interpolate(grid_from_function(
+      [&](double x, double) { return std::tan(alpha) * x; }, 0, -5, 160, 5, 1.0));
   const double run = L * std::cos(alpha);
   for (const bool up : {true, false}) {
     const Vec2 a = up ? Vec2(5, 0) : Vec2(5 + run, 0), b = up ? Vec2(5 + run, 0) : Vec2(5, 0);
@@ -112,8 +102,8 @@ TEST(TimeOptimalProfile, StraightUpAndDownAnInclinedPlane) {
 
 TEST(TimeOptimalProfile, FlatCircleAtItsSteadySpeedStaysThere) {
   const double r = 20.0, mu = 0.6;
-  const BPatch flat =
-      BPatch::interpolate(sample([](double, double) { return 0.0; }, -25, -25, 25, 25, 1.0));
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, -25, -25, 25, 25, 1.0));
   std::vector<Vec2> pts;
   for (int k = 0; k <= 200; ++k)
     pts.emplace_back(r * std::cos(2 * kPi * k / 200), r * std::sin(2 * kPi * k / 200));
@@ -141,7 +131,7 @@ TEST(TimeOptimalProfile, CrestForcesSlowingToTheContactLimit) {
     const double cap = std::sqrt(R * R - d * d) - R;
     return cap - slope * (std::abs(x - 30.0) - std::abs(d));  // continues with the edge slope
   };
-  const BPatch terrain = BPatch::interpolate(sample(z, 0, -3, 60, 3, 0.25));
+  const BPatch terrain = BPatch::interpolate(grid_from_function(z, 0, -3, 60, 3, 0.25));
   const SurfacePath path(terrain, Curve2::interpolate({Vec2(1, 0), Vec2(59, 0)}));
   const VelocityLimits limits(vehicle(2.0), path, 1200);
   TimeOptimalProfileSolver solver;
@@ -165,8 +155,8 @@ TEST(TimeOptimalProfile, CrestForcesSlowingToTheContactLimit) {
 }
 
 TEST(TimeOptimalProfile, StartOrEndAboveTheLimitIsAnInputError) {
-  const BPatch flat =
-      BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
   const SurfacePath path(flat, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
   const VelocityLimits limits(vehicle(0.7, INFINITY, INFINITY, 10.0), path, 51);
   TimeOptimalProfileSolver solver;
@@ -184,7 +174,7 @@ TEST(TimeOptimalProfile, StartOrEndAboveTheLimitIsAnInputError) {
 
 TEST(TimeOptimalProfile, UntraversableStationIsReportedWithItsConstraint) {
   // A side slope steeper than friction across the middle of the path.
-  const BPatch ridge = BPatch::interpolate(sample(
+  const BPatch ridge = BPatch::interpolate(grid_from_function(
       [](double x, double y) { return (x > 20 && x < 40) ? 0.9 * y : 0.0; }, 0, -5, 60, 5, 0.5));
   const SurfacePath path(ridge, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
   const VelocityLimits limits(vehicle(0.6), path, 201);
@@ -197,8 +187,8 @@ TEST(TimeOptimalProfile, UntraversableStationIsReportedWithItsConstraint) {
 }
 
 TEST(TimeOptimalProfile, NearlyCoincidentStationsAreMerged) {
-  const BPatch flat =
-      BPatch::interpolate(sample([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, 0, -5, 60, 5, 1.0));
   const SurfacePath path(flat, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
   // 5e7 stations would be 1e-9 m apart; use a huge count on a tiny path instead.
   const SurfacePath tiny(flat, Curve2::interpolate({Vec2(5, 0), Vec2(5 + 2e-8, 0)}));

@@ -7,9 +7,12 @@
 
 #include "talus/core/error.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
+#include "terrain_test_support.hpp"
 
 namespace talus {
 namespace {
+
+using terrain_test::grid_around_origin;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
@@ -25,17 +28,6 @@ Vehicle point_mass(double mu, double h, double b) {
 /// Relative error check at the 0.5 % tolerance.
 void expect_within_half_percent(double actual, double expected, const std::string& what = "") {
   EXPECT_NEAR(actual, expected, 0.005 * std::abs(expected)) << what;
-}
-
-ElevationGrid sample(const std::function<double(double, double)>& f, double half_width, double h) {
-  const auto n = static_cast<std::size_t>(std::lround(2 * half_width / h)) + 1;
-  ElevationGrid grid(n, n, h, -half_width, -half_width);
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 p = grid.node_position(i, j);
-      grid.at(i, j) = f(p.x(), p.y());
-    }
-  return grid;
 }
 
 Curve2 circle(double r, int points = 256) {
@@ -249,7 +241,8 @@ TEST(RigidBody, PitchesOverUnderBrakingWhenTallAndShort) {
 }
 
 TEST(VelocityLimits, FlatCirclePathAtEveryStation) {
-  const BPatch flat = BPatch::interpolate(sample([](double, double) { return 100.0; }, 40, 2.0));
+  const BPatch flat =
+      BPatch::interpolate(grid_around_origin([](double, double) { return 100.0; }, 40, 2.0));
   const double r = 30.0, mu = 0.7;
   const SurfacePath path(flat, circle(r));
   const VelocityLimits limits(point_mass(mu, 0.5, 1.0), path, 500);
@@ -264,8 +257,8 @@ TEST(VelocityLimits, FlatCirclePathAtEveryStation) {
 
 TEST(VelocityLimits, BankedBowlPathAgreesWithTheFormula) {
   const double theta = 15.0 * kPi / 180.0, r = 20.0, mu = 0.5;
-  const BPatch cone = BPatch::interpolate(
-      sample([&](double x, double y) { return std::tan(theta) * std::hypot(x, y); }, 30, 0.5));
+  const BPatch cone = BPatch::interpolate(grid_around_origin(
+      [&](double x, double y) { return std::tan(theta) * std::hypot(x, y); }, 30, 0.5));
   const SurfacePath path(cone, circle(r));
   const VelocityLimits limits(point_mass(mu, 0.3, 5.0), path, 200);
   const double v2 =
@@ -276,7 +269,7 @@ TEST(VelocityLimits, BankedBowlPathAgreesWithTheFormula) {
 }
 
 TEST(VelocityLimits, FastSamplingArcLengthMatchesTheExactMap) {
-  const BPatch hills = BPatch::interpolate(sample(
+  const BPatch hills = BPatch::interpolate(grid_around_origin(
       [](double x, double y) { return 3 * std::sin(0.1 * x) * std::cos(0.13 * y); }, 40, 1.0));
   const SurfacePath path(
       hills, Curve2::interpolate({Vec2(-35, -30), Vec2(-10, 5), Vec2(12, -8), Vec2(33, 30)}));

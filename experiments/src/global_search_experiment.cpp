@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -17,8 +16,11 @@
 #include <utility>
 #include <vector>
 
+#include "experiment_terrain.hpp"
+#include "number_format.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
+#include "relief_raster.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/elevation_grid.hpp"
@@ -104,31 +106,11 @@ constexpr const char* kFrictionColours[] = {"#e41a1c", "#377eb8"};
 // ---------------------------------------------------------------------------
 // Formatting.
 
-std::string fmt(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
 /// A data-file number: "NaN" for NaN and ±inf (gnuplot leaves such pixels
 /// transparent and skips them when tracing contours), else 7 significant digits.
 std::string num(double value) {
   if (!std::isfinite(value)) return "NaN";
   return fmt("%.7g", value);
-}
-
-/// About three significant digits without exponent or trailing zeros.
-std::string sig3(double value) {
-  if (value == 0.0 || !std::isfinite(value)) return fmt("%g", value);
-  const int digits = static_cast<int>(std::floor(std::log10(std::abs(value)))) + 1;
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", std::max(0, 3 - digits), value);
-  std::string text = buffer;
-  if (text.find('.') != std::string::npos) {
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
-  }
-  return text;
 }
 
 /// "mu0.7": the file-name tag of one friction.
@@ -432,58 +414,22 @@ ControlRun run_control(const Setup& setup, double friction, GlobalSearchOptions 
 /// read on top of it) and the elevation raster gnuplot traces contours on.
 /// Shared by every map; returns the contour interval.
 double write_relief(const Setup& setup, std::size_t max_samples, const fs::path& out_dir) {
-  const double width = setup.width(), height = setup.height();
-  const RasterSize raster = raster_for_extent(width, height, max_samples);
-  std::vector<SurfacePoint> samples(raster.nx * raster.ny);
-  std::vector<Vec2> offsets(samples.size());
-  std::vector<double> slopes(samples.size());
-  for (std::size_t b = 0; b < raster.ny; ++b)
-    for (std::size_t a = 0; a < raster.nx; ++a) {
-      // Clamped so rounding never pushes the last sample off the domain.
-      const double dx = std::min(static_cast<double>(a) * raster.spacing, width);
-      const double dy = std::min(static_cast<double>(b) * raster.spacing, height);
-      const std::size_t k = b * raster.nx + a;
-      offsets[k] = Vec2(dx, dy);
-      samples[k] = setup.patch.evaluate(setup.origin() + offsets[k]);
-      slopes[k] = samples[k].gradient.norm();
-    }
-  const auto p95 = slopes.begin() + static_cast<long>(0.95 * static_cast<double>(slopes.size()));
-  std::nth_element(slopes.begin(), p95, slopes.end());
-  const double exaggeration = hillshade_exaggeration(*p95);
-  const SunPosition sun{315.0, 45.0};
-
-  const fs::path rgb_file = out_dir / "relief.rgb";
-  const fs::path elevation_file = out_dir / "elevation.dat";
-  std::ofstream rgb = open_output_file(rgb_file);
-  std::ofstream elevation = open_output_file(elevation_file);
-  rgb << "# " << kDemStem
-      << " crop, smoothing B-patch: hypsometric colour x hillshade (azimuth 315 deg, altitude "
-      << "45 deg, exaggeration " << exaggeration
-      << "), washed 45 % towards white\n# x - x_min [m], y - y_min [m], red, green, blue\n";
-  elevation << "# " << kDemStem << " crop: smoothing B-patch (lambda " << kSmoothingLambda
-            << ") on a " << raster.nx << " x " << raster.ny
-            << " raster\n# x - x_min [m], y - y_min [m], z [m]\n";
-  const double relief = setup.zmax - setup.zmin;
-  for (std::size_t b = 0; b < raster.ny; ++b) {
-    for (std::size_t a = 0; a < raster.nx; ++a) {
-      const std::size_t k = b * raster.nx + a;
-      const SurfacePoint& s = samples[k];
-      const double t = relief > 0.0 ? (s.z - setup.zmin) / relief : 0.5;
-      Rgb colour =
-          shade_colour(hypsometric_colour(t),
-                       hillshade(s.gradient.x(), s.gradient.y(), sun, exaggeration), kAmbient);
-      colour = {0.55 * colour.r + 0.45, 0.55 * colour.g + 0.45, 0.55 * colour.b + 0.45};
-      const std::string x = fmt("%.7g", offsets[k].x()), y = fmt("%.7g", offsets[k].y());
-      rgb << x << ' ' << y << ' ' << to_byte(colour.r) << ' ' << to_byte(colour.g) << ' '
-          << to_byte(colour.b) << '\n';
-      elevation << x << ' ' << y << ' ' << fmt("%.7g", s.z) << '\n';
-    }
-    rgb << '\n';
-    elevation << '\n';
-  }
-  close_output_file(rgb, rgb_file);
-  close_output_file(elevation, elevation_file);
-  return contour_interval(relief, kContourTargetLevels);
+  const ReliefRaster raster =
+      sample_relief(setup.patch, setup.origin(), setup.width(), setup.height(), max_samples);
+  const double exaggeration = hillshade_exaggeration(slope_p95(raster));
+  std::ostringstream rgb_header, elevation_header;
+  rgb_header << "# " << kDemStem
+             << " crop, smoothing B-patch: hypsometric colour x hillshade (azimuth 315 deg, "
+                "altitude 45 deg, exaggeration "
+             << exaggeration
+             << "), washed 45 % towards white\n# x - x_min [m], y - y_min [m], red, green, blue\n";
+  elevation_header << "# " << kDemStem << " crop: smoothing B-patch (lambda " << kSmoothingLambda
+                   << ") on a " << raster.size.nx << " x " << raster.size.ny
+                   << " raster\n# x - x_min [m], y - y_min [m], z [m]\n";
+  write_relief_rgb(raster, {setup.zmin, setup.zmax, {315.0, 45.0}, exaggeration, kAmbient, true},
+                   rgb_header.str(), out_dir / "relief.rgb");
+  write_elevation_raster(raster, elevation_header.str(), out_dir / "elevation.dat");
+  return contour_interval(setup.zmax - setup.zmin, kContourTargetLevels);
 }
 
 /// Lattice nodes of `r` as offsets from the crop's south-west node.
@@ -1188,7 +1134,7 @@ void run_global_search_experiment(const ExperimentContext& context) {
   require_gnuplot();
   const fs::path out_dir = context.output_dir;
 
-  const fs::path dem_file = context.data_dir / "terrain" / (std::string(kDemStem) + ".asc");
+  const fs::path dem_file = bundled_dem_file(context.data_dir, kDemStem);
   const ElevationGrid dem = read_esri_ascii(dem_file.string());
   ElevationGrid cropped = crop_grid(dem, kCrop);
   const auto fit_start = Clock::now();

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,21 +12,25 @@
 #include <sstream>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <vector>
 
+#include "constraint_style.hpp"
+#include "experiment_terrain.hpp"
+#include "number_format.hpp"
+#include "path_map.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
+#include "relief_raster.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
-#include "talus/core/esri_ascii.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
+#include "west_bijou_path.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -41,27 +44,15 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // ---------------------------------------------------------------------------
 // Fixed settings, named so the report can quote them.
 
-constexpr const char* kDemStem = "west_bijou_escarpment_nasadem25m";
-/// data/terrain/README.md "Rover-scale use": x, y and z all scaled by 1/25
-/// give 1 m cells with unchanged slopes and 25× larger curvatures, so the
-/// escarpment's landforms become rover-sized obstacles.
-constexpr double kRoverScale = 1.0 / 25.0;
+/// The DEM, its rover scale and the path (west_bijou_path.hpp) are those of
+/// the velocity-limits experiment, so the two experiments' figures can be
+/// read together (the path is about 170 m long at rover scale).
 /// The DEM stores whole metres; at rover scale those steps are 4 cm per 1 m
 /// cell, and the interpolating fit turns each into a curvature spike that
 /// sets v_max at cell spacing (see the velocity-limits experiment). λ = 1
 /// (dimensionless, grid-index units) smooths over about one cell and keeps
 /// the landforms.
 constexpr double kSmoothingLambda = 1.0;
-
-/// Path interpolation points in grid cells from the south-west node: the path
-/// of the velocity-limits experiment, so the two experiments' figures can be
-/// read together (about 170 m at rover scale). At least 6 cells inside the
-/// 121 × 81-node grid; SurfacePath checks that the cubic stays inside too.
-struct CellPoint {
-  double u, v;
-};
-constexpr CellPoint kPathCells[] = {{6.0, 74.0},  {18.0, 54.0}, {28.0, 32.0}, {46.0, 38.0},
-                                    {60.0, 60.0}, {84.0, 62.0}, {92.0, 46.0}, {114.0, 20.0}};
 
 /// Stations of the profile figure: about 5 cm spacing (full) or 21 cm
 /// (quick), fine enough that the figure shows the converged profile (see the
@@ -105,36 +96,6 @@ constexpr double kBriefHalfWheelbase = 0.6;
 
 // ---------------------------------------------------------------------------
 // Formatting.
-
-std::string fmt(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
-/// A CSV number: "inf" / "nan" spelled out (printf may print "-nan"), else
-/// `digits` significant digits. gnuplot and pandas both read these spellings.
-std::string num(double value, int digits = 7) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0.0 ? "inf" : "-inf";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
-}
-
-/// About three significant digits without exponent or trailing zeros.
-std::string sig3(double value) {
-  if (value == 0.0 || !std::isfinite(value)) return fmt("%g", value);
-  const int digits = static_cast<int>(std::floor(std::log10(std::abs(value)))) + 1;
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", std::max(0, 3 - digits), value);
-  std::string text = buffer;
-  if (text.find('.') != std::string::npos) {
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
-  }
-  return text;
-}
 
 /// A relative error as a signed percentage with three significant digits.
 std::string percent_error(double relative) {
@@ -203,11 +164,6 @@ std::string vehicle_parameters(const Vehicle& v) {
 /// Colour and legend text of each constraint that can set v_max or bound s̈.
 /// One table so that every figure's colours and the gnuplot colour function
 /// cannot drift apart.
-struct ConstraintStyle {
-  Constraint constraint;
-  const char* colour;  ///< #rrggbb
-  const char* label;
-};
 constexpr ConstraintStyle kStyles[] = {
     {Constraint::kContact, "#d62728", "contact"},
     {Constraint::kSliding, "#1f77b4", "sliding (friction)"},
@@ -218,52 +174,6 @@ constexpr ConstraintStyle kStyles[] = {
     {Constraint::kBrake, "#8c564b", "brake limit"},
     {Constraint::kNone, "#000000", "none"},
 };
-
-/// gnuplot function mapping a constraint name (CSV string) to 0xRRGGBB.
-std::string gnuplot_colour_function(const std::string& name) {
-  std::ostringstream f;
-  f << name << "(b) = ";
-  for (const ConstraintStyle& s : kStyles) {
-    f << "(b eq '" << to_string(s.constraint) << "') ? 0x" << (s.colour + 1) << " : ";
-  }
-  f << "0x000000\n";
-  return f.str();
-}
-
-// ---------------------------------------------------------------------------
-// Terrain and path.
-
-/// The DEM with x, y and z multiplied by `k`: slopes (dz/dx) unchanged,
-/// curvatures (d²z/dx²) multiplied by 1/k. (A copy of the velocity-limits
-/// experiment's helper, which is file-local there.)
-ElevationGrid scaled_grid(const ElevationGrid& grid, double k) {
-  ElevationGrid out(grid.ncols(), grid.nrows(), grid.cellsize() * k, grid.x_min() * k,
-                    grid.y_min() * k);
-  for (std::size_t j = 0; j < grid.nrows(); ++j)
-    for (std::size_t i = 0; i < grid.ncols(); ++i) {
-      if (grid.valid(i, j)) {
-        out.set(i, j, grid.at(i, j) * k);
-      } else {
-        out.set_void(i, j);  // the smoothing fit leaves voids out
-      }
-    }
-  return out;
-}
-
-std::vector<Vec2> path_points(const ElevationGrid& grid) {
-  std::vector<Vec2> points;
-  const double h = grid.cellsize();
-  for (const CellPoint& c : kPathCells) {
-    if (c.u < 2.0 || c.v < 2.0 || c.u > static_cast<double>(grid.ncols() - 1) - 2.0 ||
-        c.v > static_cast<double>(grid.nrows() - 1) - 2.0) {
-      throw InputError("optimal-profile: path point (" + fmt("%g", c.u) + ", " + fmt("%g", c.v) +
-                       ") cells is not 2 cells inside the " + std::to_string(grid.ncols()) + " × " +
-                       std::to_string(grid.nrows()) + "-node grid");
-    }
-    points.emplace_back(grid.x_min() + c.u * h, grid.y_min() + c.v * h);
-  }
-  return points;
-}
 
 // ---------------------------------------------------------------------------
 // One profile and its checks.
@@ -659,14 +569,15 @@ void write_profile_csv(const ProfileRun& run, const fs::path& file) {
   for (std::size_t k = 0; k < p.s.size(); ++k) {
     const PathFrame& f = run.limits.frame(k);
     const AccelerationBounds& b = run.bounds[k];
-    out << num(p.s[k], 9) << ',' << num(f.point.x(), 9) << ',' << num(f.point.y(), 9) << ','
-        << num(f.point.z(), 9) << ',' << num(p.v[k], 9) << ',' << num(p.a[k], 9) << ','
-        << num(p.t[k], 9) << ',' << num(p.v_max[k], 9) << ',' << to_string(p.binding[k]) << ','
-        << num(b.feasible ? b.a_min : kNaN) << ',' << num(b.feasible ? b.a_max : kNaN) << ','
-        << to_string(p.control[k]) << ','
+    out << csv_number(p.s[k], 9) << ',' << csv_number(f.point.x(), 9) << ','
+        << csv_number(f.point.y(), 9) << ',' << csv_number(f.point.z(), 9) << ','
+        << csv_number(p.v[k], 9) << ',' << csv_number(p.a[k], 9) << ',' << csv_number(p.t[k], 9)
+        << ',' << csv_number(p.v_max[k], 9) << ',' << to_string(p.binding[k]) << ','
+        << csv_number(b.feasible ? b.a_min : kNaN) << ',' << csv_number(b.feasible ? b.a_max : kNaN)
+        << ',' << to_string(p.control[k]) << ','
         << (b.feasible ? to_string(b.lower_binding) : "infeasible") << ','
-        << (b.feasible ? to_string(b.upper_binding) : "infeasible") << ',' << num(f.kappa_n) << ','
-        << num(f.kappa_g) << ',' << num(f.k_t) << '\n';
+        << (b.feasible ? to_string(b.upper_binding) : "infeasible") << ',' << csv_number(f.kappa_n)
+        << ',' << csv_number(f.kappa_g) << ',' << csv_number(f.k_t) << '\n';
   }
   close_output_file(out, file);
 }
@@ -678,10 +589,10 @@ void write_switching_csv(const ProfileRun& run, const std::vector<SwitchingPoint
   const TimeOptimalProfile& p = run.profile;
   for (const SwitchingPoint& sw : switches) {
     const PathFrame& f = run.limits.frame(sw.station);
-    out << sw.station << ',' << num(sw.s, 9) << ',' << num(p.v[sw.station], 9) << ','
-        << num(p.v_max[sw.station], 9) << ',' << to_string(p.binding[sw.station]) << ','
-        << to_string(sw.from) << ',' << to_string(sw.to) << ',' << num(f.point.x(), 9) << ','
-        << num(f.point.y(), 9) << '\n';
+    out << sw.station << ',' << csv_number(sw.s, 9) << ',' << csv_number(p.v[sw.station], 9) << ','
+        << csv_number(p.v_max[sw.station], 9) << ',' << to_string(p.binding[sw.station]) << ','
+        << to_string(sw.from) << ',' << to_string(sw.to) << ',' << csv_number(f.point.x(), 9) << ','
+        << csv_number(f.point.y(), 9) << '\n';
   }
   close_output_file(out, file);
 }
@@ -694,12 +605,13 @@ void write_convergence_csv(const std::vector<Level>& levels, const fs::path& fil
          "rigid_body_solve_seconds,default_spacing,interpolating_travel_time_s,"
          "interpolating_relative_error\n";
   for (const Level& l : levels) {
-    out << l.stations << ',' << num(l.mean_spacing, 9) << ',' << num(l.travel_time[0], 12) << ','
-        << num(l.error[0], 6) << ',' << num(l.solve_seconds[0], 4) << ',' << num(l.max_spacing, 9)
-        << ',' << num(l.limits_seconds, 4) << ',' << num(l.travel_time[1], 12) << ','
-        << num(l.error[1], 6) << ',' << num(l.solve_seconds[1], 4) << ',' << (l.is_default ? 1 : 0)
-        << ',' << num(l.travel_time[kInterpolatingSeries], 12) << ','
-        << num(l.error[kInterpolatingSeries], 6) << '\n';
+    out << l.stations << ',' << csv_number(l.mean_spacing, 9) << ','
+        << csv_number(l.travel_time[0], 12) << ',' << csv_number(l.error[0], 6) << ','
+        << csv_number(l.solve_seconds[0], 4) << ',' << csv_number(l.max_spacing, 9) << ','
+        << csv_number(l.limits_seconds, 4) << ',' << csv_number(l.travel_time[1], 12) << ','
+        << csv_number(l.error[1], 6) << ',' << csv_number(l.solve_seconds[1], 4) << ','
+        << (l.is_default ? 1 : 0) << ',' << csv_number(l.travel_time[kInterpolatingSeries], 12)
+        << ',' << csv_number(l.error[kInterpolatingSeries], 6) << '\n';
   }
   close_output_file(out, file);
 }
@@ -775,7 +687,7 @@ void draw_profile(const std::vector<ProfileRun>& runs, double length, const std:
         " 13/14 a bound bindings), switching_<vehicle>.csv (2 s, 3 v, 7 new control).\n"
      << png_terminal(1400, 1350) << "set output " << gnuplot_string(stem + ".png") << "\n"
      << "set datafile separator ','\n"
-     << gnuplot_colour_function("binding_colour") << "set multiplot layout 3,1 title "
+     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 3,1 title "
      << gnuplot_string(title) << "\n"
      << "set xrange [" << fmt("%.10g", s0) << ":" << fmt("%.10g", std::min(s1, length)) << "]\n"
      << "set xlabel 'arc length s [m]'\n"
@@ -820,45 +732,15 @@ void draw_map(const BPatch& patch, const ProfileRun& run, const std::vector<Vec2
               double zmin, double zmax, const fs::path& out_dir) {
   const double x0 = patch.x_min(), y0 = patch.y_min();
   const double width = patch.x_max() - x0, height = patch.y_max() - y0;
-  const RasterSize raster = raster_for_extent(width, height, kRasterMaxSamples);
-  std::vector<SurfacePoint> samples(raster.nx * raster.ny);
-  std::vector<double> slopes(samples.size());
-  for (std::size_t b = 0; b < raster.ny; ++b)
-    for (std::size_t a = 0; a < raster.nx; ++a) {
-      // Clamped so rounding never pushes the last sample off the domain.
-      const double dx = std::min(static_cast<double>(a) * raster.spacing, width);
-      const double dy = std::min(static_cast<double>(b) * raster.spacing, height);
-      const std::size_t k = b * raster.nx + a;
-      samples[k] = patch.evaluate(Vec2(x0 + dx, y0 + dy));
-      slopes[k] = samples[k].gradient.norm();
-    }
-  const auto p95 = slopes.begin() + static_cast<long>(0.95 * static_cast<double>(slopes.size()));
-  std::nth_element(slopes.begin(), p95, slopes.end());
-  const double exaggeration = hillshade_exaggeration(*p95);
-  const SunPosition sun{315.0, 45.0};
-
-  const fs::path rgb_file = out_dir / "map_relief.rgb";
-  std::ofstream rgb = open_output_file(rgb_file);
-  rgb << "# smoothing B-patch (lambda " << kSmoothingLambda
-      << "), hypsometric colour x hillshade (azimuth 315 deg, altitude 45 deg, exaggeration "
-      << exaggeration << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
-  const double relief = zmax - zmin;
-  for (std::size_t b = 0; b < raster.ny; ++b) {
-    for (std::size_t a = 0; a < raster.nx; ++a) {
-      const SurfacePoint& s = samples[b * raster.nx + a];
-      const double t = relief > 0.0 ? (s.z - zmin) / relief : 0.5;
-      Rgb colour =
-          shade_colour(hypsometric_colour(t),
-                       hillshade(s.gradient.x(), s.gradient.y(), sun, exaggeration), kAmbient);
-      // Washed towards white so the coloured path stands out against the tint.
-      colour = {0.55 * colour.r + 0.45, 0.55 * colour.g + 0.45, 0.55 * colour.b + 0.45};
-      rgb << fmt("%.7g", std::min(static_cast<double>(a) * raster.spacing, width)) << ' '
-          << fmt("%.7g", std::min(static_cast<double>(b) * raster.spacing, height)) << ' '
-          << to_byte(colour.r) << ' ' << to_byte(colour.g) << ' ' << to_byte(colour.b) << '\n';
-    }
-    rgb << '\n';
-  }
-  close_output_file(rgb, rgb_file);
+  const ReliefRaster raster = sample_relief(patch, {x0, y0}, width, height, kRasterMaxSamples);
+  const double exaggeration = hillshade_exaggeration(slope_p95(raster));
+  std::ostringstream rgb_header;
+  rgb_header << "# smoothing B-patch (lambda " << kSmoothingLambda
+             << "), hypsometric colour x hillshade (azimuth 315 deg, altitude 45 deg, "
+                "exaggeration "
+             << exaggeration << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
+  write_relief_rgb(raster, {zmin, zmax, {315.0, 45.0}, exaggeration, kAmbient, true},
+                   rgb_header.str(), out_dir / "map_relief.rgb");
 
   // About 300 segments are plenty at map scale; with every station the seams
   // between thousands of tiny segments show as stripes.
@@ -870,23 +752,18 @@ void draw_map(const BPatch& patch, const ProfileRun& run, const std::vector<Vec2
   for (std::size_t k = 0; k < n; k += stride) {
     const Vec3& p = run.limits.frame(k).point;
     path << fmt("%.7g", p.x() - x0) << ' ' << fmt("%.7g", p.y() - y0) << ' '
-         << num(run.profile.v[k]) << '\n';
+         << csv_number(run.profile.v[k]) << '\n';
   }
   const Vec3& last = run.limits.frame(n - 1).point;
   path << fmt("%.7g", last.x() - x0) << ' ' << fmt("%.7g", last.y() - y0) << ' '
-       << num(run.profile.v[n - 1]) << '\n';
+       << csv_number(run.profile.v[n - 1]) << '\n';
   close_output_file(path, path_file);
 
-  const fs::path points_file = out_dir / "map_points.dat";
-  std::ofstream pts = open_output_file(points_file);
-  pts << "# path interpolation points: x - x_min [m], y - y_min [m], label\n";
-  for (std::size_t i = 0; i < points.size(); ++i)
-    pts << fmt("%.7g", points[i].x() - x0) << ' ' << fmt("%.7g", points[i].y() - y0) << " P" << i
-        << '\n';
-  close_output_file(pts, points_file);
+  std::vector<Vec2> offsets;
+  for (const Vec2& p : points) offsets.emplace_back(p.x() - x0, p.y() - y0);
+  write_path_points(offsets, "# path interpolation points: x - x_min [m], y - y_min [m], label\n",
+                    out_dir / "map_points.dat");
 
-  const double ratio = height / width;
-  const int canvas_height = static_cast<int>(std::clamp(220.0 + 760.0 * ratio, 450.0, 1100.0));
   std::ostringstream title;
   title << "West Bijou at rover scale (1/25, 1 m cells): path coloured by the point mass's "
            "optimal speed\nover shaded relief of the smoothing fit (λ = "
@@ -896,25 +773,10 @@ void draw_map(const BPatch& patch, const ProfileRun& run, const std::vector<Vec2
   gp << "# Map of the optimal profile, from `talus experiment optimal-profile`.\n"
      << "# Re-render in this folder with: gnuplot map.gp\n"
      << "# Inputs: map_relief.rgb (x y r g b), map_path.dat (x y v), map_points.dat (x y label).\n"
-     << png_terminal(1100, canvas_height) << "set output 'map.png'\n"
-     << "set size ratio -1\n"
-     << "set xrange [0:" << fmt("%.10g", width) << "]\nset yrange [0:" << fmt("%.10g", height)
-     << "]\n"
-     << "set xlabel 'x − x_{min} [m]  (east)'\nset ylabel 'y − y_{min} [m]  (north)'\n"
-     << "set tics out nomirror\n"
-     << "set title " << gnuplot_string(title.str()) << " font ',10'\n"
-     << "# ColorBrewer RdYlBu: red = slow, blue = fast.\n"
-     << "set palette defined (0 '#a50026', 0.25 '#f46d43', 0.5 '#fee090', 0.75 '#74add1', "
-        "1 '#313695')\n"
-     << "set cbrange [0:" << fmt("%g", run.spec->vehicle.max_speed) << "]\n"
-     << "set cblabel 'v [m/s]'\nset colorbox\n"
-     << "set key outside bottom center horizontal samplen 2\n"
-     << "plot 'map_relief.rgb' using 1:2:3:4:5 with rgbimage notitle, \\\n"
-     << "     'map_path.dat' using 1:2 with lines lw 9 lc rgb 'black' notitle, \\\n"
-     << "     '' using 1:2:3 with lines lw 7 lc palette title 'path, coloured by optimal v', \\\n"
-     << "     'map_points.dat' using 1:2 with points pt 7 ps 1.4 lc rgb 'black' "
-        "title 'interpolation points', \\\n"
-     << "     '' using 1:2:3 with labels offset char 1.2,0.8 font ',11' tc rgb 'black' notitle\n";
+     << png_terminal(1100, path_map_canvas_height(width, height)) << "set output 'map.png'\n"
+     << path_map_settings(width, height, title.str(), run.spec->vehicle.max_speed, "v [m/s]")
+     << path_map_plot("map_relief.rgb", "map_path.dat", "path, coloured by optimal v", "",
+                      "map_points.dat");
   const fs::path script = out_dir / "map.gp";
   write_text_file(script, gp.str());
   run_gnuplot(script);
@@ -1228,7 +1090,7 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
         "Then a convergence study of the travel time in the number of stations, which is the "
         "evidence for the library's default station spacing.\n\n"
      << "## What was run\n\n"
-     << "- Terrain: `data/terrain/" << kDemStem
+     << "- Terrain: `data/terrain/" << kWestBijouStem
      << ".asc` (West Bijou Creek escarpment, "
         "Colorado; NASADEM, "
      << dem.ncols() << " × " << dem.nrows() << " nodes, cell " << fmt("%g", dem.cellsize())
@@ -1244,14 +1106,15 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
         "velocity-limits experiment), which is quantisation, not terrain. The interpolating fit "
         "appears here only as a control series of the convergence study.\n"
      << "- Path: `Curve2::interpolate` (cubic, chord-length parameters) through "
-     << std::size(kPathCells)
+     << std::size(kWestBijouPathCells)
      << " fixed points (the path of the velocity-limits experiment), 3-D length "
      << sig3(setup.length) << " m:\n\n"
      << "  | point | cells (u, v) | x, y from the south-west node [m] |\n"
      << "  |---|---|---|\n";
-  for (std::size_t i = 0; i < std::size(kPathCells); ++i) {
-    md << "  | P" << i << " | " << fmt("%g", kPathCells[i].u) << ", " << fmt("%g", kPathCells[i].v)
-       << " | " << sig3(setup.points[i].x()) << ", " << sig3(setup.points[i].y()) << " |\n";
+  for (std::size_t i = 0; i < std::size(kWestBijouPathCells); ++i) {
+    md << "  | P" << i << " | " << fmt("%g", kWestBijouPathCells[i].u) << ", "
+       << fmt("%g", kWestBijouPathCells[i].v) << " | " << sig3(setup.points[i].x()) << ", "
+       << sig3(setup.points[i].y()) << " |\n";
   }
   md << "\n  It runs south along the west plateau, turns east down the escarpment face, then "
         "north-east, east across the lower plains, and south over the knoll to the south-east "
@@ -1471,12 +1334,8 @@ void run_optimal_profile(const ExperimentContext& context) {
   const auto start = Clock::now();
   // Fail in a second, not after the computation, if the figures cannot be drawn.
   require_gnuplot();
-  const fs::path dem_file = context.data_dir / "terrain" / (std::string(kDemStem) + ".asc");
-  std::error_code ec;
-  if (!fs::is_regular_file(dem_file, ec)) {
-    throw InputError("optimal-profile: the bundled DEM " + dem_file.string() + " is missing");
-  }
-  const ElevationGrid dem = read_esri_ascii(dem_file.string());
+  const fs::path dem_file = bundled_dem_file(context.data_dir, kWestBijouStem);
+  const ElevationGrid dem = load_bundled_dem(context.data_dir, kWestBijouStem, "optimal-profile");
   const ElevationGrid rover = scaled_grid(dem, kRoverScale);
   const auto range = rover.elevation_range();
   if (!range) throw InputError("optimal-profile: " + dem_file.string() + " has no valid node");
@@ -1488,7 +1347,7 @@ void run_optimal_profile(const ExperimentContext& context) {
   const auto fit_start = Clock::now();
   const BPatch patch = BPatch::fit_smoothing(rover, kSmoothingLambda);
   setup.fit_seconds = std::chrono::duration<double>(Clock::now() - fit_start).count();
-  const std::vector<Vec2> points = path_points(rover);
+  const std::vector<Vec2> points = west_bijou_path_points(rover, "optimal-profile");
   for (const Vec2& p : points)
     setup.points.emplace_back(p.x() - patch.x_min(), p.y() - patch.y_min());
   const SurfacePath path(patch, Curve2::interpolate(points));

@@ -15,8 +15,10 @@
 #include <system_error>
 #include <vector>
 
+#include "number_format.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
+#include "relief_raster.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
@@ -63,29 +65,6 @@ struct TerrainResult {
   std::size_t raster_nx = 0, raster_ny = 0;
   bool filled_voids = false;
 };
-
-/// printf-style number formatting without locale surprises (GCC 12 has no
-/// std::format yet).
-std::string fmt(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
-/// `value` to about three significant digits without an exponent and without
-/// trailing zeros: 1792.53 -> "1793", 0.032829 -> "0.0328", 4.2 -> "4.2".
-std::string sig3(double value) {
-  if (value == 0.0 || !std::isfinite(value)) return fmt("%g", value);
-  const int digits = static_cast<int>(std::floor(std::log10(std::abs(value)))) + 1;
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", std::max(0, 3 - digits), value);
-  std::string text = buffer;
-  if (text.find('.') != std::string::npos) {
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
-  }
-  return text;
-}
 
 /// Short place and source of the bundled DEMs, condensed from
 /// data/terrain/README.md (the full provenance table lives there).
@@ -210,56 +189,26 @@ void draw_relief(const TerrainInput& input, const BPatch& patch, const SunPositi
   const ElevationGrid& grid = input.grid;
   const double width = grid.x_max() - grid.x_min();
   const double height = grid.y_max() - grid.y_min();
-  const RasterSize raster = raster_for_extent(width, height, kRasterMaxSamples);
-  result.raster_nx = raster.nx;
-  result.raster_ny = raster.ny;
-
-  // Sample once, keep z and the gradient: the exaggeration depends on the
-  // slope distribution, which must be known before any colour is computed.
-  std::vector<SurfacePoint> samples(raster.nx * raster.ny);
-  std::vector<Vec2> offsets(samples.size());
-  std::vector<double> slopes(samples.size());
-  for (std::size_t b = 0; b < raster.ny; ++b)
-    for (std::size_t a = 0; a < raster.nx; ++a) {
-      // Clamped so rounding never pushes the last sample off the domain.
-      const double dx = std::min(static_cast<double>(a) * raster.spacing, width);
-      const double dy = std::min(static_cast<double>(b) * raster.spacing, height);
-      const std::size_t k = b * raster.nx + a;
-      offsets[k] = Vec2(dx, dy);
-      samples[k] = patch.evaluate(Vec2(grid.x_min() + dx, grid.y_min() + dy));
-      slopes[k] = samples[k].gradient.norm();
-    }
+  const ReliefRaster raster =
+      sample_relief(patch, {grid.x_min(), grid.y_min()}, width, height, kRasterMaxSamples);
+  result.raster_nx = raster.size.nx;
+  result.raster_ny = raster.size.ny;
+  std::vector<double> slopes = raster.slopes;
   result.exaggeration = hillshade_exaggeration(quantile(slopes, 0.95));
 
   const std::string name = input.name;
-  const fs::path elevation_file = out_dir / (name + "_elevation.dat");
-  const fs::path rgb_file = out_dir / (name + "_relief.rgb");
-  std::ofstream elevation = open_output_file(elevation_file);
-  std::ofstream rgb = open_output_file(rgb_file);
-  elevation << "# " << name << ": interpolating B-patch on a " << raster.nx << " x " << raster.ny
-            << " raster\n# x - x_min [m], y - y_min [m], z [m]; one block per raster row\n";
-  rgb << "# " << name << ": hypsometric colour x Lambertian hillshade (azimuth " << sun.azimuth_deg
-      << " deg, altitude " << sun.altitude_deg << " deg, exaggeration " << result.exaggeration
-      << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
+  std::ostringstream elevation_header, rgb_header;
+  elevation_header << "# " << name << ": interpolating B-patch on a " << raster.size.nx << " x "
+                   << raster.size.ny
+                   << " raster\n# x - x_min [m], y - y_min [m], z [m]; one block per raster row\n";
+  rgb_header << "# " << name << ": hypsometric colour x Lambertian hillshade (azimuth "
+             << sun.azimuth_deg << " deg, altitude " << sun.altitude_deg << " deg, exaggeration "
+             << result.exaggeration
+             << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
+  write_elevation_raster(raster, elevation_header.str(), out_dir / (name + "_elevation.dat"));
+  write_relief_rgb(raster, {result.zmin, result.zmax, sun, result.exaggeration, kAmbient, false},
+                   rgb_header.str(), out_dir / (name + "_relief.rgb"));
   const double relief = result.zmax - result.zmin;
-  for (std::size_t b = 0; b < raster.ny; ++b) {
-    for (std::size_t a = 0; a < raster.nx; ++a) {
-      const std::size_t k = b * raster.nx + a;
-      const SurfacePoint& s = samples[k];
-      const double t = relief > 0.0 ? (s.z - result.zmin) / relief : 0.5;
-      const Rgb colour = shade_colour(
-          hypsometric_colour(t),
-          hillshade(s.gradient.x(), s.gradient.y(), sun, result.exaggeration), kAmbient);
-      const std::string x = fmt("%.7g", offsets[k].x()), y = fmt("%.7g", offsets[k].y());
-      elevation << x << ' ' << y << ' ' << fmt("%.7g", s.z) << '\n';
-      rgb << x << ' ' << y << ' ' << to_byte(colour.r) << ' ' << to_byte(colour.g) << ' '
-          << to_byte(colour.b) << '\n';
-    }
-    elevation << '\n';
-    rgb << '\n';
-  }
-  close_output_file(elevation, elevation_file);
-  close_output_file(rgb, rgb_file);
 
   // Contour levels: whole multiples of a {1, 2, 5} × 10^k step inside the data range.
   result.contour_step = contour_interval(relief, kContourTargetLevels);

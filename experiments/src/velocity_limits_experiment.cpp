@@ -5,27 +5,30 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
 #include <sstream>
 #include <string>
-#include <system_error>
 #include <vector>
 
+#include "constraint_style.hpp"
+#include "experiment_terrain.hpp"
+#include "number_format.hpp"
+#include "path_map.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
+#include "relief_raster.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
-#include "talus/core/esri_ascii.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
+#include "west_bijou_path.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -35,10 +38,6 @@ namespace fs = std::filesystem;
 // ---------------------------------------------------------------------------
 // Fixed settings, named so the report can quote them.
 
-constexpr const char* kDemStem = "west_bijou_escarpment_nasadem25m";
-/// data/terrain/README.md "Rover-scale use": x, y and z all scaled by 1/25
-/// give 1 m cells with unchanged slopes and 25× larger curvatures.
-constexpr double kRoverScale = 1.0 / 25.0;
 constexpr std::size_t kFullStations = 2000;
 constexpr std::size_t kQuickStations = 300;
 /// Acceleration bounds are evaluated at this fraction of v_max(s): at v_max
@@ -52,52 +51,8 @@ constexpr std::size_t kRasterMaxSamples = 400;  // relief raster of the maps, lo
 constexpr double kAmbient = 0.35;               // hillshade floor, as in terrain-gallery
 constexpr double kSmoothingLambda = 1.0;  // control run: "smooths over about one cell" (bpatch.hpp)
 
-/// A path interpolation point in grid cells from the south-west node, so the
-/// same path serves the 25 m DEM and its 1 m rover-scale copy. All points are
-/// at least 6 cells inside the 121 × 81-cell domain, and the cubic stays
-/// inside too (SurfacePath checks that and would throw otherwise).
-struct CellPoint {
-  double u, v;
-};
-// West plateau (NW) → south along the plateau → east down the escarpment
-// face → north-east → east across the lower plains → south over the knoll →
-// south-east corner. The turns at P2, P4 and P5 are the "real turns"; P3
-// sits below the escarpment's steepest stretch, P6 on the knoll.
-constexpr CellPoint kPathCells[] = {{6.0, 74.0},  {18.0, 54.0}, {28.0, 32.0}, {46.0, 38.0},
-                                    {60.0, 60.0}, {84.0, 62.0}, {92.0, 46.0}, {114.0, 20.0}};
-
 // ---------------------------------------------------------------------------
 // Formatting.
-
-std::string fmt(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
-/// A CSV number: "inf" / "nan" spelled out (printf may print "-nan"), else
-/// `digits` significant digits. gnuplot and pandas both read these spellings.
-std::string num(double value, int digits = 7) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0.0 ? "inf" : "-inf";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
-}
-
-/// About three significant digits without exponent or trailing zeros.
-std::string sig3(double value) {
-  if (value == 0.0 || !std::isfinite(value)) return fmt("%g", value);
-  const int digits = static_cast<int>(std::floor(std::log10(std::abs(value)))) + 1;
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", std::max(0, 3 - digits), value);
-  std::string text = buffer;
-  if (text.find('.') != std::string::npos) {
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
-  }
-  return text;
-}
 
 std::string percent(std::size_t part, std::size_t whole) {
   return whole == 0 ? "–" : fmt("%.1f", 100.0 * static_cast<double>(part) / whole) + " %";
@@ -154,11 +109,6 @@ std::string vehicle_parameters(const Vehicle& v) {
 /// Colour and legend text of each constraint that can set v_max (or make a
 /// station untraversable) or bound the acceleration. One table so the figures
 /// and the gnuplot colour function cannot drift apart.
-struct ConstraintStyle {
-  Constraint constraint;
-  const char* colour;  ///< #rrggbb
-  const char* label;
-};
 constexpr ConstraintStyle kStyles[] = {
     {Constraint::kContact, "#d62728", "contact (R ≥ 0)"},
     {Constraint::kSliding, "#1f77b4", "sliding (friction)"},
@@ -327,38 +277,6 @@ struct TerrainCase {
   ElevationGrid grid;
 };
 
-/// The DEM with x, y and z multiplied by `k`. Slopes (dz/dx) are unchanged;
-/// curvatures (d²z/dx²) are multiplied by 1/k.
-ElevationGrid scaled_grid(const ElevationGrid& grid, double k) {
-  ElevationGrid out(grid.ncols(), grid.nrows(), grid.cellsize() * k, grid.x_min() * k,
-                    grid.y_min() * k);
-  for (std::size_t j = 0; j < grid.nrows(); ++j)
-    for (std::size_t i = 0; i < grid.ncols(); ++i) {
-      if (grid.valid(i, j)) {
-        out.set(i, j, grid.at(i, j) * k);
-      } else {
-        out.set_void(i, j);  // BPatch::interpolate will name it
-      }
-    }
-  return out;
-}
-
-/// The path interpolation points in this grid's coordinates.
-std::vector<Vec2> path_points(const ElevationGrid& grid) {
-  std::vector<Vec2> points;
-  const double h = grid.cellsize();
-  for (const CellPoint& c : kPathCells) {
-    if (c.u < 2.0 || c.v < 2.0 || c.u > static_cast<double>(grid.ncols() - 1) - 2.0 ||
-        c.v > static_cast<double>(grid.nrows() - 1) - 2.0) {
-      throw InputError("velocity-limits: path point (" + fmt("%g", c.u) + ", " + fmt("%g", c.v) +
-                       ") cells is not 2 cells inside the " + std::to_string(grid.ncols()) + " × " +
-                       std::to_string(grid.nrows()) + "-node grid");
-    }
-    points.emplace_back(grid.x_min() + c.u * h, grid.y_min() + c.v * h);
-  }
-  return points;
-}
-
 struct CaseResult {
   std::string name, label;
   double scale = 1.0, cellsize = 1.0, zmin = 0.0, zmax = 0.0, length = 0.0;
@@ -380,12 +298,14 @@ void write_vehicle_csv(const VehicleRun& run, const fs::path& file) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Station& st : run.stations) {
     const bool a_ok = st.accel.feasible;
-    out << num(st.s, 9) << ',' << num(st.point.x(), 10) << ',' << num(st.point.y(), 10) << ','
-        << num(st.point.z(), 9) << ',' << num(st.limits.v_max) << ',' << num(st.limits.v_min) << ','
-        << to_string(st.limits.upper_binding) << ',' << num(st.v_sliding) << ','
-        << num(st.v_tipover) << ',' << num(st.v_contact) << ',' << num(a_ok ? st.accel.a_min : nan)
-        << ',' << num(a_ok ? st.accel.a_max : nan) << ',' << num(st.g.k_t) << ',' << num(st.g.k_q)
-        << ',' << num(st.g.k_r) << ',' << num(st.g.kappa_n) << ',' << num(st.g.kappa_g) << '\n';
+    out << csv_number(st.s, 9) << ',' << csv_number(st.point.x(), 10) << ','
+        << csv_number(st.point.y(), 10) << ',' << csv_number(st.point.z(), 9) << ','
+        << csv_number(st.limits.v_max) << ',' << csv_number(st.limits.v_min) << ','
+        << to_string(st.limits.upper_binding) << ',' << csv_number(st.v_sliding) << ','
+        << csv_number(st.v_tipover) << ',' << csv_number(st.v_contact) << ','
+        << csv_number(a_ok ? st.accel.a_min : nan) << ',' << csv_number(a_ok ? st.accel.a_max : nan)
+        << ',' << csv_number(st.g.k_t) << ',' << csv_number(st.g.k_q) << ',' << csv_number(st.g.k_r)
+        << ',' << csv_number(st.g.kappa_n) << ',' << csv_number(st.g.kappa_g) << '\n';
   }
   close_output_file(out, file);
 }
@@ -404,29 +324,18 @@ void write_acceleration_csv(const CaseResult& c, const fs::path& file) {
   out << '\n';
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t k = 0; k < c.stations; ++k) {
-    out << num(c.runs.front().stations[k].s, 9);
+    out << csv_number(c.runs.front().stations[k].s, 9);
     for (const VehicleRun& run : c.runs) {
       const Station& st = run.stations[k];
       const bool ok = st.accel.feasible;
-      out << ',' << num(st.accel_speed) << ',' << num(ok ? st.accel.a_min : nan) << ','
-          << num(ok ? st.accel.a_max : nan) << ','
+      out << ',' << csv_number(st.accel_speed) << ',' << csv_number(ok ? st.accel.a_min : nan)
+          << ',' << csv_number(ok ? st.accel.a_max : nan) << ','
           << (ok ? to_string(st.accel.lower_binding) : "infeasible") << ','
           << (ok ? to_string(st.accel.upper_binding) : "infeasible");
     }
     out << '\n';
   }
   close_output_file(out, file);
-}
-
-/// gnuplot function mapping a binding name (CSV string) to a 0xRRGGBB colour.
-std::string gnuplot_colour_function(const std::string& name) {
-  std::ostringstream f;
-  f << name << "(b) = ";
-  for (const ConstraintStyle& s : kStyles) {
-    f << "(b eq '" << to_string(s.constraint) << "') ? 0x" << (s.colour + 1) << " : ";
-  }
-  f << "0x000000\n";
-  return f.str();
 }
 
 std::string csv_name(const CaseResult& c, const VehicleRun& run) {
@@ -455,8 +364,8 @@ void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
      << "CAP = " << fmt("%g", cap) << "\n"
      << "# Limits above CAP (and ∞) are drawn just above the plot so their lines leave it.\n"
      << "clip(v) = (v > CAP) ? 1.02 * CAP : v\n"
-     << gnuplot_colour_function("binding_colour") << "set multiplot layout " << c.runs.size()
-     << ",1 title "
+     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout "
+     << c.runs.size() << ",1 title "
      << gnuplot_string(c.label +
                        ": speed limits along the path [m/s]\nthin: each constraint's own "
                        "limit, clipped at " +
@@ -533,7 +442,7 @@ void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
      << "_acceleration.csv (per vehicle: speed, a_min, a_max, lower and upper binding).\n"
      << png_terminal(1250, 900) << "set output " << gnuplot_string(png) << "\n"
      << "set datafile separator ','\n"
-     << gnuplot_colour_function("binding_colour") << "set multiplot layout 2,1 title "
+     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 2,1 title "
      << gnuplot_string(c.label +
                        ": admissible tangential acceleration s̈ ∈ [a_{min}, a_{max}] [m/s²]\n"
                        "all vehicles at one common speed per station, " +
@@ -602,47 +511,16 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
               double& exaggeration) {
   const double x0 = patch.x_min(), y0 = patch.y_min();
   const double width = patch.x_max() - x0, height = patch.y_max() - y0;
-  const RasterSize raster = raster_for_extent(width, height, kRasterMaxSamples);
-  std::vector<SurfacePoint> samples(raster.nx * raster.ny);
-  std::vector<double> slopes(samples.size());
-  for (std::size_t b = 0; b < raster.ny; ++b)
-    for (std::size_t a = 0; a < raster.nx; ++a) {
-      // Clamped so rounding never pushes the last sample off the domain.
-      const double dx = std::min(static_cast<double>(a) * raster.spacing, width);
-      const double dy = std::min(static_cast<double>(b) * raster.spacing, height);
-      const std::size_t k = b * raster.nx + a;
-      samples[k] = patch.evaluate(Vec2(x0 + dx, y0 + dy));
-      slopes[k] = samples[k].gradient.norm();
-    }
-  std::vector<double> sorted = slopes;
-  const auto p95 = sorted.begin() + static_cast<long>(0.95 * static_cast<double>(sorted.size()));
-  std::nth_element(sorted.begin(), p95, sorted.end());
-  exaggeration = hillshade_exaggeration(*p95);
-  const SunPosition sun{315.0, 45.0};
-
-  const fs::path rgb_file = out_dir / (c.name + "_relief.rgb");
-  std::ofstream rgb = open_output_file(rgb_file);
-  rgb << "# " << c.label << ": interpolating B-patch, hypsometric colour x hillshade (azimuth "
-      << sun.azimuth_deg << " deg, altitude " << sun.altitude_deg << " deg, exaggeration "
-      << exaggeration << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
-  const double relief = c.zmax - c.zmin;
-  for (std::size_t b = 0; b < raster.ny; ++b) {
-    for (std::size_t a = 0; a < raster.nx; ++a) {
-      const std::size_t k = b * raster.nx + a;
-      const SurfacePoint& s = samples[k];
-      const double t = relief > 0.0 ? (s.z - c.zmin) / relief : 0.5;
-      Rgb colour =
-          shade_colour(hypsometric_colour(t),
-                       hillshade(s.gradient.x(), s.gradient.y(), sun, exaggeration), kAmbient);
-      // Washed towards white so the coloured path stands out against the tint.
-      colour = {0.55 * colour.r + 0.45, 0.55 * colour.g + 0.45, 0.55 * colour.b + 0.45};
-      rgb << fmt("%.7g", std::min(static_cast<double>(a) * raster.spacing, width)) << ' '
-          << fmt("%.7g", std::min(static_cast<double>(b) * raster.spacing, height)) << ' '
-          << to_byte(colour.r) << ' ' << to_byte(colour.g) << ' ' << to_byte(colour.b) << '\n';
-    }
-    rgb << '\n';
-  }
-  close_output_file(rgb, rgb_file);
+  const ReliefRaster raster = sample_relief(patch, {x0, y0}, width, height, kRasterMaxSamples);
+  exaggeration = hillshade_exaggeration(slope_p95(raster));
+  const ReliefColouring colouring{c.zmin, c.zmax, {315.0, 45.0}, exaggeration, kAmbient, true};
+  std::ostringstream rgb_header;
+  rgb_header << "# " << c.label
+             << ": interpolating B-patch, hypsometric colour x hillshade (azimuth "
+             << colouring.sun.azimuth_deg << " deg, altitude " << colouring.sun.altitude_deg
+             << " deg, exaggeration " << exaggeration
+             << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
+  write_relief_rgb(raster, colouring, rgb_header.str(), out_dir / (c.name + "_relief.rgb"));
 
   const VehicleRun& run = c.runs.front();
   const fs::path path_file = out_dir / (c.name + "_path.dat");
@@ -651,22 +529,13 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
        << run.spec.label << " [m/s], 1 if untraversable\n";
   for (const Station& st : run.stations) {
     path << fmt("%.7g", st.point.x() - x0) << ' ' << fmt("%.7g", st.point.y() - y0) << ' '
-         << num(st.limits.v_max) << ' ' << (st.limits.traversable ? 0 : 1) << '\n';
+         << csv_number(st.limits.v_max) << ' ' << (st.limits.traversable ? 0 : 1) << '\n';
   }
   close_output_file(path, path_file);
+  write_path_points(c.points,
+                    "# interpolation points of the path: x - x_min [m], y - y_min [m], label\n",
+                    out_dir / (c.name + "_path_points.dat"));
 
-  const fs::path points_file = out_dir / (c.name + "_path_points.dat");
-  std::ofstream points = open_output_file(points_file);
-  points << "# interpolation points of the path: x - x_min [m], y - y_min [m], label\n";
-  for (std::size_t i = 0; i < c.points.size(); ++i) {
-    points << fmt("%.7g", c.points[i].x()) << ' ' << fmt("%.7g", c.points[i].y()) << " P" << i
-           << '\n';
-  }
-  close_output_file(points, points_file);
-
-  const double max_speed = run.spec.vehicle.max_speed;
-  const double ratio = height / width;
-  const int canvas_height = static_cast<int>(std::clamp(220.0 + 760.0 * ratio, 450.0, 1100.0));
   std::ostringstream title;
   title << c.label << ": path coloured by v_{max} of the point mass (= rigid body)\n"
         << "over shaded relief of the interpolating fit (elevation " << sig3(c.zmin) << " to "
@@ -677,32 +546,16 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
      << "# Re-render in this folder with: gnuplot " << c.name << "_map.gp\n"
      << "# Inputs: " << c.name << "_relief.rgb (x y r g b), " << c.name
      << "_path.dat (x y v_max untraversable), " << c.name << "_path_points.dat (x y label).\n"
-     << png_terminal(1100, canvas_height) << "set output " << gnuplot_string(c.name + "_map.png")
-     << "\n"
-     << "set size ratio -1\n"
-     << "set xrange [0:" << fmt("%.10g", width) << "]\nset yrange [0:" << fmt("%.10g", height)
-     << "]\n"
-     << "set xlabel 'x − x_{min} [m]  (east)'\nset ylabel 'y − y_{min} [m]  (north)'\n"
-     << "set tics out nomirror\n"
-     << "set title " << gnuplot_string(title.str()) << " font ',10'\n"
-     << "# ColorBrewer RdYlBu: red = slow, blue = fast.\n"
-     << "set palette defined (0 '#a50026', 0.25 '#f46d43', 0.5 '#fee090', 0.75 '#74add1', "
-        "1 '#313695')\n"
-     << "set cbrange [0:" << fmt("%g", max_speed) << "]\n"
-     << "set cblabel 'v_{max} [m/s]'\nset colorbox\n"
-     << "set key outside bottom center horizontal samplen 2\n"
-     << "plot " << gnuplot_string(c.name + "_relief.rgb")
-     << " using 1:2:3:4:5 with rgbimage notitle, \\\n"
-     << "     " << gnuplot_string(c.name + "_path.dat")
-     << " using 1:2 with lines lw 9 lc rgb 'black' notitle, \\\n"
-     << "     '' using 1:2:3 with lines lw 7 lc palette title 'path, coloured by v_{max}', \\\n"
-     << (run.summary.untraversable > 0
-             ? "     '' using 1:($4 > 0 ? $2 : NaN) with points pt 2 ps 1.5 lw 2 lc rgb 'black' "
-               "title 'untraversable', \\\n"
-             : "")
-     << "     " << gnuplot_string(c.name + "_path_points.dat")
-     << " using 1:2 with points pt 7 ps 1.4 lc rgb 'black' title 'interpolation points', \\\n"
-     << "     '' using 1:2:3 with labels offset char 1.2,0.8 font ',11' tc rgb 'black' notitle\n";
+     << png_terminal(1100, path_map_canvas_height(width, height)) << "set output "
+     << gnuplot_string(c.name + "_map.png") << "\n"
+     << path_map_settings(width, height, title.str(), run.spec.vehicle.max_speed, "v_{max} [m/s]")
+     << path_map_plot(
+            c.name + "_relief.rgb", c.name + "_path.dat", "path, coloured by v_{max}",
+            run.summary.untraversable > 0
+                ? "     '' using 1:($4 > 0 ? $2 : NaN) with points pt 2 ps 1.5 lw 2 lc rgb 'black' "
+                  "title 'untraversable', \\\n"
+                : "",
+            c.name + "_path_points.dat");
   const fs::path script = out_dir / (c.name + "_map.gp");
   write_text_file(script, gp.str());
   run_gnuplot(script);
@@ -724,7 +577,7 @@ CaseResult process_case(const TerrainCase& tc, const std::vector<VehicleSpec>& v
 
   const auto t0 = Clock::now();
   const BPatch patch = BPatch::interpolate(tc.grid);
-  const std::vector<Vec2> points = path_points(tc.grid);
+  const std::vector<Vec2> points = west_bijou_path_points(tc.grid, "velocity-limits");
   for (const Vec2& p : points) c.points.emplace_back(p.x() - patch.x_min(), p.y() - patch.y_min());
   const Curve2 curve = Curve2::interpolate(points);
   const SurfacePath path(patch, curve);
@@ -769,15 +622,15 @@ void write_summary_csv(const std::vector<CaseResult>& cases, const fs::path& fil
       const Summary& s = run.summary;
       const double n = static_cast<double>(run.stations.size());
       const auto share = [&](Constraint cst) {
-        return num(static_cast<double>(s.upper_counts[index_of(cst)]) / n, 5);
+        return csv_number(static_cast<double>(s.upper_counts[index_of(cst)]) / n, 5);
       };
-      csv << c.name << ',' << run.spec.name << ',' << run.stations.size() << ',' << num(c.length, 8)
-          << ',' << num(s.min_v_max, 5) << ',' << num(s.median_v_max, 5) << ','
-          << share(Constraint::kContact) << ',' << share(Constraint::kSliding) << ','
-          << share(Constraint::kTipover) << ',' << share(Constraint::kMaxSpeed) << ','
-          << s.untraversable << ',' << s.lower_bound_stations << ',' << num(s.max_v_min, 5) << ','
-          << s.pitch_stations << ',' << num(s.median_a_min, 5) << ',' << num(s.median_a_max, 5)
-          << '\n';
+      csv << c.name << ',' << run.spec.name << ',' << run.stations.size() << ','
+          << csv_number(c.length, 8) << ',' << csv_number(s.min_v_max, 5) << ','
+          << csv_number(s.median_v_max, 5) << ',' << share(Constraint::kContact) << ','
+          << share(Constraint::kSliding) << ',' << share(Constraint::kTipover) << ','
+          << share(Constraint::kMaxSpeed) << ',' << s.untraversable << ',' << s.lower_bound_stations
+          << ',' << csv_number(s.max_v_min, 5) << ',' << s.pitch_stations << ','
+          << csv_number(s.median_a_min, 5) << ',' << csv_number(s.median_a_max, 5) << '\n';
     }
   write_text_file(file, csv.str());
 }
@@ -884,7 +737,7 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
         "acceleration, along one fixed curved path across the West Bijou escarpment, for three "
         "vehicles, at the DEM's own scale and at rover scale.\n\n"
      << "## What was run\n\n"
-     << "- Terrain: `data/terrain/" << kDemStem
+     << "- Terrain: `data/terrain/" << kWestBijouStem
      << ".asc` (West Bijou Creek escarpment, "
         "Colorado; NASADEM, "
      << dem.ncols() << " × " << dem.nrows() << " nodes, cell " << fmt("%g", dem.cellsize())
@@ -902,15 +755,16 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
         "rover scale its 1 m quantisation steps become 4 cm steps per 1 m cell, which the "
         "interpolating fit reproduces as small-scale curvature.\n"
      << "- Path: `Curve2::interpolate` (cubic, chord-length parameters) through "
-     << std::size(kPathCells)
+     << std::size(kWestBijouPathCells)
      << " fixed points given in cells from the south-west node (the same for both cases); "
         "in metres from that node:\n\n"
      << "  | point | cells (u, v) | `dem` x, y [m] | `rover` x, y [m] |\n"
      << "  |---|---|---|---|\n";
-  for (std::size_t i = 0; i < std::size(kPathCells); ++i) {
-    md << "  | P" << i << " | " << fmt("%g", kPathCells[i].u) << ", " << fmt("%g", kPathCells[i].v)
-       << " | " << sig3(cases[0].points[i].x()) << ", " << sig3(cases[0].points[i].y()) << " | "
-       << sig3(cases[1].points[i].x()) << ", " << sig3(cases[1].points[i].y()) << " |\n";
+  for (std::size_t i = 0; i < std::size(kWestBijouPathCells); ++i) {
+    md << "  | P" << i << " | " << fmt("%g", kWestBijouPathCells[i].u) << ", "
+       << fmt("%g", kWestBijouPathCells[i].v) << " | " << sig3(cases[0].points[i].x()) << ", "
+       << sig3(cases[0].points[i].y()) << " | " << sig3(cases[1].points[i].x()) << ", "
+       << sig3(cases[1].points[i].y()) << " |\n";
   }
   md << "\n  It runs south along the west plateau, turns east down the escarpment face, then "
         "north-east, east across the lower plains, and south over the knoll to the south-east "
@@ -998,12 +852,7 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
 void run_velocity_limits(const ExperimentContext& context) {
   // Fail in a second, not after the computation, if the figures cannot be drawn.
   require_gnuplot();
-  const fs::path dem_file = context.data_dir / "terrain" / (std::string(kDemStem) + ".asc");
-  std::error_code ec;
-  if (!fs::is_regular_file(dem_file, ec)) {
-    throw InputError("velocity-limits: the bundled DEM " + dem_file.string() + " is missing");
-  }
-  const ElevationGrid dem = read_esri_ascii(dem_file.string());
+  const ElevationGrid dem = load_bundled_dem(context.data_dir, kWestBijouStem, "velocity-limits");
   const std::vector<VehicleSpec> vehicles = make_vehicles();
   const std::size_t stations = context.quick ? kQuickStations : kFullStations;
 

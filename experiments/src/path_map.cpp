@@ -1,0 +1,60 @@
+#include "path_map.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "number_format.hpp"
+#include "plot.hpp"
+
+namespace talus::experiments {
+
+int path_map_canvas_height(double width, double height) {
+  const double ratio = height / width;
+  return static_cast<int>(std::clamp(220.0 + 760.0 * ratio, 450.0, 1100.0));
+}
+
+void write_path_points(const std::vector<Vec2>& offsets, const std::string& header,
+                       const std::filesystem::path& file) {
+  std::ofstream out = open_output_file(file);
+  out << header;
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    out << fmt("%.7g", offsets[i].x()) << ' ' << fmt("%.7g", offsets[i].y()) << " P" << i << '\n';
+  }
+  close_output_file(out, file);
+}
+
+std::string path_map_settings(double width, double height, const std::string& title,
+                              double max_speed, const std::string& speed_label) {
+  std::ostringstream gp;
+  gp << "set size ratio -1\n"
+     << "set xrange [0:" << fmt("%.10g", width) << "]\nset yrange [0:" << fmt("%.10g", height)
+     << "]\n"
+     << "set xlabel 'x − x_{min} [m]  (east)'\nset ylabel 'y − y_{min} [m]  (north)'\n"
+     << "set tics out nomirror\n"
+     << "set title " << gnuplot_string(title) << " font ',10'\n"
+     << "# ColorBrewer RdYlBu: red = slow, blue = fast.\n"
+     << "set palette defined (0 '#a50026', 0.25 '#f46d43', 0.5 '#fee090', 0.75 '#74add1', "
+        "1 '#313695')\n"
+     << "set cbrange [0:" << fmt("%g", max_speed) << "]\n"
+     << "set cblabel " << gnuplot_string(speed_label) << "\nset colorbox\n"
+     << "set key outside bottom center horizontal samplen 2\n";
+  return gp.str();
+}
+
+std::string path_map_plot(const std::string& relief_file, const std::string& path_file,
+                          const std::string& path_title, const std::string& extra_items,
+                          const std::string& points_file) {
+  std::ostringstream gp;
+  gp << "plot " << gnuplot_string(relief_file) << " using 1:2:3:4:5 with rgbimage notitle, \\\n"
+     << "     " << gnuplot_string(path_file)
+     << " using 1:2 with lines lw 9 lc rgb 'black' notitle, \\\n"
+     << "     '' using 1:2:3 with lines lw 7 lc palette title " << gnuplot_string(path_title)
+     << ", \\\n"
+     << extra_items << "     " << gnuplot_string(points_file)
+     << " using 1:2 with points pt 7 ps 1.4 lc rgb 'black' title 'interpolation points', \\\n"
+     << "     '' using 1:2:3 with labels offset char 1.2,0.8 font ',11' tc rgb 'black' notitle\n";
+  return gp.str();
+}
+
+}  // namespace talus::experiments

@@ -1,0 +1,87 @@
+#include "relief_raster.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <ostream>
+
+#include "number_format.hpp"
+#include "plot.hpp"
+
+namespace talus::experiments {
+namespace {
+
+/// Writes `header`, then "x y VALUES" per sample (`values` writes VALUES of
+/// sample k), a blank line after each raster row.
+template <typename Values>
+void write_raster_file(const ReliefRaster& raster, const std::string& header,
+                       const std::filesystem::path& file, const Values& values) {
+  std::ofstream out = open_output_file(file);
+  out << header;
+  for (std::size_t b = 0; b < raster.size.ny; ++b) {
+    for (std::size_t a = 0; a < raster.size.nx; ++a) {
+      const std::size_t k = b * raster.size.nx + a;
+      out << fmt("%.7g", raster.offsets[k].x()) << ' ' << fmt("%.7g", raster.offsets[k].y()) << ' ';
+      values(out, k);
+      out << '\n';
+    }
+    out << '\n';
+  }
+  close_output_file(out, file);
+}
+
+}  // namespace
+
+ReliefRaster sample_relief(const BPatch& patch, const Vec2& origin, double width, double height,
+                           std::size_t max_samples) {
+  ReliefRaster raster;
+  raster.size = raster_for_extent(width, height, max_samples);
+  const RasterSize& size = raster.size;
+  raster.offsets.resize(size.nx * size.ny);
+  raster.samples.resize(size.nx * size.ny);
+  raster.slopes.resize(size.nx * size.ny);
+  for (std::size_t b = 0; b < size.ny; ++b)
+    for (std::size_t a = 0; a < size.nx; ++a) {
+      const double dx = std::min(static_cast<double>(a) * size.spacing, width);
+      const double dy = std::min(static_cast<double>(b) * size.spacing, height);
+      const std::size_t k = b * size.nx + a;
+      raster.offsets[k] = Vec2(dx, dy);
+      raster.samples[k] = patch.evaluate(origin + raster.offsets[k]);
+      raster.slopes[k] = raster.samples[k].gradient.norm();
+    }
+  return raster;
+}
+
+double slope_p95(const ReliefRaster& raster) {
+  std::vector<double> slopes = raster.slopes;
+  const auto p95 = slopes.begin() + static_cast<long>(0.95 * static_cast<double>(slopes.size()));
+  std::nth_element(slopes.begin(), p95, slopes.end());
+  return *p95;
+}
+
+Rgb relief_colour(const SurfacePoint& sample, const ReliefColouring& colouring) {
+  const double relief = colouring.zmax - colouring.zmin;
+  const double t = relief > 0.0 ? (sample.z - colouring.zmin) / relief : 0.5;
+  const Rgb colour = shade_colour(
+      hypsometric_colour(t),
+      hillshade(sample.gradient.x(), sample.gradient.y(), colouring.sun, colouring.exaggeration),
+      colouring.ambient);
+  if (!colouring.washed) return colour;
+  return {0.55 * colour.r + 0.45, 0.55 * colour.g + 0.45, 0.55 * colour.b + 0.45};
+}
+
+void write_relief_rgb(const ReliefRaster& raster, const ReliefColouring& colouring,
+                      const std::string& header, const std::filesystem::path& file) {
+  write_raster_file(raster, header, file, [&](std::ostream& out, std::size_t k) {
+    const Rgb colour = relief_colour(raster.samples[k], colouring);
+    out << to_byte(colour.r) << ' ' << to_byte(colour.g) << ' ' << to_byte(colour.b);
+  });
+}
+
+void write_elevation_raster(const ReliefRaster& raster, const std::string& header,
+                            const std::filesystem::path& file) {
+  write_raster_file(raster, header, file, [&](std::ostream& out, std::size_t k) {
+    out << fmt("%.7g", raster.samples[k].z);
+  });
+}
+
+}  // namespace talus::experiments

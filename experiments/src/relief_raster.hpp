@@ -1,0 +1,64 @@
+#pragma once
+/// @file
+/// A fitted surface sampled on a relief raster, and the gnuplot data files
+/// drawn from it: the shaded-relief image ("x y r g b", for `with rgbimage`)
+/// and the elevation raster ("x y z", for tracing contours). Every map of the
+/// experiments sits on these.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "relief.hpp"
+#include "talus/bspline/bpatch.hpp"
+
+namespace talus::experiments {
+
+/// A B-patch sampled once on a raster of square pixels over the rectangle
+/// [origin, origin + (width, height)] (raster_for_extent), row by row from
+/// the south. The elevation and the gradient are kept because a hillshade's
+/// exaggeration depends on the slope distribution, which must be known before
+/// any colour is computed.
+struct ReliefRaster {
+  RasterSize size;
+  std::vector<Vec2> offsets;          ///< sample position − origin [m], clamped to the rectangle
+  std::vector<SurfacePoint> samples;  ///< the patch at each sample
+  std::vector<double> slopes;         ///< gradient magnitude |∇z| at each sample
+};
+
+/// Samples `patch` on the raster over [origin, origin + (width, height)] whose
+/// longer side has `max_samples` samples. The last row and column are clamped
+/// so that rounding never pushes a sample off the domain.
+ReliefRaster sample_relief(const BPatch& patch, const Vec2& origin, double width, double height,
+                           std::size_t max_samples);
+
+/// The 95th-percentile slope of the samples: element floor(0.95 n) of the
+/// slopes in ascending order.
+double slope_p95(const ReliefRaster& raster);
+
+/// How a sample is coloured: the hypsometric tint of its elevation over
+/// [zmin, zmax] (mid-ramp if that is empty) times a hillshade.
+struct ReliefColouring {
+  double zmin = 0.0, zmax = 0.0;
+  SunPosition sun;
+  double exaggeration = 1.0;  ///< vertical exaggeration of the hillshade
+  double ambient = 0.35;      ///< shade_colour()'s floor
+  /// Washed 45 % towards white, so that routes and overlays read on top.
+  bool washed = false;
+};
+
+/// The colour of one sample.
+Rgb relief_colour(const SurfacePoint& sample, const ReliefColouring& colouring);
+
+/// Writes `header` (comment lines, each ending in a newline) and then
+/// "x y r g b" per sample (offsets [m], channels 0–255), a blank line after
+/// each raster row: gnuplot's `with rgbimage` input.
+void write_relief_rgb(const ReliefRaster& raster, const ReliefColouring& colouring,
+                      const std::string& header, const std::filesystem::path& file);
+
+/// Writes `header` and then "x y z" per sample (offsets and elevation [m]), a
+/// blank line after each raster row: the input gnuplot traces contours on.
+void write_elevation_raster(const ReliefRaster& raster, const std::string& header,
+                            const std::filesystem::path& file);
+
+}  // namespace talus::experiments

@@ -1,0 +1,26 @@
+#include "west_bijou_path.hpp"
+
+#include <string>
+
+#include "number_format.hpp"
+#include "talus/core/error.hpp"
+
+namespace talus::experiments {
+
+std::vector<Vec2> west_bijou_path_points(const ElevationGrid& grid, std::string_view experiment) {
+  std::vector<Vec2> points;
+  const double h = grid.cellsize();
+  for (const CellPoint& c : kWestBijouPathCells) {
+    if (c.u < 2.0 || c.v < 2.0 || c.u > static_cast<double>(grid.ncols() - 1) - 2.0 ||
+        c.v > static_cast<double>(grid.nrows() - 1) - 2.0) {
+      throw InputError(std::string(experiment) + ": path point (" + fmt("%g", c.u) + ", " +
+                       fmt("%g", c.v) + ") cells is not 2 cells inside the " +
+                       std::to_string(grid.ncols()) + " × " + std::to_string(grid.nrows()) +
+                       "-node grid");
+    }
+    points.emplace_back(grid.x_min() + c.u * h, grid.y_min() + c.v * h);
+  }
+  return points;
+}
+
+}  // namespace talus::experiments

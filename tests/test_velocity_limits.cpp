@@ -335,3 +335,32 @@ TEST(VehicleFile, RejectsBadFilesWithClearMessages) {
 
 }  // namespace
 }  // namespace talus
+
+namespace talus {
+namespace {
+
+TEST(SpeedLimits, LeanIntervalAgreesWithTheFullLimits) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const double b : {0.3, 0.6, 2.0}) {  // b/h below, near and above mu
+    Vehicle v;
+    v.friction = 0.7;
+    v.cg_height = 0.5;
+    v.half_track = b;
+    v.max_speed = 25.0;
+    for (int k = 0; k < 500; ++k) {
+      Vec3 up(0.6 * u(rng), 0.6 * u(rng), 1.0);
+      up.normalize();
+      const StationGeometry g{0.1 * u(rng), 0.1 * u(rng), up.x(), up.y(), up.z()};
+      const SpeedLimits full = speed_limits(v, g);
+      const SquaredSpeedInterval lean = admissible_squared_speeds(v, g);
+      ASSERT_EQ(full.traversable, !lean.empty());
+      if (!full.traversable) continue;
+      EXPECT_NEAR(std::sqrt(lean.upper), full.v_max, 1e-12 * (1 + full.v_max));
+      EXPECT_NEAR(std::sqrt(lean.lower), full.v_min, 1e-9 * (1 + full.v_min));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace talus

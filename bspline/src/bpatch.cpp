@@ -46,6 +46,7 @@ BPatch::BPatch(const ElevationGrid& grid, Eigen::MatrixXd control)
     : ncols_(grid.ncols()),
       nrows_(grid.nrows()),
       h_(grid.cellsize()),
+      inverse_h_(1.0 / grid.cellsize()),
       x_min_(grid.x_min()),
       y_min_(grid.y_min()),
       control_(std::move(control)),
@@ -93,18 +94,22 @@ bool BPatch::contains(const Vec2& p) const {
   return p.x() >= x_min_ && p.x() <= x_max() && p.y() >= y_min_ && p.y() <= y_max();
 }
 
+[[noreturn]] void BPatch::throw_outside(const Vec2& p) const {
+  std::ostringstream msg;
+  msg.precision(12);
+  msg << "point (" << p.x() << ", " << p.y() << ") is outside the terrain domain [" << x_min_
+      << ", " << x_max() << "] x [" << y_min_ << ", " << y_max() << "]";
+  throw InputError(msg.str());
+}
+
 void BPatch::locate(const Vec2& p, std::size_t& i, std::size_t& j, double& tu, double& tv) const {
-  const double u = (p.x() - x_min_) / h_;
-  const double v = (p.y() - y_min_) / h_;
+  const double u = (p.x() - x_min_) * inverse_h_;
+  const double v = (p.y() - y_min_) * inverse_h_;
   const double umax = static_cast<double>(ncols_ - 1), vmax = static_cast<double>(nrows_ - 1);
   // A hair of slack absorbs rounding in callers that compute x_max themselves.
   constexpr double kSlack = 1e-9;
-  if (!(u >= -kSlack && u <= umax + kSlack && v >= -kSlack && v <= vmax + kSlack)) {
-    std::ostringstream msg;
-    msg.precision(12);
-    msg << "point (" << p.x() << ", " << p.y() << ") is outside the terrain domain [" << x_min_
-        << ", " << x_max() << "] x [" << y_min_ << ", " << y_max() << "]";
-    throw InputError(msg.str());
+  if (!(u >= -kSlack && u <= umax + kSlack && v >= -kSlack && v <= vmax + kSlack)) [[unlikely]] {
+    throw_outside(p);
   }
   const double uc = std::clamp(u, 0.0, umax), vc = std::clamp(v, 0.0, vmax);
   i = std::min(static_cast<std::size_t>(uc), ncols_ - 2);
@@ -160,7 +165,7 @@ SurfacePoint BPatch::evaluate(const Vec2& p) const {
     zuv += bv.first[b] * r1[b];
     zvv += bv.second[b] * r0[b];
   }
-  const double inv_h = 1.0 / h_, inv_h2 = inv_h * inv_h;
+  const double inv_h = inverse_h_, inv_h2 = inv_h * inv_h;
   SurfacePoint out;
   out.z = z;
   out.gradient = {zu * inv_h, zv * inv_h};

@@ -109,6 +109,15 @@ SpeedLimits speed_limits(const Vehicle& vehicle, const StationGeometry& g) {
   return out;
 }
 
+SquaredSpeedInterval admissible_squared_speeds(const Vehicle& vehicle, const StationGeometry& g) {
+  // With R >= 0 (which both conditions of a pair imply), |f_q| <= mu R and
+  // |f_q| <= (b/h) R together are |f_q| <= min(mu, b/h) R; contact follows.
+  const double ratio = std::min(vehicle.friction, vehicle.half_track / vehicle.cg_height);
+  SquaredSpeedInterval out = lateral_ratio_condition(ratio, vehicle.gravity, g);
+  out.upper = std::min(out.upper, vehicle.max_speed * vehicle.max_speed);
+  return out;
+}
+
 AccelerationBounds acceleration_bounds(const Vehicle& vehicle, const StationGeometry& g,
                                        double speed) {
   const double x = speed * speed;

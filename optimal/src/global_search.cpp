@@ -62,8 +62,11 @@ EdgeCost edge_cost_impl(const BPatch& terrain, const Vehicle& vehicle, const Vec
                                                           : terrain.evaluate(p);
     const PathFrame f = lift_to_surface(p, sp, d1, Vec2::Zero());
     const StationGeometry g = StationGeometry::from(f);
-    const SpeedLimits l = speed_limits(vehicle, g);
-    if (!l.traversable || !(l.v_max > 0.0)) return {kInf, kInf, kInf};
+    const SquaredSpeedInterval window = admissible_squared_speeds(vehicle, g);
+    if (window.empty() || !(window.upper > 0.0)) return {kInf, kInf, kInf};
+    SpeedLimits l;
+    l.v_min = std::sqrt(window.lower);
+    l.v_max = std::sqrt(window.upper);
     // Simpson weights 1, 4, 2, 4, ..., 4, 1 (stations is odd).
     const double w = (k == 0 || k == stations - 1) ? 1.0 : (k % 2 ? 4.0 : 2.0);
     forward_sum += w * f.speed / l.v_max;
@@ -217,16 +220,6 @@ class Lattice {
   std::size_t evaluated_ = 0;
 };
 
-double point_to_polyline(const Vec2& p, const std::vector<Vec2>& line) {
-  double best = kInf;
-  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-    const Vec2 d = line[k + 1] - line[k];
-    const double t = std::clamp((p - line[k]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-    best = std::min(best, (p - (line[k] + t * d)).norm());
-  }
-  return line.size() == 1 ? (p - line[0]).norm() : best;
-}
-
 /// 3-D length on the surface of a lattice polyline, by the edges' own quadrature.
 double surface_length(const BPatch& terrain, const Vehicle& vehicle,
                       const std::vector<Vec2>& vertices, double spacing) {
@@ -240,18 +233,34 @@ double surface_length(const BPatch& terrain, const Vehicle& vehicle,
   return length;
 }
 
-/// Share of `a`'s vertices that lie within `radius` of the polyline `b`.
-double shared_fraction(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double radius) {
-  std::size_t shared = 0;
-  for (const Vec2& p : a) shared += point_to_polyline(p, b) < radius;
-  return a.empty() ? 0.0 : static_cast<double>(shared) / static_cast<double>(a.size());
-}
-
-/// Symmetric Hausdorff distance between two polylines (vertices against segments).
-double hausdorff(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-  double d = 0.0;
-  for (const Vec2& p : a) d = std::max(d, point_to_polyline(p, b));
-  for (const Vec2& p : b) d = std::max(d, point_to_polyline(p, a));
+/// Distance [m] from every lattice node to the nearest of `sources`, by the
+/// two-pass chamfer transform with steps h and h sqrt(2).
+std::vector<float> chamfer_distance(const std::vector<std::uint32_t>& sources, std::size_t nx,
+                                    std::size_t ny, double spacing) {
+  const float straight = static_cast<float>(spacing);
+  const float diagonal = static_cast<float>(spacing * std::sqrt(2.0));
+  std::vector<float> d(nx * ny, std::numeric_limits<float>::infinity());
+  for (std::uint32_t s : sources) d[s] = 0.0f;
+  const auto relax = [&](std::size_t i, std::size_t j, long di, long dj, float step) {
+    const long a = static_cast<long>(i) + di, b = static_cast<long>(j) + dj;
+    if (a < 0 || b < 0 || a >= static_cast<long>(nx) || b >= static_cast<long>(ny)) return;
+    float& here = d[j * nx + i];
+    here = std::min(here, d[static_cast<std::size_t>(b) * nx + static_cast<std::size_t>(a)] + step);
+  };
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) {
+      relax(i, j, -1, 0, straight);
+      relax(i, j, 0, -1, straight);
+      relax(i, j, -1, -1, diagonal);
+      relax(i, j, 1, -1, diagonal);
+    }
+  for (std::size_t j = ny; j-- > 0;)
+    for (std::size_t i = nx; i-- > 0;) {
+      relax(i, j, 1, 0, straight);
+      relax(i, j, 0, 1, straight);
+      relax(i, j, 1, 1, diagonal);
+      relax(i, j, -1, 1, diagonal);
+    }
   return d;
 }
 
@@ -417,31 +426,46 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
                  cb = from_start.cost[b] + to_goal.cost[b];
     return ca != cb ? ca < cb : a < b;  // ties by node id: deterministic
   });
+  // Each accepted candidate gets a lattice distance map (chamfer transform,
+  // within 8 % of the Euclidean distance), so testing a seed and its path is
+  // O(path length) instead of O(path length^2).
+  std::vector<std::vector<float>> distance_maps;
+  // Nodes on a path already examined would mostly grow the same path again.
+  std::vector<unsigned char> examined(n, 0);
   for (const std::uint32_t node : order) {
     if (result.candidates.size() >= options.candidates) break;
-    const Vec2 p = lattice.position(node);
+    if (examined[node]) continue;
     bool near = false;
-    for (const CandidatePath& c : result.candidates)
-      near = near || point_to_polyline(p, c.vertices) < separation;
+    for (const std::vector<float>& d : distance_maps) near = near || d[node] < separation;
     if (near) continue;
     std::vector<std::uint32_t> ids = from_start.path_to(node);
     for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone;
          m = to_goal.parent[m])
       ids.push_back(m);
-    CandidatePath candidate;
-    for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
+    for (std::uint32_t id : ids) examined[id] = 1;
+    // Distinct from an accepted candidate = somewhere at least `separation`
+    // away from it AND at most half of the path within separation / 2 of it:
+    // without the second rule the best corridor with one bulge passed as an
+    // alternative route.
     bool distinct = true;
-    // Distinct = somewhere at least `separation` away (Hausdorff) AND at most
-    // half of it within separation / 2 of an accepted candidate: without the
-    // second rule the best corridor with one bulge passed as an alternative.
-    for (const CandidatePath& c : result.candidates) {
-      distinct = distinct && hausdorff(candidate.vertices, c.vertices) >= separation &&
-                 shared_fraction(candidate.vertices, c.vertices, 0.5 * separation) <= 0.5;
+    for (const std::vector<float>& d : distance_maps) {
+      float farthest = 0.0f;
+      std::size_t shared = 0;
+      for (std::uint32_t id : ids) {
+        farthest = std::max(farthest, d[id]);
+        shared += d[id] < 0.5 * separation;
+      }
+      distinct = distinct && farthest >= separation && 2 * shared <= ids.size();
     }
     if (!distinct) continue;
+    CandidatePath candidate;
+    for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
     candidate.cost_seconds = from_start.cost[node] + to_goal.cost[node];
     candidate.length_m = surface_length(terrain, vehicle, candidate.vertices, spacing);
     result.candidates.push_back(std::move(candidate));
+    if (result.candidates.size() < options.candidates) {
+      distance_maps.push_back(chamfer_distance(ids, lattice.nx(), lattice.ny(), spacing));
+    }
   }
   result.status = GlobalSearchStatus::kOk;
   result.cost_from_start = from_start.cost;

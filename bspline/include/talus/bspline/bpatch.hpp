@@ -79,9 +79,10 @@ class BPatch {
  private:
   BPatch(const ElevationGrid& grid, Eigen::MatrixXd control);
   void locate(const Vec2& p, std::size_t& i, std::size_t& j, double& tu, double& tv) const;
+  [[noreturn]] void throw_outside(const Vec2& p) const;
 
   std::size_t ncols_ = 0, nrows_ = 0;
-  double h_ = 1.0, x_min_ = 0.0, y_min_ = 0.0;
+  double h_ = 1.0, inverse_h_ = 1.0, x_min_ = 0.0, y_min_ = 0.0;
   Eigen::MatrixXd control_;
   std::vector<unsigned char> cell_on_data_;  ///< per cell, (ncols-1) × (nrows-1)
 };

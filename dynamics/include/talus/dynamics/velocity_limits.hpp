@@ -84,6 +84,11 @@ struct SpeedLimits {
 /// Speed limits of `vehicle` at a station with geometry `g`. O(1).
 SpeedLimits speed_limits(const Vehicle& vehicle, const StationGeometry& g);
 
+/// The admissible interval of ṡ² alone, without the per-constraint breakdown
+/// and bindings of speed_limits() (same interval, about half the cost): for
+/// hot loops such as lattice edge costs. Empty when not traversable.
+SquaredSpeedInterval admissible_squared_speeds(const Vehicle& vehicle, const StationGeometry& g);
+
 /// Admissible tangential accelerations s̈ at one station and speed.
 struct AccelerationBounds {
   double a_min = 0.0;     ///< [m/s²]

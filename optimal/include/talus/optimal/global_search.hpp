@@ -29,10 +29,12 @@ struct GlobalSearchOptions {
   int connectivity = 16;         ///< 8, 16 or 32 neighbours per node
   std::size_t candidates = 3;    ///< how many distinct candidates to return (>= 1)
   /// Separation d [m] of distinct candidates; 0 = 10 % of the start–goal
-  /// distance, and at least 3 lattice spacings. Two paths are distinct when
-  /// their Hausdorff distance is at least d AND at most half of the new
-  /// path's vertices lie within d/2 of the other (one bulge off the same
-  /// corridor is not an alternative route). Candidates are grown from the
+  /// distance, and at least 3 lattice spacings. A new path is distinct from
+  /// an accepted one when some of its vertices are at least d away from it
+  /// (directed Hausdorff distance) AND at most half of its vertices lie within
+  /// d/2 of it (one bulge off the same corridor is not an alternative route).
+  /// Distances are lattice chamfer distances (steps h and h sqrt 2: within 8 %
+  /// of the Euclidean distance). Candidates are grown from the
   /// lattice nodes in increasing order of the best cost through them
   /// (cost_from_start + cost_to_goal), skipping nodes within d of an
   /// accepted candidate (Shiller, Fujita, Ophir, Nakamura 2004).

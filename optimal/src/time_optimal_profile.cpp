@@ -255,10 +255,11 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
   double x = std::clamp(x_start, lower_[0], upper_[0]);
   out.v[kept_[0]] = std::sqrt(x);
   out.t[kept_[0]] = 0.0;
+  // The bounds at the end of one step, at its end state, are the next step's own.
+  ControlInterval own = detail::known_state_controls(constants, limits.geometry(kept_[0]), x);
   for (std::size_t jj = 0; jj + 1 < m; ++jj) {
     const std::size_t i0 = kept_[jj], i1 = kept_[jj + 1];
     const Step step{constants, limits.geometry(i0), limits.geometry(i1), out.s[i1] - out.s[i0]};
-    const ControlInterval own = detail::known_state_controls(constants, step.from, x);
     const ControlInterval u =
         intersect(own, admissible_controls(constants, step.to, x, 2.0 * step.length, lower_[jj + 1],
                                            upper_[jj + 1]));
@@ -272,8 +273,8 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
     const double x_next =
         std::clamp(x + 2.0 * step.length * control, lower_[jj + 1], upper_[jj + 1]);
     // The step's own bounds are those at both of its ends.
-    const ControlInterval bounds =
-        intersect(own, detail::known_state_controls(constants, step.to, x_next));
+    const ControlInterval next_own = detail::known_state_controls(constants, step.to, x_next);
+    const ControlInterval bounds = intersect(own, next_own);
     const double tolerance = 1e-7 * (1.0 + std::abs(control));
     out.control[i0] = control >= bounds.upper - tolerance   ? ControlKind::kAccelerate
                       : control <= bounds.lower + tolerance ? ControlKind::kDecelerate
@@ -289,6 +290,7 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
     out.t[i1] = out.t[i0] + 2.0 * step.length / (v0 + v1);
     out.v[i1] = v1;
     x = x_next;
+    own = next_own;
   }
   // Merged stations take the values of the kept station they collapsed into.
   for (std::size_t jj = 0, k = 0; k < n; ++k) {

@@ -1,7 +1,10 @@
-// End-to-end tests of `talus plan --stage global`: the analytic cost on a flat
-// plane, the candidates.csv / summary.json / fields.csv contracts, two
+// End-to-end tests of `talus plan`. --stage global: the analytic cost on a
+// flat plane, the candidates.csv / summary.json / fields.csv contracts, two
 // candidates around a hill, the unreachable outcome (exit code 2, JSON on
 // stdout) behind a wall of hills, input errors (exit 1) and a bundled DEM.
+// --stage full: the analytic rest-to-rest time on a flat plane, the
+// trajectory.csv / optima.csv / summary contracts, and no loss against the
+// global candidates around a hill.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -203,6 +206,82 @@ TEST(CliPlan, GaussianHillGivesTwoCandidatesOneOnEachSide) {
   EXPECT_EQ(south, 1);
 }
 
+/// The checks of a full-stage run that found a trajectory: the local stage's
+/// summary keys, trajectory.csv (exact header, t increasing, ends at
+/// travel_time) and optima.csv. Returns the summary.
+nlohmann::json run_plan_full_ok(const std::string& args, const std::string& dir) {
+  const nlohmann::json j = run_plan_ok(args, dir);
+  for (const char* key : {"travel_time", "global_travel_time", "improvement_percent", "optima",
+                          "seconds", "best_candidate"}) {
+    EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
+  }
+  if (!j.contains("optima") || !j.contains("seconds")) return j;
+  for (const char* key : {"global", "local", "profile", "total"}) {
+    EXPECT_GE(j.at("seconds").value(key, -1.0), 0.0) << key;
+  }
+  EXPECT_EQ(j.at("optima").size(), j.at("candidates").size());
+  for (const nlohmann::json& o : j.at("optima")) {
+    for (const char* key : {"travel_time", "initial_time", "solver_status", "iterations"}) {
+      EXPECT_TRUE(o.contains(key)) << key << " missing from " << o.dump();
+    }
+    EXPECT_TRUE(o.at("optimality").is_null());  // BOBYQA: derivative-free
+    EXPECT_GT(o.value("iterations", 0), 0);
+  }
+  const double travel_time = j.at("travel_time").get<double>();
+  const auto rows = read_csv(dir + "/trajectory.csv", "s,x,y,z,v,a,t,v_max,binding");
+  EXPECT_GT(rows.size(), 100u);
+  double previous_t = -1.0;
+  for (const auto& f : rows) {
+    const double t = parse_number(f[6]);
+    EXPECT_GT(t, previous_t);
+    previous_t = t;
+  }
+  EXPECT_NEAR(previous_t, travel_time, 1e-9 * travel_time);
+  const auto optima = read_csv(dir + "/optima.csv", "candidate,s,x,y,v");
+  EXPECT_GT(optima.size(), 10u);
+  EXPECT_LE(optima.size(), j.at("optima").size() * 2001);
+  return j;
+}
+
+TEST(CliPlan, FullStageOnFlatPlaneMatchesRestToRestStraightLine) {
+  // 50 m straight: accelerate at mu g = 0.7 * 9.81 to 10 m/s, cruise, brake.
+  const std::string terrain = plan_flat_terrain();
+  const std::string dir = scratch_file("full_flat_out");
+  const nlohmann::json j =
+      run_plan_full_ok("--terrain " + quoted(terrain) + " --start 5,20 --goal 55,20 --vehicle " +
+                           quoted(plan_vehicle("v10.yaml", 10.0)) + " --candidates 1",
+                       dir);
+  const double a = 0.7 * 9.81, v = 10.0, length = 50.0;
+  const double expected = 2.0 * v / a + (length - v * v / a) / v;
+  EXPECT_EQ(j.value("stage", ""), "full");  // the default
+  EXPECT_NEAR(j.value("travel_time", 0.0), expected, 0.01 * expected) << j.dump();
+  EXPECT_LE(j.value("travel_time", 0.0), j.value("global_travel_time", 0.0) * (1.0 + 1e-12));
+}
+
+TEST(CliPlan, FullStageAroundAHillIsNoSlowerThanTheGlobalCandidates) {
+  // Low friction: the slopes of the hill (up to 0.97) are out of reach.
+  const std::string terrain =
+      generate_terrain("hill.asc", "gaussian-hills --hill 30,20,8,5 " + kPlanShape);
+  const std::string dir = scratch_file("full_hill_out");
+  const nlohmann::json j =
+      run_plan_full_ok("--terrain " + quoted(terrain) + " --start 5,20 --goal 55,20 --vehicle " +
+                           quoted(point_mass_vehicle("slippery.yaml", 0.4, 10.0)) +
+                           " --stage full --candidates 2 --control-points 6 --solver nlopt-bobyqa",
+                       dir);
+  const double travel_time = j.value("travel_time", 0.0);
+  const double global_time = j.value("global_travel_time", 0.0);
+  EXPECT_GT(travel_time, 50.0 / 10.0);
+  EXPECT_LE(travel_time, global_time) << j.dump();
+  EXPECT_GE(j.value("improvement_percent", -1.0), 0.0);
+  for (const nlohmann::json& o : j.at("optima")) {
+    if (o.at("travel_time").is_null()) continue;
+    EXPECT_LE(o.at("travel_time").get<double>(), o.at("initial_time").get<double>());
+  }
+  for (const char* file : {"/plan.png", "/profile.png", "/plan.gp", "/profile.gp"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + file)) << file;
+  }
+}
+
 TEST(CliPlan, WallOfHillsMakesTheGoalUnreachableWithExitCodeTwo) {
   // Hills 30 m high, sigma 3 m, every 5 m along y = 20 and beyond both edges:
   // a ridge whose flanks (slope up to 6) no vehicle with mu = 0.7 can climb.
@@ -252,9 +331,19 @@ TEST(CliPlan, BadInputGivesOneLineOnStderrAndExitCodeOne) {
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --smoothing -1" + tail,
        "--smoothing"},
       {"--terrain /nonexistent.asc --start 5,20 --goal 55,20" + v10 + tail, "/nonexistent.asc"},
-      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --stage full --out " +
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --stage fast --out " +
            quoted(dir),
        "--stage"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --solver ipopt --out " +
+           quoted(dir),
+       "--solver ipopt is not available yet"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --control-points 3 --out " +
+           quoted(dir),
+       "--control-points"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --v0 -1 --out " + quoted(dir),
+       "--v0"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --v1 11 --out " + quoted(dir),
+       "--v1 11"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --stage global", "--out"},
   };
   expect_bad_input("plan", cases, dir);
@@ -292,10 +381,31 @@ TEST(CliPlan, BundledDemCornerToCornerIsSane) {
 TEST(CliPlan, HelpDocumentsTheContract) {
   const RunResult r = run_talus("plan --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* fragment :
-       {"Usage", "--stage", "global", "full", "not available yet", "candidate,x,y", "summary.json",
-        "cost_seconds", "unreachable", "Exit code 0", "2 when", "--candidates", "--lattice-spacing",
-        "--connectivity", "--smoothing"}) {
+  for (const char* fragment : {"Usage",
+                               "--stage",
+                               "global",
+                               "full",
+                               "not available yet",
+                               "candidate,x,y",
+                               "summary.json",
+                               "cost_seconds",
+                               "unreachable",
+                               "Exit code 0",
+                               "2 when",
+                               "--candidates",
+                               "--lattice-spacing",
+                               "--connectivity",
+                               "--smoothing",
+                               "--control-points",
+                               "--solver",
+                               "nlopt-bobyqa",
+                               "ipopt",
+                               "--v0",
+                               "--v1",
+                               "s,x,y,z,v,a,t,v_max,binding",
+                               "candidate,s,x,y,v",
+                               "global_travel_time",
+                               "derivative-free"}) {
     EXPECT_NE(r.out.find(fragment), std::string::npos) << fragment << " not in " << r.out;
   }
 }

@@ -1,6 +1,7 @@
 #include "talus/bspline/curve_fit.hpp"
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <string>
 
 #include "talus/core/error.hpp"
@@ -81,6 +82,27 @@ Curve2 fit_clamped_cubic(const std::vector<Vec2>& polyline, std::size_t control_
     }
   }
   return Curve2(knots, std::move(control));
+}
+
+std::vector<Vec2> resample_polyline(const std::vector<Vec2>& polyline, std::size_t count) {
+  if (polyline.size() < 2 || count < 2)
+    throw InputError("resample_polyline needs >= 2 vertices and >= 2 points");
+  std::vector<double> s{0.0};
+  for (std::size_t k = 1; k < polyline.size(); ++k) {
+    s.push_back(s.back() + (polyline[k] - polyline[k - 1]).norm());
+  }
+  std::vector<Vec2> out;
+  out.reserve(count);
+  std::size_t segment = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double target = s.back() * static_cast<double>(k) / static_cast<double>(count - 1);
+    while (segment + 2 < polyline.size() && s[segment + 1] < target) ++segment;
+    const double length = s[segment + 1] - s[segment];
+    const double t = length > 0.0 ? std::clamp((target - s[segment]) / length, 0.0, 1.0) : 0.0;
+    out.push_back((1.0 - t) * polyline[segment] + t * polyline[segment + 1]);
+  }
+  out.back() = polyline.back();
+  return out;
 }
 
 }  // namespace talus

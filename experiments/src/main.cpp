@@ -268,22 +268,33 @@ int main(int argc, char** argv) {
   ex::PlanRequest plan_request;
   CLI::App* plan = app.add_subcommand(
       "plan",
-      "plan a time-optimal route for a vehicle from a start to a goal on a terrain. Only the "
-      "global stage exists so far: --stage global runs the minimum-time search over a lattice "
-      "on the fitted surface (edge cost J = integral of ds / v_max, the travel time at the "
-      "speed limit) and returns up to --candidates distinct corridors. --stage full (the "
-      "default once the local optimiser lands) is not available yet. Writes, in --out DIR "
-      "(created if needed): candidates.csv (columns candidate,x,y: the lattice vertices of "
+      "plan a time-optimal trajectory for a vehicle from a start to a goal on a terrain. "
+      "--stage global runs the minimum-time search over a lattice on the fitted surface (edge "
+      "cost J = integral of ds / v_max, the travel time at the speed limit) and returns up to "
+      "--candidates distinct corridors. --stage full (the default) then optimises each "
+      "candidate locally: a clamped cubic B-spline with --control-points control points, start "
+      "and goal fixed, minimising the travel time of its exact time-optimal velocity profile "
+      "(from --v0 to --v1) with NLopt BOBYQA, and keeps the best. Both stages write, in --out "
+      "DIR (created if needed): candidates.csv (columns candidate,x,y: the lattice vertices of "
       "each candidate from the start node to the goal node, candidate 0 the best), "
       "fields.csv (x,y,cost_from_start,cost_to_goal [s] at every lattice node, `inf` = not "
       "reachable, `nan` = not computed; skipped above 4000000 nodes) and summary.json, and "
-      "prints the same JSON: status (ok | unreachable), message, candidates [{cost_seconds, "
-      "length_m, vertices}], nodes, edges_evaluated, expanded, reachable_nodes, "
-      "search_seconds, start_node, goal_node ([x, y] of the snapped lattice nodes), "
-      "lattice_spacing, connectivity, ... Exit code 0 when the goal is reached; 2 when it is "
-      "unreachable (summary still written and printed); 1 on bad input: a start or goal off "
-      "the map, on NODATA or on untraversable terrain, a vehicle without max_speed, a "
-      "malformed X,Y (one line on stderr, nothing written)");
+      "print the same JSON: status (ok | unreachable | infeasible), message, candidates "
+      "[{cost_seconds, length_m, vertices}], nodes, edges_evaluated, expanded, "
+      "reachable_nodes, search_seconds, start_node, goal_node ([x, y] of the snapped lattice "
+      "nodes), lattice_spacing, connectivity, ... --stage full also writes trajectory.csv "
+      "(s,x,y,z,v,a,t,v_max,binding of the best trajectory, profile recomputed every 0.1 m, as "
+      "`talus profile`), optima.csv (candidate,s,x,y,v: every optimised candidate's profile, "
+      "at most about 2000 rows each), plan.png and profile.png (gnuplot scripts and data "
+      "beside them), and adds travel_time [s] (the best), global_travel_time (the best "
+      "candidate's initial B-spline fit, same 0.1 m stations), improvement_percent, optima "
+      "[{travel_time, initial_time, solver_status, iterations (objective evaluations), "
+      "optimality (null: BOBYQA is derivative-free), ...}] and seconds {fit, global, local, "
+      "profile, plots, total}. Exit code 0 when a result exists; 2 when the goal is "
+      "unreachable or (full) every candidate's profile is infeasible (summary still written "
+      "and printed); 1 on bad input: a start or goal off the map, on NODATA or on "
+      "untraversable terrain, a vehicle without max_speed, a malformed X,Y, an unknown "
+      "solver (one line on stderr, nothing written)");
   plan->add_option("--terrain", plan_request.terrain, "ESRI ASCII grid (.asc)")->required();
   plan->add_option("--start", plan_request.start, "start X,Y in the terrain's frame [m]")
       ->required();
@@ -292,10 +303,10 @@ int main(int argc, char** argv) {
                    "vehicle YAML with a finite max_speed (see data/vehicles/README.md)")
       ->required();
   plan->add_option("--stage", plan_request.stage,
-                   "global = the lattice search only (required for now; `full`, the future "
-                   "default, is not available yet)")
-      ->required()
-      ->check(CLI::IsMember({std::string(ex::kPlanStageGlobal)}));
+                   "full = lattice search + local optimisation of each candidate; global = the "
+                   "lattice search only")
+      ->capture_default_str()
+      ->check(CLI::IsMember({std::string(ex::kPlanStageFull), std::string(ex::kPlanStageGlobal)}));
   plan->add_option("--candidates", plan_request.candidates,
                    "distinct candidate corridors wanted (>= 1; fewer when no other corridor "
                    "costs at most twice the best)")
@@ -309,6 +320,19 @@ int main(int argc, char** argv) {
   plan->add_option("--smoothing", plan_request.smoothing,
                    "curvature weight lambda > 0 of the smoothing fit; without it the surface "
                    "interpolates every node");
+  plan->add_option("--control-points", plan_request.control_points,
+                   "control points of each optimised clamped cubic (4 to 64; start and goal "
+                   "fixed), --stage full")
+      ->capture_default_str();
+  plan->add_option("--solver", plan_request.solver,
+                   "local solver, --stage full: nlopt-bobyqa (derivative-free) is the only one "
+                   "so far; ipopt and the gradient-based NLopt solvers are not available yet "
+                   "(they come with the analytic gradient of the travel time)")
+      ->capture_default_str();
+  plan->add_option("--v0", plan_request.start_speed, "speed at the start [m/s], >= 0, --stage full")
+      ->capture_default_str();
+  plan->add_option("--v1", plan_request.end_speed, "speed at the goal [m/s], >= 0, --stage full")
+      ->capture_default_str();
   plan->add_option("--out", plan_request.output_dir, "output folder (created if needed)")
       ->required();
   plan->callback([&]() {

@@ -1,10 +1,11 @@
 #pragma once
 /// @file
-/// The `talus plan` command's work, separate from argument parsing. Only the
-/// global stage exists so far (`--stage global`): the minimum-time lattice
-/// search of talus::global_search with distinct candidate corridors. The full
-/// pipeline (`--stage full`: the local B-spline optimisation of each
-/// candidate) belongs to a later issue.
+/// The `talus plan` command's work, separate from argument parsing. Two
+/// stages: `--stage global`, the minimum-time lattice search of
+/// talus::global_search with distinct candidate corridors, and `--stage full`
+/// (the default), which then optimises each candidate locally
+/// (talus::optimize_path_bobyqa: a clamped cubic B-spline minimising the
+/// exact time-optimal profile's travel time) and keeps the best.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -16,26 +17,44 @@
 namespace talus::experiments {
 
 /// `talus plan --terrain T.asc --start X,Y --goal X,Y --vehicle V.yaml
-/// --stage global [--candidates K] [--lattice-spacing M] [--connectivity C]
-/// [--smoothing LAMBDA] --out DIR`.
+/// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
+/// [--smoothing LAMBDA] [--control-points M] [--solver nlopt-bobyqa] [--v0 A]
+/// [--v1 B] --out DIR`.
 struct PlanRequest {
   std::string terrain;           ///< ESRI ASCII grid
   std::string vehicle;           ///< vehicle YAML/JSON (load_vehicle); needs a finite max_speed
   std::string start;             ///< "X,Y" in the terrain's frame [m] (parse_point)
   std::string goal;              ///< "X,Y" [m]
-  std::string stage = "global";  ///< only "global" for now
+  std::string stage = "full";    ///< "full" or "global"
   std::string output_dir;        ///< --out: created if needed
   long long candidates = 3;      ///< distinct candidates wanted (>= 1)
   double lattice_spacing = 0.0;  ///< [m]; 0 = the terrain's cell size
   int connectivity = 16;         ///< 8, 16 or 32
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
+  // The local stage (--stage full only).
+  long long control_points = 8;         ///< of each optimised clamped cubic (4 to 64)
+  std::string solver = "nlopt-bobyqa";  ///< the only solver so far
+  double start_speed = 0.0;             ///< --v0 [m/s] (finite, >= 0, <= max_speed)
+  double end_speed = 0.0;               ///< --v1 [m/s]
 };
 
-/// The stages `--stage` accepts now ("full" comes with the planning pipeline).
+/// The stages `--stage` accepts.
 inline constexpr const char* kPlanStageGlobal = "global";
+inline constexpr const char* kPlanStageFull = "full";
 
-/// Exit code of `talus plan` when the goal cannot be reached from the start.
+/// The local solvers `--solver` accepts (Ipopt and the gradient-based NLopt
+/// solvers come with the analytic gradient of the travel time).
+inline constexpr const char* kPlanSolverBobyqa = "nlopt-bobyqa";
+
+/// Largest --control-points accepted.
+inline constexpr long long kMaxPlanControlPoints = 64;
+
+/// At most about this many rows per candidate in DIR/optima.csv.
+inline constexpr std::size_t kMaxOptimaRows = 2000;
+
+/// Exit code of `talus plan` when the goal cannot be reached from the start
+/// (or, with --stage full, when no candidate has a feasible trajectory).
 inline constexpr int kUnreachableExitCode = 2;
 
 /// Lattices with more nodes than this get no fields.csv (it would be large).
@@ -44,13 +63,17 @@ inline constexpr std::size_t kMaxFieldNodes = 4'000'000;
 /// The columns of DIR/candidates.csv and DIR/fields.csv, in order.
 inline constexpr const char* kCandidatesCsvHeader = "candidate,x,y";
 inline constexpr const char* kFieldsCsvHeader = "x,y,cost_from_start,cost_to_goal";
+/// The columns of DIR/trajectory.csv (as `talus profile`) and DIR/optima.csv.
+inline constexpr const char* kTrajectoryCsvHeader = "s,x,y,z,v,a,t,v_max,binding";
+inline constexpr const char* kOptimaCsvHeader = "candidate,s,x,y,v";
 
 /// Parses "X,Y" (two finite numbers, optional spaces around them) given to
 /// `option`; anything else is an InputError naming the option and the text.
 Vec2 parse_point(const std::string& option, const std::string& text);
 
 /// What `plan` returns: the JSON summary (also written to DIR/summary.json)
-/// and whether the goal was reached.
+/// and whether a result exists (the goal was reached; with --stage full, a
+/// feasible trajectory was found too).
 struct PlanOutcome {
   nlohmann::json summary;
   bool reachable = false;
@@ -75,6 +98,21 @@ struct PlanOutcome {
 /// of the snapped lattice nodes), start, goal, lattice_spacing, lattice
 /// ([nx, ny]), connectivity, candidates_requested, stage, fit, smoothing,
 /// vehicle_max_speed, files, fit_seconds and seconds.
+///
+/// With --stage full, each candidate (its first and last vertices replaced by
+/// the exact start and goal) is optimised with optimize_path_bobyqa (M control
+/// points, start and goal speeds v0, v1, the optimiser's search station
+/// spacing), and every path's profile is then recomputed at
+/// kDefaultStationSpacing (an optimised path slower there than its initial
+/// fit is replaced by the initial fit). It also writes trajectory.csv (the
+/// best trajectory, kTrajectoryCsvHeader), optima.csv (kOptimaCsvHeader, each
+/// optimised candidate's profile thinned to about kMaxOptimaRows rows),
+/// plan.png and profile.png (with their gnuplot scripts and data; skipped
+/// when gnuplot is not installed), and the summary adds travel_time,
+/// global_travel_time (the best candidate's initial fit, same spacing),
+/// improvement_percent, optima [...], best_candidate and `seconds` becomes
+/// an object {fit, global, local, profile, plots, total}. No feasible
+/// trajectory gives status "infeasible" (reachable = false).
 ///
 /// Bad input (options, files, a vehicle without max_speed, a start or goal
 /// off the map, on NODATA or on untraversable terrain) throws InputError and

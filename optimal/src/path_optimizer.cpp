@@ -21,25 +21,6 @@ Curve2 clamped_cubic(const std::vector<Vec2>& control_points) {
   return Curve2(KnotVector::clamped(3, breaks), control_points);
 }
 
-/// The polyline resampled at `count` points equally spaced along it, so that a
-/// lattice path with few vertices still pins every control point of the fit.
-std::vector<Vec2> resample(const std::vector<Vec2>& polyline, std::size_t count) {
-  std::vector<double> s{0.0};
-  for (std::size_t k = 1; k < polyline.size(); ++k)
-    s.push_back(s.back() + (polyline[k] - polyline[k - 1]).norm());
-  std::vector<Vec2> out;
-  std::size_t segment = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const double target = s.back() * static_cast<double>(k) / static_cast<double>(count - 1);
-    while (segment + 2 < polyline.size() && s[segment + 1] < target) ++segment;
-    const double length = s[segment + 1] - s[segment];
-    const double t = length > 0.0 ? std::clamp((target - s[segment]) / length, 0.0, 1.0) : 0.0;
-    out.push_back((1.0 - t) * polyline[segment] + t * polyline[segment + 1]);
-  }
-  out.back() = polyline.back();
-  return out;
-}
-
 std::string nlopt_result_text(nlopt::result r) {
   switch (r) {
     case nlopt::SUCCESS:
@@ -99,8 +80,8 @@ OptimizedPath optimize_path_bobyqa(const BPatch& terrain, const Vehicle& vehicle
   options.validate();
   if (initial_polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
   const Curve2 initial = fit_clamped_cubic(
-      resample(initial_polyline,
-               std::max<std::size_t>(10 * options.control_points, initial_polyline.size())),
+      resample_polyline(initial_polyline, std::max<std::size_t>(10 * options.control_points,
+                                                                initial_polyline.size())),
       options.control_points);
   std::vector<Vec2> control = initial.control_points();
   const double initial_time =

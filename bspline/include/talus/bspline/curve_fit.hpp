@@ -19,4 +19,9 @@ namespace talus {
 /// vertices, or more control points than vertices + 2 allow.
 Curve2 fit_clamped_cubic(const std::vector<Vec2>& polyline, std::size_t control_points);
 
+/// The polyline resampled at `count` (>= 2) points equally spaced along it,
+/// first and last kept exactly: lattice paths have long straight runs with
+/// few vertices, too few to pin every control point of a fit.
+std::vector<Vec2> resample_polyline(const std::vector<Vec2>& polyline, std::size_t count);
+
 }  // namespace talus

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "chord_length.hpp"
 #include "talus/core/error.hpp"
 
 namespace talus {
@@ -79,19 +80,7 @@ BSplineCurve<Dim> BSplineCurve<Dim>::interpolate(const std::vector<Point>& point
   const std::size_t n = points.size();
   if (n < 2)
     throw InputError("curve interpolation needs at least 2 points, got " + std::to_string(n));
-  std::vector<double> params(n, 0.0);
-  for (std::size_t k = 1; k < n; ++k) {
-    if (!points[k].allFinite() || !points[k - 1].allFinite()) {
-      throw InputError("curve interpolation: point " + std::to_string(k) + " is not finite");
-    }
-    const double chord = (points[k] - points[k - 1]).norm();
-    if (!(chord > 0.0)) {
-      throw InputError("curve interpolation: points " + std::to_string(k - 1) + " and " +
-                       std::to_string(k) + " coincide");
-    }
-    params[k] = params[k - 1] + chord;
-  }
-  for (double& u : params) u /= params.back();
+  const std::vector<double> params = detail::chord_length_parameters(points, "curve interpolation");
   const int p = std::min<int>(degree, static_cast<int>(n) - 1);
   // Knots by averaging p consecutive parameters keep the collocation matrix
   // totally positive and well conditioned (Schoenberg–Whitney holds).

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 
+#include "chord_length.hpp"
 #include "talus/core/error.hpp"
 
 namespace talus {
@@ -21,16 +22,7 @@ Curve2 fit_clamped_cubic(const std::vector<Vec2>& polyline, std::size_t control_
     throw InputError("curve fit: " + std::to_string(control_points) +
                      " control points are too many for " + std::to_string(n) + " vertices");
   }
-  std::vector<double> u(n, 0.0);
-  for (std::size_t k = 1; k < n; ++k) {
-    const double chord = (polyline[k] - polyline[k - 1]).norm();
-    if (!(chord > 0.0)) {
-      throw InputError("curve fit: vertices " + std::to_string(k - 1) + " and " +
-                       std::to_string(k) + " coincide");
-    }
-    u[k] = u[k - 1] + chord;
-  }
-  for (double& value : u) value /= u.back();
+  const std::vector<double> u = detail::chord_length_parameters(polyline, "curve fit");
 
   std::vector<double> breaks;
   const std::size_t spans = control_points - 3;

@@ -148,6 +148,24 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   });
 }
 
+/// The inputs shared by `talus limits` and `talus profile`: terrain, path,
+/// vehicle and the optional smoothing of the terrain fit.
+template <typename Request>
+void add_path_input_options(CLI::App& command, Request& request) {
+  command.add_option("--terrain", request.terrain, "ESRI ASCII grid (.asc)")->required();
+  command
+      .add_option("--path", request.path,
+                  "path CSV: header `x,y`, then one way point per line in the terrain's "
+                  "coordinates [m]; the path is the interpolating cubic B-spline through them "
+                  "(chord-length parameters) lifted onto the terrain")
+      ->required();
+  command.add_option("--vehicle", request.vehicle, "vehicle YAML (see data/vehicles/README.md)")
+      ->required();
+  command.add_option("--smoothing", request.smoothing,
+                     "curvature weight lambda > 0 of the smoothing fit; without it the surface "
+                     "interpolates every node");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -196,25 +214,12 @@ int main(int argc, char** argv) {
       "nothing limits it, 0 where no speed is admissible; binding = sliding, tipover, contact, "
       "max_speed or none) and prints a JSON summary: stations, length_m, min_v_max, "
       "untraversable_stations, binding_counts, seconds");
-  limits->add_option("--terrain", limits_request.terrain, "ESRI ASCII grid (.asc)")->required();
-  limits
-      ->add_option("--path", limits_request.path,
-                   "path CSV: header `x,y`, then one way point per line in the terrain's "
-                   "coordinates [m]; the path is the interpolating cubic B-spline through them "
-                   "(chord-length parameters) lifted onto the terrain")
-      ->required();
-  limits
-      ->add_option("--vehicle", limits_request.vehicle,
-                   "vehicle YAML (see data/vehicles/README.md)")
-      ->required();
+  add_path_input_options(*limits, limits_request);
   limits->add_option(
       "--stations", limits_request.stations,
       "number of stations (2 to 10000000), equally spaced in the curve parameter; default: "
       "one per metre of the way points' polyline, ceil(length) + 1, clamped to "
       "[100, 100000]");
-  limits->add_option("--smoothing", limits_request.smoothing,
-                     "curvature weight lambda > 0 of the smoothing fit; without it the surface "
-                     "interpolates every node");
   limits->add_option("-o,--output", limits_request.output, "output .csv file")->required();
   limits->callback([&]() { std::cout << ex::limits(limits_request).dump(2) << "\n"; });
 
@@ -236,17 +241,7 @@ int main(int argc, char** argv) {
       "still printed and OUT.csv still written, with s,x,y,z,v_max,binding as usual and v = 0, "
       "a = 0, t = inf at every station); 1 on bad input, including a start or end speed above "
       "the speed limit there (one line on stderr, nothing written)");
-  profile->add_option("--terrain", profile_request.terrain, "ESRI ASCII grid (.asc)")->required();
-  profile
-      ->add_option("--path", profile_request.path,
-                   "path CSV: header `x,y`, then one way point per line in the terrain's "
-                   "coordinates [m]; the path is the interpolating cubic B-spline through them "
-                   "(chord-length parameters) lifted onto the terrain")
-      ->required();
-  profile
-      ->add_option("--vehicle", profile_request.vehicle,
-                   "vehicle YAML (see data/vehicles/README.md)")
-      ->required();
+  add_path_input_options(*profile, profile_request);
   profile->add_option("--v0", profile_request.start_speed, "speed at the start [m/s], >= 0")
       ->capture_default_str();
   profile->add_option("--v1", profile_request.end_speed, "speed at the end [m/s], >= 0")
@@ -255,9 +250,6 @@ int main(int argc, char** argv) {
                       "number of stations (2 to 10000000), equally spaced in the curve "
                       "parameter; default: " +
                           ex::default_profile_stations_text());
-  profile->add_option("--smoothing", profile_request.smoothing,
-                      "curvature weight lambda > 0 of the smoothing fit; without it the surface "
-                      "interpolates every node");
   profile->add_option("-o,--output", profile_request.output, "output .csv file")->required();
   profile->callback([&]() {
     const ex::ProfileOutcome outcome = ex::profile(profile_request);

@@ -31,3 +31,14 @@ find_dependency(SUNDIALS 6.4 CONFIG COMPONENTS cvode)
 
 # Vehicle files (dynamics). The 0.7 target is plain `yaml-cpp` (namespaced from 0.8 on).
 find_dependency(yaml-cpp 0.7 CONFIG)
+
+# OMPL 1.5 (Reeds–Shepp curves of the kinematic planners). Its config sets
+# variables only; wrap them in an imported target. Only OMPL's own include
+# directory is used: the config also lists /usr/include, which as a SYSTEM
+# directory would break libstdc++'s #include_next.
+find_dependency(ompl 1.5 CONFIG)
+if(NOT TARGET OMPL::OMPL)
+  add_library(OMPL::OMPL INTERFACE IMPORTED)
+  target_include_directories(OMPL::OMPL SYSTEM INTERFACE ${OMPL_INCLUDE_DIR})
+  target_link_libraries(OMPL::OMPL INTERFACE ${OMPL_LIBRARIES})
+endif()

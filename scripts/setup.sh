@@ -11,6 +11,8 @@ packages=(
   # CHOLMOD's supernodal factorisation spends most of its time in BLAS; the
   # reference BLAS that SuiteSparse pulls in is about 2x slower than OpenBLAS.
   libopenblas-dev
+  # OMPL (Reeds–Shepp curves, kinematic/); its CMake config names the Boost libraries.
+  libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
 )
 
 if ! command -v dpkg-query >/dev/null 2>&1 || ! command -v apt-get >/dev/null 2>&1; then

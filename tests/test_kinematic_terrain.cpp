@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/terrain_generators.hpp"
+#include "talus/kinematic/potential_bitmap.hpp"
 #include "talus/kinematic/terrain_quadtree.hpp"
 #include "terrain_test_support.hpp"
 
@@ -255,6 +257,164 @@ TEST(TerrainQuadtree, RejectsBadFacesAndOptions) {
   EXPECT_THROW(tree.collides(std::vector<Vec3>{{0, 0, 0}, {1, 0, std::nan("")}, {0, 1, 0}}),
                InputError);
   EXPECT_THROW(TerrainQuadtree(fractal(1, 17), {-0.1, true}), InputError);
+}
+
+// ---------------------------------------------------------------- PotentialBitmap
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+RuledTerrain flat_terrain(std::size_t ncols, std::size_t nrows, double h = 0.25) {
+  return RuledTerrain(ElevationGrid(ncols, nrows, h, 0.0, 0.0, 1.0));
+}
+
+TEST(PotentialBitmap, FlatGroundGivesTheLatticeDistanceWithinTheStencilBound) {
+  const RuledTerrain t = flat_terrain(41, 41);
+  for (int connectivity : {8, 16}) {
+    PotentialBitmapOptions o;
+    o.connectivity = connectivity;
+    const PotentialBitmap pb(t, {5.0, 5.0}, o);
+    // Worst case between two neighbouring stencil directions 1/cos(half their angle).
+    const double bound = connectivity == 16 ? 1.0 / std::cos(0.5 * std::atan(0.5))
+                                            : 1.0 / std::cos(std::numbers::pi / 8);
+    double worst = 1.0;
+    for (std::size_t j = 0; j < 41; ++j)
+      for (std::size_t i = 0; i < 41; ++i) {
+        EXPECT_DOUBLE_EQ(pb.cost_at(i, j), 1.0);
+        const double di = std::abs(double(i) - 20.0), dj = std::abs(double(j) - 20.0);
+        const double d = 0.25 * std::hypot(di, dj);
+        const double p = pb.potential_at(i, j);
+        ASSERT_GE(p, d - 1e-9);
+        ASSERT_LE(p, bound * d + 1e-9);
+        if (d > 0) worst = std::max(worst, p / d);
+        // Exact along the stencil's own directions.
+        const bool axis = di == 0 || dj == 0 || di == dj;
+        const bool knight = connectivity == 16 && (di == 2 * dj || dj == 2 * di);
+        if (axis || knight) {
+          EXPECT_NEAR(p, d, 1e-9) << i << " " << j;
+        }
+      }
+    EXPECT_GT(worst, 1.0 + 0.8 * (bound - 1.0));  // the bound is nearly attained
+    EXPECT_EQ(pb.stats().reached, 41u * 41u);
+    EXPECT_EQ(pb.stats().obstacles, 0u);
+    EXPECT_DOUBLE_EQ(pb.potential({5.0, 5.0}), 0.0);
+    // Between nodes on the x axis the potential is interpolated linearly.
+    EXPECT_NEAR(pb.potential({5.6, 5.0}), 0.6, 1e-9);
+  }
+}
+
+TEST(PotentialBitmap, UniformSlopeScalesTheCostByItsWeight) {
+  const double s = 0.2;
+  const RuledTerrain t(
+      grid_of_nodes([s](double x, double) { return std::tan(s) * x; }, 41, 21, 0.25, 0.0, 0.0));
+  PotentialBitmapOptions o;
+  o.max_slope = 0.5;
+  o.slope_weight = 2.0;
+  const PotentialBitmap pb(t, {0.0, 2.5}, o);
+  const double c = 1.0 + 2.0 * s / 0.5;
+  EXPECT_NEAR(pb.cost_at(20, 10), c, 1e-12);
+  EXPECT_NEAR(pb.slopes()[10 * 41 + 20], s, 1e-12);
+  EXPECT_NEAR(pb.roughness()[10 * 41 + 20], 0.0, 1e-12);
+  EXPECT_NEAR(pb.potential({10.0, 2.5}), 10.0 * c, 1e-9);
+  // Steeper than max_slope: every node is an obstacle, only the goal is reached.
+  o.max_slope = 0.1;
+  const PotentialBitmap steep(t, {0.0, 2.5}, o);
+  EXPECT_TRUE(steep.stats().goal_on_obstacle);
+  EXPECT_EQ(steep.stats().reached, 1u);
+  EXPECT_FALSE(steep.reachable({10.0, 2.5}));
+}
+
+// Flat 0.25 m grid with a 2 m high one-node wall along column `col`, absent
+// for rows in [gap_lo, gap_hi].
+RuledTerrain walled(std::size_t ncols, std::size_t nrows, std::size_t col, std::size_t wall_rows,
+                    std::size_t gap_lo = 1, std::size_t gap_hi = 0) {
+  ElevationGrid g(ncols, nrows, 0.25, 0.0, 0.0, 0.0);
+  for (std::size_t j = 0; j < wall_rows; ++j)
+    if (j < gap_lo || j > gap_hi) g.at(col, j) = 2.0;
+  return RuledTerrain(g);
+}
+
+TEST(PotentialBitmap, GoesAroundAnImpassableWall) {
+  // Wall x = 7.5 m for y in [0, 7] m on a 15 x 10 m map.
+  const RuledTerrain t = walled(61, 41, 30, 29);
+  const Vec2 goal(3.0, 2.0), start(12.0, 2.0), tip(7.5, 7.0);
+  const PotentialBitmap pb(t, goal);
+  EXPECT_FALSE(pb.reachable({7.5, 3.0}));  // on the wall
+  EXPECT_EQ(pb.potential_at(30, 10), kInf);
+  ASSERT_TRUE(pb.reachable(start));
+  // Any way round passes over the wall's tip: at least the two legs to it.
+  const double around = (start - tip).norm() + (tip - goal).norm();
+  EXPECT_GT(pb.potential(start), around);
+  EXPECT_LT(pb.potential(start), 1.2 * around);
+  EXPECT_GT(pb.stats().obstacles, 29u);
+  // Without the wall the potential is the straight distance.
+  const PotentialBitmap free(flat_terrain(61, 41), goal);
+  EXPECT_NEAR(free.potential(start), 9.0, 1e-9);
+}
+
+TEST(PotentialBitmap, GrowingByRhoClosesAGapNarrowerThanTwoRho) {
+  // Full-height wall at x = 5 m with a gap of 8 nodes (rows 16..23). With a
+  // 0.3 m disc the nodes next to the wall are obstacles, so the obstacles
+  // across the gap are rows 16 and 23: 1.75 m apart, and the gap's middle
+  // nodes are 0.75 m from the nearest one.
+  const RuledTerrain t = walled(41, 41, 20, 41, 16, 23);
+  PotentialBitmapOptions o;
+  o.robot_radius = 0.3;
+  const Vec2 goal(2.0, 5.0), start(8.0, 5.0);
+  const PotentialBitmap open(t, goal, o);
+  ASSERT_TRUE(open.reachable(start));
+  EXPECT_EQ(open.cost_at(20, 16), kInf);
+  EXPECT_EQ(open.cost_at(20, 23), kInf);
+  EXPECT_LT(open.cost_at(20, 19), kInf);
+  o.position_uncertainty = 0.6;  // 2 rho = 1.2 m < gap: stays open
+  const PotentialBitmap grown(t, goal, o);
+  ASSERT_TRUE(grown.reachable(start));
+  EXPECT_GE(grown.potential(start), open.potential(start));
+  EXPECT_GE(grown.stats().obstacles, open.stats().obstacles);
+  o.position_uncertainty = 0.8;  // 2 rho = 1.6 m > 1.5 m between the dilated ends: closed
+  const PotentialBitmap closed(t, goal, o);
+  EXPECT_FALSE(closed.reachable(start));
+  EXPECT_TRUE(closed.reachable({3.0, 9.0}));  // the goal's side is still connected
+  // Growing is a max filter: every grown cost is at least the original one.
+  for (std::size_t k = 0; k < open.costs().size(); ++k) {
+    EXPECT_GE(closed.costs()[k], open.costs()[k]);
+  }
+}
+
+TEST(PotentialBitmap, TerrainUncertaintyRaisesTheRoughness) {
+  const RuledTerrain t = flat_terrain(21, 21);
+  ElevationGrid dz(21, 21, 0.25, 0.0, 0.0, 0.05);
+  const PotentialBitmap pb(t, {0.0, 0.0}, {}, &dz);
+  // roughness 2 * 0.05 = 0.1 m: cost 1 + 0.1 / 0.2.
+  EXPECT_NEAR(pb.cost_at(10, 10), 1.5, 1e-12);
+  EXPECT_NEAR(pb.potential({5.0, 0.0}), 7.5, 1e-9);
+  // An uncertain band x in [2, 3] m too wide to trust becomes an obstacle.
+  for (std::size_t j = 0; j < 21; ++j)
+    for (std::size_t i = 8; i <= 12; ++i) dz.at(i, j) = 0.2;
+  const PotentialBitmap band(t, {0.0, 0.0}, {}, &dz);
+  EXPECT_FALSE(band.reachable({5.0, 0.0}));
+}
+
+TEST(PotentialBitmap, RejectsBadInput) {
+  const RuledTerrain t = flat_terrain(11, 11);
+  EXPECT_THROW(PotentialBitmap(t, {-0.1, 1.0}), InputError);
+  const PotentialBitmap pb(t, {1.0, 1.0});
+  EXPECT_THROW(pb.potential({2.6, 1.0}), InputError);
+  const auto bad = [&](auto&& edit) {
+    PotentialBitmapOptions o;
+    edit(o);
+    EXPECT_THROW(PotentialBitmap(t, {1.0, 1.0}, o), InputError);
+  };
+  bad([](PotentialBitmapOptions& o) { o.robot_radius = 0.0; });
+  bad([](PotentialBitmapOptions& o) { o.max_slope = 1.6; });
+  bad([](PotentialBitmapOptions& o) { o.max_roughness = -1.0; });
+  bad([](PotentialBitmapOptions& o) { o.slope_weight = -1.0; });
+  bad([](PotentialBitmapOptions& o) { o.roughness_weight = std::nan(""); });
+  bad([](PotentialBitmapOptions& o) { o.position_uncertainty = -0.1; });
+  bad([](PotentialBitmapOptions& o) { o.connectivity = 4; });
+  ElevationGrid wrong(10, 11, 0.25, 0.0, 0.0, 0.0);
+  EXPECT_THROW(PotentialBitmap(t, {1.0, 1.0}, {}, &wrong), InputError);
+  ElevationGrid negative(11, 11, 0.25, 0.0, 0.0, -0.01);
+  EXPECT_THROW(PotentialBitmap(t, {1.0, 1.0}, {}, &negative), InputError);
 }
 
 }  // namespace

@@ -161,9 +161,11 @@ std::vector<Quad> lower_faces(const ArticulatedChassis& ch, const ChassisPlaceme
     // Body axis from M toward the outer axle, then the lateral and up axes of
     // the body rolled about it.
     const Vec3 e = direction * std::cos(psi) * f + std::sin(psi) * Vec3::UnitZ();
-    const Vec3 up0 = (direction * e).cross(g);  // forward × left = up
-    const Vec3 lat = std::cos(roll) * g + std::sin(roll) * up0;
-    const Vec3 up = -std::sin(roll) * g + std::cos(roll) * up0;
+    // The axles' roll is measured from the horizontal (§3.1.2): the body's
+    // lateral axis is the mean axle direction, made normal to the body axis.
+    const Vec3 axle = std::cos(roll) * g + std::sin(roll) * Vec3::UnitZ();
+    const Vec3 lat = (axle - axle.dot(e) * e).normalized();
+    const Vec3 up = (direction * e).cross(lat);  // forward × left = up
     const Vec3 base = m + ch.body.clearance * up;
     const Vec3 outer = base + len * e;
     const double hw = ch.body.half_width;

@@ -26,7 +26,8 @@ struct BodyBox {
 /// §3.1.1: a rigid body on n wheels with vertical springs (vertical in the body
 /// frame). Wheel j touches the ground at (u_j, v_j, -cg_height + l_j) in the
 /// body frame (u forward, v left, w up, origin at the centre of gravity G);
-/// l_j is the spring extension, 0 at rest.
+/// l_j is the paper's algebraic spring extension, 0 at rest and > 0 when the
+/// ground pushes the wheel up toward the body.
 struct WheeledRobot {
   /// Most wheels a robot may have; placements keep per-wheel data in fixed arrays of this size.
   static constexpr int kMaxWheels = 8;

@@ -10,6 +10,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/graph_search.hpp"
 #include "talus/kinematic/hait_planner.hpp"
+#include "talus/kinematic/hait_robot_validity.hpp"
 
 namespace talus {
 namespace {
@@ -36,7 +37,7 @@ struct DiscWorld {
     for (const auto& [centre, r] : discs) c = std::min(c, (p - centre).norm() - r);
     return c;
   }
-  ValidityCheck check(const SE2Pose& q) const {
+  ConfigurationCheck check(const SE2Pose& q) const {
     const Vec2 d(std::cos(q.theta), std::sin(q.theta));
     double c = kInf;
     for (const Vec2& p : {q.position(), Vec2(q.position() + half_length * d),
@@ -282,7 +283,7 @@ TEST(HaitUncertainty, NeighbourhoodNeverAcceptsWhatTheCertainCheckRejects) {
   int strictly_tighter = 0;
   for (int k = 0; k < 3000; ++k) {
     const SE2Pose q{uniform(rng, w.x0, w.x1), uniform(rng, w.y0, w.y1), uniform(rng, -kPi, kPi)};
-    const ValidityCheck u = uncertain(q), c = certain(q);
+    const ConfigurationCheck u = uncertain(q), c = certain(q);
     if (u.valid) {
       EXPECT_TRUE(c.valid);
       EXPECT_LE(u.margin, c.margin);
@@ -376,6 +377,112 @@ TEST(HaitSearch, RejectsBadOptionsAndInputs) {
   EXPECT_THROW(hait_search(w.validity(), {}, {NAN, 0, 0}, {1, 0, 0}, HaitOptions{}), InputError);
   EXPECT_EQ(parse_heuristic("potential-rs"), HaitHeuristic::kPotentialRs);
   EXPECT_THROW(parse_heuristic("dijkstra"), InputError);
+}
+
+// ---- The real robot (sprung rigid body) on ruled terrains ----
+
+WheeledRobot small_rover() {
+  WheeledRobot r;
+  r.name = "test rover";
+  r.wheels = {Vec2(0.4, 0.3), Vec2(0.4, -0.3), Vec2(-0.4, -0.3), Vec2(-0.4, 0.3)};
+  r.cg_height = 0.3;
+  r.max_spring_extension = 0.1;
+  r.max_roll = 0.3;
+  r.max_pitch = 0.3;
+  r.body = {0.5, 0.5, 0.35, 0.2};
+  return r;
+}
+
+/// 12 m x 8 m at 0.25 m; an optional steep Gaussian hill (peak `height` at (6, 4), sigma 0.9 m).
+RuledTerrain hill_terrain(double height) {
+  ElevationGrid g(49, 33, 0.25, 0.0, 0.0, 0.0);
+  for (std::size_t j = 0; j < g.nrows(); ++j) {
+    for (std::size_t i = 0; i < g.ncols(); ++i) {
+      const Vec2 p = g.node_position(i, j);
+      g.at(i, j) = height * std::exp(-(p - Vec2(6, 4)).squaredNorm() / (2 * 0.9 * 0.9));
+    }
+  }
+  return RuledTerrain(g);
+}
+
+TEST(HaitPlan, StraightPathOnFlatGround) {
+  const RuledTerrain flat = hill_terrain(0.0);
+  for (HaitHeuristic h :
+       {HaitHeuristic::kEuclidean, HaitHeuristic::kPotential, HaitHeuristic::kPotentialRs}) {
+    HaitOptions o;
+    o.heuristic = h;
+    const HaitResult r = plan_hait(flat, small_rover(), {2, 4, 0}, {10, 4, 0}, o);
+    ASSERT_EQ(r.status, HaitStatus::kFound) << heuristic_name(h) << ": " << r.message;
+    EXPECT_NEAR(r.length_m, 8.0, 1e-6) << heuristic_name(h);
+    EXPECT_EQ(r.control_changes, 0u) << heuristic_name(h);
+    EXPECT_GE(r.placements, r.path.size() - 1);
+    EXPECT_GE(r.preprocessing_seconds, 0.0);
+  }
+}
+
+TEST(HaitPlan, DetoursAroundASteepHillWithEveryConfigurationValid) {
+  const RuledTerrain hill = hill_terrain(1.5);
+  const WheeledRobot rover = small_rover();
+  const HaitRobotValidity certain(hill, rover);
+  // The top of the hill is too steep to stand on across it.
+  EXPECT_FALSE(certain.check({5.2, 4, 0}).valid);
+  for (HaitHeuristic h : {HaitHeuristic::kEuclidean, HaitHeuristic::kPotentialRs}) {
+    HaitOptions o;
+    o.heuristic = h;
+    const HaitResult r = plan_hait(hill, rover, {1.5, 4, 0}, {10.5, 4, 0}, o);
+    ASSERT_EQ(r.status, HaitStatus::kFound) << heuristic_name(h) << ": " << r.message;
+    expect_all_valid(r.path, certain.function());
+    expect_consistent(r.path, o.turning_radius);
+    EXPECT_GT(r.length_m, 9.2) << heuristic_name(h);
+    double max_offset = 0.0;
+    for (const PathPoint& p : r.path) max_offset = std::max(max_offset, std::abs(p.pose.y - 4));
+    EXPECT_GT(max_offset, 1.0) << heuristic_name(h);
+  }
+}
+
+TEST(HaitPlan, UncertainPathIsValidForTheCertainRobot) {
+  const RuledTerrain hill = hill_terrain(1.5);
+  const WheeledRobot rover = small_rover();
+  const HaitRobotValidity certain(hill, rover);
+  HaitOptions o;
+  o.terrain_uncertainty = 0.03;
+  o.position_uncertainty = 0.1;
+  o.heading_uncertainty = 0.15;
+  const HaitResult r = plan_hait(hill, rover, {1.5, 4, 0}, {10.5, 4, 0}, o);
+  ASSERT_EQ(r.status, HaitStatus::kFound) << r.message;
+  RecordProperty("placements", static_cast<int>(r.placements));
+  RecordProperty("nodes_created", static_cast<int>(r.nodes_created));
+  expect_all_valid(r.path, certain.function());
+  // And every configuration of the certain oracle's own corridor is valid too.
+  const ValidityFunction corridor =
+      neighbourhood_validity(certain.function(), 0.1, 0.15, o.check_spacing, 0.05);
+  for (std::size_t k = 0; k < r.path.size(); k += 7) {
+    EXPECT_TRUE(corridor(r.path[k].pose).valid) << k;
+  }
+  // Worst-case checks accept nothing the certain ones reject.
+  const HaitRobotValidity uncertain(hill, rover, 0.03);
+  std::mt19937_64 rng(5);
+  int tighter = 0;
+  for (int k = 0; k < 400; ++k) {
+    const SE2Pose q{uniform(rng, 1, 11), uniform(rng, 1, 7), uniform(rng, -kPi, kPi)};
+    const ConfigurationCheck u = uncertain.check(q), c = certain.check(q);
+    if (u.valid) {
+      EXPECT_TRUE(c.valid) << q.x << " " << q.y << " " << q.theta;
+    }
+    if (c.valid && !u.valid) ++tighter;
+  }
+  EXPECT_GT(tighter, 0);
+}
+
+TEST(HaitPlan, InvalidOrOffMapStartAndGoal) {
+  const RuledTerrain hill = hill_terrain(1.5);
+  HaitOptions o;
+  const HaitResult s = plan_hait(hill, small_rover(), {5.2, 4, 0}, {10.5, 4, 0}, o);
+  EXPECT_EQ(s.status, HaitStatus::kStartInvalid) << s.message;
+  const HaitResult g = plan_hait(hill, small_rover(), {1.5, 4, 0}, {6.8, 4, kPi / 2}, o);
+  EXPECT_EQ(g.status, HaitStatus::kGoalInvalid) << g.message;
+  EXPECT_THROW(plan_hait(hill, small_rover(), {-1, 4, 0}, {10.5, 4, 0}, o), InputError);
+  EXPECT_THROW(plan_hait(hill, small_rover(), {1.5, 4, 0}, {10.5, 40, 0}, o), InputError);
 }
 
 }  // namespace

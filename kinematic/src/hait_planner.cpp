@@ -168,11 +168,11 @@ ValidityFunction neighbourhood_validity(ValidityFunction base, double rho, doubl
     }
   }
   return [base = std::move(base), offsets = std::move(offsets)](const SE2Pose& q) {
-    ValidityCheck out{true, 1.0, 0};
+    ConfigurationCheck out{true, 1.0, 0};
     const double s = std::sin(q.theta), c = std::cos(q.theta);
     for (const auto& [lateral, dth] : offsets) {
       // The segment normal to the heading (§5.2, Fig. 25 b).
-      const ValidityCheck k = base({q.x - lateral * s, q.y + lateral * c, q.theta + dth});
+      const ConfigurationCheck k = base({q.x - lateral * s, q.y + lateral * c, q.theta + dth});
       out.placements += k.placements;
       if (!k.valid) {
         out.valid = false;
@@ -214,13 +214,13 @@ HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction
     return result;
   };
 
-  const ValidityCheck start_check = validity(start);
+  const ConfigurationCheck start_check = validity(start);
   result.placements += start_check.placements;
   if (!start_check.valid) {
     return finish(HaitStatus::kStartInvalid,
                   "start configuration " + pose_string(start) + " is not valid for the robot");
   }
-  const ValidityCheck goal_check = validity(goal);
+  const ConfigurationCheck goal_check = validity(goal);
   result.placements += goal_check.placements;
   if (!goal_check.valid) {
     return finish(HaitStatus::kGoalInvalid,
@@ -275,7 +275,7 @@ HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction
       double cost = 0.0;
       bool ok = true;
       for (std::size_t k = 1; k < curve.size() && ok; ++k) {
-        const ValidityCheck c = validity(curve[k].pose);
+        const ConfigurationCheck c = validity(curve[k].pose);
         result.placements += c.placements;
         ok = c.valid;
         const double piece =
@@ -302,7 +302,7 @@ HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction
       for (int k = 1; k <= n_sub && ok; ++k) {
         const SE2Pose qk =
             k == n_sub ? end : apply_control(node.q, u, ds * k, options.turning_radius);
-        const ValidityCheck c = validity(qk);
+        const ConfigurationCheck c = validity(qk);
         result.placements += c.placements;
         ok = c.valid;
         cost += weighted(ds, c.margin, options.margin_weight);

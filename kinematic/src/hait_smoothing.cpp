@@ -82,7 +82,7 @@ std::vector<PathPoint> smooth_path(const std::vector<PathPoint>& path,
 
     bool ok = true;
     for (std::size_t k = 1; k + 1 < curve.size() && ok; ++k) {  // both ends are on the path already
-      const ValidityCheck c = validity(curve[k].pose);
+      const ConfigurationCheck c = validity(curve[k].pose);
       r.placements += c.placements;
       ok = c.valid;
     }

@@ -64,7 +64,7 @@ double path_length(std::span<const PathPoint> path, double radius);
 
 /// The answer of a validity check at one configuration (paper §3.2): valid or
 /// not, and how far from its limits the placement is.
-struct ValidityCheck {
+struct ConfigurationCheck {
   bool valid = false;
   /// Normalised distance of the placement parameters to their limits, in
   /// [0, 1]: 0 at a limit, 1 far from every limit. Meaningful when valid.
@@ -75,6 +75,6 @@ struct ValidityCheck {
 
 /// The validity oracle the search and the smoothing call at each discrete
 /// configuration. It must be deterministic.
-using ValidityFunction = std::function<ValidityCheck(const SE2Pose&)>;
+using ValidityFunction = std::function<ConfigurationCheck(const SE2Pose&)>;
 
 }  // namespace talus

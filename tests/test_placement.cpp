@@ -160,7 +160,7 @@ TEST(PlaceRobot, OffMapAndNoDataAreStatuses) {
   EXPECT_THROW(place_robot(rover(), t, std::nan(""), 0.0, 0.0), InputError);
   RobotPlacementOptions bad;
   bad.max_iterations = 0;
-  EXPECT_THROW(bad.validate(), InputError);
+  EXPECT_THROW(place_robot(rover(), t, 0.0, 0.0, 0.0, bad), InputError);
 }
 
 // ---------------------------------------------------------------- Place_axle
@@ -249,6 +249,10 @@ TEST(PlaceOtherAxle, DirectionAndErrors) {
   EXPECT_NEAR(r.center.x(), -0.6 * std::cos(r.pitch), 1e-12);
   EXPECT_EQ(f.iterations, 1);
   EXPECT_THROW(place_other_axle(t, chassis(), 0.0, 0.0, 1.0, 0.0, 0), InputError);
+  AxlePlacementOptions bad;
+  bad.tolerance = 0.0;
+  EXPECT_THROW(place_chassis(chassis(), t, 0.0, 0.0, 0.0, bad), InputError);
+  EXPECT_THROW(place_axle(t, 0.45, 0.0, 0.0, 0.0, bad), InputError);
   EXPECT_EQ(place_chassis(chassis(), t, 5.9, 0.0, 0.0).status, PlacementStatus::kOffMap);
 }
 

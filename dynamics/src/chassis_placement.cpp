@@ -327,6 +327,7 @@ AxlePlacement place_axle(const RuledTerrain& left, const RuledTerrain& right,
     msg << "place_axle: half_axle_width must be positive and finite, got " << half_axle_width;
     throw InputError(msg.str());
   }
+  options.validate();
   return place_axle_impl(left, right, half_axle_width, x, y, theta, options);
 }
 
@@ -339,6 +340,7 @@ OtherAxlePlacement place_other_axle(const RuledTerrain& terrain, const Articulat
                                     double x_m, double y_m, double z_m, double theta, int direction,
                                     const AxlePlacementOptions& options) {
   require_finite_configuration(x_m, y_m, theta, "place_other_axle");
+  options.validate();
   if (direction != 1 && direction != -1)
     throw InputError("place_other_axle: direction must be +1 (front) or -1 (rear), got " +
                      std::to_string(direction));
@@ -350,6 +352,7 @@ ChassisPlacement place_chassis(const ArticulatedChassis& chassis, const RuledTer
                                double x, double y, double theta,
                                const AxlePlacementOptions& options) {
   require_finite_configuration(x, y, theta, "place_chassis");
+  options.validate();
   const DirectSource src{&terrain, &terrain, &terrain, chassis.half_axle_width, options};
   return chassis_on(src, Set::kNominal, chassis, x, y, theta, options);
 }
@@ -360,6 +363,7 @@ ChassisPlacementInterval place_chassis_interval(const ArticulatedChassis& chassi
                                                 const RuledTerrain& upper, double x, double y,
                                                 double theta, const AxlePlacementOptions& options) {
   require_finite_configuration(x, y, theta, "place_chassis_interval");
+  options.validate();
   const DirectSource src{&terrain, &lower, &upper, chassis.half_axle_width, options};
   return chassis_interval(src, chassis, x, y, theta, options);
 }

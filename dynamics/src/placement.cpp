@@ -176,6 +176,7 @@ RobotPlacement place_robot_mixed(const WheeledRobot& robot, const RuledTerrain& 
     msg << "place_robot: configuration (" << x << ", " << y << ", " << theta << ") must be finite";
     throw InputError(msg.str());
   }
+  options.validate();
   const int n = static_cast<int>(robot.wheels.size());
   if (n < 3 || n > WheeledRobot::kMaxWheels)
     throw InputError("place_robot: the robot has " + std::to_string(n) +

@@ -232,7 +232,9 @@ HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction
     if (options.heuristic == HaitHeuristic::kEuclidean) return euclid;
     const double p = options.potential_weight * potential(q);
     if (options.heuristic == HaitHeuristic::kPotential || euclid >= rs_region) return p;
-    return std::max(p, rs.distance(q, goal));
+    // The potential ignores the goal heading; add the Reeds–Shepp curve's excess over the
+    // straight line, the detour the heading costs (0 when aligned).
+    return p + std::max(0.0, rs.distance(q, goal) - euclid);
   };
   auto at_goal = [&](const SE2Pose& q) {
     return std::hypot(goal.x - q.x, goal.y - q.y) <= tol_xy &&

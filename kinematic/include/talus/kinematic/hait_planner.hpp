@@ -26,10 +26,13 @@
 /// whose wave started at that control point's goal position; `kPotentialRs`
 /// adds the goal orientation "close to the goal" with the Reeds–Shepp distance
 /// (OMPL's ReedsSheppStateSpace, see reeds_shepp.hpp). The paper gives no
-/// rule for "close"; ours: within `rs_switch_distance` of the goal position
-/// the heuristic is max(potential, Reeds–Shepp distance), which is continuous
-/// where the Reeds–Shepp distance is about the straight-line one and grows
-/// only when the heading is wrong.
+/// rule for "close" nor for the combination; ours: within `rs_switch_distance`
+/// of the goal position the heuristic is the potential plus the Reeds–Shepp
+/// distance's excess over the straight-line distance (the detour the goal
+/// heading costs, 0 when aligned), so it is continuous up to that excess at
+/// the region's edge. With `connect_goal` the last leg is usually the
+/// Reeds–Shepp connection itself, which makes `kPotentialRs` matter most when
+/// the goal must be reached by the search (connect_goal = false).
 ///
 /// Goal (§4.2): reached by a node within `goal_position_tolerance` and
 /// `goal_heading_tolerance` of the goal, or, when `connect_goal`, by a valid
@@ -40,8 +43,10 @@
 /// checked in the worst case (placement on the envelopes, collision against
 /// T_max); the position uncertainty (ρ, Δθ) requires the whole modified
 /// neighbourhood of §5.2 (a segment of ±ρ normal to the heading × θ ± Δθ) to
-/// be valid; the cost bitmap is grown by ρ before the wave propagation
-/// (§5.3.1).
+/// be valid, sampled every check_spacing and every heading cell (the paper
+/// precomputes min/max placement surfaces over it instead; sampling checks the
+/// same set directly, at more placements per configuration); the cost bitmap is grown by ρ before
+/// the wave propagation (§5.3.1).
 ///
 /// Error policy: malformed input (bad options, start or goal off the map or
 /// on NODATA) throws InputError; a start or goal configuration that is not

@@ -173,6 +173,34 @@ SurfacePoint BPatch::evaluate(const Vec2& p) const {
   return out;
 }
 
+Eigen::Vector4d BPatch::third_derivatives(const Vec2& p) const {
+  std::size_t i, j;
+  double tu, tv;
+  locate(p, i, j, tu, tv);
+  const detail::CubicBasis bu = detail::cubic_basis(tu), bv = detail::cubic_basis(tv);
+  const auto& third = detail::kCubicThird;
+  double r0[4], r1[4], r2[4], r3[4];
+  for (int b = 0; b < 4; ++b) {
+    const double* column = control_.col(static_cast<long>(j) + b).data() + i;
+    r0[b] = r1[b] = r2[b] = r3[b] = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      r0[b] += bu.value[a] * column[a];
+      r1[b] += bu.first[a] * column[a];
+      r2[b] += bu.second[a] * column[a];
+      r3[b] += third[a] * column[a];
+    }
+  }
+  Eigen::Vector4d out = Eigen::Vector4d::Zero();
+  for (int b = 0; b < 4; ++b) {
+    out[0] += bv.value[b] * r3[b];
+    out[1] += bv.first[b] * r2[b];
+    out[2] += bv.second[b] * r1[b];
+    out[3] += third[b] * r0[b];
+  }
+  const double inv_h3 = inverse_h_ * inverse_h_ * inverse_h_;
+  return out * inv_h3;
+}
+
 BPatchFitReport BPatch::residuals(const ElevationGrid& grid) const {
   if (grid.ncols() != ncols_ || grid.nrows() != nrows_) {
     throw InputError("B-patch residuals: grid shape differs from the fitted grid");

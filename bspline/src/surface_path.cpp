@@ -4,30 +4,28 @@
 #include <cmath>
 #include <sstream>
 
+#include "talus/bspline/lifted_geometry.hpp"
 #include "talus/core/error.hpp"
 
 namespace talus {
 
 PathFrame lift_to_surface(const Vec2& position, const SurfacePoint& surface, const Vec2& d1,
                           const Vec2& d2) {
-  const double planar_speed = d1.norm();
-  if (!(planar_speed > 0.0)) throw InputError("path has zero velocity: its frame is undefined");
-  const Vec2& g = surface.gradient;
-  const Vec3 p1(d1.x(), d1.y(), g.dot(d1));
-  const Vec3 p2(d2.x(), d2.y(), g.dot(d2) + d1.dot(surface.hessian * d1));
+  if (!(d1.norm() > 0.0)) throw InputError("path has zero velocity: its frame is undefined");
+  const LiftedGeometry<double> g =
+      lifted_geometry<double>(surface.gradient, surface.hessian, d1, d2);
   PathFrame f;
   f.point = Vec3(position.x(), position.y(), surface.z);
-  f.speed = p1.norm();
-  f.speed_rate = p1.dot(p2) / f.speed;
-  f.tangent = p1 / f.speed;
-  const Vec3 curvature = (p2 - p2.dot(f.tangent) * f.tangent) / (f.speed * f.speed);
-  f.normal = Vec3(-g.x(), -g.y(), 1.0).normalized();
-  f.lateral = f.normal.cross(f.tangent);
-  f.kappa_n = curvature.dot(f.normal);
-  f.kappa_g = curvature.dot(f.lateral);
-  f.k_t = f.tangent.z();
-  f.k_q = f.lateral.z();
-  f.k_r = f.normal.z();
+  f.speed = g.speed;
+  f.speed_rate = g.speed_rate;
+  f.tangent = g.tangent;
+  f.lateral = g.lateral;
+  f.normal = g.normal;
+  f.kappa_n = g.kappa_n;
+  f.kappa_g = g.kappa_g;
+  f.k_t = g.k_t;
+  f.k_q = g.k_q;
+  f.k_r = g.k_r;
   return f;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Uniform cubic B-spline pieces on one interval, local parameter t in [0, 1]:
-// the four basis functions that are non-zero there and their t-derivatives.
+// the four basis functions that are non-zero there and their t-derivatives
+// (the third derivative is constant on the interval: {-1, 3, -3, 1}).
 #include <array>
 
 namespace talus::detail {
@@ -8,6 +9,8 @@ namespace talus::detail {
 struct CubicBasis {
   std::array<double, 4> value, first, second;
 };
+
+inline constexpr std::array<double, 4> kCubicThird{-1.0, 3.0, -3.0, 1.0};
 
 inline CubicBasis cubic_basis(double t) {
   const double s = 1.0 - t, t2 = t * t, t3 = t2 * t;

@@ -1,5 +1,7 @@
 #include "talus/dynamics/path_velocity_limits.hpp"
 
+#include "talus/core/error.hpp"
+
 namespace talus {
 
 VelocityLimits::VelocityLimits(const Vehicle& vehicle) : vehicle_(vehicle) {
@@ -14,6 +16,17 @@ VelocityLimits::VelocityLimits(const Vehicle& vehicle, const SurfacePath& path,
 
 void VelocityLimits::compute(const SurfacePath& path, std::size_t stations) {
   path.sample_uniform_parameter(stations, frames_);
+  compute_limits();
+}
+
+void VelocityLimits::compute(const std::vector<PathFrame>& frames) {
+  if (frames.size() < 2) throw InputError("a path needs at least 2 stations");
+  frames_ = frames;
+  compute_limits();
+}
+
+void VelocityLimits::compute_limits() {
+  const std::size_t stations = frames_.size();
   geometry_.resize(stations);
   limits_.resize(stations);
   for (std::size_t k = 0; k < stations; ++k) {

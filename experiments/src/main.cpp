@@ -266,7 +266,8 @@ int main(int argc, char** argv) {
       "--candidates distinct corridors. --stage full (the default) then optimises each "
       "candidate locally: a clamped cubic B-spline with --control-points control points, start "
       "and goal fixed, minimising the travel time of its exact time-optimal velocity profile "
-      "(from --v0 to --v1) with NLopt BOBYQA, and keeps the best. Both stages write, in --out "
+      "(from --v0 to --v1) with --solver (ipopt by default, with the exact adjoint gradient), "
+      "and keeps the best. Both stages write, in --out "
       "DIR (created if needed): candidates.csv (columns candidate,x,y: the lattice vertices of "
       "each candidate from the start node to the goal node, candidate 0 the best), "
       "fields.csv (x,y,cost_from_start,cost_to_goal [s] at every lattice node, `inf` = not "
@@ -280,8 +281,8 @@ int main(int argc, char** argv) {
       "at most about 2000 rows each), plan.png and profile.png (gnuplot scripts and data "
       "beside them), and adds travel_time [s] (the best), global_travel_time (the best "
       "candidate's initial B-spline fit, same 0.1 m stations), improvement_percent, optima "
-      "[{travel_time, initial_time, solver_status, iterations (objective evaluations), "
-      "optimality (null: BOBYQA is derivative-free), ...}] and seconds {fit, global, local, "
+      "[{travel_time, initial_time, solver, solver_status, iterations, evaluations, "
+      "optimality (projected-gradient norm [s/m]), ...}] and seconds {fit, global, local, "
       "profile, plots, total}. Exit code 0 when a result exists; 2 when the goal is "
       "unreachable or (full) every candidate's profile is infeasible (summary still written "
       "and printed); 1 on bad input: a start or goal off the map, on NODATA or on "
@@ -317,9 +318,8 @@ int main(int argc, char** argv) {
                    "fixed), --stage full")
       ->capture_default_str();
   plan->add_option("--solver", plan_request.solver,
-                   "local solver, --stage full: nlopt-bobyqa (derivative-free) is the only one "
-                   "so far; ipopt and the gradient-based NLopt solvers are not available yet "
-                   "(they come with the analytic gradient of the travel time)")
+                   "local solver, --stage full: ipopt (interior point, exact gradient), "
+                   "nlopt-lbfgs (exact gradient) or nlopt-bobyqa (derivative-free)")
       ->capture_default_str();
   plan->add_option("--v0", plan_request.start_speed, "speed at the start [m/s], >= 0, --stage full")
       ->capture_default_str();

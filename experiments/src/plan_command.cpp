@@ -75,11 +75,10 @@ void check_plan_options(const PlanRequest& request) {
   if (request.stage != kPlanStageGlobal && request.stage != kPlanStageFull) {
     throw InputError("--stage must be full or global, got " + request.stage);
   }
-  if (request.solver != kPlanSolverBobyqa) {
-    throw InputError("--solver " + request.solver +
-                     " is not available yet: only nlopt-bobyqa (derivative-free) is implemented; "
-                     "Ipopt and the gradient-based NLopt solvers come with the analytic gradient "
-                     "of the travel time");
+  try {
+    parse_path_solver(request.solver);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--solver: ") + e.what());
   }
   if (request.control_points < 4 || request.control_points > kMaxPlanControlPoints) {
     throw InputError("--control-points must be in [4, " + std::to_string(kMaxPlanControlPoints) +
@@ -236,6 +235,7 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
                     const GlobalSearchResult& result, const std::filesystem::path& dir,
                     nlohmann::json& summary, nlohmann::json& seconds) {
   PathOptimizerOptions options;
+  options.solver = parse_path_solver(request.solver);
   options.control_points = static_cast<std::size_t>(request.control_points);
   options.speeds.start_speed = request.start_speed;
   options.speeds.end_speed = request.end_speed;
@@ -267,7 +267,7 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
     std::optional<OptimizedPath> local;
     std::string failure;
     try {
-      local.emplace(optimize_path_bobyqa(surface, vehicle, polyline, options));
+      local.emplace(optimize_path(surface, vehicle, polyline, options));
     } catch (const InputError& error) {
       failure = error.what();
     }
@@ -298,9 +298,16 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
     entry["travel_time_search_spacing"] = finite_or_null(local ? local->travel_time : kNaN);
     entry["initial_time_search_spacing"] = finite_or_null(local ? local->initial_time : kNaN);
     entry["kept_initial"] = kept_initial;
+    entry["solver"] = request.solver;
     entry["solver_status"] = local ? nlohmann::json(local->solver_status) : nlohmann::json(nullptr);
-    entry["iterations"] = local ? local->evaluations : 0;
-    entry["optimality"] = nullptr;  // BOBYQA is derivative-free: no gradient norm
+    entry["solver_failed"] = local ? local->solver_failed : false;
+    entry["iterations"] = local ? local->iterations : 0;
+    entry["evaluations"] = local ? local->evaluations : 0;
+    entry["gradient_evaluations"] = local ? local->gradient_evaluations : 0;
+    entry["finite_difference_gradients"] = local ? local->finite_difference_fallbacks : 0;
+    entry["optimality"] = finite_or_null(local ? local->optimality : kNaN);
+    entry["search_stations"] = local ? local->stations : 0;
+    entry["seconds"] = local ? local->seconds : 0.0;
     entry["length_m"] = ok ? nlohmann::json(path.path->length()) : nlohmann::json(nullptr);
     optima.push_back(std::move(entry));
     if (ok &&
@@ -402,7 +409,9 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
   summary["optima"] = std::move(optima);
   summary["solver"] = request.solver;
   summary["optimality_note"] =
-      "nlopt-bobyqa is derivative-free: no first-order optimality measure (optimality = null)";
+      "optima[].optimality: largest projected-gradient component of the travel time at the "
+      "returned path [s/m], from the adjoint gradient (for every solver); the travel time is "
+      "piecewise smooth, so a local optimum can sit on a kink with a non-zero value";
   summary["control_points"] = request.control_points;
   summary["start_speed"] = request.start_speed;
   summary["end_speed"] = request.end_speed;

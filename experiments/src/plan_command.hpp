@@ -4,8 +4,8 @@
 /// stages: `--stage global`, the minimum-time lattice search of
 /// talus::global_search with distinct candidate corridors, and `--stage full`
 /// (the default), which then optimises each candidate locally
-/// (talus::optimize_path_bobyqa: a clamped cubic B-spline minimising the
-/// exact time-optimal profile's travel time) and keeps the best.
+/// (talus::optimize_path: a clamped cubic B-spline minimising the exact
+/// time-optimal profile's travel time, Ipopt or NLopt) and keeps the best.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -18,7 +18,7 @@ namespace talus::experiments {
 
 /// `talus plan --terrain T.asc --start X,Y --goal X,Y --vehicle V.yaml
 /// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
-/// [--smoothing LAMBDA] [--control-points M] [--solver nlopt-bobyqa] [--v0 A]
+/// [--smoothing LAMBDA] [--control-points M] [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa] [--v0 A]
 /// [--v1 B] --out DIR`.
 struct PlanRequest {
   std::string terrain;           ///< ESRI ASCII grid
@@ -33,19 +33,15 @@ struct PlanRequest {
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
   // The local stage (--stage full only).
-  long long control_points = 8;         ///< of each optimised clamped cubic (4 to 64)
-  std::string solver = "nlopt-bobyqa";  ///< the only solver so far
-  double start_speed = 0.0;             ///< --v0 [m/s] (finite, >= 0, <= max_speed)
-  double end_speed = 0.0;               ///< --v1 [m/s]
+  long long control_points = 8;  ///< of each optimised clamped cubic (4 to 64)
+  std::string solver = "ipopt";  ///< ipopt, nlopt-lbfgs or nlopt-bobyqa (parse_path_solver)
+  double start_speed = 0.0;      ///< --v0 [m/s] (finite, >= 0, <= max_speed)
+  double end_speed = 0.0;        ///< --v1 [m/s]
 };
 
 /// The stages `--stage` accepts.
 inline constexpr const char* kPlanStageGlobal = "global";
 inline constexpr const char* kPlanStageFull = "full";
-
-/// The local solvers `--solver` accepts (Ipopt and the gradient-based NLopt
-/// solvers come with the analytic gradient of the travel time).
-inline constexpr const char* kPlanSolverBobyqa = "nlopt-bobyqa";
 
 /// Largest --control-points accepted.
 inline constexpr long long kMaxPlanControlPoints = 64;
@@ -100,7 +96,7 @@ struct PlanOutcome {
 /// vehicle_max_speed, files, fit_seconds and seconds.
 ///
 /// With --stage full, each candidate (its first and last vertices replaced by
-/// the exact start and goal) is optimised with optimize_path_bobyqa (M control
+/// the exact start and goal) is optimised with optimize_path (--solver, M control
 /// points, start and goal speeds v0, v1, the optimiser's search station
 /// spacing), and every path's profile is then recomputed at
 /// kDefaultStationSpacing (an optimised path slower there than its initial
@@ -110,7 +106,11 @@ struct PlanOutcome {
 /// plan.png and profile.png (with their gnuplot scripts and data; skipped
 /// when gnuplot is not installed), and the summary adds travel_time,
 /// global_travel_time (the best candidate's initial fit, same spacing),
-/// improvement_percent, optima [...], best_candidate and `seconds` becomes
+/// improvement_percent, optima [{candidate, status, message, travel_time,
+/// initial_time, solver, solver_status, solver_failed, iterations,
+/// evaluations, gradient_evaluations, finite_difference_gradients,
+/// optimality (projected-gradient norm [s/m]), search_stations, seconds,
+/// ...}], best_candidate and `seconds` becomes
 /// an object {fit, global, local, profile, plots, total}. No feasible
 /// trajectory gives status "infeasible" (reachable = false).
 ///

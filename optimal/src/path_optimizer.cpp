@@ -1,150 +1,146 @@
 #include "talus/optimal/path_optimizer.hpp"
 
-#include <nlopt.hpp>
-
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
+#include "local_solvers.hpp"
 #include "talus/bspline/curve_fit.hpp"
 #include "talus/core/error.hpp"
+#include "talus/optimal/path_time_objective.hpp"
 
 namespace talus {
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-Curve2 clamped_cubic(const std::vector<Vec2>& control_points) {
-  std::vector<double> breaks;
-  const std::size_t spans = control_points.size() - 3;
-  for (std::size_t k = 0; k <= spans; ++k) breaks.push_back(static_cast<double>(k) / spans);
-  return Curve2(KnotVector::clamped(3, breaks), control_points);
-}
-
-std::string nlopt_result_text(nlopt::result r) {
-  switch (r) {
-    case nlopt::SUCCESS:
-      return "success";
-    case nlopt::STOPVAL_REACHED:
-      return "stopval_reached";
-    case nlopt::FTOL_REACHED:
-      return "ftol_reached";
-    case nlopt::XTOL_REACHED:
-      return "xtol_reached";
-    case nlopt::MAXEVAL_REACHED:
-      return "maxeval_reached";
-    case nlopt::MAXTIME_REACHED:
-      return "maxtime_reached";
-    case nlopt::ROUNDOFF_LIMITED:
-      return "roundoff_limited";
-    default:
-      return "failure (" + std::to_string(static_cast<int>(r)) + ")";
+/// Largest |projected gradient| component over the box [lower, upper].
+double projected_gradient_norm(const Eigen::VectorXd& z, const Eigen::VectorXd& gradient,
+                               const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+  double worst = 0.0;
+  for (long i = 0; i < z.size(); ++i) {
+    const double tolerance = 1e-9 * (1.0 + std::abs(z[i]));
+    const double g = gradient[i];
+    if (z[i] <= lower[i] + tolerance && g > 0.0) continue;  // bound holds the descent
+    if (z[i] >= upper[i] - tolerance && g < 0.0) continue;
+    worst = std::max(worst, std::abs(g));
   }
+  return worst;
 }
 
 }  // namespace
+
+std::string_view to_string(PathSolver solver) {
+  switch (solver) {
+    case PathSolver::kIpopt:
+      return "ipopt";
+    case PathSolver::kNloptLbfgs:
+      return "nlopt-lbfgs";
+    case PathSolver::kNloptBobyqa:
+      return "nlopt-bobyqa";
+  }
+  return "unknown";
+}
+
+PathSolver parse_path_solver(std::string_view name) {
+  for (PathSolver s : {PathSolver::kIpopt, PathSolver::kNloptLbfgs, PathSolver::kNloptBobyqa}) {
+    if (name == to_string(s)) return s;
+  }
+  throw InputError("unknown solver '" + std::string(name) +
+                   "': choose ipopt, nlopt-lbfgs or nlopt-bobyqa");
+}
 
 void PathOptimizerOptions::validate() const {
   if (control_points < 4) throw InputError("PathOptimizerOptions.control_points must be >= 4");
   if (!(station_spacing > 0.0) || !std::isfinite(station_spacing)) {
     throw InputError("PathOptimizerOptions.station_spacing must be positive");
   }
+  if (max_iterations < 1) throw InputError("PathOptimizerOptions.max_iterations must be >= 1");
   if (max_evaluations < 10) throw InputError("PathOptimizerOptions.max_evaluations must be >= 10");
   if (!(relative_tolerance > 0.0))
     throw InputError("PathOptimizerOptions.relative_tolerance must be positive");
   speeds.validate();
 }
 
-double path_travel_time(const BPatch& terrain, const Vehicle& vehicle,
-                        const std::vector<Vec2>& control_points, double station_spacing,
-                        const ProfileOptions& speeds) {
-  for (const Vec2& c : control_points) {
-    if (!c.allFinite()) return kInfinity;
-  }
-  try {
-    const SurfacePath path(terrain, clamped_cubic(control_points));
-    const auto stations =
-        std::max<std::size_t>(static_cast<std::size_t>(path.length() / station_spacing) + 1, 2);
-    const VelocityLimits limits(vehicle, path, stations);
-    TimeOptimalProfileSolver solver;
-    const TimeOptimalProfile profile = solver.solve(limits, speeds);
-    return profile.status == ProfileStatus::kOk ? profile.travel_time : kInfinity;
-  } catch (const InputError&) {
-    return kInfinity;  // off the map, or a start/end speed above this path's limit
-  }
-}
-
-OptimizedPath optimize_path_bobyqa(const BPatch& terrain, const Vehicle& vehicle,
-                                   const std::vector<Vec2>& initial_polyline,
-                                   const PathOptimizerOptions& options) {
+OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
+                            const std::vector<Vec2>& initial_polyline,
+                            const PathOptimizerOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
   options.validate();
   if (initial_polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
   const Curve2 initial = fit_clamped_cubic(
       resample_polyline(initial_polyline, std::max<std::size_t>(10 * options.control_points,
                                                                 initial_polyline.size())),
       options.control_points);
-  std::vector<Vec2> control = initial.control_points();
-  const double initial_time =
-      path_travel_time(terrain, vehicle, control, options.station_spacing, options.speeds);
-  if (!std::isfinite(initial_time)) {
-    throw InputError("the initial path leaves the map or has no admissible velocity profile");
-  }
-  const std::size_t free = control.size() - 2;
-  std::vector<double> x(2 * free), lower(2 * free), upper(2 * free);
-  for (std::size_t k = 0; k < free; ++k) {
-    x[2 * k] = control[k + 1].x();
-    x[2 * k + 1] = control[k + 1].y();
-    lower[2 * k] = terrain.x_min();
-    upper[2 * k] = terrain.x_max();
-    lower[2 * k + 1] = terrain.y_min();
-    upper[2 * k + 1] = terrain.y_max();
-    // Start strictly inside the bounds: BOBYQA requires it.
-    x[2 * k] = std::clamp(x[2 * k], lower[2 * k], upper[2 * k]);
-    x[2 * k + 1] = std::clamp(x[2 * k + 1], lower[2 * k + 1], upper[2 * k + 1]);
-  }
-  struct Context {
-    const BPatch& terrain;
-    const Vehicle& vehicle;
-    const PathOptimizerOptions& options;
-    std::vector<Vec2> control;
-    std::size_t evaluations = 0;
-    double best = kInfinity;
-    std::vector<Vec2> best_control;
-  } context{terrain, vehicle, options, control, 0, initial_time, control};
-  // Infeasible paths cost a large finite value (BOBYQA needs finite numbers)
-  // well above any feasible time.
-  const auto objective = [](unsigned n, const double* z, double*, void* data) {
-    auto& ctx = *static_cast<Context*>(data);
-    for (unsigned k = 0; k < n / 2; ++k) ctx.control[k + 1] = Vec2(z[2 * k], z[2 * k + 1]);
-    ++ctx.evaluations;
-    const double t = path_travel_time(ctx.terrain, ctx.vehicle, ctx.control,
-                                      ctx.options.station_spacing, ctx.options.speeds);
-    if (t < ctx.best) {
-      ctx.best = t;
-      ctx.best_control = ctx.control;
-    }
-    return std::isfinite(t) ? t : 1e3 * ctx.best + 1e3;
-  };
-  nlopt::opt optimizer(nlopt::LN_BOBYQA, static_cast<unsigned>(x.size()));
-  optimizer.set_lower_bounds(lower);
-  optimizer.set_upper_bounds(upper);
-  optimizer.set_min_objective(objective, &context);
-  optimizer.set_maxeval(static_cast<int>(options.max_evaluations));
-  optimizer.set_ftol_rel(options.relative_tolerance);
-  // Initial trust region: a tenth of the start–goal distance.
-  const double scale = 0.1 * (initial_polyline.back() - initial_polyline.front()).norm();
-  optimizer.set_initial_step(std::max(scale, terrain.cellsize()));
-  double value = 0.0;
-  nlopt::result result = nlopt::FAILURE;
+  // The station count is fixed for the whole search, from the initial path's
+  // length: the objective must not jump when the length crosses a multiple
+  // of the spacing.
+  double length;
   try {
-    result = optimizer.optimize(x, value);
-  } catch (const nlopt::roundoff_limited&) {
-    result = nlopt::ROUNDOFF_LIMITED;
-  } catch (const std::exception& e) {
-    throw SolverError(std::string("NLopt BOBYQA failed: ") + e.what());
+    length = SurfacePath(terrain, initial).length();
+  } catch (const InputError& e) {
+    throw InputError(std::string("the initial path leaves the map: ") + e.what());
   }
-  OptimizedPath out{clamped_cubic(context.best_control), context.best, initial_time,
-                    context.evaluations, nlopt_result_text(result)};
+  const auto stations =
+      std::max<std::size_t>(static_cast<std::size_t>(length / options.station_spacing) + 1, 8);
+  PathTimeObjective objective(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),
+                              options.control_points, stations, options.speeds);
+
+  detail::BoxProblem problem;
+  problem.start = objective.variables(initial.control_points());
+  const long n = problem.start.size();
+  problem.lower.resize(n);
+  problem.upper.resize(n);
+  // Half a cell inside the domain: every station's B-patch evaluation stays
+  // well defined even where the solver sits on a bound.
+  const double margin = 0.5 * terrain.cellsize();
+  for (long i = 0; i < n; i += 2) {
+    problem.lower[i] = terrain.x_min() + margin;
+    problem.upper[i] = terrain.x_max() - margin;
+    problem.lower[i + 1] = terrain.y_min() + margin;
+    problem.upper[i + 1] = terrain.y_max() - margin;
+  }
+  problem.start = problem.start.cwiseMax(problem.lower).cwiseMin(problem.upper);
+  problem.max_iterations = options.max_iterations;
+  problem.max_evaluations = options.max_evaluations;
+  problem.relative_tolerance = options.relative_tolerance;
+  problem.initial_step = std::max(0.1 * (initial_polyline.back() - initial_polyline.front()).norm(),
+                                  terrain.cellsize());
+
+  detail::TrackedObjective tracked(objective);
+  const double initial_time = tracked(problem.start, nullptr);
+  if (!std::isfinite(initial_time)) {
+    throw InputError("the initial path leaves the measured data or has no admissible profile");
+  }
+  detail::SolverRun run;
+  switch (options.solver) {
+    case PathSolver::kIpopt:
+      run = detail::run_ipopt(tracked, problem);
+      break;
+    case PathSolver::kNloptLbfgs:
+      run = detail::run_nlopt_lbfgs(tracked, problem);
+      break;
+    case PathSolver::kNloptBobyqa:
+      run = detail::run_nlopt_bobyqa(tracked, problem);
+      break;
+  }
+  const Eigen::VectorXd best = tracked.best();
+  OptimizedPath out(objective.curve(best));
+  out.travel_time = tracked.best_value();
+  out.initial_time = initial_time;
+  out.solver = to_string(options.solver);
+  out.solver_status = run.status;
+  out.solver_failed = run.failed;
+  out.iterations = run.iterations;
+  out.stations = stations;
+  Eigen::VectorXd gradient;
+  const double check = objective.evaluate(best, &gradient);
+  out.optimality = std::isfinite(check)
+                       ? projected_gradient_norm(best, gradient, problem.lower, problem.upper)
+                       : std::numeric_limits<double>::quiet_NaN();
+  out.evaluations = objective.evaluations();
+  out.gradient_evaluations = objective.gradient_evaluations();
+  out.finite_difference_fallbacks = objective.finite_difference_fallbacks();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }
 

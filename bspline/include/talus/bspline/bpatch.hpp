@@ -72,6 +72,11 @@ class BPatch {
   /// z, gradient and Hessian at p, O(1), no allocation. Throws InputError if
   /// p is outside the domain or not finite.
   SurfacePoint evaluate(const Vec2& p) const;
+  /// Third derivatives (z_xxx, z_xxy, z_xyy, z_yyy) [1/m²] at p, as the
+  /// bicubic piece holding p has them (they jump across cell edges). For
+  /// differentiating curvatures with respect to position. Same errors as
+  /// evaluate().
+  Eigen::Vector4d third_derivatives(const Vec2& p) const;
 
   /// Residuals of the surface at the valid nodes of `grid` (same geometry).
   BPatchFitReport residuals(const ElevationGrid& grid) const;

@@ -22,6 +22,8 @@ class VelocityLimits {
   VelocityLimits(const Vehicle& vehicle, const SurfacePath& path, std::size_t stations);
 
   void compute(const SurfacePath& path, std::size_t stations);
+  /// The limits at stations the caller has sampled (at least 2; s increasing).
+  void compute(const std::vector<PathFrame>& frames);
 
   const Vehicle& vehicle() const { return vehicle_; }
   std::size_t size() const { return frames_.size(); }
@@ -40,6 +42,8 @@ class VelocityLimits {
   std::size_t first_untraversable() const;
 
  private:
+  void compute_limits();
+
   Vehicle vehicle_;
   std::vector<PathFrame> frames_;
   std::vector<StationGeometry> geometry_;

@@ -1,0 +1,155 @@
+// Ipopt on the box-constrained path problem: no general constraints (m = 0),
+// exact gradient, limited-memory BFGS Hessian, MUMPS (Debian's default).
+#include <IpIpoptApplication.hpp>
+#include <IpTNLP.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "local_solvers.hpp"
+
+namespace talus::detail {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+std::string return_text(Ipopt::SolverReturn status) {
+  switch (status) {
+    case Ipopt::SUCCESS:
+      return "success";
+    case Ipopt::MAXITER_EXCEEDED:
+      return "maxiter_exceeded";
+    case Ipopt::CPUTIME_EXCEEDED:
+      return "cputime_exceeded";
+    case Ipopt::STOP_AT_TINY_STEP:
+      return "stop_at_tiny_step";
+    case Ipopt::STOP_AT_ACCEPTABLE_POINT:
+      return "stop_at_acceptable_point";
+    case Ipopt::LOCAL_INFEASIBILITY:
+      return "local_infeasibility";
+    case Ipopt::USER_REQUESTED_STOP:
+      return "user_requested_stop";
+    case Ipopt::DIVERGING_ITERATES:
+      return "diverging_iterates";
+    case Ipopt::RESTORATION_FAILURE:
+      return "restoration_failure";
+    case Ipopt::ERROR_IN_STEP_COMPUTATION:
+      return "error_in_step_computation";
+    case Ipopt::INVALID_NUMBER_DETECTED:
+      return "invalid_number_detected";
+    case Ipopt::TOO_FEW_DEGREES_OF_FREEDOM:
+      return "too_few_degrees_of_freedom";
+    case Ipopt::INVALID_OPTION:
+      return "invalid_option";
+    case Ipopt::OUT_OF_MEMORY:
+      return "out_of_memory";
+    case Ipopt::INTERNAL_ERROR:
+      return "internal_error";
+    default:
+      return "unassigned";
+  }
+}
+
+class PathNlp : public Ipopt::TNLP {
+ public:
+  PathNlp(TrackedObjective& objective, const BoxProblem& problem)
+      : objective_(objective), problem_(problem) {}
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
+                    IndexStyleEnum& index_style) override {
+    n = static_cast<Index>(problem_.start.size());
+    m = nnz_jac_g = nnz_h_lag = 0;
+    index_style = C_STYLE;
+    return true;
+  }
+  bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index, Number*, Number*) override {
+    for (Index i = 0; i < n; ++i) {
+      x_l[i] = problem_.lower[i];
+      x_u[i] = problem_.upper[i];
+    }
+    return true;
+  }
+  bool get_starting_point(Index n, bool, Number* x, bool, Number*, Number*, Index, bool,
+                          Number*) override {
+    for (Index i = 0; i < n; ++i) x[i] = problem_.start[i];
+    return true;
+  }
+  // An infeasible path (off the data, no admissible profile) is an
+  // evaluation error: Ipopt then shortens the step.
+  bool eval_f(Index n, const Number* x, bool, Number& value) override {
+    value = objective_(Eigen::Map<const Eigen::VectorXd>(x, n), nullptr);
+    return std::isfinite(value);
+  }
+  bool eval_grad_f(Index n, const Number* x, bool, Number* gradient) override {
+    Eigen::VectorXd g(n);
+    const double value = objective_(Eigen::Map<const Eigen::VectorXd>(x, n), &g);
+    if (!std::isfinite(value)) return false;
+    Eigen::Map<Eigen::VectorXd>(gradient, n) = g;
+    return true;
+  }
+  bool eval_g(Index, const Number*, bool, Index, Number*) override { return true; }
+  bool eval_jac_g(Index, const Number*, bool, Index, Index, Index*, Index*, Number*) override {
+    return true;
+  }
+  bool intermediate_callback(Ipopt::AlgorithmMode, Index iteration, Number, Number, Number, Number,
+                             Number, Number, Number, Number, Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
+    iterations_ = static_cast<std::size_t>(iteration);
+    return objective_.evaluations() < problem_.max_evaluations;
+  }
+  void finalize_solution(Ipopt::SolverReturn status, Index, const Number*, const Number*,
+                         const Number*, Index, const Number*, const Number*, Number,
+                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+    status_ = status;
+  }
+
+  Ipopt::SolverReturn status() const { return status_; }
+  std::size_t iterations() const { return iterations_; }
+
+ private:
+  TrackedObjective& objective_;
+  const BoxProblem& problem_;
+  Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
+  std::size_t iterations_ = 0;
+};
+
+}  // namespace
+
+SolverRun run_ipopt(TrackedObjective& objective, const BoxProblem& problem) {
+  Ipopt::SmartPtr<PathNlp> nlp = new PathNlp(objective, problem);
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  auto options = app->Options();
+  options->SetIntegerValue("print_level", 0);
+  options->SetStringValue("sb", "yes");
+  options->SetStringValue("hessian_approximation", "limited-memory");
+  options->SetIntegerValue("max_iter", static_cast<int>(problem.max_iterations));
+  // Travel times are O(10..1000 s): an absolute tolerance on the scaled
+  // gradient plus Ipopt's relative objective test.
+  options->SetNumericValue("tol", 1e-6);
+  options->SetNumericValue("acceptable_tol", 1e-4);
+  options->SetNumericValue("acceptable_obj_change_tol", problem.relative_tolerance);
+  options->SetIntegerValue("acceptable_iter", 5);
+  // Bounds are the terrain box: do not let Ipopt relax them off the map.
+  options->SetNumericValue("bound_relax_factor", 0.0);
+  options->SetStringValue("honor_original_bounds", "yes");
+  // Never set linear_solver=ma97: Debian's Ipopt 3.11 calls exit(1) for it.
+  SolverRun run;
+  if (app->Initialize() != Ipopt::Solve_Succeeded) {
+    run.status = "initialization_failed";
+    run.failed = true;
+    return run;
+  }
+  app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
+  run.status = return_text(nlp->status());
+  // The only user stop is the evaluation budget (intermediate_callback).
+  if (nlp->status() == Ipopt::USER_REQUESTED_STOP) run.status = "maxeval_reached";
+  run.iterations = nlp->iterations();
+  const Ipopt::SolverReturn s = nlp->status();
+  run.failed = !(s == Ipopt::SUCCESS || s == Ipopt::STOP_AT_ACCEPTABLE_POINT ||
+                 s == Ipopt::MAXITER_EXCEEDED || s == Ipopt::CPUTIME_EXCEEDED ||
+                 s == Ipopt::USER_REQUESTED_STOP || s == Ipopt::STOP_AT_TINY_STEP);
+  return run;
+}
+
+}  // namespace talus::detail

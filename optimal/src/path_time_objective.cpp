@@ -1,0 +1,231 @@
+#include "talus/optimal/path_time_objective.hpp"
+
+#include <cmath>
+#include <limits>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "profile_sensitivity.hpp"
+#include "talus/bspline/lifted_geometry.hpp"
+#include "talus/bspline/surface_path.hpp"
+#include "talus/core/error.hpp"
+
+namespace talus {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+KnotVector uniform_clamped_knots(std::size_t control_points) {
+  std::vector<double> breaks;
+  const std::size_t spans = control_points - 3;
+  for (std::size_t k = 0; k <= spans; ++k) breaks.push_back(static_cast<double>(k) / spans);
+  return KnotVector::clamped(3, breaks);
+}
+
+// Station geometry as a function of the planar curve's position, first and
+// second derivatives at the station: (x, y, x', y', x'', y'').
+using Local = Eigen::AutoDiffScalar<Eigen::Matrix<double, 6, 1>>;
+using LocalVector2 = Eigen::Matrix<Local, 2, 1>;
+
+/// Jacobian rows: κ_n, κ_g, k_t, k_q, k_r, speed, speed_rate.
+Eigen::Matrix<double, 7, 6> local_jacobian(const BPatch& terrain,
+                                           const Eigen::Matrix<double, 2, 3>& planar) {
+  const Vec2 position = planar.col(0);
+  const SurfacePoint sp = terrain.evaluate(position);
+  const Eigen::Vector4d third = terrain.third_derivatives(position);  // xxx, xxy, xyy, yyy
+  using Derivative = Eigen::Matrix<double, 6, 1>;
+  const auto along_position = [](double dx, double dy) {
+    Derivative d = Derivative::Zero();
+    d[0] = dx;
+    d[1] = dy;
+    return d;
+  };
+  const Mat2& H = sp.hessian;
+  LocalVector2 gradient(Local(sp.gradient.x(), along_position(H(0, 0), H(0, 1))),
+                        Local(sp.gradient.y(), along_position(H(1, 0), H(1, 1))));
+  Eigen::Matrix<Local, 2, 2> hessian;
+  hessian(0, 0) = Local(H(0, 0), along_position(third[0], third[1]));
+  hessian(0, 1) = hessian(1, 0) = Local(H(0, 1), along_position(third[1], third[2]));
+  hessian(1, 1) = Local(H(1, 1), along_position(third[2], third[3]));
+  LocalVector2 d1(Local(planar(0, 1), 6, 2), Local(planar(1, 1), 6, 3));
+  LocalVector2 d2(Local(planar(0, 2), 6, 4), Local(planar(1, 2), 6, 5));
+  const LiftedGeometry<Local> g = lifted_geometry<Local>(gradient, hessian, d1, d2);
+  Eigen::Matrix<double, 7, 6> out;
+  const Local* outputs[7] = {&g.kappa_n, &g.kappa_g, &g.k_t,       &g.k_q,
+                             &g.k_r,     &g.speed,   &g.speed_rate};
+  for (int r = 0; r < 7; ++r) out.row(r) = outputs[r]->derivatives().transpose();
+  return out;
+}
+
+}  // namespace
+
+PathTimeObjective::PathTimeObjective(const BPatch& terrain, const Vehicle& vehicle,
+                                     const Vec2& start, const Vec2& goal,
+                                     std::size_t control_points, std::size_t stations,
+                                     const ProfileOptions& speeds)
+    : terrain_(&terrain),
+      vehicle_(vehicle),
+      start_(start),
+      goal_(goal),
+      control_points_(control_points),
+      speeds_(speeds),
+      knots_(uniform_clamped_knots(std::max<std::size_t>(control_points, 4))),
+      limits_(vehicle) {
+  if (control_points < 4) throw InputError("a path needs at least 4 control points");
+  if (stations < 2) throw InputError("a path needs at least 2 stations");
+  speeds.validate();
+  sigma_.resize(stations);
+  first_basis_.resize(stations);
+  basis_.resize(stations);
+  Eigen::MatrixXd values(3, 4);
+  for (std::size_t k = 0; k < stations; ++k) {
+    sigma_[k] = (k + 1 == stations) ? 1.0 : static_cast<double>(k) / (stations - 1);
+    const std::size_t span = knots_.find_span(sigma_[k]);
+    knots_.basis_derivatives(span, sigma_[k], values);
+    first_basis_[k] = span - 3;
+    basis_[k] = values;
+  }
+  control_.resize(control_points);
+  control_.front() = start;
+  control_.back() = goal;
+}
+
+Eigen::VectorXd PathTimeObjective::variables(const std::vector<Vec2>& control_points) const {
+  if (control_points.size() != control_points_)
+    throw InputError("wrong number of control points for this objective");
+  Eigen::VectorXd z(static_cast<long>(dimension()));
+  for (std::size_t i = 1; i + 1 < control_points_; ++i) {
+    z[2 * static_cast<long>(i) - 2] = control_points[i].x();
+    z[2 * static_cast<long>(i) - 1] = control_points[i].y();
+  }
+  return z;
+}
+
+std::vector<Vec2> PathTimeObjective::control_points(const Eigen::VectorXd& z) const {
+  std::vector<Vec2> out(control_points_);
+  out.front() = start_;
+  out.back() = goal_;
+  for (std::size_t i = 1; i + 1 < control_points_; ++i)
+    out[i] = Vec2(z[2 * static_cast<long>(i) - 2], z[2 * static_cast<long>(i) - 1]);
+  return out;
+}
+
+Curve2 PathTimeObjective::curve(const Eigen::VectorXd& z) const {
+  return Curve2(knots_, control_points(z));
+}
+
+double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
+  ++evaluations_;
+  if (!z.allFinite()) return kInfinity;
+  for (std::size_t i = 1; i + 1 < control_points_; ++i)
+    control_[i] = Vec2(z[2 * static_cast<long>(i) - 2], z[2 * static_cast<long>(i) - 1]);
+  const std::size_t n = sigma_.size();
+  frames_.resize(n);
+  planar_.resize(n);
+  const double h = 1.0 / static_cast<double>(n - 1);  // station spacing in σ
+  for (std::size_t k = 0; k < n; ++k) {
+    Eigen::Matrix<double, 2, 3> p = Eigen::Matrix<double, 2, 3>::Zero();
+    for (int b = 0; b < 4; ++b) {
+      const Vec2& c = control_[first_basis_[k] + static_cast<std::size_t>(b)];
+      for (int d = 0; d < 3; ++d) p.col(d) += basis_[k](d, b) * c;
+    }
+    planar_[k] = p;
+    const Vec2 position = p.col(0);
+    if (!terrain_->contains(position) || !terrain_->on_data(position)) return kInfinity;
+    if (!(p.col(1).norm() > 0.0)) return kInfinity;  // a cusp: no frame
+    PathFrame& f = frames_[k];
+    f = lift_to_surface(position, terrain_->evaluate(position), p.col(1), p.col(2));
+    f.parameter = sigma_[k];
+    if (k == 0) {
+      f.s = 0.0;
+    } else {
+      const PathFrame& prev = frames_[k - 1];
+      f.s = prev.s + 0.5 * h * (prev.speed + f.speed) +
+            h * h / 12.0 * (prev.speed_rate - f.speed_rate);
+      if (!(f.s > prev.s)) return kInfinity;  // degenerate parametrisation
+    }
+  }
+  limits_.compute(frames_);
+  try {
+    solver_.solve(limits_, speeds_, profile_);
+  } catch (const InputError&) {
+    return kInfinity;  // start or end speed above this path's limit there
+  }
+  return profile_.status == ProfileStatus::kOk ? profile_.travel_time : kInfinity;
+}
+
+double PathTimeObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient) {
+  if (z.size() != static_cast<long>(dimension()))
+    throw InputError("PathTimeObjective: wrong number of variables");
+  const double time = travel_time(z);
+  if (gradient == nullptr || !std::isfinite(time)) return time;
+  ++gradient_evaluations_;
+  gradient->setZero(static_cast<long>(dimension()));
+  if (!adjoint_gradient(*gradient)) {
+    ++fallbacks_;
+    finite_difference_gradient(z, *gradient);
+    travel_time(z);  // restore the workspace to z
+  }
+  return time;
+}
+
+bool PathTimeObjective::adjoint_gradient(Eigen::VectorXd& gradient) {
+  const std::size_t n = sigma_.size();
+  if (profile_.merged_stations > 0) return false;
+  geometry_.resize(n);
+  arc_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    geometry_[k] = limits_.geometry(k);
+    arc_[k] = frames_[k].s;
+  }
+  detail::TravelTimeSensitivity sensitivity;
+  if (!detail::travel_time_sensitivity(vehicle_, geometry_, arc_, profile_.v, sensitivity))
+    return false;
+  const double h = 1.0 / static_cast<double>(n - 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    // dT/d(κ_n, κ_g, k_t, k_q, k_r, speed, speed_rate) at station k; the
+    // speed terms through the Hermite step lengths on either side.
+    Eigen::Matrix<double, 1, 7> outer;
+    for (int i = 0; i < 5; ++i) outer[i] = sensitivity.geometry[k][static_cast<std::size_t>(i)];
+    const double before = k > 0 ? sensitivity.step_length[k - 1] : 0.0;
+    const double after = k + 1 < n ? sensitivity.step_length[k] : 0.0;
+    outer[5] = 0.5 * h * (before + after);
+    outer[6] = h * h / 12.0 * (after - before);
+    const Eigen::Matrix<double, 1, 6> local = outer * local_jacobian(*terrain_, planar_[k]);
+    for (int b = 0; b < 4; ++b) {
+      const std::size_t i = first_basis_[k] + static_cast<std::size_t>(b);
+      if (i == 0 || i + 1 == control_points_) continue;  // start and goal are fixed
+      for (int axis = 0; axis < 2; ++axis) {
+        gradient[2 * static_cast<long>(i) - 2 + axis] += basis_[k](0, b) * local[axis] +
+                                                         basis_[k](1, b) * local[2 + axis] +
+                                                         basis_[k](2, b) * local[4 + axis];
+      }
+    }
+  }
+  return gradient.allFinite();
+}
+
+void PathTimeObjective::finite_difference_gradient(const Eigen::VectorXd& z,
+                                                   Eigen::VectorXd& gradient) {
+  Eigen::VectorXd probe = z;
+  const double center = travel_time(z);
+  for (long i = 0; i < z.size(); ++i) {
+    const double step = 1e-6 * std::max(1.0, std::abs(z[i]));
+    probe[i] = z[i] + step;
+    const double plus = travel_time(probe);
+    probe[i] = z[i] - step;
+    const double minus = travel_time(probe);
+    probe[i] = z[i];
+    // One-sided where the other side is infeasible.
+    if (std::isfinite(plus) && std::isfinite(minus)) {
+      gradient[i] = (plus - minus) / (2.0 * step);
+    } else if (std::isfinite(plus)) {
+      gradient[i] = (plus - center) / step;
+    } else if (std::isfinite(minus)) {
+      gradient[i] = (center - minus) / step;
+    } else {
+      gradient[i] = 0.0;
+    }
+  }
+}
+
+}  // namespace talus

@@ -1,0 +1,320 @@
+#include "profile_sensitivity.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "step_controls.hpp"
+
+namespace talus::detail {
+namespace {
+
+// Variables of one equation: x_j, x_{j+1}, Δs_j, then the 5 geometry values
+// of the station where the constraint is evaluated.
+using Ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 8, 1>>;
+
+enum class Kind {
+  kLateralPlus,   // λ R − Q >= 0 (λ = min(μ, b/h)): a speed condition
+  kLateralMinus,  // λ R + Q >= 0
+  kMaxSpeed,      // v_max² − x >= 0
+  kFriction,      // μ² R² − f_t² − f_q² >= 0
+  kTractionZero,  // f_t = 0: friction on a station whose lateral friction is exhausted
+  kPitchUpper,    // (l/h) R − f_t >= 0
+  kPitchLower,    // (l/h) R + f_t >= 0
+  kDrive,         // max_accel − f_t >= 0
+  kBrake,         // max_decel + f_t >= 0
+  // u = the double root where the step's line x = y0 + β u touches the
+  // friction ellipse of the far station: the discrete limit curve (the
+  // largest state from which some control is admissible at both ends).
+  kTangentControl,
+};
+
+constexpr std::array<Kind, 3> kSpeedKinds{Kind::kLateralPlus, Kind::kLateralMinus, Kind::kMaxSpeed};
+
+/// Constraint value at a station with state x, step control u and geometry
+/// (κ_n, κ_g, k_t, k_q, k_r) = G; one source for double and AutoDiff.
+template <typename S>
+S constraint(Kind kind, const VehicleConstants& c, double max_speed_squared, const S& x, const S& u,
+             const S* G) {
+  const S R = c.g * G[4] + G[0] * x;
+  const S Q = c.g * G[3] + G[1] * x;
+  const S F = u + c.g * G[2];
+  switch (kind) {
+    case Kind::kLateralPlus:
+      return c.lateral * R - Q;
+    case Kind::kLateralMinus:
+      return c.lateral * R + Q;
+    case Kind::kMaxSpeed:
+      return max_speed_squared - x;
+    case Kind::kFriction:
+      return c.mu * c.mu * R * R - F * F - Q * Q;
+    case Kind::kTractionZero:
+      return F;
+    case Kind::kPitchUpper:
+      return c.pitch * R - F;
+    case Kind::kPitchLower:
+      return c.pitch * R + F;
+    case Kind::kDrive:
+      return c.drive - F;
+    case Kind::kBrake:
+      return c.brake + F;
+    case Kind::kTangentControl:
+      break;  // needs the line: tangent_control()
+  }
+  return S(0.0);
+}
+
+/// The friction ellipse of a station along the step's line x = y0 + β u, as
+/// A u² + B u + K <= 0 (as in step_controls.hpp); returns u + B / (2 A),
+/// zero at the double root.
+template <typename S>
+S tangent_control(const VehicleConstants& c, const S& y0, const S& beta, const S& u, const S* G) {
+  const S R0 = c.g * G[4] + G[0] * y0, R1 = G[0] * beta;
+  const S Q0 = c.g * G[3] + G[1] * y0, Q1 = G[1] * beta;
+  const S T0 = c.g * G[2];
+  const double m2 = c.mu * c.mu;
+  const S A = 1.0 + Q1 * Q1 - m2 * R1 * R1;
+  const S B = 2.0 * (T0 + Q0 * Q1 - m2 * R0 * R1);
+  return u + B / (2.0 * A);
+}
+
+// Normalised residual below which a constraint counts as touched: the
+// profile solver widens its bounds by 1e-10 relative for rounding.
+constexpr double kActiveTolerance = 1e-8;
+
+// Relative along-line slope below which a touched friction ellipse counts as
+// tangent: the solver finds such states by bisection to 1e-13 relative, which
+// leaves the two roots about sqrt(1e-13) apart.
+constexpr double kTangentTolerance = 1e-5;
+
+struct Equation {
+  Kind kind = Kind::kMaxSpeed;
+  std::size_t station = 0;  // where the constraint is evaluated
+  std::size_t step = 0;     // for control conditions: the step j (states j, j + 1)
+  bool speed_only = true;   // a speed condition pins `station` alone
+  double residual = std::numeric_limits<double>::infinity();
+};
+
+class Problem {
+ public:
+  Problem(const Vehicle& vehicle, const std::vector<StationGeometry>& geometry,
+          const std::vector<double>& s, const std::vector<double>& speeds)
+      : c_(vehicle), vmax2_(vehicle.max_speed * vehicle.max_speed), geometry_(geometry), s_(s) {
+    x_.resize(speeds.size());
+    for (std::size_t k = 0; k < speeds.size(); ++k) x_[k] = speeds[k] * speeds[k];
+  }
+
+  std::size_t stations() const { return x_.size(); }
+  double x(std::size_t k) const { return x_[k]; }
+  double length(std::size_t j) const { return s_[j + 1] - s_[j]; }
+  double control(std::size_t j) const { return (x_[j + 1] - x_[j]) / (2.0 * length(j)); }
+
+  std::array<double, 5> g(std::size_t k) const {
+    const StationGeometry& s = geometry_[k];
+    return {s.kappa_n, s.kappa_g, s.k_t, s.k_q, s.k_r};
+  }
+
+  /// Lateral friction exhausted at station k (|f_q| = μ R): there the
+  /// friction ellipse admits only f_t = 0, and its quadratic form has a zero
+  /// derivative, so the equation used is f_t = 0 itself.
+  bool friction_exhausted(std::size_t k) const {
+    const auto G = g(k);
+    const double R = c_.g * G[4] + G[0] * x_[k], Q = c_.g * G[3] + G[1] * x_[k];
+    return std::abs(c_.mu * R - std::abs(Q)) <= 1e-8 * scale(k, 0.0);
+  }
+
+  double scale(std::size_t k, double u) const {
+    const auto G = g(k);
+    return c_.g + std::abs(G[0] * x_[k]) + std::abs(G[1] * x_[k]) + std::abs(u) +
+           std::abs(c_.g * G[2]);
+  }
+
+  /// Normalised |value| of a constraint as an equation.
+  double residual(const Equation& e) const {
+    const auto G = g(e.station);
+    const double u = e.speed_only ? 0.0 : control(e.step);
+    const double value = constraint<double>(e.kind, c_, vmax2_, x_[e.station], u, G.data());
+    const double sc = scale(e.station, u);
+    if (e.kind == Kind::kMaxSpeed) return std::abs(value) / std::max(vmax2_, 1e-300);
+    return std::abs(value) / (e.kind == Kind::kFriction ? sc * sc : sc);
+  }
+
+  /// The best speed condition pinning station k.
+  Equation best_speed_equation(std::size_t k) const {
+    Equation best;
+    for (Kind kind : kSpeedKinds) {
+      if (kind == Kind::kMaxSpeed && !std::isfinite(vmax2_)) continue;
+      Equation e{kind, k, 0, true};
+      e.residual = residual(e);
+      if (e.residual < best.residual) best = e;
+    }
+    return best;
+  }
+
+  /// Appends the control conditions step j touches, at either end.
+  void active_step_equations(std::size_t j, std::vector<Equation>& out) const {
+    for (std::size_t station : {j, j + 1}) {
+      const bool exhausted = friction_exhausted(station);
+      for (Kind kind :
+           {Kind::kFriction, Kind::kPitchUpper, Kind::kPitchLower, Kind::kDrive, Kind::kBrake}) {
+        if ((kind == Kind::kPitchUpper || kind == Kind::kPitchLower) && !std::isfinite(c_.pitch))
+          continue;
+        if ((kind == Kind::kDrive || kind == Kind::kBrake) && !std::isfinite(c_.drive)) continue;
+        Equation e{kind == Kind::kFriction && exhausted ? Kind::kTractionZero : kind, station, j,
+                   false};
+        e.residual = residual(e);
+        if (e.residual > kActiveTolerance) continue;
+        out.push_back(e);
+        if (e.kind == Kind::kFriction && tangent(j, station)) {
+          e.kind = Kind::kTangentControl;
+          out.push_back(e);
+        }
+      }
+    }
+  }
+
+  /// Whether step j's line touches the friction ellipse of `station` (one
+  /// of its ends) at the step's control: there the friction equation fixes
+  /// only the near state, and the double root fixes the control.
+  bool tangent(std::size_t j, std::size_t station) const {
+    const auto G = g(station);
+    const double u = control(j);
+    const bool far_end = station == j + 1;
+    const double y0 = far_end ? x_[j] : x_[j + 1];
+    const double beta = (far_end ? 2.0 : -2.0) * length(j);
+    const double R0 = c_.g * G[4] + G[0] * y0, R1 = G[0] * beta;
+    const double Q0 = c_.g * G[3] + G[1] * y0, Q1 = G[1] * beta;
+    const double T0 = c_.g * G[2], m2 = c_.mu * c_.mu;
+    const double A = 1.0 + Q1 * Q1 - m2 * R1 * R1;
+    const double B = 2.0 * (T0 + Q0 * Q1 - m2 * R0 * R1);
+    const double slope = 2.0 * A * u + B;  // d/du of the ellipse along the line
+    return std::abs(slope) <=
+           kTangentTolerance * (std::abs(B) + std::abs(2.0 * A * u) + scale(station, u));
+  }
+
+  /// Value and derivatives of an equation in (x_j, x_{j+1}, Δs_j, G).
+  Ad differentiate(const Equation& e) const {
+    const auto G = g(e.station);
+    Ad vars[8];
+    const double values[8] = {e.speed_only ? x_[e.station] : x_[e.step],
+                              e.speed_only ? 0.0 : x_[e.step + 1],
+                              e.speed_only ? 1.0 : length(e.step),
+                              G[0],
+                              G[1],
+                              G[2],
+                              G[3],
+                              G[4]};
+    for (int i = 0; i < 8; ++i) vars[i] = Ad(values[i], 8, i);
+    const Ad u = e.speed_only ? Ad(0.0) : (vars[1] - vars[0]) / (2.0 * vars[2]);
+    const Ad& x = e.speed_only ? vars[0] : (e.station == e.step ? vars[0] : vars[1]);
+    if (e.kind == Kind::kTangentControl) {
+      const bool far_end = e.station == e.step + 1;
+      const Ad beta = (far_end ? 2.0 : -2.0) * vars[2];
+      return tangent_control<Ad>(c_, far_end ? vars[0] : vars[1], beta, u, vars + 3);
+    }
+    return constraint<Ad>(e.kind, c_, vmax2_, x, u, vars + 3);
+  }
+
+ private:
+  VehicleConstants c_;
+  double vmax2_;
+  const std::vector<StationGeometry>& geometry_;
+  const std::vector<double>& s_;
+  std::vector<double> x_;
+};
+
+}  // namespace
+
+bool travel_time_sensitivity(const Vehicle& vehicle, const std::vector<StationGeometry>& geometry,
+                             const std::vector<double>& s, const std::vector<double>& speeds,
+                             TravelTimeSensitivity& out) {
+  const std::size_t m = speeds.size();
+  if (m < 2 || geometry.size() != m || s.size() != m) return false;
+  for (std::size_t j = 0; j + 1 < m; ++j) {
+    if (!(s[j + 1] > s[j])) return false;
+  }
+  const Problem problem(vehicle, geometry, s, speeds);
+  out.geometry.assign(m, {0.0, 0.0, 0.0, 0.0, 0.0});
+  out.step_length.assign(m - 1, 0.0);
+  out.max_residual = 0.0;
+  out.pinned_stations = 0;
+
+  // Direct partials of T.
+  std::vector<double> dT_dx(m, 0.0);
+  for (std::size_t j = 0; j + 1 < m; ++j) {
+    const double a = std::sqrt(problem.x(j)), b = std::sqrt(problem.x(j + 1));
+    const double sum = a + b;
+    if (!(sum > 0.0)) return false;
+    out.step_length[j] = 2.0 / sum;
+    const double common = -problem.length(j) / (sum * sum);
+    if (a > 0.0) dT_dx[j] += common / a;
+    if (b > 0.0) dT_dx[j + 1] += common / b;
+  }
+  if (m == 2) return true;  // no interior state
+
+  // Every constraint the profile touches is an equation: speed conditions
+  // pin single stations; control conditions tie the two states of a step (a
+  // step can touch two, where the profile rides the boundary of the
+  // admissible set between stations). Consistent and, off degenerate
+  // profiles, of full column rank: solved in the least-squares sense, which
+  // is exact for a consistent system.
+  std::vector<Equation> equations;
+  for (std::size_t k = 1; k + 1 < m; ++k) {
+    const Equation e = problem.best_speed_equation(k);
+    if (e.residual <= kActiveTolerance) {
+      equations.push_back(e);
+      ++out.pinned_stations;
+    }
+  }
+  for (std::size_t j = 0; j + 1 < m; ++j) problem.active_step_equations(j, equations);
+  const std::size_t n = m - 2;  // interior states x_1 .. x_{m-2} are the unknowns
+  if (equations.size() < n) return false;
+
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<Ad> derivatives;
+  derivatives.reserve(equations.size());
+  const auto column = [m](std::size_t station) -> long {
+    return (station == 0 || station + 1 == m) ? -1 : static_cast<long>(station) - 1;
+  };
+  for (std::size_t r = 0; r < equations.size(); ++r) {
+    const Equation& e = equations[r];
+    out.max_residual = std::max(out.max_residual, e.residual);
+    derivatives.push_back(problem.differentiate(e));
+    const auto& d = derivatives.back().derivatives();
+    const std::size_t first = e.speed_only ? e.station : e.step;
+    if (const long col = column(first); col >= 0)
+      entries.emplace_back(static_cast<long>(r), col, d[0]);
+    if (!e.speed_only) {
+      if (const long col = column(e.step + 1); col >= 0)
+        entries.emplace_back(static_cast<long>(r), col, d[1]);
+    }
+  }
+  const auto rows = static_cast<long>(equations.size());
+  Eigen::SparseMatrix<double> jacobian(rows, static_cast<long>(n));
+  jacobian.setFromTriplets(entries.begin(), entries.end());
+  // λ = J (JᵀJ)⁻¹ ∂T/∂xᵀ: the multipliers of the least-squares solution.
+  const Eigen::SparseMatrix<double> normal = jacobian.transpose() * jacobian;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(normal);
+  if (ldlt.info() != Eigen::Success) return false;
+  const Eigen::VectorXd pivots = ldlt.vectorD();
+  if (!(pivots.minCoeff() > 1e-14 * pivots.cwiseAbs().maxCoeff())) return false;  // rank-deficient
+  Eigen::VectorXd rhs(static_cast<long>(n));
+  for (std::size_t k = 1; k + 1 < m; ++k) rhs[static_cast<long>(k) - 1] = dT_dx[k];
+  const Eigen::VectorXd lambda = jacobian * ldlt.solve(rhs);
+  if (!lambda.allFinite()) return false;
+
+  for (std::size_t r = 0; r < equations.size(); ++r) {
+    const Equation& e = equations[r];
+    const auto& d = derivatives[r].derivatives();
+    const double l = lambda[static_cast<long>(r)];
+    if (!e.speed_only) out.step_length[e.step] -= l * d[2];
+    for (int i = 0; i < 5; ++i)
+      out.geometry[e.station][static_cast<std::size_t>(i)] -= l * d[3 + i];
+  }
+  return true;
+}
+
+}  // namespace talus::detail

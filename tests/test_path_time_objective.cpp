@@ -1,0 +1,106 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "talus/core/error.hpp"
+#include "talus/optimal/path_time_objective.hpp"
+#include "terrain_test_support.hpp"
+
+namespace talus {
+namespace {
+
+Vehicle rover(double mu) {
+  Vehicle v;
+  v.friction = mu;
+  v.cg_height = 0.5;
+  v.half_track = 0.6;
+  v.max_speed = 10.0;
+  v.max_accel = 2.5;
+  v.max_decel = 4.0;
+  return v;
+}
+
+BPatch hill() {
+  return BPatch::interpolate(terrain_test::grid_from_function(
+      [](double x, double y) {
+        return 8.0 * std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * 7.0 * 7.0));
+      },
+      0, 0, 80, 60, 1.0));
+}
+
+/// Central differences with a step small enough not to cross an active-set
+/// change in most coordinates, large enough for the profile's rounding.
+Eigen::VectorXd central_differences(PathTimeObjective& objective, const Eigen::VectorXd& z,
+                                    double step) {
+  Eigen::VectorXd g(z.size()), probe = z;
+  for (long i = 0; i < z.size(); ++i) {
+    probe[i] = z[i] + step;
+    const double plus = objective.evaluate(probe);
+    probe[i] = z[i] - step;
+    const double minus = objective.evaluate(probe);
+    probe[i] = z[i];
+    g[i] = (plus - minus) / (2.0 * step);
+  }
+  return g;
+}
+
+TEST(PathTimeObjective, StraightLineOnAPlaneHasTheAnalyticTimeAndNoLateralGradient) {
+  const BPatch flat = BPatch::interpolate(
+      terrain_test::grid_from_function([](double, double) { return 0.0; }, 0, 0, 60, 40, 1.0));
+  const Vehicle v = rover(0.5);
+  PathTimeObjective objective(flat, v, {5, 20}, {55, 20}, 6, 201, {});
+  std::vector<Vec2> points;
+  for (int i = 0; i < 6; ++i) points.emplace_back(5 + 10 * i, 20);
+  const Eigen::VectorXd z = objective.variables(points);
+  Eigen::VectorXd gradient;
+  const double t = objective.evaluate(z, &gradient);
+  // Rest to rest over 50 m: accelerate at 2.5, cruise at 10, brake at 4.
+  const double accel = 100 / (2 * 2.5), brake = 100 / (2 * 4.0);
+  const double exact = 10 / 2.5 + 10 / 4.0 + (50 - accel - brake) / 10;
+  EXPECT_NEAR(t, exact, 0.01 * exact);  // conservative discretisation, first order
+  EXPECT_GE(t, exact - 1e-9);
+  ASSERT_EQ(gradient.size(), 8);
+  for (long i = 1; i < gradient.size(); i += 2) EXPECT_NEAR(gradient[i], 0.0, 1e-9);  // y
+  EXPECT_EQ(objective.finite_difference_fallbacks(), 0u);
+}
+
+TEST(PathTimeObjective, GradientMatchesFiniteDifferencesAtRandomControlPoints) {
+  const BPatch terrain = hill();
+  const Vehicle v = rover(0.4);
+  std::mt19937 random(20261130);
+  std::uniform_real_distribution<double> jitter(-6.0, 6.0);
+  int checked = 0;
+  for (int trial = 0; trial < 40 && checked < 8; ++trial) {
+    PathTimeObjective objective(terrain, v, {5, 30}, {75, 30}, 7, 300, {});
+    std::vector<Vec2> points;
+    for (int i = 0; i < 7; ++i) {
+      const double x = 5 + 70.0 * i / 6.0;
+      const double y = 30 + ((i == 0 || i == 6) ? 0.0 : 14.0 + jitter(random));
+      points.emplace_back(x, y);
+    }
+    const Eigen::VectorXd z = objective.variables(points);
+    Eigen::VectorXd gradient;
+    const double t = objective.evaluate(z, &gradient);
+    if (!std::isfinite(t)) continue;  // this draw crosses the hill too steeply: no profile
+    const Eigen::VectorXd fd = central_differences(objective, z, 1e-6);
+    const double error = (gradient - fd).norm() / fd.norm();
+    EXPECT_LT(error, 1e-4) << "trial " << trial << "\nadjoint " << gradient.transpose()
+                           << "\nfinite  " << fd.transpose();
+    EXPECT_EQ(objective.finite_difference_fallbacks(), 0u);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 8);
+}
+
+TEST(PathTimeObjective, OffTheMapIsInfinite) {
+  const BPatch terrain = hill();
+  PathTimeObjective objective(terrain, rover(0.4), {5, 30}, {75, 30}, 5, 100, {});
+  const Eigen::VectorXd z = objective.variables({{5, 30}, {20, 90}, {40, 30}, {60, 30}, {75, 30}});
+  Eigen::VectorXd gradient;
+  EXPECT_TRUE(std::isinf(objective.evaluate(z, &gradient)));
+  EXPECT_THROW(PathTimeObjective(terrain, rover(0.4), {5, 30}, {75, 30}, 3, 100, {}), InputError);
+}
+
+}  // namespace
+}  // namespace talus

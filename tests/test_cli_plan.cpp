@@ -212,7 +212,7 @@ TEST(CliPlan, GaussianHillGivesTwoCandidatesOneOnEachSide) {
 nlohmann::json run_plan_full_ok(const std::string& args, const std::string& dir) {
   const nlohmann::json j = run_plan_ok(args, dir);
   for (const char* key : {"travel_time", "global_travel_time", "improvement_percent", "optima",
-                          "seconds", "best_candidate"}) {
+                          "seconds", "best_candidate", "best_control_points"}) {
     EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
   }
   if (!j.contains("optima") || !j.contains("seconds")) return j;
@@ -285,6 +285,31 @@ TEST(CliPlan, FullStageAroundAHillIsNoSlowerThanTheGlobalCandidates) {
   for (const char* file : {"/plan.png", "/profile.png", "/plan.gp", "/profile.gp"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + file)) << file;
   }
+}
+
+TEST(CliPlan, FullStageWithNoFeasibleTrajectoryExitsTwoWithTheSummary) {
+  // The lattice reaches the goal (the global stage only needs v_max), but
+  // starting at 10 m/s with 1 m/s² of brakes the vehicle needs 50 m to stop
+  // and the goal is 20 m away: no candidate has an admissible profile.
+  const std::string terrain = generate_terrain("flat_brakes.asc", "plane " + kPlanShape);
+  const std::string vehicle = scratch_file("weak_brakes.yaml");
+  write_text(vehicle,
+             "model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n"
+             "max_speed: 10\nmax_decel: 1\n");
+  const std::string dir = scratch_file("full_infeasible_out");
+  const nlohmann::json j =
+      run_plan_and_check("--terrain " + quoted(terrain) + " --start 10,20 --goal 30,20 --vehicle " +
+                             quoted(vehicle) + " --v0 10 --candidates 2",
+                         dir, 2);
+  EXPECT_EQ(j.value("status", ""), "infeasible") << j.dump();
+  EXPECT_FALSE(j.value("message", "").empty());
+  EXPECT_TRUE(j.at("travel_time").is_null());
+  ASSERT_FALSE(j.at("optima").empty());
+  for (const nlohmann::json& o : j.at("optima")) {
+    EXPECT_EQ(o.value("status", ""), "infeasible") << o.dump();
+    EXPECT_FALSE(o.value("message", "").empty());
+  }
+  EXPECT_EQ(read_text(dir + "/trajectory.csv"), "s,x,y,z,v,a,t,v_max,binding\n");
 }
 
 TEST(CliPlan, WallOfHillsMakesTheGoalUnreachableWithExitCodeTwo) {

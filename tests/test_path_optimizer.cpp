@@ -3,7 +3,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/terrain_generators.hpp"
+#include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "talus/optimal/path_optimizer.hpp"
 #include "talus/optimal/path_time_objective.hpp"
@@ -87,6 +90,65 @@ INSTANTIATE_TEST_SUITE_P(PathOptimizer, EverySolver,
                            std::erase(name, '-');
                            return name;
                          });
+
+// The planner's output, checked against limits recomputed from scratch: on a
+// rough fractal terrain the optimised path's profile at the plan's 0.1 m
+// stations respects every speed limit and every acceleration bound at both
+// ends of every step, with the geometry re-derived at each station's curve
+// parameter by a fresh SurfacePath (not the optimiser's objective).
+TEST(PathOptimizer, OptimisedTrajectoryOnFractalTerrainSatisfiesEveryConstraint) {
+  FractalTerrainOptions fractal;
+  fractal.shape = {97, 97, 1.0, 0.0, 0.0};
+  fractal.height_scale = 12.0;
+  fractal.seed = 7;
+  const BPatch terrain = BPatch::fit_smoothing(generate_fractal_terrain(fractal), 1.0);
+  Vehicle v = rover(0.6);
+  v.max_accel = 2.0;
+  v.max_decel = 3.0;
+  const Vec2 start(5, 5), goal(90, 88);
+  GlobalSearchOptions search;
+  search.candidates = 1;
+  const GlobalSearchResult global = global_search(terrain, v, start, goal, search);
+  ASSERT_EQ(global.status, GlobalSearchStatus::kOk);
+  std::vector<Vec2> polyline = global.candidates[0].vertices;
+  polyline.front() = start;
+  polyline.back() = goal;
+  const OptimizedPath best = optimize_path(terrain, v, polyline, PathOptimizerOptions{});
+  ASSERT_TRUE(std::isfinite(best.travel_time));
+  EXPECT_LE(best.travel_time, best.initial_time);
+
+  const SurfacePath path(terrain, best.curve);
+  const auto stations = static_cast<std::size_t>(path.length() / kDefaultStationSpacing) + 1;
+  const VelocityLimits limits(v, path, stations);
+  TimeOptimalProfileSolver solver;
+  const TimeOptimalProfile profile = solver.solve(limits, {});
+  ASSERT_EQ(profile.status, ProfileStatus::kOk) << profile.message;
+
+  const SurfacePath fresh(terrain, best.curve);
+  std::size_t checked = 0;
+  for (std::size_t k = 0; k < stations; ++k) {
+    const PathFrame f = fresh.frame_at_parameter(limits.frame(k).parameter);
+    const StationGeometry g = StationGeometry::from(f);
+    const SpeedLimits l = speed_limits(v, g);
+    ASSERT_TRUE(l.traversable) << "station " << k;
+    EXPECT_LE(profile.v[k], l.v_max * (1 + 1e-7) + 1e-9) << "station " << k;
+    EXPECT_GE(profile.v[k], l.v_min * (1 - 1e-7) - 1e-9) << "station " << k;
+    if (k + 1 == stations) break;
+    const double ds = limits.frame(k + 1).s - limits.frame(k).s;
+    const double u = (profile.v[k + 1] * profile.v[k + 1] - profile.v[k] * profile.v[k]) / (2 * ds);
+    for (const std::size_t end : {k, k + 1}) {
+      const StationGeometry ge =
+          end == k ? g
+                   : StationGeometry::from(fresh.frame_at_parameter(limits.frame(end).parameter));
+      const AccelerationBounds a = acceleration_bounds(v, ge, profile.v[end]);
+      ASSERT_TRUE(a.feasible) << "station " << end << ": " << to_string(a.violated);
+      EXPECT_LE(u, a.a_max + 1e-6) << "step " << k << " at station " << end;
+      EXPECT_GE(u, a.a_min - 1e-6) << "step " << k << " at station " << end;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000u);
+}
 
 TEST(PathOptimizer, BadInputIsAnInputError) {
   const BPatch flat = BPatch::interpolate(

@@ -402,6 +402,14 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
   summary["global_travel_time"] = finite_or_null(global_time);
   summary["improvement_percent"] = finite_or_null(100.0 * (global_time - best_time) / global_time);
   summary["best_candidate"] = feasible ? nlohmann::json(best) : nlohmann::json(nullptr);
+  // The best path itself, to rebuild it exactly: a clamped cubic on uniform
+  // breakpoints in [0, 1] with these control points.
+  nlohmann::json control = nlohmann::json::array();
+  if (feasible) {
+    for (const Vec2& c : best_path->path->curve().control_points())
+      control.push_back(point_json(c));
+  }
+  summary["best_control_points"] = std::move(control);
   summary["length_m"] = feasible ? nlohmann::json(best_path->path->length()) : nullptr;
   summary["stations"] = feasible ? nlohmann::json(best_path->limits->size()) : nullptr;
   summary["switching_points"] =

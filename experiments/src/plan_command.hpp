@@ -110,7 +110,8 @@ struct PlanOutcome {
 /// initial_time, solver, solver_status, solver_failed, iterations,
 /// evaluations, gradient_evaluations, finite_difference_gradients,
 /// optimality (projected-gradient norm [s/m]), search_stations, seconds,
-/// ...}], best_candidate and `seconds` becomes
+/// ...}], best_candidate, best_control_points ([[x, y], ...] of the best
+/// clamped cubic, uniform breakpoints on [0, 1]) and `seconds` becomes
 /// an object {fit, global, local, profile, plots, total}. No feasible
 /// trajectory gives status "infeasible" (reachable = false).
 ///

@@ -4,6 +4,7 @@
 
 #include "global_search_experiment.hpp"
 #include "optimal_profile_experiment.hpp"
+#include "shiller_gwo_experiment.hpp"
 #include "talus/core/error.hpp"
 #include "terrain_gallery.hpp"
 #include "velocity_limits_experiment.hpp"
@@ -30,6 +31,11 @@ std::vector<Experiment> all_experiments() {
        "vehicle at friction 0.7 and 0.35: distinct candidate corridors over shaded relief, the "
        "cost-to-go fields and how the best route changes with friction",
        run_global_search_experiment},
+      {"shiller-gwo",
+       "the two-stage time-optimal planner (global candidates, B-spline local optima, best "
+       "trajectory and profile) on the West Bijou DEM and a fractal terrain, Ipopt against "
+       "NLopt LBFGS and BOBYQA, and the control-point study",
+       run_shiller_gwo},
   };
 }
 

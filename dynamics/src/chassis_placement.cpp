@@ -348,6 +348,19 @@ OtherAxlePlacement place_other_axle(const RuledTerrain& terrain, const Articulat
   return other_axle(src, Set::kNominal, chassis, x_m, y_m, z_m, theta, direction, options);
 }
 
+OtherAxlePlacement place_other_axle(const AxlePlacer& axle, const ArticulatedChassis& chassis,
+                                    double x_m, double y_m, double z_m, double theta, int direction,
+                                    const AxlePlacementOptions& options) {
+  require_finite_configuration(x_m, y_m, theta, "place_other_axle");
+  options.validate();
+  if (!axle) throw InputError("place_other_axle: no axle placement function");
+  if (direction != 1 && direction != -1)
+    throw InputError("place_other_axle: direction must be +1 (front) or -1 (rear), got " +
+                     std::to_string(direction));
+  const auto src = [&axle](Set, double x, double y, double th) { return axle(x, y, th); };
+  return other_axle(src, Set::kNominal, chassis, x_m, y_m, z_m, theta, direction, options);
+}
+
 ChassisPlacement place_chassis(const ArticulatedChassis& chassis, const RuledTerrain& terrain,
                                double x, double y, double theta,
                                const AxlePlacementOptions& options) {
@@ -458,6 +471,22 @@ AxlePlacement ChassisPlacementTable::axle(Set set, double x, double y, double th
   out.z = nslice == 2 ? (1 - t) * z[0] + t * z[1] : z[0];
   out.roll = nslice == 2 ? (1 - t) * r[0] + t * r[1] : r[0];
   return out;
+}
+
+ChassisPlacementTable::NodeValues ChassisPlacementTable::nodes(Set set, int k) const {
+  const auto si = static_cast<std::size_t>(set);
+  if (si >= sets_.size())
+    throw InputError("ChassisPlacementTable::nodes: surface set " + std::to_string(si) +
+                     " needs a table built with terrain_uncertainty > 0");
+  if (k < 0 || k >= slices_)
+    throw InputError("ChassisPlacementTable::nodes: slice " + std::to_string(k) + " outside [0, " +
+                     std::to_string(slices_) + ")");
+  const Surfaces& s = sets_[si];
+  const std::size_t n = terrain_.grid().ncols() * terrain_.grid().nrows();
+  const std::size_t off = static_cast<std::size_t>(k) * n;
+  return {std::span<const double>(s.z).subspan(off, n),
+          std::span<const double>(s.roll).subspan(off, n),
+          std::span<const std::uint8_t>(s.status).subspan(off, n)};
 }
 
 ChassisPlacement ChassisPlacementTable::place(double x, double y, double theta) const {

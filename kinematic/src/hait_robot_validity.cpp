@@ -9,27 +9,58 @@
 
 #include "talus/core/error.hpp"
 #include "talus/dynamics/chassis_placement.hpp"
+#include "talus/dynamics/chassis_uncertainty_table.hpp"
 #include "talus/dynamics/placement.hpp"
 #include "talus/dynamics/robot_validity.hpp"
+#include "talus/kinematic/hait_planner.hpp"
 #include "talus/kinematic/terrain_quadtree.hpp"
 
 namespace talus {
 
+namespace {
+constexpr double kPi = std::numbers::pi;
+
+void require(bool ok, const char* field, double value, const char* expected) {
+  if (ok) return;
+  std::ostringstream msg;
+  msg << "HaitValidityOptions." << field << " must be " << expected << ", got " << value;
+  throw InputError(msg.str());
+}
+}  // namespace
+
+void HaitValidityOptions::validate() const {
+  require(terrain_uncertainty >= 0.0 && std::isfinite(terrain_uncertainty), "terrain_uncertainty",
+          terrain_uncertainty, "finite and >= 0 [m]");
+  require(position_uncertainty >= 0.0 && std::isfinite(position_uncertainty),
+          "position_uncertainty", position_uncertainty, "finite and >= 0 [m]");
+  require(heading_uncertainty >= 0.0 && heading_uncertainty < kPi, "heading_uncertainty",
+          heading_uncertainty, "in [0, pi) [rad]");
+  require(sample_spacing > 0.0 && std::isfinite(sample_spacing), "sample_spacing", sample_spacing,
+          "positive and finite [m]");
+  require(sample_angle_step > 0.0 && std::isfinite(sample_angle_step), "sample_angle_step",
+          sample_angle_step, "positive and finite [rad]");
+  require(theta_slices >= 4, "theta_slices", theta_slices, ">= 4");
+}
+
 struct HaitRobotValidity::Impl {
-  Impl(const RuledTerrain& t, const Robot& r, double dz)
+  Impl(const RuledTerrain& t, const Robot& r, const HaitValidityOptions& o)
       : terrain(t),
         robot(r),
-        dz(dz),
+        opt(o),
+        dz(o.terrain_uncertainty),
         lower(dz > 0.0 ? t.lower_envelope(dz) : t),
         upper(dz > 0.0 ? t.upper_envelope(dz) : t),
         quadtree(upper) {}
   RuledTerrain terrain;
   Robot robot;
+  HaitValidityOptions opt;
   double dz;
   RuledTerrain lower, upper;  ///< T_min, T_max (copies of the terrain when δz = 0)
   TerrainQuadtree quadtree;   ///< on T_max (§5.1.2)
-  std::optional<ChassisPlacementTable> table;
-  double seconds = 0.0;
+  std::optional<ChassisPlacementTable> table;          ///< chassis without ρ, Δθ
+  std::optional<ChassisUncertaintyTable> uncertainty;  ///< chassis with ρ or Δθ
+  ValidityFunction sampled;  ///< rigid body with ρ or Δθ: the sampled neighbourhood
+  HaitValidityDiagnostics diagnostics;
   double half_length = 0.0, radius = 0.0;
 
   bool collides(const std::vector<Quad>& faces) const {
@@ -66,6 +97,19 @@ struct HaitRobotValidity::Impl {
     ConfigurationCheck out{false, 0.0, 0};
     Validity v;
     ChassisPlacement p;
+    if (uncertainty) {
+      // §5.2: intervals over the whole domain (and both envelopes), then the
+      // moved faces, which already sit at the lowest elevations, against T_max.
+      const ChassisPlacementInterval in = uncertainty->place_interval(q.x, q.y, q.theta);
+      ++out.placements;
+      v = check_validity(c, in);
+      if (!v.valid()) return out;
+      if (collides(moved_lower_faces(c, in, q.x, q.y, q.theta, opt.position_uncertainty,
+                                     opt.heading_uncertainty))) {
+        return out;
+      }
+      return {true, v.margin, out.placements};
+    }
     if (dz > 0.0) {
       const ChassisPlacementInterval in = table->place_interval(q.x, q.y, q.theta);
       ++out.placements;
@@ -86,20 +130,46 @@ struct HaitRobotValidity::Impl {
 };
 
 HaitRobotValidity::HaitRobotValidity(const RuledTerrain& terrain, const Robot& robot,
-                                     double terrain_uncertainty) {
-  if (!(terrain_uncertainty >= 0.0) || !std::isfinite(terrain_uncertainty)) {
-    std::ostringstream msg;
-    msg << "HaitRobotValidity: terrain uncertainty must be >= 0 and finite, got "
-        << terrain_uncertainty;
-    throw InputError(msg.str());
-  }
+                                     double terrain_uncertainty)
+    : HaitRobotValidity(terrain, robot, [terrain_uncertainty] {
+        HaitValidityOptions o;
+        o.terrain_uncertainty = terrain_uncertainty;
+        return o;
+      }()) {}
+
+HaitRobotValidity::HaitRobotValidity(const RuledTerrain& terrain, const Robot& robot,
+                                     const HaitValidityOptions& options) {
+  options.validate();
   validate(robot);
+  const bool positional = options.position_uncertainty > 0.0 || options.heading_uncertainty > 0.0;
   const auto t0 = std::chrono::steady_clock::now();
-  impl_ = std::make_unique<Impl>(terrain, robot, terrain_uncertainty);
+  impl_ = std::make_unique<Impl>(terrain, robot, options);
+  HaitValidityDiagnostics& diag = impl_->diagnostics;
   if (const auto* c = std::get_if<ArticulatedChassis>(&robot)) {
     ChassisTableOptions o;
-    o.terrain_uncertainty = terrain_uncertainty;
-    impl_->table.emplace(*c, terrain, o);
+    o.terrain_uncertainty = options.terrain_uncertainty;
+    o.theta_slices = options.theta_slices;
+    if (positional) {
+      if (!(options.heading_uncertainty < 0.5 * kPi)) {
+        std::ostringstream msg;
+        msg << "HaitRobotValidity: the articulated chassis needs heading_uncertainty in [0, pi/2) "
+               "[rad] (the moved faces of s5.2.2), got "
+            << options.heading_uncertainty;
+        throw InputError(msg.str());
+      }
+      ChassisUncertaintyOptions u;
+      u.position_uncertainty = options.position_uncertainty;
+      u.heading_uncertainty = options.heading_uncertainty;
+      impl_->uncertainty.emplace(*c, terrain, o, u);
+      diag.table_seconds = impl_->uncertainty->diagnostics().base_seconds;
+      diag.minmax_seconds = impl_->uncertainty->diagnostics().minmax_seconds;
+      diag.table_placements = impl_->uncertainty->diagnostics().placements;
+      diag.method = PositionUncertaintyMethod::kMinMaxSurfaces;
+    } else {
+      impl_->table.emplace(*c, terrain, o);
+      diag.table_seconds = impl_->table->diagnostics().seconds;
+      diag.table_placements = impl_->table->diagnostics().placements;
+    }
     const double reach = c->axle_spacing + c->body.overhang;
     const double width = std::max(c->half_axle_width, c->body.half_width);
     impl_->half_length = reach;
@@ -114,8 +184,16 @@ HaitRobotValidity::HaitRobotValidity(const RuledTerrain& terrain, const Robot& r
     }
     impl_->half_length = 0.5 * (front + rear);
     impl_->radius = std::hypot(std::max(front, rear), width);
+    if (positional) {
+      const Impl* impl = impl_.get();
+      impl_->sampled = neighbourhood_validity(
+          [impl](const SE2Pose& q) { return impl->check(std::get<WheeledRobot>(impl->robot), q); },
+          options.position_uncertainty, options.heading_uncertainty, options.sample_spacing,
+          options.sample_angle_step);
+      diag.method = PositionUncertaintyMethod::kSampled;
+    }
   }
-  impl_->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  diag.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 HaitRobotValidity::~HaitRobotValidity() = default;
@@ -124,6 +202,7 @@ HaitRobotValidity& HaitRobotValidity::operator=(HaitRobotValidity&&) noexcept = 
 
 ConfigurationCheck HaitRobotValidity::check(const SE2Pose& q) const {
   if (!impl_->terrain.has_data(q.position())) return {false, 0.0, 0};
+  if (impl_->sampled) return impl_->sampled(q);
   return std::visit([&](const auto& r) { return impl_->check(r, q); }, impl_->robot);
 }
 
@@ -132,7 +211,10 @@ ValidityFunction HaitRobotValidity::function() const {
 }
 
 double HaitRobotValidity::preprocessing_seconds() const {
-  return impl_->seconds;
+  return impl_->diagnostics.seconds;
+}
+const HaitValidityDiagnostics& HaitRobotValidity::diagnostics() const {
+  return impl_->diagnostics;
 }
 double HaitRobotValidity::half_length() const {
   return impl_->half_length;

@@ -10,6 +10,8 @@
 /// An axle's elevation z is that of the midpoint between its two wheel contact
 /// points (wheel radii are not modelled; fold them into the body clearances).
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <vector>
 
 #include "talus/core/ruled_terrain.hpp"
@@ -65,6 +67,17 @@ struct OtherAxlePlacement {
 /// β = atan((z(ψ_i) - z_M) / (d cos ψ_i)) and the secant through (ψ_i, G(ψ_i))
 /// and (β, G(β)).
 OtherAxlePlacement place_other_axle(const RuledTerrain& terrain, const ArticulatedChassis& chassis,
+                                    double x_m, double y_m, double z_m, double theta, int direction,
+                                    const AxlePlacementOptions& options = {});
+
+/// Any axle placement at (x, y, θ): Place_axle on a terrain, a table look-up, or
+/// a bound read from the min/max surfaces of §5.2.
+using AxlePlacer = std::function<AxlePlacement(double x, double y, double theta)>;
+
+/// Place_other_axle (§3.1.2) with z(ψ) read from `axle` instead of a terrain:
+/// §5.1.1 and §5.2.1 apply it "to these surfaces" (the bounds of S_z) to get
+/// the pitch bounds. Same iteration and result as the terrain version.
+OtherAxlePlacement place_other_axle(const AxlePlacer& axle, const ArticulatedChassis& chassis,
                                     double x_m, double y_m, double z_m, double theta, int direction,
                                     const AxlePlacementOptions& options = {});
 
@@ -164,6 +177,21 @@ class ChassisPlacementTable {
   };
   /// The axle placement from one surface set.
   AxlePlacement axle(Set set, double x, double y, double theta) const;
+
+  /// Node values of one surface set at slice k, indexed row * ncols + column
+  /// (the input of derived surfaces such as ChassisUncertaintyTable's).
+  struct NodeValues {
+    std::span<const double> z, roll;       ///< [m], [rad]; meaningless where status is unusable
+    std::span<const std::uint8_t> status;  ///< PlacementStatus per node
+  };
+  /// Throws InputError for a set the table does not hold or k outside [0, slices()).
+  NodeValues nodes(Set set, int k) const;
+  /// n_θ.
+  int slices() const { return slices_; }
+  /// The terrain the surfaces were built on.
+  const RuledTerrain& terrain() const { return terrain_; }
+  /// The options of every Place_axle and Place_other_axle iteration.
+  const AxlePlacementOptions& axle_options() const { return axle_options_; }
 
  private:
   struct Surfaces {

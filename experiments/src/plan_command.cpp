@@ -253,16 +253,6 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
     nlohmann::json entry;
     entry["candidate"] = c;
 
-    // The candidate's own time before optimisation: the optimiser's initial fit.
-    auto profile_start = Clock::now();
-    const Curve2 initial = fit_clamped_cubic(
-        resample_polyline(polyline,
-                          std::max<std::size_t>(10 * options.control_points, polyline.size())),
-        options.control_points);
-    EvaluatedPath initial_path = evaluate_path(surface, vehicle, initial, options.speeds, solver);
-    profile_seconds += seconds_since(profile_start);
-    global_time = std::min(global_time, initial_path.travel_time());
-
     const auto local_start = Clock::now();
     std::optional<OptimizedPath> local;
     std::string failure;
@@ -272,6 +262,19 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
       failure = error.what();
     }
     local_seconds += seconds_since(local_start);
+
+    // The candidate's own time before optimisation: the optimiser's initial
+    // fit (with the control points it needed), at the final spacing.
+    auto profile_start = Clock::now();
+    const Curve2 initial =
+        local ? local->initial_curve
+              : fit_clamped_cubic(
+                    resample_polyline(polyline, std::max<std::size_t>(10 * options.control_points,
+                                                                      polyline.size())),
+                    options.control_points);
+    EvaluatedPath initial_path = evaluate_path(surface, vehicle, initial, options.speeds, solver);
+    profile_seconds += seconds_since(profile_start);
+    global_time = std::min(global_time, initial_path.travel_time());
 
     profile_start = Clock::now();
     EvaluatedPath path = failure.empty()
@@ -307,6 +310,7 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
     entry["finite_difference_gradients"] = local ? local->finite_difference_fallbacks : 0;
     entry["optimality"] = finite_or_null(local ? local->optimality : kNaN);
     entry["search_stations"] = local ? local->stations : 0;
+    entry["control_points"] = local ? local->control_points : 0;
     entry["seconds"] = local ? local->seconds : 0.0;
     entry["length_m"] = ok ? nlohmann::json(path.path->length()) : nlohmann::json(nullptr);
     optima.push_back(std::move(entry));

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "local_solvers.hpp"
 #include "talus/bspline/curve_fit.hpp"
@@ -54,6 +56,10 @@ void PathOptimizerOptions::validate() const {
   if (!(station_spacing > 0.0) || !std::isfinite(station_spacing)) {
     throw InputError("PathOptimizerOptions.station_spacing must be positive");
   }
+  if (max_control_points < control_points)
+    throw InputError("PathOptimizerOptions.max_control_points must be >= control_points");
+  if (max_search_stations < 8)
+    throw InputError("PathOptimizerOptions.max_search_stations must be >= 8");
   if (max_iterations < 1) throw InputError("PathOptimizerOptions.max_iterations must be >= 1");
   if (max_evaluations < 10) throw InputError("PathOptimizerOptions.max_evaluations must be >= 10");
   if (!(relative_tolerance > 0.0))
@@ -67,26 +73,47 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   if (initial_polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
-  const Curve2 initial = fit_clamped_cubic(
-      resample_polyline(initial_polyline, std::max<std::size_t>(10 * options.control_points,
-                                                                initial_polyline.size())),
-      options.control_points);
-  // The station count is fixed for the whole search, from the initial path's
-  // length: the objective must not jump when the length crosses a multiple
-  // of the spacing.
-  double length;
-  try {
-    length = SurfacePath(terrain, initial).length();
-  } catch (const InputError& e) {
-    throw InputError(std::string("the initial path leaves the map: ") + e.what());
+  // The initial path: a least-squares fit to the candidate. A winding
+  // candidate can need more control points than asked for before its fit
+  // stays on traversable ground; grow M by half until it does.
+  std::size_t control_points = options.control_points;
+  std::optional<Curve2> initial;
+  std::optional<PathTimeObjective> objective;
+  std::size_t stations = 0;
+  double initial_time = std::numeric_limits<double>::infinity();
+  std::string failure;
+  while (true) {
+    initial.emplace(fit_clamped_cubic(
+        resample_polyline(initial_polyline,
+                          std::max<std::size_t>(10 * control_points, initial_polyline.size())),
+        control_points));
+    // The station count is fixed for the whole search, from the initial
+    // path's length: the objective must not jump when the length crosses a
+    // multiple of the spacing.
+    try {
+      const double length = SurfacePath(terrain, *initial).length();
+      stations =
+          std::clamp<std::size_t>(static_cast<std::size_t>(length / options.station_spacing) + 1, 8,
+                                  options.max_search_stations);
+      objective.emplace(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),
+                        control_points, stations, options.speeds);
+      initial_time = objective->evaluate(objective->variables(initial->control_points()));
+      failure = objective->profile().message;
+    } catch (const InputError& e) {
+      failure = e.what();
+    }
+    if (std::isfinite(initial_time)) break;
+    if (!options.adaptive_control_points || control_points >= options.max_control_points) {
+      throw InputError("the initial path (" + std::to_string(control_points) +
+                       " control points) leaves the map or the measured data or has no "
+                       "admissible profile" +
+                       (failure.empty() ? std::string() : ": " + failure));
+    }
+    control_points = std::min(options.max_control_points, control_points + control_points / 2);
   }
-  const auto stations =
-      std::max<std::size_t>(static_cast<std::size_t>(length / options.station_spacing) + 1, 8);
-  PathTimeObjective objective(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),
-                              options.control_points, stations, options.speeds);
 
   detail::BoxProblem problem;
-  problem.start = objective.variables(initial.control_points());
+  problem.start = objective->variables(initial->control_points());
   const long n = problem.start.size();
   problem.lower.resize(n);
   problem.upper.resize(n);
@@ -106,10 +133,11 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   problem.initial_step = std::max(0.1 * (initial_polyline.back() - initial_polyline.front()).norm(),
                                   terrain.cellsize());
 
-  detail::TrackedObjective tracked(objective);
-  const double initial_time = tracked(problem.start, nullptr);
+  detail::TrackedObjective tracked(*objective);
+  // The start clamped into the bounds is the solvers' first point.
+  initial_time = tracked(problem.start, nullptr);
   if (!std::isfinite(initial_time)) {
-    throw InputError("the initial path leaves the measured data or has no admissible profile");
+    throw InputError("the initial path leaves the map's interior or has no admissible profile");
   }
   detail::SolverRun run;
   switch (options.solver) {
@@ -124,7 +152,9 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
       break;
   }
   const Eigen::VectorXd best = tracked.best();
-  OptimizedPath out(objective.curve(best));
+  OptimizedPath out(objective->curve(best));
+  out.initial_curve = objective->curve(problem.start);
+  out.control_points = control_points;
   out.travel_time = tracked.best_value();
   out.initial_time = initial_time;
   out.solver = to_string(options.solver);
@@ -133,13 +163,13 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   out.iterations = run.iterations;
   out.stations = stations;
   Eigen::VectorXd gradient;
-  const double check = objective.evaluate(best, &gradient);
+  const double check = objective->evaluate(best, &gradient);
   out.optimality = std::isfinite(check)
                        ? projected_gradient_norm(best, gradient, problem.lower, problem.upper)
                        : std::numeric_limits<double>::quiet_NaN();
-  out.evaluations = objective.evaluations();
-  out.gradient_evaluations = objective.gradient_evaluations();
-  out.finite_difference_fallbacks = objective.finite_difference_fallbacks();
+  out.evaluations = objective->evaluations();
+  out.gradient_evaluations = objective->gradient_evaluations();
+  out.finite_difference_fallbacks = objective->finite_difference_fallbacks();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }

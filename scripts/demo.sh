@@ -42,8 +42,8 @@ vehicle=data/vehicles/rover.yaml
 # 2. The main job: a time-optimal plan across the DEM from the south-west to
 #    the north-east corner. Global minimum-time search for distinct
 #    candidates, local optimisation of each B-spline path for the travel
-#    time of its exact time-optimal velocity profile (NLopt BOBYQA until the
-#    gradient-based solvers land), best trajectory and both figures.
+#    time of its exact time-optimal velocity profile (Ipopt with the adjoint
+#    gradient), best trajectory and both figures.
 "$talus" plan --terrain "$terrain" --vehicle "$vehicle" \
   --start 556608.707595,4373160.214932 --goal 559633.707595,4375185.214932 \
   --out "$out_dir/plan" > "$out_dir/plan.json"

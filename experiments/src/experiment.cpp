@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "global_search_experiment.hpp"
+#include "hait_experiments.hpp"
 #include "optimal_profile_experiment.hpp"
 #include "shiller_gwo_experiment.hpp"
 #include "talus/core/error.hpp"
@@ -36,6 +37,22 @@ std::vector<Experiment> all_experiments() {
        "trajectory and profile) on the West Bijou DEM and a fractal terrain, Ipopt against "
        "NLopt LBFGS and BOBYQA, and the control-point study",
        run_shiller_gwo},
+      {"hait-heuristics",
+       "Hait-Simeon-Taix planner, the three search guidances on one problem (nodes created, "
+       "developed, placements, search time) beside the paper's table",
+       run_hait_heuristics},
+      {"hait-preprocessing",
+       "Hait-Simeon-Taix preprocessing time (chassis placement table, quadtree, potential "
+       "bitmap) against terrain size and resolution, with fitted exponents",
+       run_hait_preprocessing},
+      {"hait-smoothing",
+       "Hait-Simeon-Taix Reeds-Shepp smoothing: control changes before and after, path drawn "
+       "before and after",
+       run_hait_smoothing},
+      {"hait-uncertainty",
+       "Hait-Simeon-Taix planning with position and terrain uncertainty: the route avoids a "
+       "gorge, and the preprocessing cost ratio",
+       run_hait_uncertainty},
   };
 }
 

@@ -1,0 +1,43 @@
+#pragma once
+/// @file
+/// The map figure of the Haït–Siméon–Taïx experiments and of `talus baseline
+/// hait`: one or more planned (x, y) routes over the terrain's shaded relief,
+/// with start and goal. A gnuplot script is saved beside the PNG (plot.hpp).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "talus/core/elevation_grid.hpp"
+#include "talus/core/types.hpp"
+#include "talus/kinematic/configuration_space.hpp"
+
+namespace talus::experiments {
+
+/// One route on the map: its configurations, a legend label and a gnuplot colour.
+struct HaitRoute {
+  std::vector<PathPoint> path;
+  std::string label;
+  std::string colour = "#e6550d";
+};
+
+/// What the map shows; positions in the grid's frame [m], drawn as offsets
+/// from its south-west node.
+struct HaitMapData {
+  const ElevationGrid* grid = nullptr;
+  std::vector<HaitRoute> routes;
+  SE2Pose start, goal;
+  std::string title;
+};
+
+/// Writes `stem`_relief.rgb, `stem`_routes.dat and `stem`.gp in `dir` and
+/// renders `stem`.png (the relief is the interpolating B-patch of the grid;
+/// NODATA is filled by the nearest node for the picture only). Headings are
+/// drawn as arrows at start and goal.
+void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
+                     const HaitMapData& data);
+
+/// The (x, y, θ, control) rows of a path as CSV with header `x,y,theta,control`
+/// (control names as control_name()).
+std::string hait_path_csv(const std::vector<PathPoint>& path);
+
+}  // namespace talus::experiments

@@ -251,8 +251,9 @@ void run_shiller_gwo(const ExperimentContext& context) {
   if (gnuplot_available()) run_gnuplot(out / "solvers.gp");
   report << "## Solvers\n\n![solvers](solvers.png)\n\n"
          << "All three solvers start from the same global candidates and minimise the same "
-            "objective (the travel time at 0.5 m stations, fixed count); Ipopt and LBFGS use its "
-            "exact adjoint gradient, BOBYQA none. Optimality is the largest projected-gradient "
+            "objective (the travel time at a fixed count of stations, 0.5 m apart, at most 3000); "
+            "Ipopt and LBFGS use its exact adjoint gradient, BOBYQA none. Optimality is the "
+            "largest projected-gradient "
             "component at the returned path. The travel time is piecewise smooth (it kinks "
             "where a switching point crosses a station), so gradient methods can stop on a "
             "kink with a small but non-zero gradient. Every reported path is re-evaluated at "

@@ -50,6 +50,11 @@ TEST_P(EverySolver, StraightensABentPathOnAPlane) {
   if (GetParam() != PathSolver::kNloptBobyqa) {
     EXPECT_LT(best.optimality, 1e-2);  // s/m; the bent start has O(0.1)
   }
+  // Started on the straight line, it keeps it, at the analytic time.
+  const OptimizedPath kept = optimize_path(flat, rover(0.5), {{5, 20}, {55, 20}}, options);
+  for (const Vec2& c : kept.curve.control_points()) EXPECT_NEAR(c.y(), 20.0, 1e-6);
+  EXPECT_NEAR(kept.travel_time, straight, 0.01 * straight);
+  EXPECT_LE(kept.travel_time, kept.initial_time);
   std::printf("%s: %.6f s (straight %.6f), %zu iterations, %zu evaluations, optimality %.2e\n",
               best.solver.c_str(), best.travel_time, straight, best.iterations, best.evaluations,
               best.optimality);

@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "dynamic_vs_kinematic_experiment.hpp"
 #include "global_search_experiment.hpp"
 #include "hait_experiments.hpp"
 #include "optimal_profile_experiment.hpp"
@@ -53,6 +54,10 @@ std::vector<Experiment> all_experiments() {
        "Hait-Simeon-Taix planning with position and terrain uncertainty: the route avoids a "
        "gorge, and the preprocessing cost ratio",
        run_hait_uncertainty},
+      {"dynamic-vs-kinematic",
+       "the Hait-Simeon-Taix kinematic path at its own time-optimal profile against Talus's "
+       "time-optimal plan: travel times, ratio and planning times on the hait terrains",
+       run_dynamic_vs_kinematic},
   };
 }
 

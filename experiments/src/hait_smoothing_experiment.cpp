@@ -35,6 +35,7 @@ void run_hait_smoothing(const ExperimentContext& context) {
     options.heuristic = HaitHeuristic::kPotentialRs;
     options.smooth = true;
     options.smoothing.seed = seed;
+    options.smoothing.iterations = 2000;
     results.push_back(plan_hait(terrain, robot, scenario.start, scenario.goal, options));
     const HaitResult& r = results.back();
     if (r.status != HaitStatus::kFound) {
@@ -73,9 +74,8 @@ void run_hait_smoothing(const ExperimentContext& context) {
   md << "# hait-smoothing: Reeds–Shepp smoothing (Haït, Siméon, Taïx 2002, §4.4)\n\n"
      << "**Problem.** The hait-heuristics problem (" << scenario.description
      << ") with the potential-rs guidance and the articulated chassis; the found path is "
-        "smoothed by `smooth_path` (default `HaitSmoothingOptions`: "
-     << HaitSmoothingOptions{}.iterations
-     << " random pairs at most 5 m apart; a Reeds–Shepp replacement is kept only if every "
+        "smoothed by `smooth_path` (default `HaitSmoothingOptions` but 2000 "
+        "random pairs at most 5 m apart; a Reeds–Shepp replacement is kept only if every "
         "configuration on it is valid and it removes control changes or shortens the path).\n\n"
      << (context.quick ? "**Quick mode**: smaller map, two seeds.\n\n" : "")
      << "| | ours (seed 1) | paper (Fig. 21) |\n|---|---|---|\n"

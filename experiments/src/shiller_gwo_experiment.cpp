@@ -105,6 +105,7 @@ void write_solver_figure(const fs::path& dir, const std::vector<std::string>& so
      << "set datafile separator ','\nset style data histograms\n"
      << "set style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
      << "set grid y lc rgb '#d8d8d8'\nset tics out nomirror\nset key top left\n"
+     << "set yrange [0:*]\n"
      << "set multiplot layout 1,2 title 'Local stage: Ipopt against NLopt on the same "
         "candidates'\n"
      << "set title '(a) improvement over the best global candidate'\n"

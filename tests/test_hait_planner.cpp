@@ -275,6 +275,89 @@ TEST(HaitSmoothing, NeverAddsControlChangesAndStaysValid) {
   EXPECT_LT(best, r.control_changes);  // smoothing does something on this path
 }
 
+TEST(HaitSmoothing, GreedyPassesNeverAddControlChangesAndStayValid) {
+  DiscWorld w;
+  w.discs.push_back({Vec2(5, 0), 1.5});
+  w.discs.push_back({Vec2(2.5, 2.5), 0.6});
+  HaitOptions o;
+  o.heuristic = HaitHeuristic::kEuclidean;
+  const HaitResult r = hait_search(w.validity(), {}, {0, 0, 0}, {10, 0, 0}, o);
+  ASSERT_EQ(r.status, HaitStatus::kFound) << r.message;
+  const ReedsShepp rs(o.turning_radius);
+  for (const std::size_t pairs : {std::size_t{0}, std::size_t{300}}) {
+    HaitSmoothingOptions so;
+    so.method = HaitSmoothingMethod::kRandomPairsThenGreedy;
+    so.iterations = pairs;
+    so.seed = 7;
+    HaitSmoothingReport rep;
+    const std::vector<PathPoint> s = smooth_path(r.path, w.validity(), rs, so, &rep);
+    EXPECT_EQ(rep.control_changes_after, control_changes(s));
+    // The greedy passes start from the random pairs' result and never undo it.
+    EXPECT_LE(rep.control_changes_after, rep.control_changes_random);
+    EXPECT_LE(rep.control_changes_random, rep.control_changes_before);
+    EXPECT_LT(rep.control_changes_after, r.control_changes);  // it shortcuts this path
+    EXPECT_GE(rep.greedy_passes, 1u);
+    if (pairs == 0) {
+      EXPECT_EQ(rep.control_changes_random, rep.control_changes_before);
+    }
+    expect_all_valid(s, w.validity());
+    expect_consistent(s, o.turning_radius);
+    EXPECT_EQ(s.front().pose.x, r.path.front().pose.x);
+    EXPECT_EQ(s.back().pose.x, r.path.back().pose.x);
+    EXPECT_EQ(s.back().pose.y, r.path.back().pose.y);
+    EXPECT_NEAR(rep.length_after, path_length(s, o.turning_radius), 1e-9);
+    // Same seed, same result.
+    const std::vector<PathPoint> again = smooth_path(r.path, w.validity(), rs, so);
+    ASSERT_EQ(again.size(), s.size());
+    for (std::size_t k = 0; k < s.size(); ++k) EXPECT_EQ(again[k].pose.y, s[k].pose.y);
+  }
+}
+
+TEST(HaitSmoothing, GreedyReachesTheGoalInOneCurveWhenNothingIsInTheWay) {
+  // A zigzag on empty ground: the first greedy try, start to goal, is valid
+  // and leaves the shortest Reeds–Shepp curve between the path's ends.
+  DiscWorld w;
+  std::vector<PathPoint> zigzag{{{0, 0, 0}, Control{}}};
+  const Control turns[] = {{1, 1}, {1, -1}, {1, -1}, {1, 1}, {1, 0}, {1, 1}, {1, -1}};
+  for (const Control& u : turns) {
+    for (int k = 1; k <= 4; ++k) {
+      zigzag.push_back({apply_control(zigzag.back().pose, u, 0.1, 1.0), u});
+    }
+  }
+  ASSERT_GE(control_changes(zigzag), 5u);
+  const ReedsShepp rs(1.0);
+  HaitSmoothingOptions so;
+  so.method = HaitSmoothingMethod::kRandomPairsThenGreedy;
+  so.iterations = 0;
+  HaitSmoothingReport rep;
+  const std::vector<PathPoint> s = smooth_path(zigzag, w.validity(), rs, so, &rep);
+  EXPECT_EQ(rep.replacements, 1u);
+  EXPECT_NEAR(rep.length_after, rs.distance(zigzag.front().pose, zigzag.back().pose), 1e-6);
+  EXPECT_EQ(rep.control_changes_after,
+            rs.segments(zigzag.front().pose, zigzag.back().pose).size() - 1);
+}
+
+TEST(HaitSmoothing, DrawWithinSpanKeepsTheInvariants) {
+  DiscWorld w;
+  w.discs.push_back({Vec2(5, 0), 1.5});
+  HaitOptions o;
+  o.heuristic = HaitHeuristic::kEuclidean;
+  const HaitResult r = hait_search(w.validity(), {}, {0, 0, 0}, {10, 0, 0}, o);
+  ASSERT_EQ(r.status, HaitStatus::kFound) << r.message;
+  const ReedsShepp rs(o.turning_radius);
+  for (const bool within : {false, true}) {
+    HaitSmoothingOptions so;
+    so.draw_within_span = within;
+    so.max_span = 2.0;
+    HaitSmoothingReport rep;
+    const std::vector<PathPoint> s = smooth_path(r.path, w.validity(), rs, so, &rep);
+    EXPECT_LE(rep.control_changes_after, rep.control_changes_before);
+    EXPECT_EQ(rep.control_changes_after, control_changes(s));
+    expect_all_valid(s, w.validity());
+    expect_consistent(s, o.turning_radius);
+  }
+}
+
 TEST(HaitUncertainty, NeighbourhoodNeverAcceptsWhatTheCertainCheckRejects) {
   const DiscWorld w = trap_world();
   const ValidityFunction certain = w.validity();

@@ -27,12 +27,15 @@
 /// adds the goal orientation "close to the goal" with the Reeds–Shepp distance
 /// (OMPL's ReedsSheppStateSpace, see reeds_shepp.hpp). The paper gives no
 /// rule for "close" nor for the combination; ours: within `rs_switch_distance`
-/// of the goal position the heuristic is the potential plus the Reeds–Shepp
-/// distance's excess over the straight-line distance (the detour the goal
-/// heading costs, 0 when aligned), so it is continuous up to that excess at
-/// the region's edge. With `connect_goal` the last leg is usually the
-/// Reeds–Shepp connection itself, which makes `kPotentialRs` matter most when
-/// the goal must be reached by the search (connect_goal = false).
+/// d_s of the goal position the heuristic is the potential plus
+/// (1 − d/d_s) times the Reeds–Shepp distance's excess over the straight-line
+/// distance d (the detour the goal heading costs, 0 when aligned), so h is
+/// continuous at the region's edge (a step there makes A* develop the band
+/// outside the region first). On the hait-heuristics problems it creates
+/// fewer nodes than kPotential with `connect_goal` (the default); without
+/// the connection it does not help there, because our potential is nearly
+/// exact near the goal and any added term raises f above that of nodes far
+/// behind (see the experiment's report).
 ///
 /// Goal (§4.2): reached by a node within `goal_position_tolerance` and
 /// `goal_heading_tolerance` of the goal, or, when `connect_goal`, by a valid

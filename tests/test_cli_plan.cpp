@@ -263,6 +263,22 @@ TEST(CliPlan, FullStageOnFlatPlaneMatchesRestToRestStraightLine) {
   EXPECT_LE(j.value("travel_time", 0.0), j.value("global_travel_time", 0.0) * (1.0 + 1e-12));
 }
 
+TEST(CliPlan, EveryAcceptedControlPointCountIsOptimised) {
+  // The largest --control-points the CLI accepts runs the local stage with
+  // that many points (it once fell back silently to the initial fit).
+  const std::string terrain = plan_flat_terrain();
+  const std::string dir = scratch_file("full_flat_m64_out");
+  const nlohmann::json j = run_plan_full_ok(
+      "--terrain " + quoted(terrain) + " --start 5,20 --goal 55,20 --vehicle " +
+          quoted(plan_vehicle("v10.yaml", 10.0)) + " --candidates 1 --control-points 64",
+      dir);
+  ASSERT_EQ(j.at("optima").size(), 1u);
+  const nlohmann::json& o = j.at("optima")[0];
+  EXPECT_EQ(o.value("control_points", 0), 64) << o.dump();
+  EXPECT_TRUE(o.at("solver_status").is_string()) << o.dump();
+  EXPECT_TRUE(o.at("optimizer_message").is_null()) << o.dump();
+}
+
 TEST(CliPlan, FullStageAroundAHillIsNoSlowerThanTheGlobalCandidates) {
   // Low friction: the slopes of the hill (up to 0.97) are out of reach.
   const std::string terrain =

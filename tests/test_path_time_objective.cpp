@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 #include "talus/core/error.hpp"
@@ -97,6 +98,39 @@ TEST(PathTimeObjective, GradientMatchesFiniteDifferencesAtRandomControlPoints) {
   EXPECT_EQ(checked, 8);
   std::printf("adjoint vs central differences: worst relative error %.2e over %d paths\n", worst,
               checked);
+}
+
+// Brakes but no drive limit, moving start and end, map coordinates of UTM
+// size: every braking arc still has its equation (no fallback), and the
+// gradient stays exact far from the origin.
+TEST(PathTimeObjective, GradientWithBrakesOnlyMovingEndsAndUtmCoordinates) {
+  const double x0 = 556000.0, y0 = 4373000.0;
+  const BPatch terrain = BPatch::interpolate(terrain_test::grid_from_function(
+      [&](double x, double y) {
+        const double dx = x - x0 - 40, dy = y - y0 - 30;
+        return 1500.0 + 8.0 * std::exp(-(dx * dx + dy * dy) / (2 * 7.0 * 7.0));
+      },
+      x0, y0, x0 + 80, y0 + 60, 1.0));
+  Vehicle v = rover(0.4);
+  v.max_accel = std::numeric_limits<double>::infinity();
+  v.max_decel = 3.0;
+  ProfileOptions speeds;
+  speeds.start_speed = 2.0;
+  speeds.end_speed = 1.0;
+  const Vec2 start(x0 + 5, y0 + 30), goal(x0 + 75, y0 + 30);
+  PathTimeObjective objective(terrain, v, start, goal, 6, 300, speeds);
+  const Eigen::VectorXd z = objective.variables({start,
+                                                 {x0 + 20, y0 + 45},
+                                                 {x0 + 35, y0 + 47},
+                                                 {x0 + 50, y0 + 46},
+                                                 {x0 + 62, y0 + 40},
+                                                 goal});
+  Eigen::VectorXd gradient;
+  ASSERT_TRUE(std::isfinite(objective.evaluate(z, &gradient)));
+  const Eigen::VectorXd fd = central_differences(objective, z, 1e-5);
+  EXPECT_LT((gradient - fd).norm() / fd.norm(), 1e-4) << gradient.transpose() << "\n"
+                                                      << fd.transpose();
+  EXPECT_EQ(objective.finite_difference_fallbacks(), 0u);
 }
 
 TEST(PathTimeObjective, OffTheMapIsInfinite) {

@@ -237,6 +237,7 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
   PathOptimizerOptions options;
   options.solver = parse_path_solver(request.solver);
   options.control_points = static_cast<std::size_t>(request.control_points);
+  options.max_control_points = std::max(options.max_control_points, options.control_points);
   options.speeds.start_speed = request.start_speed;
   options.speeds.end_speed = request.end_speed;
   TimeOptimalProfileSolver solver;
@@ -285,6 +286,8 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
     // default spacing: never report one slower than its own initial fit.
     const bool kept_initial =
         initial_path.feasible() && !(path.travel_time() <= initial_path.travel_time());
+    // Why the optimiser gave nothing, even when the initial fit stands in.
+    entry["optimizer_message"] = local ? nlohmann::json(nullptr) : nlohmann::json(failure);
     if (kept_initial) {
       path = std::move(initial_path);
       failure.clear();

@@ -91,9 +91,18 @@ double total(const nlohmann::json& summary, const char* key) {
   return sum;
 }
 
+/// Two significant digits, or "-" for a missing value.
+std::string scientific(double value) {
+  return std::isfinite(value) ? fmt("%.1e", value) : "-";
+}
+
+/// Largest per-candidate value of `key`; NaN when no candidate has one.
 double worst(const nlohmann::json& summary, const char* key) {
-  double value = 0.0;
-  for (const nlohmann::json& o : summary.at("optima")) value = std::max(value, number(o, key));
+  double value = NAN;
+  for (const nlohmann::json& o : summary.at("optima")) {
+    const double v = number(o, key);
+    if (std::isfinite(v) && !(v <= value)) value = v;
+  }
   return value;
 }
 
@@ -208,7 +217,7 @@ void run_shiller_gwo(const ExperimentContext& context) {
              << fmt("%.2f %%", number(s, "improvement_percent")) << " | "
              << fmt("%.2f", number(s.at("seconds"), "local")) << " | "
              << fmt("%.2f", number(s.at("seconds"), "total")) << " | "
-             << fmt("%.0f", total(s, "evaluations")) << " | " << fmt("%.1e", worst(s, "optimality"))
+             << fmt("%.0f", total(s, "evaluations")) << " | " << scientific(worst(s, "optimality"))
              << " |\n";
       solver_csv << "," << csv_number(number(s, "improvement_percent")) << ","
                  << csv_number(number(s.at("seconds"), "local")) << ","
@@ -225,7 +234,7 @@ void run_shiller_gwo(const ExperimentContext& context) {
                << " | " << fmt("%.2f", number(o, "travel_time")) << " | "
                << (o.at("solver_status").is_string() ? o.at("solver_status").get<std::string>()
                                                      : std::string("-"))
-               << " | " << o.value("iterations", 0) << " | " << fmt("%.1e", number(o, "optimality"))
+               << " | " << o.value("iterations", 0) << " | " << scientific(number(o, "optimality"))
                << " |\n";
       }
       report << "\nStage timings [s]: ";

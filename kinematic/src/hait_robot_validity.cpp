@@ -200,14 +200,19 @@ HaitRobotValidity::~HaitRobotValidity() = default;
 HaitRobotValidity::HaitRobotValidity(HaitRobotValidity&&) noexcept = default;
 HaitRobotValidity& HaitRobotValidity::operator=(HaitRobotValidity&&) noexcept = default;
 
+ConfigurationCheck HaitRobotValidity::check(const Impl& impl, const SE2Pose& q) {
+  if (!impl.terrain.has_data(q.position())) return {false, 0.0, 0};
+  if (impl.sampled) return impl.sampled(q);
+  return std::visit([&](const auto& r) { return impl.check(r, q); }, impl.robot);
+}
+
 ConfigurationCheck HaitRobotValidity::check(const SE2Pose& q) const {
-  if (!impl_->terrain.has_data(q.position())) return {false, 0.0, 0};
-  if (impl_->sampled) return impl_->sampled(q);
-  return std::visit([&](const auto& r) { return impl_->check(r, q); }, impl_->robot);
+  return check(*impl_, q);
 }
 
 ValidityFunction HaitRobotValidity::function() const {
-  return [this](const SE2Pose& q) { return check(q); };
+  const Impl* impl = impl_.get();
+  return [impl](const SE2Pose& q) { return check(*impl, q); };
 }
 
 double HaitRobotValidity::preprocessing_seconds() const {

@@ -133,6 +133,10 @@ SolverRun run_ipopt(TrackedObjective& objective, const BoxProblem& problem) {
   // Bounds are the terrain box: do not let Ipopt relax them off the map.
   options->SetNumericValue("bound_relax_factor", 0.0);
   options->SetStringValue("honor_original_bounds", "yes");
+  // Start at the candidate itself: by default Ipopt pushes the start up to
+  // 1 % of the box away from the bounds (tens of metres on a DEM).
+  options->SetNumericValue("bound_push", 1e-8);
+  options->SetNumericValue("bound_frac", 1e-8);
   // Never set linear_solver=ma97: Debian's Ipopt 3.11 calls exit(1) for it.
   SolverRun run;
   if (app->Initialize() != Ipopt::Solve_Succeeded) {

@@ -130,8 +130,13 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   problem.max_iterations = options.max_iterations;
   problem.max_evaluations = options.max_evaluations;
   problem.relative_tolerance = options.relative_tolerance;
-  problem.initial_step = std::max(0.1 * (initial_polyline.back() - initial_polyline.front()).norm(),
-                                  terrain.cellsize());
+  // BOBYQA's trust region must fit in the box twice over (NLopt refuses
+  // otherwise): elongated or tiny domains cap it.
+  const double narrowest = (problem.upper - problem.lower).minCoeff();
+  problem.initial_step =
+      std::min(std::max(0.1 * (initial_polyline.back() - initial_polyline.front()).norm(),
+                        terrain.cellsize()),
+               0.45 * narrowest);
 
   detail::TrackedObjective tracked(*objective);
   // The start clamped into the bounds is the solvers' first point.

@@ -156,7 +156,13 @@ double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
 double PathTimeObjective::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd* gradient) {
   if (z.size() != static_cast<long>(dimension()))
     throw InputError("PathTimeObjective: wrong number of variables");
-  const double time = travel_time(z);
+  // Solvers ask for the value and then the gradient at the same point: the
+  // workspace still holds that point's profile.
+  const bool same_point = last_valid_ && z == last_z_;
+  const double time = same_point ? last_time_ : travel_time(z);
+  last_z_ = z;
+  last_time_ = time;
+  last_valid_ = true;
   if (gradient == nullptr || !std::isfinite(time)) return time;
   ++gradient_evaluations_;
   gradient->setZero(static_cast<long>(dimension()));
@@ -209,7 +215,8 @@ void PathTimeObjective::finite_difference_gradient(const Eigen::VectorXd& z,
   Eigen::VectorXd probe = z;
   const double center = travel_time(z);
   for (long i = 0; i < z.size(); ++i) {
-    const double step = 1e-6 * std::max(1.0, std::abs(z[i]));
+    // Absolute, tied to the terrain: map coordinates can be 1e6 m (UTM).
+    const double step = 1e-5 * terrain_->cellsize();
     probe[i] = z[i] + step;
     const double plus = travel_time(probe);
     probe[i] = z[i] - step;

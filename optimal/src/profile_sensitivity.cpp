@@ -84,6 +84,8 @@ S tangent_control(const VehicleConstants& c, const S& y0, const S& beta, const S
 // Normalised residual below which a constraint counts as touched: the
 // profile solver widens its bounds by 1e-10 relative for rounding.
 constexpr double kActiveTolerance = 1e-8;
+// Relative nudge the profile solver may give a state to keep it admissible.
+constexpr double kStateNudge = 1e-9;
 
 // Relative along-line slope below which a touched friction ellipse counts as
 // tangent: the solver finds such states by bisection to 1e-13 relative, which
@@ -162,11 +164,12 @@ class Problem {
            {Kind::kFriction, Kind::kPitchUpper, Kind::kPitchLower, Kind::kDrive, Kind::kBrake}) {
         if ((kind == Kind::kPitchUpper || kind == Kind::kPitchLower) && !std::isfinite(c_.pitch))
           continue;
-        if ((kind == Kind::kDrive || kind == Kind::kBrake) && !std::isfinite(c_.drive)) continue;
+        if (kind == Kind::kDrive && !std::isfinite(c_.drive)) continue;
+        if (kind == Kind::kBrake && !std::isfinite(c_.brake)) continue;
         Equation e{kind == Kind::kFriction && exhausted ? Kind::kTractionZero : kind, station, j,
                    false};
         e.residual = residual(e);
-        if (e.residual > kActiveTolerance) continue;
+        if (e.residual > control_tolerance(j, station)) continue;
         out.push_back(e);
         if (e.kind == Kind::kFriction && tangent(j, station)) {
           e.kind = Kind::kTangentControl;
@@ -174,6 +177,15 @@ class Problem {
         }
       }
     }
+  }
+
+  /// Residual below which a control condition of step j counts as touched:
+  /// kActiveTolerance plus what the solver's relative nudges of the states
+  /// (up to 1e-9 of x, time_optimal_profile.cpp) make of the control
+  /// u = Δx / (2 Δs), in units of the station's force scale.
+  double control_tolerance(std::size_t j, std::size_t station) const {
+    const double u_nudge = kStateNudge * (x_[j] + x_[j + 1]) / (2.0 * length(j));
+    return kActiveTolerance + 2.0 * u_nudge / scale(station, control(j));
   }
 
   /// Whether step j's line touches the friction ellipse of `station` (one
@@ -248,6 +260,8 @@ bool travel_time_sensitivity(const Vehicle& vehicle, const std::vector<StationGe
     const double a = std::sqrt(problem.x(j)), b = std::sqrt(problem.x(j + 1));
     const double sum = a + b;
     if (!(sum > 0.0)) return false;
+    // A standstill inside the path makes dT/dx infinite there.
+    if ((a == 0.0 && j > 0) || (b == 0.0 && j + 2 < m)) return false;
     out.step_length[j] = 2.0 / sum;
     const double common = -problem.length(j) / (sum * sum);
     if (a > 0.0) dT_dx[j] += common / a;

@@ -78,7 +78,8 @@ class HaitRobotValidity {
   /// `placements` counts robot placements made (one per placement or table
   /// interval; under δz the interval's runs plus the placement on T_min).
   ConfigurationCheck check(const SE2Pose& q) const;
-  /// check() as a ValidityFunction (keeps a reference to *this).
+  /// check() as a ValidityFunction (keeps a pointer to the shared state, so
+  /// it stays valid when this object is moved, not when it is destroyed).
   ValidityFunction function() const;
   /// Wall-clock time of the constructor [s].
   double preprocessing_seconds() const;
@@ -91,6 +92,7 @@ class HaitRobotValidity {
 
  private:
   struct Impl;
+  static ConfigurationCheck check(const Impl& impl, const SE2Pose& q);
   std::unique_ptr<Impl> impl_;
 };
 

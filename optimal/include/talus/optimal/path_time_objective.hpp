@@ -87,6 +87,9 @@ class PathTimeObjective {
   std::vector<StationGeometry> geometry_;
   std::vector<double> arc_;
   std::size_t evaluations_ = 0, gradient_evaluations_ = 0, fallbacks_ = 0;
+  Eigen::VectorXd last_z_;  // the point the workspace holds
+  double last_time_ = 0.0;
+  bool last_valid_ = false;
 };
 
 }  // namespace talus

@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "cli_values.hpp"
 #include "hait_figures.hpp"
 #include "limits_command.hpp"
 #include "number_format.hpp"
@@ -27,47 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string trim(const std::string& text) {
-  const std::size_t begin = text.find_first_not_of(" \t");
-  if (begin == std::string::npos) return "";
-  const std::size_t end = text.find_last_not_of(" \t");
-  return text.substr(begin, end - begin + 1);
-}
-
-/// The whole of `text` as a finite double, or nothing.
-std::optional<double> parse_number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  const char* begin = text.data();
-  if (*begin == '+') ++begin;  // from_chars refuses a leading '+'
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(begin, text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    return std::nullopt;
-  }
-  return value;
-}
-
-/// `text` split at commas into exactly `count` finite numbers, or nothing.
-std::optional<std::vector<double>> parse_numbers(const std::string& text, std::size_t count) {
-  std::vector<double> values;
-  std::stringstream fields(text);
-  std::string field;
-  while (std::getline(fields, field, ',')) {
-    const std::optional<double> v = parse_number(trim(field));
-    if (!v) return std::nullopt;
-    values.push_back(*v);
-  }
-  if (values.size() != count || (!text.empty() && text.back() == ',')) return std::nullopt;
-  return values;
-}
-
-std::string format_number(double value) {
-  std::ostringstream out;
-  out.precision(15);
-  out << value;
-  return out.str();
 }
 
 std::string robot_kind(const Robot& robot) {

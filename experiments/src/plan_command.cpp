@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli_values.hpp"
 #include "limits_command.hpp"
 #include "plan_figures.hpp"
 #include "plot.hpp"
@@ -33,33 +34,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string trim(const std::string& text) {
-  const std::size_t begin = text.find_first_not_of(" \t");
-  if (begin == std::string::npos) return "";
-  const std::size_t end = text.find_last_not_of(" \t");
-  return text.substr(begin, end - begin + 1);
-}
-
-/// The whole of `text` as a finite double, or nothing.
-std::optional<double> parse_number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  const char* begin = text.data();
-  if (*begin == '+') ++begin;  // from_chars refuses a leading '+'
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(begin, text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    return std::nullopt;
-  }
-  return value;
-}
-
-std::string format_number(double value) {
-  std::ostringstream out;
-  out.precision(15);
-  out << value;
-  return out.str();
 }
 
 std::string format_point(const Vec2& p) {
@@ -448,12 +422,7 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
 }  // namespace
 
 Vec2 parse_point(const std::string& option, const std::string& text) {
-  const std::size_t comma = text.find(',');
-  if (comma != std::string::npos && text.find(',', comma + 1) == std::string::npos) {
-    const std::optional<double> x = parse_number(trim(text.substr(0, comma)));
-    const std::optional<double> y = parse_number(trim(text.substr(comma + 1)));
-    if (x && y) return Vec2(*x, *y);
-  }
+  if (const auto v = parse_numbers(text, 2)) return Vec2((*v)[0], (*v)[1]);
   throw InputError(option + " must be X,Y: two finite numbers [m] separated by a comma, got '" +
                    text + "'");
 }

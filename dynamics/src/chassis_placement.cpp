@@ -214,22 +214,31 @@ ChassisPlacement chassis_on(const Source& src, Set set, const ArticulatedChassis
   return p;
 }
 
+}  // namespace
+
+ChassisPlacementInterval ChassisPlacementInterval::around(const ChassisPlacement& nominal) {
+  const auto point = [](double v) { return Interval{v, v}; };
+  ChassisPlacementInterval out;
+  out.axle_placements = nominal.axle_placements;
+  out.status = nominal.status;
+  out.z = point(nominal.z);
+  out.roll_middle = point(nominal.roll_middle);
+  out.roll_front = point(nominal.roll_front);
+  out.roll_rear = point(nominal.roll_rear);
+  out.pitch_front = point(nominal.pitch_front);
+  out.pitch_rear = point(nominal.pitch_rear);
+  return out;
+}
+
+namespace {
+
 template <class Source>
 ChassisPlacementInterval chassis_interval(const Source& src, const ArticulatedChassis& chassis,
                                           double x, double y, double theta,
                                           const AxlePlacementOptions& opt) {
-  ChassisPlacementInterval out;
   const ChassisPlacement nom = chassis_on(src, Set::kNominal, chassis, x, y, theta, opt);
-  out.axle_placements = nom.axle_placements;
-  out.status = nom.status;
+  ChassisPlacementInterval out = ChassisPlacementInterval::around(nom);
   if (!usable(nom.status)) return out;
-  const auto point = [](double v) { return Interval{v, v}; };
-  out.z = point(nom.z);
-  out.roll_middle = point(nom.roll_middle);
-  out.roll_front = point(nom.roll_front);
-  out.roll_rear = point(nom.roll_rear);
-  out.pitch_front = point(nom.pitch_front);
-  out.pitch_rear = point(nom.pitch_rear);
 
   // Middle axle: z from both wheels on T_min / T_max, φ from crossed wheels.
   const auto axle_at = [&](Set set, const Vec2& c) {

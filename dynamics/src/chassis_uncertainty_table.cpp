@@ -240,20 +240,11 @@ AxleBounds ChassisUncertaintyTable::axle_bounds(double x, double y, double theta
 
 ChassisPlacementInterval ChassisUncertaintyTable::place_interval(double x, double y,
                                                                  double theta) const {
-  ChassisPlacementInterval out;
   const ArticulatedChassis& ch = base_.chassis();
   const AxlePlacementOptions& opt = base_.axle_options();
   const ChassisPlacement nom = base_.place(x, y, theta);
-  out.axle_placements = nom.axle_placements;
-  out.status = nom.status;
+  ChassisPlacementInterval out = ChassisPlacementInterval::around(nom);
   if (!usable(nom.status)) return out;
-  const auto point = [](double v) { return Interval{v, v}; };
-  out.z = point(nom.z);
-  out.roll_middle = point(nom.roll_middle);
-  out.roll_front = point(nom.roll_front);
-  out.roll_rear = point(nom.roll_rear);
-  out.pitch_front = point(nom.pitch_front);
-  out.pitch_rear = point(nom.pitch_rear);
 
   const AxleBounds mid = axle_bounds(x, y, theta);
   ++out.axle_placements;

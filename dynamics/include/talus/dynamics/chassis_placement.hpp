@@ -111,6 +111,9 @@ struct ChassisPlacementInterval {
   Interval roll_front, roll_middle, roll_rear;  ///< φ_F, φ_M, φ_R [rad]
   Interval pitch_front, pitch_rear;             ///< ψ_F, ψ_R [rad]
   int axle_placements = 0;
+  /// The zero-width interval of one placement: where every uncertain
+  /// interval starts, so that it always holds the nominal placement.
+  static ChassisPlacementInterval around(const ChassisPlacement& nominal);
 };
 
 /// §5.1.1 directly on the terrains: z_M from both wheels on T_min / T_max; φ

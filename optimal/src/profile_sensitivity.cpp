@@ -251,8 +251,6 @@ bool travel_time_sensitivity(const Vehicle& vehicle, const std::vector<StationGe
   const Problem problem(vehicle, geometry, s, speeds);
   out.geometry.assign(m, {0.0, 0.0, 0.0, 0.0, 0.0});
   out.step_length.assign(m - 1, 0.0);
-  out.max_residual = 0.0;
-  out.pinned_stations = 0;
 
   // Direct partials of T.
   std::vector<double> dT_dx(m, 0.0);
@@ -278,10 +276,7 @@ bool travel_time_sensitivity(const Vehicle& vehicle, const std::vector<StationGe
   std::vector<Equation> equations;
   for (std::size_t k = 1; k + 1 < m; ++k) {
     const Equation e = problem.best_speed_equation(k);
-    if (e.residual <= kActiveTolerance) {
-      equations.push_back(e);
-      ++out.pinned_stations;
-    }
+    if (e.residual <= kActiveTolerance) equations.push_back(e);
   }
   for (std::size_t j = 0; j + 1 < m; ++j) problem.active_step_equations(j, equations);
   const std::size_t n = m - 2;  // interior states x_1 .. x_{m-2} are the unknowns
@@ -295,7 +290,6 @@ bool travel_time_sensitivity(const Vehicle& vehicle, const std::vector<StationGe
   };
   for (std::size_t r = 0; r < equations.size(); ++r) {
     const Equation& e = equations[r];
-    out.max_residual = std::max(out.max_residual, e.residual);
     derivatives.push_back(problem.differentiate(e));
     const auto& d = derivatives.back().derivatives();
     const std::size_t first = e.speed_only ? e.station : e.step;

@@ -32,9 +32,6 @@ namespace talus::detail {
 struct TravelTimeSensitivity {
   std::vector<std::array<double, 5>> geometry;
   std::vector<double> step_length;
-  /// Largest normalised residual among the constraints used as equations.
-  double max_residual = 0.0;
-  std::size_t pinned_stations = 0;  ///< stations on the limit curve
 };
 
 /// Sensitivity of T = Σ 2 Δs_j / (ṡ_j + ṡ_{j+1}) for the time-optimal

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "slice_stencil.hpp"
 #include "talus/core/error.hpp"
 
 namespace talus {
@@ -452,33 +453,18 @@ AxlePlacement ChassisPlacementTable::axle(Set set, double x, double y, double th
     throw InputError("ChassisPlacementTable: surface set " + std::to_string(si) +
                      " needs a table built with terrain_uncertainty > 0");
   const Surfaces& surf = sets_[si];
-  const PatchLocation loc = terrain_.locate(p);
-  const std::size_t nc = terrain_.grid().ncols(), nr = terrain_.grid().nrows();
-  const double turns = theta / (2.0 * kPi);
-  const double s = (turns - std::floor(turns)) * slices_;
-  int k0 = static_cast<int>(std::floor(s));
-  const double t = s - k0;
-  k0 %= slices_;
-  const int k1 = (k0 + 1) % slices_;
-  const double a = loc.a, b = loc.b;
-  const double w[4] = {(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
+  const detail::SliceStencil st = detail::slice_stencil(terrain_, slices_, p, theta);
   out.status = PlacementStatus::kConverged;
   double z[2] = {0, 0}, r[2] = {0, 0};
-  const int nslice = t > 0.0 ? 2 : 1;
-  for (int q = 0; q < nslice; ++q) {
-    const std::size_t base = static_cast<std::size_t>(q == 0 ? k0 : k1) * nr * nc;
-    const std::size_t idx[4] = {base + loc.j * nc + loc.i, base + loc.j * nc + loc.i + 1,
-                                base + (loc.j + 1) * nc + loc.i,
-                                base + (loc.j + 1) * nc + loc.i + 1};
-    for (int c = 0; c < 4; ++c) {
-      out.status = worse(out.status, static_cast<PlacementStatus>(surf.status[idx[c]]));
-      z[q] += w[c] * surf.z[idx[c]];
-      r[q] += w[c] * surf.roll[idx[c]];
-    }
+  for (int q = 0; q < st.slices; ++q) {
+    for (const std::size_t i : st.index[q])
+      out.status = worse(out.status, static_cast<PlacementStatus>(surf.status[i]));
+    z[q] = st.blend(surf.z, q);
+    r[q] = st.blend(surf.roll, q);
   }
   if (!usable(out.status)) return out;
-  out.z = nslice == 2 ? (1 - t) * z[0] + t * z[1] : z[0];
-  out.roll = nslice == 2 ? (1 - t) * r[0] + t * r[1] : r[0];
+  out.z = st.in_theta(z);
+  out.roll = st.in_theta(r);
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "slice_stencil.hpp"
 #include "talus/core/error.hpp"
 
 namespace talus {
@@ -203,36 +204,20 @@ AxleBounds ChassisUncertaintyTable::axle_bounds(double x, double y, double theta
   const RuledTerrain& terrain = base_.terrain();
   const Vec2 p(x, y);
   if (!terrain.contains(p) || !std::isfinite(theta)) return out;  // kOffMap
-  const PatchLocation loc = terrain.locate(p);
-  const std::size_t nc = terrain.grid().ncols(), nr = terrain.grid().nrows();
-  const int n_slices = base_.slices();
-  const double turns = theta / (2.0 * kPi);
-  const double s = (turns - std::floor(turns)) * n_slices;
-  int k0 = static_cast<int>(std::floor(s));
-  const double t = s - k0;
-  k0 %= n_slices;
-  const int k1 = (k0 + 1) % n_slices;
-  const double a = loc.a, b = loc.b;
-  const double w[4] = {(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
-  const int nslice = t > 0.0 ? 2 : 1;
-  double v[2][4] = {};  // [slice][z_lo, z_hi, roll_lo, roll_hi]
+  const detail::SliceStencil st = detail::slice_stencil(terrain, base_.slices(), p, theta);
+  double v[4][2] = {};  // [z_lo, z_hi, roll_lo, roll_hi][slice]
   out.status = PlacementStatus::kConverged;
-  for (int q = 0; q < nslice; ++q) {
-    const std::size_t base = static_cast<std::size_t>(q == 0 ? k0 : k1) * nr * nc;
-    const std::size_t idx[4] = {base + loc.j * nc + loc.i, base + loc.j * nc + loc.i + 1,
-                                base + (loc.j + 1) * nc + loc.i,
-                                base + (loc.j + 1) * nc + loc.i + 1};
-    for (int c = 0; c < 4; ++c) {
-      out.status = worse(out.status, static_cast<PlacementStatus>(status_[idx[c]]));
-      v[q][0] += w[c] * z_lo_[idx[c]];
-      v[q][1] += w[c] * z_hi_[idx[c]];
-      v[q][2] += w[c] * roll_lo_[idx[c]];
-      v[q][3] += w[c] * roll_hi_[idx[c]];
-    }
+  for (int q = 0; q < st.slices; ++q) {
+    for (const std::size_t i : st.index[q])
+      out.status = worse(out.status, static_cast<PlacementStatus>(status_[i]));
+    v[0][q] = st.blend(z_lo_, q);
+    v[1][q] = st.blend(z_hi_, q);
+    v[2][q] = st.blend(roll_lo_, q);
+    v[3][q] = st.blend(roll_hi_, q);
   }
   if (!usable(out.status)) return out;
   double r[4];
-  for (int m = 0; m < 4; ++m) r[m] = nslice == 2 ? (1 - t) * v[0][m] + t * v[1][m] : v[0][m];
+  for (int m = 0; m < 4; ++m) r[m] = st.in_theta(v[m]);
   out.z = {r[0], r[1]};
   out.roll = {r[2], r[3]};
   return out;

@@ -15,6 +15,7 @@
 #include "limits_command.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
+#include "stopwatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
@@ -23,12 +24,6 @@
 
 namespace talus::experiments {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string robot_kind(const Robot& robot) {
   return std::holds_alternative<WheeledRobot>(robot) ? "wheeled" : "articulated_chassis";

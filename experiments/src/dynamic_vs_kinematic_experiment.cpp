@@ -12,6 +12,7 @@
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
+#include "stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/curve_fit.hpp"
 #include "talus/bspline/surface_path.hpp"
@@ -27,12 +28,7 @@
 namespace talus::experiments {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// The point mass matched to marsokhod_chassis.yaml: half track = the axle
 /// half width l, centre of mass 0.35 m up, rover-like drive and speed limits.

@@ -14,6 +14,7 @@
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
+#include "stopwatch.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/dynamics/chassis_placement.hpp"
 #include "talus/kinematic/hait_robot_validity.hpp"
@@ -21,12 +22,6 @@
 
 namespace talus::experiments {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// One measured terrain.
 struct Sample {

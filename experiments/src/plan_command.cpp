@@ -16,6 +16,7 @@
 #include "limits_command.hpp"
 #include "plan_figures.hpp"
 #include "plot.hpp"
+#include "stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/curve_fit.hpp"
 #include "talus/bspline/surface_path.hpp"
@@ -29,12 +30,6 @@
 
 namespace talus::experiments {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string format_point(const Vec2& p) {
   return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ")";

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "limits_command.hpp"
+#include "stopwatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
@@ -16,12 +17,6 @@
 
 namespace talus::experiments {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 void check_speed_option(const char* option, double speed) {
   if (!(std::isfinite(speed) && speed >= 0.0)) {

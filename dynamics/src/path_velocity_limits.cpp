@@ -4,9 +4,7 @@
 
 namespace talus {
 
-VelocityLimits::VelocityLimits(const Vehicle& vehicle) : vehicle_(vehicle) {
-  vehicle_.validate();
-}
+VelocityLimits::VelocityLimits(const Vehicle& vehicle) : vehicle_(vehicle), set_(vehicle_) {}
 
 VelocityLimits::VelocityLimits(const Vehicle& vehicle, const SurfacePath& path,
                                std::size_t stations)
@@ -31,7 +29,7 @@ void VelocityLimits::compute_limits() {
   limits_.resize(stations);
   for (std::size_t k = 0; k < stations; ++k) {
     geometry_[k] = StationGeometry::from(frames_[k]);
-    limits_[k] = speed_limits(vehicle_, geometry_[k]);
+    limits_[k] = set_.speed_limits(geometry_[k]);
   }
 }
 

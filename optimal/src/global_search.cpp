@@ -11,7 +11,7 @@
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/graph_search.hpp"
-#include "talus/dynamics/velocity_limits.hpp"
+#include "talus/dynamics/admissible_set.hpp"
 
 namespace talus {
 namespace {
@@ -24,31 +24,25 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// both: driving forwards a_max = W_drive − g k_t and a_min = −W_brake − g k_t,
 /// backwards the sign of k_t flips. The forces are monotone in ṡ² (R and f_q
 /// are affine in it), so the extremes sit at the ends of the admissible
-/// speeds; the midpoint is checked too for the rigid body's pitch limit.
+/// speeds (the vehicle's traction conditions are linear in R too).
 struct TangentialForces {
   double drive = -kInf, brake = -kInf;
 };
 
-TangentialForces tangential_forces(const Vehicle& vehicle, const StationGeometry& g,
-                                   const SpeedLimits& l) {
+TangentialForces tangential_forces(const AdmissibleSet& set, const StationGeometry& g,
+                                   const SquaredSpeedInterval& window) {
   TangentialForces out;
-  const double pitch_ratio =
-      vehicle.model == VehicleModel::kRigidBody ? vehicle.half_wheelbase / vehicle.cg_height : kInf;
-  for (const double v : {l.v_min, l.v_max}) {
-    const double x = v * v;
-    const double normal = std::max(vehicle.gravity * g.k_r + g.kappa_n * x, 0.0);
-    const double lateral = vehicle.gravity * g.k_q + g.kappa_g * x;
-    const double friction = vehicle.friction * normal;
-    const double width = std::min(std::sqrt(std::max(friction * friction - lateral * lateral, 0.0)),
-                                  pitch_ratio * normal);
-    out.drive = std::max(out.drive, std::min(width, vehicle.max_accel));
-    out.brake = std::max(out.brake, std::min(width, vehicle.max_decel));
+  for (const double x : {window.lower, window.upper}) {
+    const TangentialForceRange f = set.tangential_forces(g, x);
+    out.drive = std::max(out.drive, f.upper);
+    out.brake = std::max(out.brake, -f.lower);
   }
   return out;
 }
 
-EdgeCost edge_cost_impl(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a, const Vec2& b,
-                        int stations, const SurfacePoint* at_a, const SurfacePoint* at_b) {
+EdgeCost edge_cost_impl(const BPatch& terrain, const AdmissibleSet& set, const Vec2& a,
+                        const Vec2& b, int stations, const SurfacePoint* at_a,
+                        const SurfacePoint* at_b) {
   const Vec2 d1 = b - a;
   EdgeCost out;
   double forward_sum = 0.0;
@@ -62,18 +56,15 @@ EdgeCost edge_cost_impl(const BPatch& terrain, const Vehicle& vehicle, const Vec
                                                           : terrain.evaluate(p);
     const PathFrame f = lift_to_surface(p, sp, d1, Vec2::Zero());
     const StationGeometry g = StationGeometry::from(f);
-    const SquaredSpeedInterval window = admissible_squared_speeds(vehicle, g);
+    const SquaredSpeedInterval window = set.squared_speeds(g);
     if (window.empty() || !(window.upper > 0.0)) return {kInf, kInf, kInf};
-    SpeedLimits l;
-    l.v_min = std::sqrt(window.lower);
-    l.v_max = std::sqrt(window.upper);
     // Simpson weights 1, 4, 2, 4, ..., 4, 1 (stations is odd).
     const double w = (k == 0 || k == stations - 1) ? 1.0 : (k % 2 ? 4.0 : 2.0);
-    forward_sum += w * f.speed / l.v_max;
+    forward_sum += w * f.speed / std::sqrt(window.upper);
     out.length += w * f.speed;
     // Forwards: cannot climb if W_drive < g k_t, cannot stop if W_brake < −g k_t.
-    const TangentialForces forces = tangential_forces(vehicle, g, l);
-    const double weight = vehicle.gravity * g.k_t;
+    const TangentialForces forces = tangential_forces(set, g, window);
+    const double weight = set.gravity() * g.k_t;
     if (forces.drive < weight || forces.brake < -weight) forward_ok = false;
     if (forces.drive < -weight || forces.brake < weight) backward_ok = false;
   }
@@ -118,11 +109,8 @@ std::vector<std::pair<int, int>> neighbour_offsets(int connectivity) {
 /// The lattice with lazily computed, cached edge costs in both directions.
 class Lattice {
  public:
-  Lattice(const BPatch& terrain, const Vehicle& vehicle, double spacing, int connectivity)
-      : terrain_(terrain),
-        vehicle_(vehicle),
-        spacing_(spacing),
-        offsets_(neighbour_offsets(connectivity)) {
+  Lattice(const BPatch& terrain, const AdmissibleSet& set, double spacing, int connectivity)
+      : terrain_(terrain), set_(set), spacing_(spacing), offsets_(neighbour_offsets(connectivity)) {
     origin_ = Vec2(terrain.x_min(), terrain.y_min());
     nx_ =
         static_cast<std::size_t>(std::floor((terrain.x_max() - terrain.x_min()) / spacing + 1e-9)) +
@@ -198,7 +186,7 @@ class Lattice {
       EdgeCost c{kInf, kInf, kInf};
       if (on_data_[a] && on_data_[b]) {
         const Vec2 pa = position(a), pb = position(b);
-        c = edge_cost_impl(terrain_, vehicle_, pa, pb, stations_for((pb - pa).norm()), &surface_[a],
+        c = edge_cost_impl(terrain_, set_, pa, pb, stations_for((pb - pa).norm()), &surface_[a],
                            &surface_[b]);
       }
       forward_[slot] = c.forward;
@@ -209,7 +197,7 @@ class Lattice {
   }
 
   const BPatch& terrain_;
-  const Vehicle& vehicle_;
+  const AdmissibleSet& set_;
   double spacing_;
   std::vector<std::pair<int, int>> offsets_;
   std::size_t half_ = 0, nx_ = 0, ny_ = 0;
@@ -221,14 +209,14 @@ class Lattice {
 };
 
 /// 3-D length on the surface of a lattice polyline, by the edges' own quadrature.
-double surface_length(const BPatch& terrain, const Vehicle& vehicle,
+double surface_length(const BPatch& terrain, const AdmissibleSet& set,
                       const std::vector<Vec2>& vertices, double spacing) {
   double length = 0.0;
   for (std::size_t k = 0; k + 1 < vertices.size(); ++k) {
     const Vec2 a = vertices[k], b = vertices[k + 1];
-    length += edge_cost_impl(terrain, vehicle, a, b, edge_stations((b - a).norm(), spacing),
-                             nullptr, nullptr)
-                  .length;
+    length +=
+        edge_cost_impl(terrain, set, a, b, edge_stations((b - a).norm(), spacing), nullptr, nullptr)
+            .length;
   }
   return length;
 }
@@ -286,7 +274,7 @@ EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a,
     throw InputError("edge_cost: stations must be odd and >= 3");
   if (!terrain.contains(a) || !terrain.contains(b))
     throw InputError("edge_cost: edge leaves the terrain");
-  return edge_cost_impl(terrain, vehicle, a, b, stations, nullptr, nullptr);
+  return edge_cost_impl(terrain, AdmissibleSet(vehicle), a, b, stations, nullptr, nullptr);
 }
 
 GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
@@ -318,7 +306,8 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
 
   const double spacing =
       options.lattice_spacing > 0.0 ? options.lattice_spacing : terrain.cellsize();
-  Lattice lattice(terrain, vehicle, spacing, options.connectivity);
+  const AdmissibleSet set(vehicle);
+  Lattice lattice(terrain, set, spacing, options.connectivity);
   GlobalSearchResult result;
   result.nodes = lattice.size();
   result.nx = lattice.nx();
@@ -378,7 +367,7 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
       CandidatePath candidate;
       for (std::uint32_t id : tree.path_to(g)) candidate.vertices.push_back(lattice.position(id));
       candidate.cost_seconds = tree.cost[g];
-      candidate.length_m = surface_length(terrain, vehicle, candidate.vertices, spacing);
+      candidate.length_m = surface_length(terrain, set, candidate.vertices, spacing);
       result.candidates.push_back(std::move(candidate));
       result.status = GlobalSearchStatus::kOk;
       result.reachable_nodes = tree.expanded;
@@ -461,7 +450,7 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
     CandidatePath candidate;
     for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
     candidate.cost_seconds = from_start.cost[node] + to_goal.cost[node];
-    candidate.length_m = surface_length(terrain, vehicle, candidate.vertices, spacing);
+    candidate.length_m = surface_length(terrain, set, candidate.vertices, spacing);
     result.candidates.push_back(std::move(candidate));
     if (result.candidates.size() < options.candidates) {
       distance_maps.push_back(chamfer_distance(ids, lattice.nx(), lattice.ny(), spacing));

@@ -17,50 +17,43 @@ namespace {
 using Ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 8, 1>>;
 
 enum class Kind {
-  kLateralPlus,   // λ R − Q >= 0 (λ = min(μ, b/h)): a speed condition
-  kLateralMinus,  // λ R + Q >= 0
-  kMaxSpeed,      // v_max² − x >= 0
-  kFriction,      // μ² R² − f_t² − f_q² >= 0
-  kTractionZero,  // f_t = 0: friction on a station whose lateral friction is exhausted
-  kPitchUpper,    // (l/h) R − f_t >= 0
-  kPitchLower,    // (l/h) R + f_t >= 0
-  kDrive,         // max_accel − f_t >= 0
-  kBrake,         // max_decel + f_t >= 0
+  kLateralPlus,     // λ R − Q >= 0 (λ: the vehicle's lateral envelope): a speed condition
+  kLateralMinus,    // λ R + Q >= 0
+  kSpeedCondition,  // a speed condition of the vehicle the envelope does not imply
+  kMaxSpeed,        // v_max² − x >= 0
+  kFriction,        // μ² R² − f_t² − f_q² >= 0
+  kTractionZero,    // f_t = 0: friction on a station whose lateral friction is exhausted
+  kTraction,        // a traction condition of the vehicle (pitch-over, drive, brake)
   // u = the double root where the step's line x = y0 + β u touches the
   // friction ellipse of the far station: the discrete limit curve (the
   // largest state from which some control is admissible at both ends).
   kTangentControl,
 };
 
-constexpr std::array<Kind, 3> kSpeedKinds{Kind::kLateralPlus, Kind::kLateralMinus, Kind::kMaxSpeed};
-
 /// Constraint value at a station with state x, step control u and geometry
-/// (κ_n, κ_g, k_t, k_q, k_r) = G; one source for double and AutoDiff.
+/// (κ_n, κ_g, k_t, k_q, k_r) = G; `condition` for kSpeedCondition and
+/// kTraction. One source for double and AutoDiff.
 template <typename S>
-S constraint(Kind kind, const VehicleConstants& c, double max_speed_squared, const S& x, const S& u,
-             const S* G) {
-  const S R = c.g * G[4] + G[0] * x;
-  const S Q = c.g * G[3] + G[1] * x;
-  const S F = u + c.g * G[2];
+S constraint(Kind kind, const ForceCondition* condition, const AdmissibleSet& c,
+             double max_speed_squared, const S& x, const S& u, const S* G) {
+  const double g = c.gravity();
+  const S R = g * G[4] + G[0] * x;
+  const S Q = g * G[3] + G[1] * x;
+  const S F = u + g * G[2];
   switch (kind) {
     case Kind::kLateralPlus:
-      return c.lateral * R - Q;
+      return c.lateral_ratio() * R - Q;
     case Kind::kLateralMinus:
-      return c.lateral * R + Q;
+      return c.lateral_ratio() * R + Q;
     case Kind::kMaxSpeed:
       return max_speed_squared - x;
     case Kind::kFriction:
-      return c.mu * c.mu * R * R - F * F - Q * Q;
+      return c.friction() * c.friction() * R * R - F * F - Q * Q;
     case Kind::kTractionZero:
       return F;
-    case Kind::kPitchUpper:
-      return c.pitch * R - F;
-    case Kind::kPitchLower:
-      return c.pitch * R + F;
-    case Kind::kDrive:
-      return c.drive - F;
-    case Kind::kBrake:
-      return c.brake + F;
+    case Kind::kSpeedCondition:
+    case Kind::kTraction:
+      return condition->r * R + condition->q * Q + condition->t * F + condition->c;
     case Kind::kTangentControl:
       break;  // needs the line: tangent_control()
   }
@@ -71,11 +64,12 @@ S constraint(Kind kind, const VehicleConstants& c, double max_speed_squared, con
 /// A u² + B u + K <= 0 (as in step_controls.hpp); returns u + B / (2 A),
 /// zero at the double root.
 template <typename S>
-S tangent_control(const VehicleConstants& c, const S& y0, const S& beta, const S& u, const S* G) {
-  const S R0 = c.g * G[4] + G[0] * y0, R1 = G[0] * beta;
-  const S Q0 = c.g * G[3] + G[1] * y0, Q1 = G[1] * beta;
-  const S T0 = c.g * G[2];
-  const double m2 = c.mu * c.mu;
+S tangent_control(const AdmissibleSet& c, const S& y0, const S& beta, const S& u, const S* G) {
+  const double g = c.gravity();
+  const S R0 = g * G[4] + G[0] * y0, R1 = G[0] * beta;
+  const S Q0 = g * G[3] + G[1] * y0, Q1 = G[1] * beta;
+  const S T0 = g * G[2];
+  const double m2 = c.friction() * c.friction();
   const S A = 1.0 + Q1 * Q1 - m2 * R1 * R1;
   const S B = 2.0 * (T0 + Q0 * Q1 - m2 * R0 * R1);
   return u + B / (2.0 * A);
@@ -98,13 +92,14 @@ struct Equation {
   std::size_t step = 0;     // for control conditions: the step j (states j, j + 1)
   bool speed_only = true;   // a speed condition pins `station` alone
   double residual = std::numeric_limits<double>::infinity();
+  const ForceCondition* condition = nullptr;  // kSpeedCondition, kTraction
 };
 
 class Problem {
  public:
   Problem(const Vehicle& vehicle, const std::vector<StationGeometry>& geometry,
           const std::vector<double>& s, const std::vector<double>& speeds)
-      : c_(vehicle), vmax2_(vehicle.max_speed * vehicle.max_speed), geometry_(geometry), s_(s) {
+      : c_(vehicle), vmax2_(c_.max_speed() * c_.max_speed()), geometry_(geometry), s_(s) {
     x_.resize(speeds.size());
     for (std::size_t k = 0; k < speeds.size(); ++k) x_[k] = speeds[k] * speeds[k];
   }
@@ -124,21 +119,22 @@ class Problem {
   /// derivative, so the equation used is f_t = 0 itself.
   bool friction_exhausted(std::size_t k) const {
     const auto G = g(k);
-    const double R = c_.g * G[4] + G[0] * x_[k], Q = c_.g * G[3] + G[1] * x_[k];
-    return std::abs(c_.mu * R - std::abs(Q)) <= 1e-8 * scale(k, 0.0);
+    const double R = c_.gravity() * G[4] + G[0] * x_[k], Q = c_.gravity() * G[3] + G[1] * x_[k];
+    return std::abs(c_.friction() * R - std::abs(Q)) <= 1e-8 * scale(k, 0.0);
   }
 
   double scale(std::size_t k, double u) const {
     const auto G = g(k);
-    return c_.g + std::abs(G[0] * x_[k]) + std::abs(G[1] * x_[k]) + std::abs(u) +
-           std::abs(c_.g * G[2]);
+    return c_.gravity() + std::abs(G[0] * x_[k]) + std::abs(G[1] * x_[k]) + std::abs(u) +
+           std::abs(c_.gravity() * G[2]);
   }
 
   /// Normalised |value| of a constraint as an equation.
   double residual(const Equation& e) const {
     const auto G = g(e.station);
     const double u = e.speed_only ? 0.0 : control(e.step);
-    const double value = constraint<double>(e.kind, c_, vmax2_, x_[e.station], u, G.data());
+    const double value =
+        constraint<double>(e.kind, e.condition, c_, vmax2_, x_[e.station], u, G.data());
     const double sc = scale(e.station, u);
     if (e.kind == Kind::kMaxSpeed) return std::abs(value) / std::max(vmax2_, 1e-300);
     return std::abs(value) / (e.kind == Kind::kFriction ? sc * sc : sc);
@@ -147,35 +143,36 @@ class Problem {
   /// The best speed condition pinning station k.
   Equation best_speed_equation(std::size_t k) const {
     Equation best;
-    for (Kind kind : kSpeedKinds) {
-      if (kind == Kind::kMaxSpeed && !std::isfinite(vmax2_)) continue;
-      Equation e{kind, k, 0, true};
+    const auto consider = [&](Equation e) {
       e.residual = residual(e);
       if (e.residual < best.residual) best = e;
-    }
+    };
+    consider({Kind::kLateralPlus, k, 0, true});
+    consider({Kind::kLateralMinus, k, 0, true});
+    for (const ForceCondition& c : c_.extra_speed_conditions())
+      consider({Kind::kSpeedCondition, k, 0, true, 0.0, &c});
+    if (std::isfinite(vmax2_)) consider({Kind::kMaxSpeed, k, 0, true});
     return best;
   }
 
-  /// Appends the control conditions step j touches, at either end.
+  /// Appends the control conditions step j touches, at either end: the
+  /// friction ellipse (or f_t = 0 where it is exhausted, plus the tangent
+  /// condition where the step's line touches it), then the vehicle's
+  /// traction conditions.
   void active_step_equations(std::size_t j, std::vector<Equation>& out) const {
     for (std::size_t station : {j, j + 1}) {
-      const bool exhausted = friction_exhausted(station);
-      for (Kind kind :
-           {Kind::kFriction, Kind::kPitchUpper, Kind::kPitchLower, Kind::kDrive, Kind::kBrake}) {
-        if ((kind == Kind::kPitchUpper || kind == Kind::kPitchLower) && !std::isfinite(c_.pitch))
-          continue;
-        if (kind == Kind::kDrive && !std::isfinite(c_.drive)) continue;
-        if (kind == Kind::kBrake && !std::isfinite(c_.brake)) continue;
-        Equation e{kind == Kind::kFriction && exhausted ? Kind::kTractionZero : kind, station, j,
-                   false};
+      const auto add = [&](Equation e) {
         e.residual = residual(e);
-        if (e.residual > control_tolerance(j, station)) continue;
+        if (e.residual > control_tolerance(j, station)) return;
         out.push_back(e);
         if (e.kind == Kind::kFriction && tangent(j, station)) {
           e.kind = Kind::kTangentControl;
           out.push_back(e);
         }
-      }
+      };
+      add({friction_exhausted(station) ? Kind::kTractionZero : Kind::kFriction, station, j, false});
+      for (const ForceCondition& c : c_.traction_conditions())
+        add({Kind::kTraction, station, j, false, 0.0, &c});
     }
   }
 
@@ -197,9 +194,9 @@ class Problem {
     const bool far_end = station == j + 1;
     const double y0 = far_end ? x_[j] : x_[j + 1];
     const double beta = (far_end ? 2.0 : -2.0) * length(j);
-    const double R0 = c_.g * G[4] + G[0] * y0, R1 = G[0] * beta;
-    const double Q0 = c_.g * G[3] + G[1] * y0, Q1 = G[1] * beta;
-    const double T0 = c_.g * G[2], m2 = c_.mu * c_.mu;
+    const double R0 = c_.gravity() * G[4] + G[0] * y0, R1 = G[0] * beta;
+    const double Q0 = c_.gravity() * G[3] + G[1] * y0, Q1 = G[1] * beta;
+    const double T0 = c_.gravity() * G[2], m2 = c_.friction() * c_.friction();
     const double A = 1.0 + Q1 * Q1 - m2 * R1 * R1;
     const double B = 2.0 * (T0 + Q0 * Q1 - m2 * R0 * R1);
     const double slope = 2.0 * A * u + B;  // d/du of the ellipse along the line
@@ -227,11 +224,11 @@ class Problem {
       const Ad beta = (far_end ? 2.0 : -2.0) * vars[2];
       return tangent_control<Ad>(c_, far_end ? vars[0] : vars[1], beta, u, vars + 3);
     }
-    return constraint<Ad>(e.kind, c_, vmax2_, x, u, vars + 3);
+    return constraint<Ad>(e.kind, e.condition, c_, vmax2_, x, u, vars + 3);
   }
 
  private:
-  VehicleConstants c_;
+  AdmissibleSet c_;
   double vmax2_;
   const std::vector<StationGeometry>& geometry_;
   const std::vector<double>& s_;

@@ -14,7 +14,6 @@ constexpr double kMergeDistance = 1e-9;  // [m]: stations closer than this are o
 
 using detail::admissible_controls;
 using detail::ControlInterval;
-using detail::VehicleConstants;
 
 ControlInterval intersect(ControlInterval a, const ControlInterval& b) {
   a.intersect(b.lower, b.upper);
@@ -23,7 +22,7 @@ ControlInterval intersect(ControlInterval a, const ControlInterval& b) {
 
 /// One step between kept stations j and j+1, with its constant geometry.
 struct Step {
-  const VehicleConstants& c;
+  const AdmissibleSet& c;
   const StationGeometry& from;
   const StationGeometry& to;
   double length;
@@ -98,7 +97,7 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
   options.validate();
   const std::size_t n = limits.size();
   if (n < 2) throw InputError("a velocity profile needs at least 2 stations");
-  const VehicleConstants constants(limits.vehicle());
+  const AdmissibleSet& constants = limits.admissible_set();
 
   out = TimeOptimalProfile{};
   out.s.resize(n);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "talus/bspline/surface_path.hpp"
+#include "talus/dynamics/admissible_set.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
 
@@ -26,6 +27,8 @@ class VelocityLimits {
   void compute(const std::vector<PathFrame>& frames);
 
   const Vehicle& vehicle() const { return vehicle_; }
+  /// The vehicle's admissible (ṡ², s̈) set, built once: what the optimiser asks.
+  const AdmissibleSet& admissible_set() const { return set_; }
   std::size_t size() const { return frames_.size(); }
   const PathFrame& frame(std::size_t station) const { return frames_[station]; }
   const StationGeometry& geometry(std::size_t station) const { return geometry_[station]; }
@@ -35,7 +38,7 @@ class VelocityLimits {
 
   /// [a_min, a_max] at `station` moving at `speed` [m/s]. O(1), no allocation.
   AccelerationBounds acceleration_bounds(std::size_t station, double speed) const {
-    return talus::acceleration_bounds(vehicle_, geometry_[station], speed);
+    return set_.acceleration_bounds(geometry_[station], speed);
   }
 
   /// Index of the first station that no speed can pass, or size() if none.
@@ -45,6 +48,7 @@ class VelocityLimits {
   void compute_limits();
 
   Vehicle vehicle_;
+  AdmissibleSet set_;
   std::vector<PathFrame> frames_;
   std::vector<StationGeometry> geometry_;
   std::vector<SpeedLimits> limits_;

@@ -81,12 +81,16 @@ struct SpeedLimits {
   SquaredSpeedInterval sliding, tipover, contact;
 };
 
+// The three queries below are one-off conveniences: each builds the vehicle's
+// AdmissibleSet (admissible_set.hpp, which holds the physics of every vehicle
+// model) and validates the vehicle; loops should build that set once.
+
 /// Speed limits of `vehicle` at a station with geometry `g`. O(1).
 SpeedLimits speed_limits(const Vehicle& vehicle, const StationGeometry& g);
 
 /// The admissible interval of ṡ² alone, without the per-constraint breakdown
-/// and bindings of speed_limits() (same interval, about half the cost): for
-/// hot loops such as lattice edge costs. Empty when not traversable.
+/// and bindings of speed_limits() (same interval, about half the cost).
+/// Empty when not traversable.
 SquaredSpeedInterval admissible_squared_speeds(const Vehicle& vehicle, const StationGeometry& g);
 
 /// Admissible tangential accelerations s̈ at one station and speed.

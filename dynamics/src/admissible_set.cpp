@@ -1,0 +1,355 @@
+#include "talus/dynamics/admissible_set.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "talus/dynamics/vehicle_physics.hpp"
+
+namespace talus {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kCurvatureEpsilon = 1e-12;  // [1/m]: see velocity_limits.hpp
+
+/// {x >= 0 : alpha x + beta >= 0}.
+SquaredSpeedInterval linear_condition(double alpha, double beta) {
+  if (std::abs(alpha) < kCurvatureEpsilon) alpha = 0.0;
+  SquaredSpeedInterval out;
+  if (alpha > 0.0) {
+    out.lower = beta >= 0.0 ? 0.0 : -beta / alpha;
+  } else if (alpha < 0.0) {
+    out.upper = beta / -alpha;  // negative (empty) when beta < 0
+    if (out.upper < 0.0) out.lower = kInfinity;
+  } else if (beta < 0.0) {
+    out.lower = kInfinity;  // empty
+    out.upper = 0.0;
+  }
+  return out;
+}
+
+SquaredSpeedInterval intersect(const SquaredSpeedInterval& a, const SquaredSpeedInterval& b) {
+  return {std::max(a.lower, b.lower), std::min(a.upper, b.upper)};
+}
+
+/// |f_q| <= m R as the intersection of its two linear conditions in x.
+SquaredSpeedInterval lateral_pair(double m, double g, const StationGeometry& s) {
+  return intersect(linear_condition(m * s.kappa_n - s.kappa_g, g * (m * s.k_r - s.k_q)),
+                   linear_condition(m * s.kappa_n + s.kappa_g, g * (m * s.k_r + s.k_q)));
+}
+
+/// A speed condition (t = 0) as alpha x + beta >= 0.
+SquaredSpeedInterval speed_condition(const ForceCondition& c, double g, const StationGeometry& s) {
+  double beta = g * (c.r * s.k_r + c.q * s.k_q);
+  if (c.c != 0.0) beta += c.c;
+  return linear_condition(c.r * s.kappa_n + c.q * s.kappa_g, beta);
+}
+
+/// Whether c is implied by |f_q| <= lambda R (which implies R >= 0).
+bool implied_by_lateral(const ForceCondition& c, double lambda) {
+  return c.t == 0.0 && c.c == 0.0 && c.r >= lambda * std::abs(c.q);
+}
+
+}  // namespace
+
+void ForceConditions::add(const ForceCondition& condition) {
+  if (size_ == kCapacity)
+    throw std::length_error("ForceConditions: more than " + std::to_string(kCapacity) +
+                            " conditions");
+  items_[size_++] = condition;
+}
+
+void ForceConditions::add_lateral_ratio(Constraint constraint, double ratio) {
+  add({constraint, 0.0, -1.0, ratio, 0.0});
+  add({constraint, 0.0, 1.0, ratio, 0.0});
+}
+
+void ForceConditions::add_tangential_ratio(Constraint constraint, double ratio) {
+  add({constraint, -1.0, 0.0, ratio, 0.0});
+  add({constraint, 1.0, 0.0, ratio, 0.0});
+}
+
+AdmissibleSet::AdmissibleSet(const Vehicle& vehicle)
+    : AdmissibleSet(vehicle_physics(vehicle.model).admissible_set(vehicle)) {}
+
+AdmissibleSet::AdmissibleSet(double gravity, double friction, double max_speed,
+                             const ForceConditions& conditions)
+    : gravity_(gravity),
+      friction_(friction),
+      max_speed_(max_speed),
+      max_speed_squared_(max_speed * max_speed),
+      conditions_(conditions) {
+  // The lateral envelope: every symmetric pair m R ± f_q >= 0 tightens lambda.
+  lateral_ratio_ = friction;
+  for (const ForceCondition& a : conditions.all()) {
+    if (a.t != 0.0 || a.c != 0.0 || a.q != -1.0 || !(a.r > 0.0)) continue;
+    for (const ForceCondition& b : conditions.all()) {
+      if (b.t == 0.0 && b.c == 0.0 && b.q == 1.0 && b.r == a.r)
+        lateral_ratio_ = std::min(lateral_ratio_, a.r);
+    }
+  }
+  for (const ForceCondition& c : conditions.all()) {
+    if (c.t != 0.0) {
+      traction_.add(c);
+    } else if (!implied_by_lateral(c, lateral_ratio_)) {
+      extra_speed_.add(c);
+    }
+  }
+}
+
+SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
+  SpeedLimits out;
+  out.sliding = lateral_pair(friction_, gravity_, s);
+  // Speed conditions grouped by constraint, in order of first appearance.
+  struct Group {
+    Constraint constraint = Constraint::kNone;
+    SquaredSpeedInterval interval;
+  };
+  std::array<Group, ForceConditions::kCapacity + 2> groups;
+  std::size_t count = 0;
+  for (const ForceCondition& c : conditions_.all()) {
+    if (c.t != 0.0) continue;
+    const SquaredSpeedInterval interval = speed_condition(c, gravity_, s);
+    std::size_t k = 0;
+    while (k < count && groups[k].constraint != c.constraint) ++k;
+    if (k == count) {
+      groups[count++] = {c.constraint, interval};
+    } else {
+      groups[k].interval = intersect(groups[k].interval, interval);
+    }
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    if (groups[k].constraint == Constraint::kContact) out.contact = groups[k].interval;
+    if (groups[k].constraint == Constraint::kTipover) out.tipover = groups[k].interval;
+  }
+  // Candidates: contact (the first condition), sliding, the model's speed
+  // conditions, max speed. Contact comes first: the sliding and tip-over
+  // intervals always lie inside the contact interval, so they only tie with
+  // it where the lateral force vanishes, and there the vehicle is really
+  // leaving the ground.
+  std::array<Group, ForceConditions::kCapacity + 2> candidates;
+  std::size_t n = 0;
+  std::size_t next = 0;
+  if (count > 0 && groups[0].constraint == Constraint::kContact) candidates[n++] = groups[next++];
+  candidates[n++] = {Constraint::kSliding, out.sliding};
+  while (next < count) candidates[n++] = groups[next++];
+  candidates[n++] = {Constraint::kMaxSpeed, {0.0, max_speed_squared_}};
+
+  double lower = 0.0, upper = kInfinity;
+  // A later constraint takes over only if it is tighter by more than rounding,
+  // so ties (equal up to 1e-12 relative) go to the first in the list.
+  constexpr double kTie = 1e-12;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Group& c = candidates[k];
+    if (c.interval.lower > lower * (1.0 + kTie)) {
+      lower = c.interval.lower;
+      out.lower_binding = c.constraint;
+    }
+    if (c.interval.upper < upper * (1.0 - kTie)) {
+      upper = c.interval.upper;
+      out.upper_binding = c.constraint;
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (candidates[k].interval.empty()) {  // a constraint no speed satisfies names the failure
+      out.upper_binding = out.lower_binding = candidates[k].constraint;
+      lower = kInfinity;
+      break;
+    }
+  }
+  if (!(lower <= upper)) {
+    out.traversable = false;
+    out.v_min = out.v_max = 0.0;
+    return out;
+  }
+  out.v_min = std::sqrt(lower);
+  out.v_max = std::sqrt(upper);
+  return out;
+}
+
+SquaredSpeedInterval AdmissibleSet::squared_speeds(const StationGeometry& s) const {
+  SquaredSpeedInterval out = lateral_pair(lateral_ratio_, gravity_, s);
+  for (const ForceCondition& c : extra_speed_.all())
+    out = intersect(out, speed_condition(c, gravity_, s));
+  out.upper = std::min(out.upper, max_speed_squared_);
+  return out;
+}
+
+namespace {
+
+/// The f_t range the traction conditions leave inside [-half_width,
+/// half_width] (the friction cone's width at this state), with bindings.
+TangentialForceRange traction_range(std::span<const ForceCondition> traction, double normal,
+                                    double f_q, double half_width) {
+  TangentialForceRange out;
+  out.upper = half_width;
+  out.lower = -half_width;
+  for (const ForceCondition& c : traction) {
+    const double bound = -(c.r * normal + c.q * f_q + c.c) / c.t;
+    if (c.t < 0.0) {
+      if (bound < out.upper) {
+        out.upper = bound;
+        out.upper_binding = c.constraint;
+      }
+    } else if (bound > out.lower) {
+      out.lower = bound;
+      out.lower_binding = c.constraint;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+AccelerationBounds AdmissibleSet::acceleration_bounds(const StationGeometry& s,
+                                                      double speed) const {
+  const double x = speed * speed;
+  const double f_q = gravity_ * s.k_q + s.kappa_g * x;
+  const double normal = gravity_ * s.k_r + s.kappa_n * x;
+  AccelerationBounds out;
+  const double scale = gravity_ + std::abs(s.kappa_n * x) + std::abs(s.kappa_g * x);
+  for (const ForceCondition& c : conditions_.all()) {  // contact, then the model's
+    if (c.t != 0.0) continue;
+    if (!(c.r * normal + c.q * f_q + c.c >= -kOnLimit * scale)) {
+      out.violated = c.constraint;
+      return out;
+    }
+  }
+  const double friction_force = friction_ * std::max(normal, 0.0);
+  const double slack = friction_force * friction_force - f_q * f_q;
+  if (!(slack >= -kOnLimit * scale * scale)) {
+    out.violated = Constraint::kSliding;
+    return out;
+  }
+  if (speed > max_speed_ * (1.0 + 1e-12)) {
+    out.violated = Constraint::kMaxSpeed;
+    return out;
+  }
+  // Bounds on f_t, then s̈ = f_t − g k_t.
+  const TangentialForceRange f =
+      traction_range(traction_.all(), std::max(normal, 0.0), f_q, std::sqrt(std::max(slack, 0.0)));
+  const double weight = gravity_ * s.k_t;
+  out.a_min = f.lower - weight;
+  out.a_max = f.upper - weight;
+  out.lower_binding = f.lower_binding;
+  out.upper_binding = f.upper_binding;
+  out.feasible = true;
+  return out;
+}
+
+TangentialForceRange AdmissibleSet::tangential_forces(const StationGeometry& s, double x) const {
+  const double normal = std::max(gravity_ * s.k_r + s.kappa_n * x, 0.0);
+  const double f_q = gravity_ * s.k_q + s.kappa_g * x;
+  const double friction_force = friction_ * normal;
+  return traction_range(traction_.all(), normal, f_q,
+                        std::sqrt(std::max(friction_force * friction_force - f_q * f_q, 0.0)));
+}
+
+AccelerationInterval AdmissibleSet::accelerations_at(const StationGeometry& s, double x) const {
+  AccelerationInterval out;
+  const double R = gravity_ * s.k_r + s.kappa_n * x, Q = gravity_ * s.k_q + s.kappa_g * x;
+  const double T0 = gravity_ * s.k_t;
+  const double scale = gravity_ + std::abs(s.kappa_n * x) + std::abs(s.kappa_g * x);
+  // The lateral envelope: tip-over, lateral sliding and contact at once.
+  if (std::abs(Q) > lateral_ratio_ * R + kRounding * scale) {
+    out.lower = kInfinity;
+    return out;
+  }
+  for (const ForceCondition& c : extra_speed_.all()) {
+    if (c.r * R + c.q * Q + c.c < -kRounding * scale) {
+      out.lower = kInfinity;
+      return out;
+    }
+  }
+  const double friction_force = friction_ * std::max(R, 0.0);
+  const double half_width = std::sqrt(std::max(friction_force * friction_force - Q * Q, 0.0));
+  double upper = half_width, lower = -half_width;
+  const double normal = std::max(R, 0.0);
+  for (const ForceCondition& c : traction_.all()) {
+    const double bound = -(c.r * normal + c.q * Q + c.c) / c.t;
+    if (c.t < 0.0) {
+      upper = std::min(upper, bound);
+    } else {
+      lower = std::max(lower, bound);
+    }
+  }
+  const double widen = kRounding * (1.0 + std::abs(T0) + half_width);
+  out.lower = lower - T0 - widen;
+  out.upper = upper - T0 + widen;
+  return out;
+}
+
+AccelerationInterval AdmissibleSet::accelerations_along(const StationGeometry& s, double y0,
+                                                        double beta, double x_lower,
+                                                        double x_upper) const {
+  AccelerationInterval out;
+  // State bounds on y0 + beta u, widened by rounding: a state pinned to one
+  // value (the end speed, a boundary of the controllable set) must not come
+  // out as an empty interval one ulp wide.
+  out.require_nonnegative(y0 - x_lower, beta);
+  if (std::isfinite(x_upper)) out.require_nonnegative(x_upper - y0, -beta);
+  if (beta != 0.0) {
+    const double widen = kRounding * (1.0 + std::abs(out.lower == -kInfinity ? 0.0 : out.lower) +
+                                      std::abs(out.upper == kInfinity ? 0.0 : out.upper));
+    out.lower -= widen;
+    out.upper += widen;
+  }
+  // Affine forces: R = R0 + R1 u, f_q = Q0 + Q1 u, f_t = u + T0.
+  const double g = gravity_;
+  const double R0 = g * s.k_r + s.kappa_n * y0, R1 = s.kappa_n * beta;
+  const double Q0 = g * s.k_q + s.kappa_g * y0, Q1 = s.kappa_g * beta;
+  const double T0 = g * s.k_t;
+  // |f_q| <= lambda R: tip-over and the lateral part of sliding at once;
+  // together they also imply contact (R >= 0).
+  const double lambda = lateral_ratio_;
+  out.require_nonnegative(lambda * R0 - Q0, lambda * R1 - Q1);
+  out.require_nonnegative(lambda * R0 + Q0, lambda * R1 + Q1);
+  for (const ForceCondition& c : extra_speed_.all())
+    out.require_nonnegative(c.r * R0 + c.q * Q0 + c.c, c.r * R1 + c.q * Q1);
+  for (const ForceCondition& c : traction_.all())  // pitch-over, drive, brake
+    out.require_nonnegative(c.r * R0 + c.q * Q0 + c.t * T0 + c.c, c.r * R1 + c.q * Q1 + c.t);
+  if (out.empty()) return out;
+  // Friction cone: (u + T0)^2 + (Q0 + Q1 u)^2 - mu^2 (R0 + R1 u)^2 <= 0.
+  const double mu = friction_;
+  const double m2 = mu * mu;
+  const double a = 1.0 + Q1 * Q1 - m2 * R1 * R1;
+  const double b = 2.0 * (T0 + Q0 * Q1 - m2 * R0 * R1);
+  const double k = T0 * T0 + Q0 * Q0 - m2 * R0 * R0;
+  const double scale = std::max({std::abs(T0), std::abs(Q0), mu * std::abs(R0), 1e-300});
+  const double disc = b * b - 4.0 * a * k;
+  if (a > 0.0) {
+    if (disc < -kRounding * scale * scale * std::max(a, 1.0)) {
+      out.lower = kInfinity;
+      return out;
+    }
+    // Stable roots: q = -(b + sign(b) sqrt(disc)) / 2, roots q/a and k/q.
+    const double root = std::sqrt(std::max(disc, 0.0));
+    const double q = -0.5 * (b + std::copysign(root, b));
+    double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
+    if (r1 > r2) std::swap(r1, r2);
+    const double widen = kRounding * (1.0 + std::abs(r1) + std::abs(r2));
+    out.intersect(r1 - widen, r2 + widen);
+  } else if (a == 0.0) {
+    out.require_nonnegative(-k, -b);
+  } else if (disc > 0.0) {
+    // a < 0: the line crosses both nappes of the cone; the lateral
+    // conditions above already keep u on the R >= 0 nappe, where the
+    // solution set is the outer piece (-inf, r1] or [r2, inf) that they touch.
+    const double root = std::sqrt(disc);
+    const double q = -0.5 * (b + std::copysign(root, b));
+    double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
+    if (r1 > r2) std::swap(r1, r2);
+    const double widen = kRounding * (1.0 + std::abs(r1) + std::abs(r2));
+    if (out.upper <= r1 + widen) {
+      // already inside the lower piece
+    } else if (out.lower >= r2 - widen) {
+      // already inside the upper piece
+    } else if (out.lower <= r1 + widen) {
+      out.upper = std::min(out.upper, r1 + widen);
+    } else {
+      out.lower = std::max(out.lower, r2 - widen);
+    }
+  }
+  return out;
+}
+
+}  // namespace talus

@@ -1,0 +1,45 @@
+#include "talus/dynamics/vehicle_physics.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "vehicle_models.hpp"
+
+namespace talus {
+
+AdmissibleSet VehiclePhysics::admissible_set(const Vehicle& vehicle) const {
+  vehicle.validate();
+  ForceConditions conditions;
+  conditions.add({Constraint::kContact, 0.0, 0.0, 1.0, 0.0});  // R >= 0
+  add_model_conditions(vehicle, conditions);
+  if (std::isfinite(vehicle.max_accel))  // max_accel − f_t >= 0
+    conditions.add({Constraint::kDrive, -1.0, 0.0, 0.0, vehicle.max_accel});
+  if (std::isfinite(vehicle.max_decel))  // max_decel + f_t >= 0
+    conditions.add({Constraint::kBrake, 1.0, 0.0, 0.0, vehicle.max_decel});
+  // Contract: a traction condition holds at f_t = 0 wherever the lateral
+  // part of sliding does (R >= 0, |f_q| <= mu R), so it removes no speed.
+  for (const ForceCondition& c : conditions.all()) {
+    const bool finite =
+        std::isfinite(c.t) && std::isfinite(c.q) && std::isfinite(c.r) && std::isfinite(c.c);
+    if (!finite || (c.t != 0.0 && !(c.c >= 0.0 && c.r >= vehicle.friction * std::abs(c.q)))) {
+      throw std::logic_error("vehicle model " + std::string(name()) + ": condition '" +
+                             std::string(to_string(c.constraint)) +
+                             "' breaks the ForceCondition contract (admissible_set.hpp)");
+    }
+  }
+  return AdmissibleSet(vehicle.gravity, vehicle.friction, vehicle.max_speed, conditions);
+}
+
+const VehiclePhysics& vehicle_physics(VehicleModel model) {
+  switch (model) {
+    case VehicleModel::kPointMass:
+      return detail::point_mass_physics();
+    case VehicleModel::kRigidBody:
+      return detail::rigid_body_physics();
+  }
+  throw std::logic_error("vehicle_physics: unknown VehicleModel " +
+                         std::to_string(static_cast<int>(model)));
+}
+
+}  // namespace talus

@@ -2,6 +2,7 @@
 /// @file
 /// Vehicle: the immutable model of a ground vehicle that the velocity limits
 /// are derived from, loaded from YAML (or JSON) with strict validation.
+#include <array>
 #include <limits>
 #include <string>
 
@@ -12,6 +13,10 @@ enum class VehicleModel {
   kPointMass,  ///< Shiller–Gwo point mass: sliding, lateral tip-over, contact
   kRigidBody,  ///< Mann–Shiller rigid body on four wheels: adds longitudinal tip-over
 };
+/// Every model, for tests and tools that must cover them all; the physics of
+/// each is in vehicle_physics.hpp.
+inline constexpr std::array<VehicleModel, 2> kVehicleModels = {VehicleModel::kPointMass,
+                                                               VehicleModel::kRigidBody};
 
 /// A ground vehicle, SI units. Every field has its YAML key in brackets.
 struct Vehicle {

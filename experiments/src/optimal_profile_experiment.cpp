@@ -30,6 +30,7 @@
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/optimal/verify_profile.hpp"
 #include "west_bijou_path.hpp"
 
 namespace talus::experiments {
@@ -299,13 +300,17 @@ void check_profile(ProfileRun& run) {
   Checks& c = run.checks;
   run.bounds.resize(n);
   const double max_speed = run.spec->vehicle.max_speed;
+  // v <= v_max, some s̈ admissible at every station and s̈ admissible at both
+  // ends of every step (TOPP-RA's interpolation discretisation): the library's verifier.
+  const ProfileVerification verification = verify_profile(run.limits, p);
+  c.over_limit = verification.speed_violations;
+  c.max_over = verification.worst_speed.amount;
+  c.bounds_infeasible = verification.inadmissible_states;
+  c.outside = verification.acceleration_violations;
+  c.max_outside = verification.worst_acceleration.amount;
   bool previous_touch = false;
   for (std::size_t k = 0; k < n; ++k) {
     run.bounds[k] = run.limits.acceleration_bounds(k, p.v[k]);
-    if (!run.bounds[k].feasible) ++c.bounds_infeasible;
-    const double over = p.v[k] - p.v_max[k];
-    c.max_over = std::max(c.max_over, over);
-    if (over > 1e-9 * p.v_max[k] + 1e-12) ++c.over_limit;
     c.max_v = std::max(c.max_v, p.v[k]);
     const bool touch = on_limit(p.v[k], p.v_max[k]);
     if (touch) {
@@ -328,18 +333,6 @@ void check_profile(ProfileRun& run) {
   c.s_min_v_max = p.s[c.min_index];
   c.v_at_min = p.v[c.min_index];
 
-  // The solver holds s̈ of step k admissible at both of its ends (TOPP-RA's
-  // interpolation discretisation), so check both ends, at their speeds.
-  for (std::size_t k = 0; k + 1 < n; ++k) {
-    const double a = p.a[k];
-    for (const std::size_t end : {k, k + 1}) {
-      const AccelerationBounds& b = run.bounds[end];
-      if (!b.feasible) continue;  // counted above
-      const double excess = std::max({b.a_min - a, a - b.a_max, 0.0});
-      c.max_outside = std::max(c.max_outside, excess);
-      if (excess > kAccelTolerance * (1.0 + std::abs(a))) ++c.outside;
-    }
-  }
   classify_steps(run);
   for (std::size_t k = 0; k + 1 < n; ++k) {
     const double ds = p.s[k + 1] - p.s[k];

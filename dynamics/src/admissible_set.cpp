@@ -12,7 +12,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kCurvatureEpsilon = 1e-12;  // [1/m]: see velocity_limits.hpp
 
 /// {x >= 0 : alpha x + beta >= 0}.
-SquaredSpeedInterval linear_condition(double alpha, double beta) {
+[[gnu::always_inline]] inline SquaredSpeedInterval linear_condition(double alpha, double beta) {
   if (std::abs(alpha) < kCurvatureEpsilon) alpha = 0.0;
   SquaredSpeedInterval out;
   if (alpha > 0.0) {
@@ -32,7 +32,8 @@ SquaredSpeedInterval intersect(const SquaredSpeedInterval& a, const SquaredSpeed
 }
 
 /// |f_q| <= m R as the intersection of its two linear conditions in x.
-SquaredSpeedInterval lateral_pair(double m, double g, const StationGeometry& s) {
+[[gnu::always_inline]] inline SquaredSpeedInterval lateral_pair(double m, double g,
+                                                                const StationGeometry& s) {
   return intersect(linear_condition(m * s.kappa_n - s.kappa_g, g * (m * s.k_r - s.k_q)),
                    linear_condition(m * s.kappa_n + s.kappa_g, g * (m * s.k_r + s.k_q)));
 }
@@ -90,71 +91,101 @@ AdmissibleSet::AdmissibleSet(double gravity, double friction, double max_speed,
   for (const ForceCondition& c : conditions.all()) {
     if (c.t != 0.0) {
       traction_.add(c);
-    } else if (!implied_by_lateral(c, lateral_ratio_)) {
-      extra_speed_.add(c);
+      const TractionBound bound{c.r, c.q, c.c, -1.0 / c.t, c.constraint};
+      if (c.t < 0.0) {
+        upper_bounds_[upper_count_++] = bound;
+      } else {
+        lower_bounds_[lower_count_++] = bound;
+      }
+      continue;
     }
+    speed_.add(c);
+    if (!implied_by_lateral(c, lateral_ratio_)) extra_speed_.add(c);
   }
+  // Candidates of speed_limits() in tie order: contact (the first
+  // condition), sliding, the model's speed conditions grouped by constraint
+  // in order of first appearance, max speed.
+  using Shape = Candidate::Shape;
+  const auto add_group = [this](Constraint constraint) {
+    Candidate c{constraint, Shape::kConditions, 0.0, grouped_.size(), 0};
+    for (const ForceCondition& row : speed_.all()) {
+      if (row.constraint == constraint) grouped_.add(row);
+    }
+    c.end = grouped_.size();
+    const ForceCondition* rows = c.end > c.begin ? &grouped_[c.begin] : nullptr;
+    if (c.end - c.begin == 1 && rows[0].r == 1.0 && rows[0].q == 0.0 && rows[0].c == 0.0) {
+      c.shape = Shape::kContact;
+    } else if (c.end - c.begin == 2 && rows[0].q == -1.0 && rows[1].q == 1.0 &&
+               rows[0].r == rows[1].r && rows[0].c == 0.0 && rows[1].c == 0.0) {
+      c.shape = Shape::kLateralPair;
+      c.ratio = rows[0].r;
+    }
+    candidates_[candidate_count_++] = c;
+  };
+  const bool contact_first = speed_.size() > 0 && speed_[0].constraint == Constraint::kContact;
+  if (contact_first) add_group(Constraint::kContact);
+  candidates_[candidate_count_++] = {Constraint::kSliding, Shape::kLateralPair, friction, 0, 0};
+  for (std::size_t k = contact_first ? 1 : 0; k < speed_.size(); ++k) {
+    const Constraint c = speed_[k].constraint;
+    bool seen = false;
+    for (std::size_t j = 0; j < candidate_count_; ++j)
+      seen = seen || candidates_[j].constraint == c;
+    if (!seen) add_group(c);
+  }
+  candidates_[candidate_count_++] = {Constraint::kMaxSpeed, Shape::kMaxSpeed, 0.0, 0, 0};
 }
 
 SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
+  using Shape = Candidate::Shape;
   SpeedLimits out;
-  out.sliding = lateral_pair(friction_, gravity_, s);
-  // Speed conditions grouped by constraint, in order of first appearance.
-  struct Group {
-    Constraint constraint = Constraint::kNone;
-    SquaredSpeedInterval interval;
-  };
-  std::array<Group, ForceConditions::kCapacity + 2> groups;
-  std::size_t count = 0;
-  for (const ForceCondition& c : conditions_.all()) {
-    if (c.t != 0.0) continue;
-    const SquaredSpeedInterval interval = speed_condition(c, gravity_, s);
-    std::size_t k = 0;
-    while (k < count && groups[k].constraint != c.constraint) ++k;
-    if (k == count) {
-      groups[count++] = {c.constraint, interval};
-    } else {
-      groups[k].interval = intersect(groups[k].interval, interval);
-    }
-  }
-  for (std::size_t k = 0; k < count; ++k) {
-    if (groups[k].constraint == Constraint::kContact) out.contact = groups[k].interval;
-    if (groups[k].constraint == Constraint::kTipover) out.tipover = groups[k].interval;
-  }
-  // Candidates: contact (the first condition), sliding, the model's speed
-  // conditions, max speed. Contact comes first: the sliding and tip-over
-  // intervals always lie inside the contact interval, so they only tie with
-  // it where the lateral force vanishes, and there the vehicle is really
-  // leaving the ground.
-  std::array<Group, ForceConditions::kCapacity + 2> candidates;
-  std::size_t n = 0;
-  std::size_t next = 0;
-  if (count > 0 && groups[0].constraint == Constraint::kContact) candidates[n++] = groups[next++];
-  candidates[n++] = {Constraint::kSliding, out.sliding};
-  while (next < count) candidates[n++] = groups[next++];
-  candidates[n++] = {Constraint::kMaxSpeed, {0.0, max_speed_squared_}};
-
+  // One pass over the candidates in tie order. Contact comes first: the
+  // sliding and tip-over intervals always lie inside the contact interval,
+  // so they only tie with it where the lateral force vanishes, and there the
+  // vehicle is really leaving the ground. A later constraint takes over only
+  // if it is tighter by more than rounding, so ties (equal up to 1e-12
+  // relative) go to the first in the list; the first constraint no speed
+  // satisfies names the failure.
   double lower = 0.0, upper = kInfinity;
-  // A later constraint takes over only if it is tighter by more than rounding,
-  // so ties (equal up to 1e-12 relative) go to the first in the list.
   constexpr double kTie = 1e-12;
-  for (std::size_t k = 0; k < n; ++k) {
-    const Group& c = candidates[k];
-    if (c.interval.lower > lower * (1.0 + kTie)) {
-      lower = c.interval.lower;
+  Constraint empty = Constraint::kNone;
+  bool any_empty = false;
+  for (std::size_t j = 0; j < candidate_count_; ++j) {
+    const Candidate& c = candidates_[j];
+    SquaredSpeedInterval interval;
+    switch (c.shape) {
+      case Shape::kContact:
+        interval = linear_condition(s.kappa_n, gravity_ * s.k_r);
+        break;
+      case Shape::kLateralPair:
+        interval = lateral_pair(c.ratio, gravity_, s);
+        break;
+      case Shape::kConditions:
+        for (std::size_t k = c.begin; k < c.end; ++k)
+          interval = intersect(interval, speed_condition(grouped_[k], gravity_, s));
+        break;
+      case Shape::kMaxSpeed:
+        interval.upper = max_speed_squared_;
+        break;
+    }
+    if (c.constraint == Constraint::kContact) out.contact = interval;
+    if (c.constraint == Constraint::kSliding) out.sliding = interval;
+    if (c.constraint == Constraint::kTipover) out.tipover = interval;
+    if (interval.lower > lower * (1.0 + kTie)) {
+      lower = interval.lower;
       out.lower_binding = c.constraint;
     }
-    if (c.interval.upper < upper * (1.0 - kTie)) {
-      upper = c.interval.upper;
+    if (interval.upper < upper * (1.0 - kTie)) {
+      upper = interval.upper;
       out.upper_binding = c.constraint;
     }
-  }
-  for (std::size_t k = 0; k < n; ++k) {
-    if (candidates[k].interval.empty()) {  // a constraint no speed satisfies names the failure
-      out.upper_binding = out.lower_binding = candidates[k].constraint;
-      lower = kInfinity;
-      break;
+    if (!any_empty && interval.empty()) {
+      any_empty = true;
+      empty = c.constraint;
     }
+  }
+  if (any_empty) {
+    out.upper_binding = out.lower_binding = empty;
+    lower = kInfinity;
   }
   if (!(lower <= upper)) {
     out.traversable = false;
@@ -174,31 +205,29 @@ SquaredSpeedInterval AdmissibleSet::squared_speeds(const StationGeometry& s) con
   return out;
 }
 
-namespace {
-
-/// The f_t range the traction conditions leave inside [-half_width,
-/// half_width] (the friction cone's width at this state), with bindings.
-TangentialForceRange traction_range(std::span<const ForceCondition> traction, double normal,
-                                    double f_q, double half_width) {
+[[gnu::always_inline]] inline TangentialForceRange AdmissibleSet::traction_range(
+    double normal, double f_q, double half_width) const {
   TangentialForceRange out;
   out.upper = half_width;
   out.lower = -half_width;
-  for (const ForceCondition& c : traction) {
-    const double bound = -(c.r * normal + c.q * f_q + c.c) / c.t;
-    if (c.t < 0.0) {
-      if (bound < out.upper) {
-        out.upper = bound;
-        out.upper_binding = c.constraint;
-      }
-    } else if (bound > out.lower) {
+  for (std::size_t k = 0; k < upper_count_; ++k) {
+    const TractionBound& b = upper_bounds_[k];
+    const double bound = b.factor * (b.r * normal + b.q * f_q + b.c);
+    if (bound < out.upper) {
+      out.upper = bound;
+      out.upper_binding = b.constraint;
+    }
+  }
+  for (std::size_t k = 0; k < lower_count_; ++k) {
+    const TractionBound& b = lower_bounds_[k];
+    const double bound = b.factor * (b.r * normal + b.q * f_q + b.c);
+    if (bound > out.lower) {
       out.lower = bound;
-      out.lower_binding = c.constraint;
+      out.lower_binding = b.constraint;
     }
   }
   return out;
 }
-
-}  // namespace
 
 AccelerationBounds AdmissibleSet::acceleration_bounds(const StationGeometry& s,
                                                       double speed) const {
@@ -207,8 +236,7 @@ AccelerationBounds AdmissibleSet::acceleration_bounds(const StationGeometry& s,
   const double normal = gravity_ * s.k_r + s.kappa_n * x;
   AccelerationBounds out;
   const double scale = gravity_ + std::abs(s.kappa_n * x) + std::abs(s.kappa_g * x);
-  for (const ForceCondition& c : conditions_.all()) {  // contact, then the model's
-    if (c.t != 0.0) continue;
+  for (const ForceCondition& c : speed_.all()) {  // contact, then the model's
     if (!(c.r * normal + c.q * f_q + c.c >= -kOnLimit * scale)) {
       out.violated = c.constraint;
       return out;
@@ -226,7 +254,7 @@ AccelerationBounds AdmissibleSet::acceleration_bounds(const StationGeometry& s,
   }
   // Bounds on f_t, then s̈ = f_t − g k_t.
   const TangentialForceRange f =
-      traction_range(traction_.all(), std::max(normal, 0.0), f_q, std::sqrt(std::max(slack, 0.0)));
+      traction_range(std::max(normal, 0.0), f_q, std::sqrt(std::max(slack, 0.0)));
   const double weight = gravity_ * s.k_t;
   out.a_min = f.lower - weight;
   out.a_max = f.upper - weight;
@@ -240,7 +268,7 @@ TangentialForceRange AdmissibleSet::tangential_forces(const StationGeometry& s, 
   const double normal = std::max(gravity_ * s.k_r + s.kappa_n * x, 0.0);
   const double f_q = gravity_ * s.k_q + s.kappa_g * x;
   const double friction_force = friction_ * normal;
-  return traction_range(traction_.all(), normal, f_q,
+  return traction_range(normal, f_q,
                         std::sqrt(std::max(friction_force * friction_force - f_q * f_q, 0.0)));
 }
 
@@ -262,15 +290,15 @@ AccelerationInterval AdmissibleSet::accelerations_at(const StationGeometry& s, d
   }
   const double friction_force = friction_ * std::max(R, 0.0);
   const double half_width = std::sqrt(std::max(friction_force * friction_force - Q * Q, 0.0));
-  double upper = half_width, lower = -half_width;
   const double normal = std::max(R, 0.0);
-  for (const ForceCondition& c : traction_.all()) {
-    const double bound = -(c.r * normal + c.q * Q + c.c) / c.t;
-    if (c.t < 0.0) {
-      upper = std::min(upper, bound);
-    } else {
-      lower = std::max(lower, bound);
-    }
+  double upper = half_width, lower = -half_width;
+  for (std::size_t k = 0; k < upper_count_; ++k) {
+    const TractionBound& b = upper_bounds_[k];
+    upper = std::min(upper, b.factor * (b.r * normal + b.q * Q + b.c));
+  }
+  for (std::size_t k = 0; k < lower_count_; ++k) {
+    const TractionBound& b = lower_bounds_[k];
+    lower = std::max(lower, b.factor * (b.r * normal + b.q * Q + b.c));
   }
   const double widen = kRounding * (1.0 + std::abs(T0) + half_width);
   out.lower = lower - T0 - widen;

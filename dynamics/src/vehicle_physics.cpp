@@ -17,12 +17,18 @@ AdmissibleSet VehiclePhysics::admissible_set(const Vehicle& vehicle) const {
     conditions.add({Constraint::kDrive, -1.0, 0.0, 0.0, vehicle.max_accel});
   if (std::isfinite(vehicle.max_decel))  // max_decel + f_t >= 0
     conditions.add({Constraint::kBrake, 1.0, 0.0, 0.0, vehicle.max_decel});
-  // Contract: a traction condition holds at f_t = 0 wherever the lateral
-  // part of sliding does (R >= 0, |f_q| <= mu R), so it removes no speed.
+  // Contract: finite coefficients; sliding and max speed are the cone's and
+  // the speed limit's own names; a traction condition holds at f_t = 0
+  // wherever the lateral part of sliding does (R >= 0, |f_q| <= mu R), so it
+  // removes no speed.
   for (const ForceCondition& c : conditions.all()) {
     const bool finite =
         std::isfinite(c.t) && std::isfinite(c.q) && std::isfinite(c.r) && std::isfinite(c.c);
-    if (!finite || (c.t != 0.0 && !(c.c >= 0.0 && c.r >= vehicle.friction * std::abs(c.q)))) {
+    const bool reserved = c.constraint == Constraint::kNone ||
+                          c.constraint == Constraint::kSliding ||
+                          c.constraint == Constraint::kMaxSpeed;
+    if (!finite || reserved ||
+        (c.t != 0.0 && !(c.c >= 0.0 && c.r >= vehicle.friction * std::abs(c.q)))) {
       throw std::logic_error("vehicle model " + std::string(name()) + ": condition '" +
                              std::string(to_string(c.constraint)) +
                              "' breaks the ForceCondition contract (admissible_set.hpp)");

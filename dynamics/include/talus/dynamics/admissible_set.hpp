@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 
@@ -38,9 +39,12 @@ namespace talus {
 /// One linear condition on the contact force per unit mass F = (f_t, f_q, R):
 ///     t f_t + q f_q + r R + c >= 0.
 struct ForceCondition {
-  Constraint constraint = Constraint::kNone;  ///< what it models (reported as a binding)
-  double t = 0.0, q = 0.0, r = 0.0;           ///< dimensionless coefficients
-  double c = 0.0;                             ///< [m/s²]
+  /// What it models, reported as a binding; conditions with the same name
+  /// form one constraint. Not kNone, kSliding or kMaxSpeed (the friction
+  /// cone's and the speed limit's own).
+  Constraint constraint = Constraint::kNone;
+  double t = 0.0, q = 0.0, r = 0.0;  ///< dimensionless coefficients
+  double c = 0.0;                    ///< [m/s²]
 };
 
 /// The linear conditions of a vehicle, fixed capacity (no allocation).
@@ -154,10 +158,37 @@ class AdmissibleSet {
   friend class VehiclePhysics;
   AdmissibleSet(double gravity, double friction, double max_speed,
                 const ForceConditions& conditions);
+  TangentialForceRange traction_range(double normal, double f_q, double half_width) const;
+
+  static constexpr std::size_t kCandidates = ForceConditions::kCapacity + 2;
+  /// A traction condition solved for f_t: f_t <= (or >=) factor (r R + q f_q + c).
+  struct TractionBound {
+    double r = 0.0, q = 0.0, c = 0.0, factor = 0.0;
+    Constraint constraint = Constraint::kNone;
+  };
 
   double gravity_ = 9.81, friction_ = 0.0, max_speed_ = 0.0, max_speed_squared_ = 0.0;
   double lateral_ratio_ = 0.0;
-  ForceConditions conditions_, extra_speed_, traction_;
+  ForceConditions conditions_, speed_, extra_speed_, traction_;
+  /// One constraint of speed_limits(), with the shape of its speed
+  /// conditions recognised once so that the common shapes take their
+  /// closed forms: R >= 0, or |f_q| <= ratio R (both halves), or a list of
+  /// conditions grouped_[begin, end).
+  struct Candidate {
+    enum class Shape : std::uint8_t { kContact, kLateralPair, kConditions, kMaxSpeed };
+    Constraint constraint = Constraint::kNone;
+    Shape shape = Shape::kConditions;
+    double ratio = 0.0;
+    std::size_t begin = 0, end = 0;
+  };
+  // speed_limits(): the constraints in tie order (contact, sliding, the
+  // model's, max speed).
+  std::array<Candidate, kCandidates> candidates_{};
+  std::size_t candidate_count_ = 0;
+  ForceConditions grouped_;
+  // The traction conditions as upper and lower bounds on f_t, in order.
+  std::array<TractionBound, ForceConditions::kCapacity> upper_bounds_{}, lower_bounds_{};
+  std::size_t upper_count_ = 0, lower_count_ = 0;
 };
 
 }  // namespace talus

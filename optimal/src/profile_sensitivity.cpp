@@ -61,7 +61,7 @@ S constraint(Kind kind, const ForceCondition* condition, const AdmissibleSet& c,
 }
 
 /// The friction ellipse of a station along the step's line x = y0 + β u, as
-/// A u² + B u + K <= 0 (as in step_controls.hpp); returns u + B / (2 A),
+/// A u² + B u + K <= 0 (as in AdmissibleSet::accelerations_along); returns u + B / (2 A),
 /// zero at the double root.
 template <typename S>
 S tangent_control(const AdmissibleSet& c, const S& y0, const S& beta, const S& u, const S* G) {

@@ -97,7 +97,7 @@ struct TangentialForceRange {
 };
 
 /// The admissible (ṡ², s̈) set of one vehicle at any station. Immutable value
-/// type (about 0.5 kB); copy it freely.
+/// type of fixed size (about 4 kB, no heap); build it once per vehicle.
 class AdmissibleSet {
  public:
   /// Relative slack of the step queries (accelerations_at, accelerations_along)

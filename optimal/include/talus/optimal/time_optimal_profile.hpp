@@ -13,10 +13,11 @@
 /// (states from which the end state is reachable); a forward pass then takes
 /// the largest admissible u that stays in K_{i+1}. Both passes solve each
 /// step in closed form against the exact constraints (friction ellipse as a
-/// second-order cone, see optimal/src/step_controls.hpp); the admissible set
-/// is convex for both vehicle models (the rigid body only adds linear pitch
-/// constraints), so the discrete solution is exact, not an approximation of
-/// the friction ellipse. There is no built-in cap on speed or ṡ².
+/// second-order cone, see talus/dynamics/admissible_set.hpp); the admissible
+/// set is convex for every vehicle model (a model only adds linear conditions
+/// on the contact force), so the discrete solution is exact, not an
+/// approximation of the friction ellipse. verify_profile.hpp checks a result. There is no built-in
+/// cap on speed or ṡ².
 #include <cstddef>
 #include <string>
 #include <vector>

@@ -91,8 +91,19 @@ AdmissibleSet::AdmissibleSet(double gravity, double friction, double max_speed,
   for (const ForceCondition& c : conditions.all()) {
     if (c.t != 0.0) {
       traction_.add(c);
-      const TractionBound bound{c.r, c.q, c.c, -1.0 / c.t, c.constraint};
-      if (c.t < 0.0) {
+      const TractionBound bound{c.r, c.q, c.c, c.t, -1.0 / c.t, c.constraint};
+      const bool constant = c.r == 0.0 && c.q == 0.0;
+      if (constant && c.t < 0.0) {
+        if (bound.factor * c.c < f_t_max_) {
+          f_t_max_ = bound.factor * c.c;
+          f_t_max_constraint_ = c.constraint;
+        }
+      } else if (constant) {
+        if (bound.factor * c.c > f_t_min_) {
+          f_t_min_ = bound.factor * c.c;
+          f_t_min_constraint_ = c.constraint;
+        }
+      } else if (c.t < 0.0) {
         upper_bounds_[upper_count_++] = bound;
       } else {
         lower_bounds_[lower_count_++] = bound;
@@ -133,6 +144,13 @@ AdmissibleSet::AdmissibleSet(double gravity, double friction, double max_speed,
     if (!seen) add_group(c);
   }
   candidates_[candidate_count_++] = {Constraint::kMaxSpeed, Shape::kMaxSpeed, 0.0, 0, 0};
+  for (std::size_t j = 0; j < candidate_count_; ++j) {
+    Candidate& c = candidates_[j];
+    c.slot = c.constraint == Constraint::kContact   ? Candidate::Slot::kContact
+             : c.constraint == Constraint::kSliding ? Candidate::Slot::kSliding
+             : c.constraint == Constraint::kTipover ? Candidate::Slot::kTipover
+                                                    : Candidate::Slot::kNone;
+  }
 }
 
 SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
@@ -145,6 +163,7 @@ SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
   // if it is tighter by more than rounding, so ties (equal up to 1e-12
   // relative) go to the first in the list; the first constraint no speed
   // satisfies names the failure.
+  SquaredSpeedInterval* const slots[] = {nullptr, &out.contact, &out.sliding, &out.tipover};
   double lower = 0.0, upper = kInfinity;
   constexpr double kTie = 1e-12;
   Constraint empty = Constraint::kNone;
@@ -167,9 +186,7 @@ SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
         interval.upper = max_speed_squared_;
         break;
     }
-    if (c.constraint == Constraint::kContact) out.contact = interval;
-    if (c.constraint == Constraint::kSliding) out.sliding = interval;
-    if (c.constraint == Constraint::kTipover) out.tipover = interval;
+    if (c.slot != Candidate::Slot::kNone) *slots[static_cast<std::size_t>(c.slot)] = interval;
     if (interval.lower > lower * (1.0 + kTie)) {
       lower = interval.lower;
       out.lower_binding = c.constraint;
@@ -225,6 +242,14 @@ SquaredSpeedInterval AdmissibleSet::squared_speeds(const StationGeometry& s) con
       out.lower = bound;
       out.lower_binding = b.constraint;
     }
+  }
+  if (f_t_max_ < out.upper) {
+    out.upper = f_t_max_;
+    out.upper_binding = f_t_max_constraint_;
+  }
+  if (f_t_min_ > out.lower) {
+    out.lower = f_t_min_;
+    out.lower_binding = f_t_min_constraint_;
   }
   return out;
 }
@@ -291,7 +316,7 @@ AccelerationInterval AdmissibleSet::accelerations_at(const StationGeometry& s, d
   const double friction_force = friction_ * std::max(R, 0.0);
   const double half_width = std::sqrt(std::max(friction_force * friction_force - Q * Q, 0.0));
   const double normal = std::max(R, 0.0);
-  double upper = half_width, lower = -half_width;
+  double upper = std::min(half_width, f_t_max_), lower = std::max(-half_width, f_t_min_);
   for (std::size_t k = 0; k < upper_count_; ++k) {
     const TractionBound& b = upper_bounds_[k];
     upper = std::min(upper, b.factor * (b.r * normal + b.q * Q + b.c));
@@ -333,8 +358,11 @@ AccelerationInterval AdmissibleSet::accelerations_along(const StationGeometry& s
   out.require_nonnegative(lambda * R0 + Q0, lambda * R1 + Q1);
   for (const ForceCondition& c : extra_speed_.all())
     out.require_nonnegative(c.r * R0 + c.q * Q0 + c.c, c.r * R1 + c.q * Q1);
-  for (const ForceCondition& c : traction_.all())  // pitch-over, drive, brake
+  for (std::size_t k = 0; k < upper_count_ + lower_count_; ++k) {  // pitch-over
+    const TractionBound& c = k < upper_count_ ? upper_bounds_[k] : lower_bounds_[k - upper_count_];
     out.require_nonnegative(c.r * R0 + c.q * Q0 + c.t * T0 + c.c, c.r * R1 + c.q * Q1 + c.t);
+  }
+  out.intersect(f_t_min_ - T0, f_t_max_ - T0);  // the constant traction force limits
   if (out.empty()) return out;
   // Friction cone: (u + T0)^2 + (Q0 + Q1 u)^2 - mu^2 (R0 + R1 u)^2 <= 0.
   const double mu = friction_;

@@ -161,9 +161,10 @@ class AdmissibleSet {
   TangentialForceRange traction_range(double normal, double f_q, double half_width) const;
 
   static constexpr std::size_t kCandidates = ForceConditions::kCapacity + 2;
-  /// A traction condition solved for f_t: f_t <= (or >=) factor (r R + q f_q + c).
+  /// A traction condition t f_t + q f_q + r R + c >= 0 solved for f_t:
+  /// f_t <= (t < 0) or >= (t > 0) factor (r R + q f_q + c), factor = −1/t.
   struct TractionBound {
-    double r = 0.0, q = 0.0, c = 0.0, factor = 0.0;
+    double r = 0.0, q = 0.0, c = 0.0, t = 0.0, factor = 0.0;
     Constraint constraint = Constraint::kNone;
   };
 
@@ -176,17 +177,24 @@ class AdmissibleSet {
   /// conditions grouped_[begin, end).
   struct Candidate {
     enum class Shape : std::uint8_t { kContact, kLateralPair, kConditions, kMaxSpeed };
+    /// Which per-constraint interval of SpeedLimits it fills.
+    enum class Slot : std::uint8_t { kNone, kContact, kSliding, kTipover };
     Constraint constraint = Constraint::kNone;
     Shape shape = Shape::kConditions;
     double ratio = 0.0;
     std::size_t begin = 0, end = 0;
+    Slot slot = Slot::kNone;
   };
   // speed_limits(): the constraints in tie order (contact, sliding, the
   // model's, max speed).
   std::array<Candidate, kCandidates> candidates_{};
   std::size_t candidate_count_ = 0;
   ForceConditions grouped_;
-  // The traction conditions as upper and lower bounds on f_t, in order.
+  // The traction conditions as bounds on f_t: the constant ones (drive,
+  // brake: r = q = 0) folded into one interval, the others in order.
+  double f_t_max_ = std::numeric_limits<double>::infinity();
+  double f_t_min_ = -std::numeric_limits<double>::infinity();
+  Constraint f_t_max_constraint_ = Constraint::kNone, f_t_min_constraint_ = Constraint::kNone;
   std::array<TractionBound, ForceConditions::kCapacity> upper_bounds_{}, lower_bounds_{};
   std::size_t upper_count_ = 0, lower_count_ = 0;
 };

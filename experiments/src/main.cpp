@@ -16,12 +16,26 @@
 
 namespace {
 
+/// An unsigned option's text: "-1" would wrap to 2^64 - 1 in CLI11's conversion.
+const CLI::Validator kWholeNumber(
+    [](std::string& text) {
+      return text.find_first_not_of("0123456789") == std::string::npos && !text.empty()
+                 ? std::string()
+                 : "must be a whole number >= 0, got '" + text + "'";
+    },
+    "UINT");
+
 using namespace talus;
 namespace ex = talus::experiments;
 
 void add_shape_options(CLI::App& command, GridShape& shape) {
-  command.add_option("--ncols", shape.ncols, "nodes west to east")->capture_default_str();
-  command.add_option("--nrows", shape.nrows, "nodes south to north")->capture_default_str();
+  // Unsigned fields: "-1" would wrap to 2^64 - 1 without the range checks.
+  command.add_option("--ncols", shape.ncols, "nodes west to east")
+      ->check(CLI::Range(2.0, 1e8))
+      ->capture_default_str();
+  command.add_option("--nrows", shape.nrows, "nodes south to north")
+      ->check(CLI::Range(2.0, 1e8))
+      ->capture_default_str();
   command.add_option("--cellsize", shape.cellsize, "node spacing [m]")->capture_default_str();
   command.add_option("--xmin", shape.x_min, "x of the south-west node [m]")->capture_default_str();
   command.add_option("--ymin", shape.y_min, "y of the south-west node [m]")->capture_default_str();
@@ -67,11 +81,14 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
                    "[m], 0 = grid's longer side")
       ->capture_default_str();
   fractal->add_option("--peaks", o.fractal.peaks, "number of discrete Gaussian peaks")
+      ->check(CLI::Range(0.0, static_cast<double>(talus::kMaxFractalPeaks)))
       ->capture_default_str();
   fractal->add_option("--peak-height", o.fractal.peak_height, "[m]")->capture_default_str();
   fractal->add_option("--peak-radius", o.fractal.peak_radius, "Gaussian standard deviation [m]")
       ->capture_default_str();
-  fractal->add_option("--seed", o.fractal.seed, "random seed")->capture_default_str();
+  fractal->add_option("--seed", o.fractal.seed, "random seed")
+      ->check(kWholeNumber)
+      ->capture_default_str();
   output(fractal);
 
   CLI::App* plane = generate->add_subcommand("plane", "inclined plane");
@@ -123,7 +140,9 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   ey->add_option("--peak-height", o.eldershaw_yim.peak_height, "[m]")->capture_default_str();
   ey->add_option("--roughness", o.eldershaw_yim.roughness, "standard deviation [m]")
       ->capture_default_str();
-  ey->add_option("--seed", o.eldershaw_yim.seed, "random seed")->capture_default_str();
+  ey->add_option("--seed", o.eldershaw_yim.seed, "random seed")
+      ->check(kWholeNumber)
+      ->capture_default_str();
   output(ey);
 
   generate->callback([generate, &o]() {

@@ -20,7 +20,7 @@
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
-#include "talus/kinematic/hait_planner.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "talus/optimal/path_optimizer.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"

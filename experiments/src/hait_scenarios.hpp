@@ -11,7 +11,7 @@
 #include <string>
 
 #include "talus/core/elevation_grid.hpp"
-#include "talus/dynamics/robot.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 #include "talus/kinematic/configuration_space.hpp"
 
 namespace talus::experiments {

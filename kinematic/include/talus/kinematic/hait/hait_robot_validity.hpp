@@ -24,7 +24,7 @@
 #include <numbers>
 
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/robot.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 #include "talus/kinematic/configuration_space.hpp"
 
 namespace talus {

@@ -12,8 +12,8 @@
 #include "hait_scenarios.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
-#include "talus/kinematic/hait/placement.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
+#include "talus/kinematic/hait/placement.hpp"
 
 namespace {
 

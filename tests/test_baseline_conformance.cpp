@@ -23,7 +23,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 /// How far a path's last pose may be from the goal: a quarter-metre cell and
 /// one of 32 heading cells, the coarsest resolution a registered baseline uses.
-constexpr double kGoalPositionTolerance = 0.25 + 1e-9;        // [m]
+constexpr double kGoalPositionTolerance = 0.25 + 1e-9;         // [m]
 constexpr double kGoalHeadingTolerance = 2 * kPi / 32 + 1e-9;  // [rad]
 
 /// What each baseline needs beyond its defaults to plan on the rover-scale

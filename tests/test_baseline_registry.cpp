@@ -35,8 +35,9 @@ class LinePlanner final : public BaselinePlanner {
 };
 
 BaselineEntry line_entry() {
-  return {"line", "a straight line", {{"budget", "10", "unused"}},
-          [](const BaselineOptions&) { return std::make_unique<LinePlanner>(); }};
+  return {"line", "a straight line", {{"budget", "10", "unused"}}, [](const BaselineOptions&) {
+            return std::make_unique<LinePlanner>();
+          }};
 }
 
 TEST(BaselineRegistry, BuiltinListsHaitFirst) {
@@ -126,9 +127,11 @@ TEST(BaselineOptionReader, ReadsDefaultsAndGivenValues) {
   EXPECT_EQ(d.count("budget", 1), 7u);
   EXPECT_FALSE(d.flag("verbose"));
   EXPECT_TRUE(d.numbers("pair", 2).empty());
-  const BaselineOptionReader g(
-      specs(), {{"name", "x"}, {"weight", " 0.25 "}, {"budget", "12"}, {"verbose", "true"},
-                {"pair", "0.1, -2"}});
+  const BaselineOptionReader g(specs(), {{"name", "x"},
+                                         {"weight", " 0.25 "},
+                                         {"budget", "12"},
+                                         {"verbose", "true"},
+                                         {"pair", "0.1, -2"}});
   EXPECT_DOUBLE_EQ(g.number("weight", 0, 2), 0.25);
   EXPECT_EQ(g.count("budget", 1), 12u);
   EXPECT_TRUE(g.flag("verbose"));
@@ -150,8 +153,7 @@ TEST(BaselineOptionReader, NamesTheKeyOfEveryBadValue) {
   };
   EXPECT_EQ(key_of({{"colour", "red"}}, [](const auto&) {}), "colour");
   EXPECT_EQ(key_of({{"weight", "3"}}, [](const auto& r) { r.number("weight", 0, 2); }), "weight");
-  EXPECT_EQ(key_of({{"weight", "nan"}}, [](const auto& r) { r.number("weight", 0, 2); }),
-            "weight");
+  EXPECT_EQ(key_of({{"weight", "nan"}}, [](const auto& r) { r.number("weight", 0, 2); }), "weight");
   EXPECT_EQ(key_of({{"budget", "0"}}, [](const auto& r) { r.count("budget", 1); }), "budget");
   EXPECT_EQ(key_of({{"budget", "-3"}}, [](const auto& r) { r.count("budget", 1); }), "budget");
   EXPECT_EQ(key_of({{"verbose", "yes"}}, [](const auto& r) { r.flag("verbose"); }), "verbose");

@@ -13,10 +13,10 @@
 
 #include "talus/core/error.hpp"
 #include "talus/kinematic/hait/chassis_uncertainty_table.hpp"
-#include "talus/kinematic/hait/robot.hpp"
-#include "talus/kinematic/hait/robot_validity.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/robot.hpp"
+#include "talus/kinematic/hait/robot_validity.hpp"
 
 namespace talus {
 namespace {

@@ -339,8 +339,9 @@ int main(int argc, char** argv) {
   });
 
   CLI::App* baseline = app.add_subcommand(
-      "baseline", "kinematic baseline planners of the literature (`talus baseline NAME`, one "
-                  "subcommand per registered baseline)");
+      "baseline",
+      "kinematic baseline planners of the literature (`talus baseline NAME`, one "
+      "subcommand per registered baseline)");
   baseline->require_subcommand(1);
   // One subcommand per registry entry: the shared query flags, then the
   // baseline's own options as --KEY (flags for booleans), passed on as text.
@@ -355,8 +356,8 @@ int main(int argc, char** argv) {
     const BaselineEntry& entry = baselines.entry(name);
     BaselineFlags& f = baseline_flags.emplace_back();
     f.request.baseline = entry.name;
-    CLI::App* sub = baseline->add_subcommand(
-        entry.name, entry.summary + ". " + ex::kBaselineOutputHelp);
+    CLI::App* sub =
+        baseline->add_subcommand(entry.name, entry.summary + ". " + ex::kBaselineOutputHelp);
     sub->add_option("--terrain", f.request.terrain, "ESRI ASCII grid (.asc)")->required();
     sub->add_option("--start", f.request.start,
                     "start configuration X,Y,THETA: position [m] in the terrain's frame, "
@@ -376,8 +377,7 @@ int main(int argc, char** argv) {
       if (spec.required) option->required();
       if (!spec.default_value.empty()) option->capture_default_str();
     }
-    sub->add_option("--out", f.request.output_dir, "output folder (created if needed)")
-        ->required();
+    sub->add_option("--out", f.request.output_dir, "output folder (created if needed)")->required();
     sub->callback([&f, &exit_code]() {
       for (const auto& [key, value] : f.values) f.request.options[key] = value;
       for (const auto& [key, on] : f.flags) f.request.options[key] = on ? "true" : "false";

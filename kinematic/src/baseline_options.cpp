@@ -70,8 +70,8 @@ std::size_t BaselineOptionReader::count(const std::string& key, std::size_t min)
   std::size_t value = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
   if (t.empty() || ec != std::errc() || end != t.data() + t.size() || value < min) {
-    throw BaselineOptionError(key, "must be a whole number >= " + std::to_string(min) +
-                                       ", got '" + t + "'");
+    throw BaselineOptionError(
+        key, "must be a whole number >= " + std::to_string(min) + ", got '" + t + "'");
   }
   return value;
 }

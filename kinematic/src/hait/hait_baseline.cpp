@@ -30,8 +30,8 @@ BaselineStatus baseline_status(HaitStatus s) {
 
 std::vector<BaselineOptionSpec> hait_option_specs() {
   return {
-      {"robot", "", "robot YAML: wheeled or articulated_chassis (see data/robots/README.md)",
-       false, true},
+      {"robot", "", "robot YAML: wheeled or articulated_chassis (see data/robots/README.md)", false,
+       true},
       {"heuristic", "potential-rs",
        "search guidance: euclidean (straight-line distance), potential (potential bitmap at two "
        "control points) or potential-rs (potential, plus the Reeds-Shepp distance near the goal)"},
@@ -46,7 +46,8 @@ std::vector<BaselineOptionSpec> hait_option_specs() {
        "RHO,DTHETA: position uncertainty RHO >= 0 [m] and heading uncertainty 0 <= DTHETA < pi "
        "[rad]; the whole neighbourhood must be valid"},
       {"budget", std::to_string(HaitOptions{}.max_nodes),
-       "search nodes the A* may create (>= 1) before it stops with status budget_exceeded"},
+       "search nodes (>= 1): the A* stops with status budget_exceeded once it has created this "
+       "many (checked after each node is developed)"},
   };
 }
 
@@ -66,7 +67,8 @@ std::unique_ptr<BaselinePlanner> make_hait(const BaselineOptions& text) {
     if (rho_dtheta[0] < 0.0 || rho_dtheta[1] < 0.0 || rho_dtheta[1] >= std::numbers::pi) {
       throw BaselineOptionError("position-uncertainty",
                                 "must be RHO,DTHETA: rho >= 0 [m] and 0 <= dtheta < pi [rad], "
-                                "got '" + reader.text("position-uncertainty") + "'");
+                                "got '" +
+                                    reader.text("position-uncertainty") + "'");
     }
     options.position_uncertainty = rho_dtheta[0];
     options.heading_uncertainty = rho_dtheta[1];

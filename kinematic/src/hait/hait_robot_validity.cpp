@@ -10,9 +10,9 @@
 #include "talus/core/error.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
 #include "talus/kinematic/hait/chassis_uncertainty_table.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/placement.hpp"
 #include "talus/kinematic/hait/robot_validity.hpp"
-#include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/terrain_quadtree.hpp"
 
 namespace talus {

@@ -96,8 +96,7 @@ class BaselinePlanner {
   /// Plans from `start` to `goal` on `terrain`. Throws InputError when a pose
   /// is not finite or its position is off the map or on NODATA; every other
   /// outcome is a status of the result.
-  BaselineResult plan(const RuledTerrain& terrain, const SE2Pose& start,
-                      const SE2Pose& goal) const;
+  BaselineResult plan(const RuledTerrain& terrain, const SE2Pose& start, const SE2Pose& goal) const;
 
  protected:
   /// The query itself, called by plan() with finite poses on the terrain's data.

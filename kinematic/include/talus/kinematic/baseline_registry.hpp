@@ -25,9 +25,9 @@ using BaselineFactory =
 
 /// One registered baseline.
 struct BaselineEntry {
-  std::string name;                        ///< e.g. "hait"
-  std::string summary;                     ///< one sentence: the paper and the method
-  std::vector<BaselineOptionSpec> options; ///< accepted keys, "budget" among them
+  std::string name;                         ///< e.g. "hait"
+  std::string summary;                      ///< one sentence: the paper and the method
+  std::vector<BaselineOptionSpec> options;  ///< accepted keys, "budget" among them
   BaselineFactory make;
 };
 

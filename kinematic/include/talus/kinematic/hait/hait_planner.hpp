@@ -62,10 +62,10 @@
 #include <vector>
 
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/kinematic/hait/robot.hpp"
 #include "talus/kinematic/configuration_space.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 #include "talus/kinematic/hait/hait_smoothing.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus {
 

@@ -148,7 +148,7 @@ BaselineEntry hait_baseline_entry() {
   return {"hait",
           "the rough-terrain planner of Hait, Simeon, Taix (Advanced Robotics 16(8), 2002): A* "
           "over (x, y, theta) with the robot placed on the ruled terrain at every checked "
-          "configuration (stability, mechanical limits, collision), guided by --heuristic",
+          "configuration (stability, mechanical limits, collision), guided by a heuristic",
           hait_option_specs(), make_hait};
 }
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "talus/core/error.hpp"
-#include "talus/dynamics/robot.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus {
 namespace {
@@ -98,6 +98,14 @@ TEST(RobotYaml, BundledRobotFilesLoad) {
   EXPECT_TRUE(std::holds_alternative<WheeledRobot>(load_robot(dir + "rover4_sprung.yaml")));
   EXPECT_TRUE(
       std::holds_alternative<ArticulatedChassis>(load_robot(dir + "marsokhod_chassis.yaml")));
+}
+
+TEST(RobotYaml, DuplicateKeysAndSecondDocumentsAreErrors) {
+  // yaml-cpp alone would take the first max_roll and ignore the second document.
+  expect_error_naming(kChassis + "max_roll: 0.1\n", "'max_roll' appears twice");
+  expect_error_naming(edit(kWheeled, "  clearance:", "  clearance: 0.25\n  clearance: 0.2"),
+                      "'clearance' appears twice");
+  expect_error_naming(kChassis + "---\n" + kWheeled, "second YAML document");
 }
 
 TEST(RobotYaml, MissingFileIsInputError) {

@@ -1,6 +1,7 @@
 #include "talus/dynamics/path_velocity_limits.hpp"
 
 #include "talus/core/error.hpp"
+#include "talus/core/memory_budget.hpp"
 
 namespace talus {
 
@@ -13,6 +14,13 @@ VelocityLimits::VelocityLimits(const Vehicle& vehicle, const SurfacePath& path,
 }
 
 void VelocityLimits::compute(const SurfacePath& path, std::size_t stations) {
+  // The frames, geometry and limits here, and about as much again for a
+  // profile (speeds, accelerations, times, controllable sets) built on them.
+  const double per_station =
+      2.0 * static_cast<double>(sizeof(PathFrame) + sizeof(StationGeometry) + sizeof(SpeedLimits));
+  require_memory(per_station * static_cast<double>(stations),
+                 "speed limits at " + std::to_string(stations) + " stations",
+                 "use fewer stations (--stations)");
   path.sample_uniform_parameter(stations, frames_);
   compute_limits();
 }

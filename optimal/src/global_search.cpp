@@ -10,6 +10,7 @@
 
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/memory_budget.hpp"
 #include "talus/core/graph_search.hpp"
 #include "talus/dynamics/admissible_set.hpp"
 
@@ -121,6 +122,14 @@ class Lattice {
     if (nx_ < 2 || ny_ < 2) throw InputError("lattice spacing is larger than the terrain");
     if (nx_ * ny_ > 50'000'000) throw InputError("lattice too large: increase --lattice-spacing");
     half_ = offsets_.size() / 2;
+    // Per node: its surface sample and data flag, both directions' cost of
+    // each of its half_ edges, and the searches' fields, labels and queues.
+    const double per_node = static_cast<double>(sizeof(surface_[0]) + 1 + 16 * half_ + 64);
+    require_memory(per_node * static_cast<double>(nx_ * ny_),
+                   "the global search's lattice of " + std::to_string(nx_) + " x " +
+                       std::to_string(ny_) + " nodes",
+                   "increase the lattice spacing (--lattice-spacing; the default is the cell "
+                   "size) or lower the connectivity");
     surface_.resize(nx_ * ny_);
     on_data_.resize(nx_ * ny_);
     for (std::size_t n = 0; n < nx_ * ny_; ++n) {

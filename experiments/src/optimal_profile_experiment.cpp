@@ -16,6 +16,7 @@
 
 #include "constraint_style.hpp"
 #include "experiment_terrain.hpp"
+#include "figure.hpp"
 #include "number_format.hpp"
 #include "path_map.hpp"
 #include "plot.hpp"
@@ -82,7 +83,6 @@ constexpr double kTouchTolerance = 1e-3;
 constexpr double kAccelTolerance = 1e-6;
 
 constexpr std::size_t kRasterMaxSamples = 400;  // relief raster of the map, longer side
-constexpr double kAmbient = 0.35;               // hillshade floor, as in terrain-gallery
 
 /// Rigid-body half wheelbase. The brief asked for l = 0.6 m "so that l/h < μ",
 /// but with h = 0.5 m that is l/h = 1.2 > μ = 0.7: the friction ellipse then
@@ -730,56 +730,49 @@ void draw_profile(const std::vector<ProfileRun>& runs, double length, const std:
 /// mass's optimal speed, with the interpolation points.
 void draw_map(const BPatch& patch, const ProfileRun& run, const std::vector<Vec2>& points,
               double zmin, double zmax, const fs::path& out_dir) {
-  const double x0 = patch.x_min(), y0 = patch.y_min();
-  const double width = patch.x_max() - x0, height = patch.y_max() - y0;
-  const ReliefRaster raster = sample_relief(patch, {x0, y0}, width, height, kRasterMaxSamples);
-  const double exaggeration = hillshade_exaggeration(slope_p95(raster));
-  std::ostringstream rgb_header;
-  rgb_header << "# smoothing B-patch (lambda " << kSmoothingLambda
-             << "), hypsometric colour x hillshade (azimuth 315 deg, altitude 45 deg, "
-                "exaggeration "
-             << exaggeration << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
-  write_relief_rgb(raster, {zmin, zmax, {315.0, 45.0}, exaggeration, kAmbient, true},
-                   rgb_header.str(), out_dir / "map_relief.rgb");
+  const MapFrame frame = MapFrame::of(patch);
+  const Vec2& origin = frame.origin();
+  GnuplotFigure figure(out_dir, "map");
+  const double exaggeration =
+      write_relief_image(patch, frame,
+                         {.what = "smoothing B-patch (lambda " + fmt("%g", kSmoothingLambda) + ")",
+                          .max_samples = kRasterMaxSamples,
+                          .z_range = std::pair{zmin, zmax}},
+                         figure.file("_relief.rgb"))
+          .colouring.exaggeration;
 
   // About 300 segments are plenty at map scale; with every station the seams
   // between thousands of tiny segments show as stripes.
-  const fs::path path_file = out_dir / "map_path.dat";
+  const fs::path path_file = figure.file("_path.dat");
   std::ofstream path = open_output_file(path_file);
   path << "# " << run.spec->label << ": x - x_min [m], y - y_min [m], optimal speed v [m/s]\n";
   const std::size_t n = run.profile.s.size();
   const std::size_t stride = std::max<std::size_t>(1, n / 300);
-  for (std::size_t k = 0; k < n; k += stride) {
-    const Vec3& p = run.limits.frame(k).point;
-    path << fmt("%.7g", p.x() - x0) << ' ' << fmt("%.7g", p.y() - y0) << ' '
+  const auto write_station = [&](std::size_t k) {
+    path << offset_row(run.limits.frame(k).point.head<2>(), origin) << ' '
          << csv_number(run.profile.v[k]) << '\n';
-  }
-  const Vec3& last = run.limits.frame(n - 1).point;
-  path << fmt("%.7g", last.x() - x0) << ' ' << fmt("%.7g", last.y() - y0) << ' '
-       << csv_number(run.profile.v[n - 1]) << '\n';
+  };
+  for (std::size_t k = 0; k < n; k += stride) write_station(k);
+  write_station(n - 1);
   close_output_file(path, path_file);
 
   std::vector<Vec2> offsets;
-  for (const Vec2& p : points) offsets.emplace_back(p.x() - x0, p.y() - y0);
+  for (const Vec2& p : points) offsets.push_back(frame.offset(p));
   write_path_points(offsets, "# path interpolation points: x - x_min [m], y - y_min [m], label\n",
-                    out_dir / "map_points.dat");
+                    figure.file("_points.dat"));
 
   std::ostringstream title;
   title << "West Bijou at rover scale (1/25, 1 m cells): path coloured by the point mass's "
            "optimal speed\nover shaded relief of the smoothing fit (λ = "
         << fmt("%g", kSmoothingLambda) << "; elevation " << sig3(zmin) << " to " << sig3(zmax)
         << " m, hillshade × " << fmt("%g", exaggeration) << " vertical exaggeration)";
-  std::ostringstream gp;
-  gp << "# Map of the optimal profile, from `talus experiment optimal-profile`.\n"
-     << "# Re-render in this folder with: gnuplot map.gp\n"
-     << "# Inputs: map_relief.rgb (x y r g b), map_path.dat (x y v), map_points.dat (x y label).\n"
-     << png_terminal(1100, path_map_canvas_height(width, height)) << "set output 'map.png'\n"
-     << path_map_settings(width, height, title.str(), run.spec->vehicle.max_speed, "v [m/s]")
-     << path_map_plot("map_relief.rgb", "map_path.dat", "path, coloured by optimal v", "",
-                      "map_points.dat");
-  const fs::path script = out_dir / "map.gp";
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  figure.describe("Map of the optimal profile, from `talus experiment optimal-profile`.",
+                  "map_relief.rgb (x y r g b), map_path.dat (x y v), map_points.dat (x y label).");
+  figure.canvas(1100, frame.canvas_height(1100))
+      << path_map_settings(frame, title.str(), run.spec->vehicle.max_speed, "v [m/s]")
+      << path_map_plot("map_relief.rgb", "map_path.dat", "path, coloured by optimal v", "",
+                       "map_points.dat");
+  figure.render();
 }
 
 /// The |error| series of the convergence panel: a line per series, filled

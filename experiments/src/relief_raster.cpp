@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <ostream>
+#include <tuple>
 
 #include "number_format.hpp"
 #include "plot.hpp"
@@ -82,6 +83,34 @@ void write_elevation_raster(const ReliefRaster& raster, const std::string& heade
   write_raster_file(raster, header, file, [&](std::ostream& out, std::size_t k) {
     out << fmt("%.7g", raster.samples[k].z);
   });
+}
+
+ReliefImage write_relief_image(const BPatch& surface, const MapFrame& frame,
+                               const ReliefImageSpec& spec, const std::filesystem::path& file) {
+  ReliefImage image{sample_relief(surface, frame.origin(), frame.width(), frame.height(),
+                                  spec.max_samples),
+                    {}};
+  ReliefColouring& colouring = image.colouring;
+  if (spec.z_range) {
+    std::tie(colouring.zmin, colouring.zmax) = *spec.z_range;
+  } else {
+    const auto [low, high] = std::minmax_element(
+        image.raster.samples.begin(), image.raster.samples.end(),
+        [](const SurfacePoint& a, const SurfacePoint& b) { return a.z < b.z; });
+    colouring.zmin = low->z;
+    colouring.zmax = high->z;
+  }
+  colouring.sun = spec.sun;
+  colouring.exaggeration = hillshade_exaggeration(slope_p95(image.raster));
+  colouring.washed = spec.washed;
+  const std::string header = "# " + spec.what + ": hypsometric colour x hillshade (azimuth " +
+                             fmt("%g", spec.sun.azimuth_deg) + " deg, altitude " +
+                             fmt("%g", spec.sun.altitude_deg) + " deg, exaggeration " +
+                             fmt("%g", colouring.exaggeration) + ")" +
+                             (spec.washed ? ", washed 45 % towards white" : "") +
+                             "\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
+  write_relief_rgb(image.raster, colouring, header, file);
+  return image;
 }
 
 }  // namespace talus::experiments

@@ -15,6 +15,7 @@
 
 #include "constraint_style.hpp"
 #include "experiment_terrain.hpp"
+#include "figure.hpp"
 #include "number_format.hpp"
 #include "path_map.hpp"
 #include "plot.hpp"
@@ -48,7 +49,6 @@ constexpr double kAccelSpeedFraction = 0.8;
 /// crest limit of 300 m/s is as irrelevant as none, and would squash the plot.
 constexpr double kClipFactor = 1.5;
 constexpr std::size_t kRasterMaxSamples = 400;  // relief raster of the maps, longer side
-constexpr double kAmbient = 0.35;               // hillshade floor, as in terrain-gallery
 constexpr double kSmoothingLambda = 1.0;  // control run: "smooths over about one cell" (bpatch.hpp)
 
 // ---------------------------------------------------------------------------
@@ -509,18 +509,15 @@ void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
 /// (identical to the rigid body's).
 void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
               double& exaggeration) {
-  const double x0 = patch.x_min(), y0 = patch.y_min();
-  const double width = patch.x_max() - x0, height = patch.y_max() - y0;
-  const ReliefRaster raster = sample_relief(patch, {x0, y0}, width, height, kRasterMaxSamples);
-  exaggeration = hillshade_exaggeration(slope_p95(raster));
-  const ReliefColouring colouring{c.zmin, c.zmax, {315.0, 45.0}, exaggeration, kAmbient, true};
-  std::ostringstream rgb_header;
-  rgb_header << "# " << c.label
-             << ": interpolating B-patch, hypsometric colour x hillshade (azimuth "
-             << colouring.sun.azimuth_deg << " deg, altitude " << colouring.sun.altitude_deg
-             << " deg, exaggeration " << exaggeration
-             << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
-  write_relief_rgb(raster, colouring, rgb_header.str(), out_dir / (c.name + "_relief.rgb"));
+  const MapFrame frame = MapFrame::of(patch);
+  const Vec2& origin = frame.origin();
+  GnuplotFigure figure(out_dir, c.name + "_map");
+  exaggeration = write_relief_image(patch, frame,
+                                    {.what = c.label + ": interpolating B-patch",
+                                     .max_samples = kRasterMaxSamples,
+                                     .z_range = std::pair{c.zmin, c.zmax}},
+                                    out_dir / (c.name + "_relief.rgb"))
+                     .colouring.exaggeration;
 
   const VehicleRun& run = c.runs.front();
   const fs::path path_file = out_dir / (c.name + "_path.dat");
@@ -528,8 +525,8 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
   path << "# " << c.label << ": path stations; x - x_min [m], y - y_min [m], v_max of the "
        << run.spec.label << " [m/s], 1 if untraversable\n";
   for (const Station& st : run.stations) {
-    path << fmt("%.7g", st.point.x() - x0) << ' ' << fmt("%.7g", st.point.y() - y0) << ' '
-         << csv_number(st.limits.v_max) << ' ' << (st.limits.traversable ? 0 : 1) << '\n';
+    path << offset_row(st.point.head<2>(), origin) << ' ' << csv_number(st.limits.v_max) << ' '
+         << (st.limits.traversable ? 0 : 1) << '\n';
   }
   close_output_file(path, path_file);
   write_path_points(c.points,
@@ -541,24 +538,20 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
         << "over shaded relief of the interpolating fit (elevation " << sig3(c.zmin) << " to "
         << sig3(c.zmax) << " m, hillshade × " << fmt("%g", exaggeration)
         << " vertical exaggeration)";
-  std::ostringstream gp;
-  gp << "# Map of the path, " << c.label << ", from `talus experiment velocity-limits`.\n"
-     << "# Re-render in this folder with: gnuplot " << c.name << "_map.gp\n"
-     << "# Inputs: " << c.name << "_relief.rgb (x y r g b), " << c.name
-     << "_path.dat (x y v_max untraversable), " << c.name << "_path_points.dat (x y label).\n"
-     << png_terminal(1100, path_map_canvas_height(width, height)) << "set output "
-     << gnuplot_string(c.name + "_map.png") << "\n"
-     << path_map_settings(width, height, title.str(), run.spec.vehicle.max_speed, "v_{max} [m/s]")
-     << path_map_plot(
-            c.name + "_relief.rgb", c.name + "_path.dat", "path, coloured by v_{max}",
-            run.summary.untraversable > 0
-                ? "     '' using 1:($4 > 0 ? $2 : NaN) with points pt 2 ps 1.5 lw 2 lc rgb 'black' "
-                  "title 'untraversable', \\\n"
-                : "",
-            c.name + "_path_points.dat");
-  const fs::path script = out_dir / (c.name + "_map.gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  figure.describe("Map of the path, " + c.label + ", from `talus experiment velocity-limits`.",
+                  c.name + "_relief.rgb (x y r g b), " + c.name +
+                      "_path.dat (x y v_max untraversable), " + c.name +
+                      "_path_points.dat (x y label).");
+  figure.canvas(1100, frame.canvas_height(1100))
+      << path_map_settings(frame, title.str(), run.spec.vehicle.max_speed, "v_{max} [m/s]")
+      << path_map_plot(
+             c.name + "_relief.rgb", c.name + "_path.dat", "path, coloured by v_{max}",
+             run.summary.untraversable > 0
+                 ? "     '' using 1:($4 > 0 ? $2 : NaN) with points pt 2 ps 1.5 lw 2 lc rgb "
+                   "'black' title 'untraversable', \\\n"
+                 : "",
+             c.name + "_path_points.dat");
+  figure.render();
 }
 
 CaseResult process_case(const TerrainCase& tc, const std::vector<VehicleSpec>& vehicles,

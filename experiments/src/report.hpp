@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// The Markdown report builder of the experiments: a report.md of headings,
+/// paragraphs, bullet lists, tables and figure links, with the blank lines
+/// Markdown needs between blocks written in one place.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace talus::experiments {
+
+/// A Markdown table: a header row, then rows of the same width.
+class Table {
+ public:
+  explicit Table(std::vector<std::string> columns);
+  /// Appends a row; throws talus::Error if its width differs from the header's.
+  Table& row(std::vector<std::string> cells);
+  /// "| a | b |\n|---|---|\n| 1 | 2 |\n".
+  std::string markdown() const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+/// Builds a report: a title, then blocks in order. Consecutive bullets form
+/// one list; every other block is separated from its neighbours by a blank line.
+class Report {
+ public:
+  /// Starts with "# title".
+  explicit Report(std::string_view title);
+
+  Report& heading(std::string_view text, int level = 2);
+  /// A paragraph of Markdown text (may span lines).
+  Report& paragraph(std::string_view text);
+  /// A list item (may continue on indented lines, such as a nested list).
+  Report& bullet(std::string_view text);
+  Report& table(const Table& table);
+  /// An image link ![caption](file), as a block of its own.
+  Report& figure(std::string_view caption, std::string_view file);
+
+  std::string markdown() const { return text_; }
+  /// Writes `dir`/report.md.
+  void write(const std::filesystem::path& dir) const;
+
+ private:
+  /// Starts a block: a blank line after the previous one (none between bullets).
+  void begin_block(bool bullet);
+
+  std::string text_;
+  bool in_list_ = false;
+};
+
+}  // namespace talus::experiments

@@ -42,10 +42,14 @@ GnuplotFigure& GnuplotFigure::plot(const PlotItems& items) {
   return *this;
 }
 
-void GnuplotFigure::render() const {
+std::filesystem::path GnuplotFigure::save() const {
   const std::filesystem::path script = file(".gp");
   write_text_file(script, script_.str());
-  run_gnuplot(script);
+  return script;
+}
+
+void GnuplotFigure::render() const {
+  run_gnuplot(save());
 }
 
 }  // namespace talus::experiments

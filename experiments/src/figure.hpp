@@ -50,6 +50,8 @@ class GnuplotFigure {
   /// `dir/<stem><suffix>`, where that data file is written.
   std::filesystem::path file(std::string_view suffix) const { return dir_ / name(suffix); }
 
+  /// Writes the script; returns its path.
+  std::filesystem::path save() const;
   /// Writes the script and runs gnuplot on it (run_gnuplot).
   void render() const;
 

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "experiment_terrain.hpp"
+#include "figure.hpp"
+#include "map_frame.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
@@ -90,7 +92,6 @@ constexpr double kQuickLatticeCells = 3.0;
 
 constexpr std::size_t kRasterMaxSamples = 480;  // relief raster, longer side
 constexpr std::size_t kQuickRasterMaxSamples = 240;
-constexpr double kAmbient = 0.35;  // hillshade floor, as in terrain-gallery
 constexpr int kContourTargetLevels = 12;
 constexpr double kExcessShare = 0.2;  // colour range of the excess panel, × J*
 /// A candidate's vertex "shares" the best route's corridor if it lies within
@@ -198,6 +199,7 @@ struct Setup {
   /// the row terracing shows as a larger value along y.
   double roughness_x = 0.0, roughness_y = 0.0;
   Vec2 origin() const { return {patch.x_min(), patch.y_min()}; }
+  MapFrame frame() const { return MapFrame::of(patch, MapUnit::kKilometre); }
   double width() const { return patch.x_max() - patch.x_min(); }
   double height() const { return patch.y_max() - patch.y_min(); }
 };
@@ -412,24 +414,18 @@ ControlRun run_control(const Setup& setup, double friction, GlobalSearchOptions 
 
 /// Shaded relief raster (washed towards white so that routes and overlays
 /// read on top of it) and the elevation raster gnuplot traces contours on.
-/// Shared by every map; returns the contour interval.
-double write_relief(const Setup& setup, std::size_t max_samples, const fs::path& out_dir) {
-  const ReliefRaster raster =
-      sample_relief(setup.patch, setup.origin(), setup.width(), setup.height(), max_samples);
-  const double exaggeration = hillshade_exaggeration(slope_p95(raster));
-  std::ostringstream rgb_header, elevation_header;
-  rgb_header << "# " << kDemStem
-             << " crop, smoothing B-patch: hypsometric colour x hillshade (azimuth 315 deg, "
-                "altitude 45 deg, exaggeration "
-             << exaggeration
-             << "), washed 45 % towards white\n# x - x_min [m], y - y_min [m], red, green, blue\n";
+/// Shared by every map; returns the contour levels.
+ContourLevels write_relief(const Setup& setup, std::size_t max_samples, const fs::path& out_dir) {
+  const ReliefImage image = write_relief_image(
+      setup.patch, setup.frame(), std::string(kDemStem) + " crop, smoothing B-patch",
+      out_dir / "relief.rgb", max_samples, std::pair{setup.zmin, setup.zmax});
+  std::ostringstream elevation_header;
   elevation_header << "# " << kDemStem << " crop: smoothing B-patch (lambda " << kSmoothingLambda
-                   << ") on a " << raster.size.nx << " x " << raster.size.ny
+                   << ") on a " << image.raster.size.nx << " x " << image.raster.size.ny
                    << " raster\n# x - x_min [m], y - y_min [m], z [m]\n";
-  write_relief_rgb(raster, {setup.zmin, setup.zmax, {315.0, 45.0}, exaggeration, kAmbient, true},
-                   rgb_header.str(), out_dir / "relief.rgb");
-  write_elevation_raster(raster, elevation_header.str(), out_dir / "elevation.dat");
-  return contour_interval(setup.zmax - setup.zmin, kContourTargetLevels);
+  write_elevation_raster(image.raster, elevation_header.str(), out_dir / "elevation.dat");
+  return ContourLevels::within(setup.zmin, setup.zmax,
+                               contour_interval(setup.zmax - setup.zmin, kContourTargetLevels));
 }
 
 /// Lattice nodes of `r` as offsets from the crop's south-west node.
@@ -519,63 +515,22 @@ void write_fields(const Setup& setup, const FrictionRun& run, const fs::path& fi
 // ---------------------------------------------------------------------------
 // Figures.
 
-/// gnuplot lines tracing the elevation contours into contours.dat.
-std::string contour_tracing(const Setup& setup, double step) {
-  const double first = std::ceil(setup.zmin / step) * step;
-  const double last = std::floor(setup.zmax / step) * step;
-  std::ostringstream gp;
-  gp << "# Elevation contours, traced by gnuplot on the elevation raster into a table.\n"
-     << "set contour base\nunset surface\nset view map\nset cntrparam linear\n"
-     << "set cntrparam levels incremental " << fmt("%.10g", first) << ", " << fmt("%.10g", step)
-     << ", " << fmt("%.10g", last) << "\n"
-     << "set table 'contours.dat'\n"
-     << "splot 'elevation.dat' using 1:2:3 with lines notitle\n"
-     << "unset table\nunset contour\nset surface\n";
-  return gp.str();
-}
-
-std::string map_axes(const Setup& setup) {
-  std::ostringstream gp;
-  gp << "set size ratio -1\n"
-     << "set xrange [0:" << fmt("%.10g", setup.width() * 1e-3) << "]\n"
-     << "set yrange [0:" << fmt("%.10g", setup.height() * 1e-3) << "]\n"
-     << "set xlabel 'x − x_{min} [km]  (east)'\nset ylabel 'y − y_{min} [km]  (north)'\n"
-     << "set tics out nomirror\n";
-  return gp.str();
-}
-
-/// Start and goal markers with labels (offsets in metres from the crop's SW node).
-std::string endpoint_markers(const Setup& setup) {
-  const Vec2 s = (setup.start - setup.origin()) * 1e-3, g = (setup.goal - setup.origin()) * 1e-3;
-  std::ostringstream gp;
-  // Boxed in white: the labels must read over dark field colours too.
-  gp << "set style textbox opaque noborder fillcolor rgb 'white' margins 1,1\n"
-     << "set label 101 'start' at " << fmt("%.6g", s.x()) << "," << fmt("%.6g", s.y())
-     << " offset char -1.5,1.3 front boxed font ',12' tc rgb 'black'\n"
-     << "set label 102 'goal' at " << fmt("%.6g", g.x()) << "," << fmt("%.6g", g.y())
-     << " offset char 0.9,0.9 front boxed font ',12' tc rgb 'black'\n";
-  return gp.str();
-}
-
-/// Plot items drawing start (circle) and goal (square) from endpoints.dat.
-std::string endpoint_items() {
-  return "'endpoints.dat' index 0 using ($1/1000):($2/1000) with points pt 7 ps 2.2 "
-         "lc rgb 'black' notitle, \\\n"
-         "     '' index 0 using ($1/1000):($2/1000) with points pt 7 ps 1.5 lc rgb '#4dff4d' "
-         "title 'start', \\\n"
-         "     '' index 1 using ($1/1000):($2/1000) with points pt 5 ps 2.2 lc rgb 'black' "
-         "notitle, \\\n"
-         "     '' index 1 using ($1/1000):($2/1000) with points pt 5 ps 1.5 lc rgb '#ffd700' "
-         "title 'goal'";
+/// Start and goal labels, boxed in white: they must read over dark field
+/// colours too.
+std::string endpoint_labels(const Setup& setup) {
+  const MapFrame frame = setup.frame();
+  return "set style textbox opaque noborder fillcolor rgb 'white' margins 1,1\n"
+         "set label 101 'start' at " +
+         frame.at(setup.start) +
+         " offset char -1.5,1.3 front boxed font ',12' tc rgb 'black'\n"
+         "set label 102 'goal' at " +
+         frame.at(setup.goal) + " offset char 0.9,0.9 front boxed font ',12' tc rgb 'black'\n";
 }
 
 void write_endpoints(const Setup& setup, const fs::path& out_dir) {
-  std::ostringstream text;
-  const Vec2 s = setup.start - setup.origin(), g = setup.goal - setup.origin();
-  text << "# start, then goal: x - x_min [m], y - y_min [m]\n"
-       << fmt("%.7g", s.x()) << ' ' << fmt("%.7g", s.y()) << "\n\n\n"
-       << fmt("%.7g", g.x()) << ' ' << fmt("%.7g", g.y()) << '\n';
-  write_text_file(out_dir / "endpoints.dat", text.str());
+  write_text_file(out_dir / "endpoints.dat", "# start, then goal: x - x_min [m], y - y_min [m]\n" +
+                                                 offset_row(setup.start, setup.origin()) + "\n" +
+                                                 offset_row(setup.goal, setup.origin()) + "\n");
 }
 
 std::string candidate_title(std::size_t c, const CandidatePath& path) {
@@ -589,59 +544,59 @@ std::string vehicle_text(const Vehicle& v) {
          " m, b = " + fmt("%g", v.half_track) + " m, v_{max} ≤ " + fmt("%g", v.max_speed) + " m/s";
 }
 
-int map_canvas_height(const Setup& setup, int width) {
-  return static_cast<int>(
-      std::clamp(230.0 + (width - 260.0) * setup.height() / setup.width(), 450.0, 1200.0));
+const char* candidate_colour(std::size_t c) {
+  return kCandidateColours[c % std::size(kCandidateColours)];
+}
+
+/// Plot items of the candidates of `routes_file` in a white casing, drawn
+/// worst first so the best lies on top where routes share a corridor.
+void add_routes(PlotItems& items, const MapFrame& frame, const std::string& routes_file,
+                std::size_t count, const std::string& width, const std::string& casing) {
+  for (std::size_t c = count; c-- > 0;) {
+    const std::string block = "'" + routes_file + "' index " + std::to_string(c) + " using " +
+                              frame.xy() + " with lines lw ";
+    items.push_back(block + casing + " lc rgb 'white' notitle");
+    items.push_back(block + width + " lc rgb '" + candidate_colour(c) + "' notitle");
+  }
 }
 
 /// Figure 1: the candidates of one friction over shaded relief.
-void draw_routes(const Setup& setup, const FrictionRun& run, double contour_step,
+void draw_routes(const Setup& setup, const FrictionRun& run, const ContourLevels& contours,
                  const fs::path& out_dir) {
   const std::string tag = friction_tag(run.friction);
   write_unreachable(setup, run.result, nullptr, out_dir / ("unreachable_" + tag + ".rgba"));
   const GlobalSearchResult& r = run.result;
+  const MapFrame frame = setup.frame();
   std::ostringstream title;
   title << "Global search on Mount St. Helens (30 m DEM): " << r.candidates.size()
         << " distinct candidates, " << vehicle_text(run.vehicle) << "\n"
         << kConnectivity << "-connected lattice, spacing " << fmt("%g", r.spacing)
-        << " m; shaded: unreachable from the start; contours every " << fmt("%g", contour_step)
+        << " m; shaded: unreachable from the start; contours every " << fmt("%g", contours.step)
         << " m";
-  const int width = 1100;
-  std::ostringstream gp;
-  gp << "# Candidate routes at μ = " << run.friction << ", from `talus experiment global-search`.\n"
-     << "# Re-render in this folder with: gnuplot routes_" << tag << ".gp\n"
-     << "# Inputs: relief.rgb, elevation.dat, unreachable_" << tag << ".rgba, routes_" << tag
-     << ".dat (one block per candidate), endpoints.dat.\n"
-     << png_terminal(width, map_canvas_height(setup, width) + 60) << "set output 'routes_" << tag
-     << ".png'\n"
-     << contour_tracing(setup, contour_step) << map_axes(setup) << "set title "
-     << gnuplot_string(title.str()) << " font ',10'\n"
-     << endpoint_markers(setup) << "set key outside bottom center vertical maxrows 3 samplen 2\n"
-     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
-     << "     'unreachable_" << tag
-     << ".rgba' using ($1/1000):($2/1000):3:4:5:6 with rgbalpha notitle, \\\n"
-     << "     keyentry with boxes fs solid 0.6 noborder fc rgb '#191919' "
-        "title 'unreachable from the start', \\\n"
-     << "     'contours.dat' using ($1/1000):($2/1000) with lines lc rgb '#606060' lw 0.5 "
-        "notitle, \\\n";
-  // Legend best first; lines drawn worst first, so the best lies on top
-  // where routes share a corridor.
+  PlotItems items{"'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle",
+                  "'unreachable_" + tag + ".rgba' using " + frame.xy() +
+                      ":3:4:5:6 with rgbalpha notitle",
+                  "keyentry with boxes fs solid 0.6 noborder fc rgb '#191919' "
+                  "title 'unreachable from the start'",
+                  frame.contour_item("contours.dat", "lc rgb '#606060' lw 0.5 notitle")};
+  // Legend best first.
   for (std::size_t c = 0; c < r.candidates.size(); ++c) {
-    gp << "     keyentry with lines lw 3 lc rgb '"
-       << kCandidateColours[c % std::size(kCandidateColours)] << "' title "
-       << gnuplot_string(candidate_title(c, r.candidates[c])) << ", \\\n";
+    items.push_back("keyentry with lines lw 3 lc rgb '" + std::string(candidate_colour(c)) +
+                    "' title " + gnuplot_string(candidate_title(c, r.candidates[c])));
   }
-  for (std::size_t c = r.candidates.size(); c-- > 0;) {
-    const char* colour = kCandidateColours[c % std::size(kCandidateColours)];
-    gp << "     'routes_" << tag << ".dat' index " << c
-       << " using ($1/1000):($2/1000) with lines lw 5.5 lc rgb 'white' notitle, \\\n"
-       << "     '' index " << c << " using ($1/1000):($2/1000) with lines lw 3 lc rgb '" << colour
-       << "' notitle, \\\n";
-  }
-  gp << "     " << endpoint_items() << "\n";
-  const fs::path script = out_dir / ("routes_" + tag + ".gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  add_routes(items, frame, "routes_" + tag + ".dat", r.candidates.size(), "3", "5.5");
+  items.push_back(frame.endpoint_items("endpoints.dat", 0));
+  GnuplotFigure figure(out_dir, "routes_" + tag);
+  figure
+      .describe("Candidate routes at μ = " + fmt("%g", run.friction) +
+                    ", from `talus experiment global-search`.",
+                "relief.rgb, elevation.dat, unreachable_" + tag + ".rgba, routes_" + tag +
+                    ".dat (one block per candidate), endpoints.dat.")
+      .canvas(1100, frame.canvas_height(1100, 60))
+      << trace_contours("elevation.dat", 3, contours, "contours.dat") << frame.axes();
+  figure.title(title.str(), ",10", true)
+      << endpoint_labels(setup) << "set key outside bottom center vertical maxrows 3 samplen 2\n";
+  figure.plot(items).render();
 }
 
 /// Figure 2: the cost-to-go field from the start and the excess of the best
@@ -650,6 +605,7 @@ void draw_fields(const Setup& setup, const FrictionRun& run, const fs::path& out
   const std::string tag = friction_tag(run.friction);
   write_fields(setup, run, out_dir / ("fields_" + tag + ".dat"));
   const GlobalSearchResult& r = run.result;
+  const MapFrame frame = setup.frame();
   const double best = r.candidates.front().cost_seconds;
   double t_max = 0.0;
   for (const double t : r.cost_from_start)
@@ -660,148 +616,121 @@ void draw_fields(const Setup& setup, const FrictionRun& run, const fs::path& out
   // few per cent of it and would all look alike on a [0, J*] scale.
   const double excess_max = kExcessShare * best;
   const double excess_step = contour_interval(excess_max, 6);
+  const std::string fields = "fields_" + tag + ".dat";
+  const std::string relief = "'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle";
+  const std::string best_route = "'routes_" + tag + ".dat' index 0 using " + frame.xy();
 
-  const int width = 1800;
-  const int height =
-      static_cast<int>(std::clamp(220.0 + 660.0 * setup.height() / setup.width(), 500.0, 1300.0));
   std::ostringstream title;
   title << "Cost-to-go fields on Mount St. Helens, " << vehicle_text(run.vehicle) << ", "
         << kConnectivity << "-connected lattice, spacing " << fmt("%g", r.spacing)
         << " m; bare relief: unreachable from the start";
-  std::ostringstream gp;
-  gp << "# Cost-to-go fields at μ = " << run.friction
-     << ", from `talus experiment global-search`.\n"
-     << "# Re-render in this folder with: gnuplot fields_" << tag << ".gp\n"
-     << "# Inputs: fields_" << tag << ".dat (x y T_start excess), relief.rgb, routes_" << tag
-     << ".dat, endpoints.dat.\n"
-     << png_terminal(width, height) << "set output 'fields_" << tag << ".png'\n"
-     << "# Isochrones of T_start and iso-excess lines, traced by gnuplot into tables.\n"
-     << "set contour base\nunset surface\nset view map\nset cntrparam linear\n"
-     << "set cntrparam levels incremental 0, " << fmt("%.10g", t_step) << ", "
-     << fmt("%.10g", t_max) << "\n"
-     << "set table 'fields_" << tag << "_isochrones.dat'\n"
-     << "splot 'fields_" << tag << ".dat' using 1:2:3 with lines notitle\n"
-     << "unset table\n"
-     << "set cntrparam levels incremental " << fmt("%.10g", excess_step) << ", "
-     << fmt("%.10g", excess_step) << ", " << fmt("%.10g", excess_max) << "\n"
-     << "set table 'fields_" << tag << "_excess.dat'\n"
-     << "splot 'fields_" << tag << ".dat' using 1:2:4 with lines notitle\n"
-     << "unset table\nunset contour\nset surface\n"
-     << "set multiplot layout 1,2 title " << gnuplot_string(title.str()) << " font ',12'\n"
-     << map_axes(setup) << endpoint_markers(setup)
-     << "set key outside bottom center vertical maxrows 2 samplen 2\n"
-     << "set cblabel 'T_{start} [s]'\n"
-     << "# Viridis-like: dark = reached early. Unreachable nodes are NaN, drawn\n"
-     << "# transparent, so the bare relief marks them.\n"
-     << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 "
-        "'#fde725')\n"
-     << "set cbrange [0:" << fmt("%.10g", t_max) << "]\n"
-     << "set title "
-     << gnuplot_string("(a) minimum time from the start, T_{start}; isochrones every " +
-                       fmt("%g", t_step) + " s")
-     << "\n"
-     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
-     << "     'fields_" << tag << ".dat' using ($1/1000):($2/1000):3 with image notitle, \\\n"
-     << "     'fields_" << tag
-     << "_isochrones.dat' using ($1/1000):($2/1000) with lines lc rgb "
-        "'white' lw 0.7 notitle, \\\n"
-     << "     'routes_" << tag
-     << ".dat' index 0 using ($1/1000):($2/1000) with lines lw 5.5 lc rgb 'white' notitle, \\\n"
-     << "     '' index 0 using ($1/1000):($2/1000) with lines lw 3 lc rgb '#e41a1c' title "
-        "'best route', \\\n"
-     << "     " << endpoint_items() << "\n"
-     << "set cblabel 'T_{start} + T_{goal} − J* [s]'\n"
-     << "# Magma-like, reversed: dark valleys = nodes on near-optimal routes.\n"
-     << "set palette defined (0 '#000004', 0.25 '#51127c', 0.5 '#b73779', 0.75 '#fc8961', 1 "
-        "'#fcfdbf')\n"
-     << "set cbrange [0:" << fmt("%.10g", excess_max) << "]\n"
-     << "set title "
-     << gnuplot_string(
-            "(b) excess time of the best route through each node "
-            "over J* = " +
-            fmt("%.1f", best) + " s; lines every " + fmt("%g", excess_step) +
-            " s, colours saturate at " + fmt("%.0f", excess_max) + " s")
-     << "\n"
-     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
-     << "     'fields_" << tag << ".dat' using ($1/1000):($2/1000):($4 < "
-     << fmt("%.10g", excess_max) << " ? $4 : " << fmt("%.10g", excess_max)
-     << ") with image notitle, \\\n"
-     << "     'fields_" << tag
-     << "_excess.dat' using ($1/1000):($2/1000) with lines lc rgb "
-        "'white' lw 0.7 notitle, \\\n";
+  GnuplotFigure figure(out_dir, "fields_" + tag);
+  figure
+      .describe("Cost-to-go fields at μ = " + fmt("%g", run.friction) +
+                    ", from `talus experiment global-search`.",
+                fields + " (x y T_start excess), relief.rgb, routes_" + tag +
+                    ".dat, endpoints.dat.")
+      .canvas(1800, frame.canvas_height(920))
+      << trace_contours(fields, 3, {0.0, t_step, t_max}, "fields_" + tag + "_isochrones.dat")
+      << trace_contours(fields, 4, {excess_step, excess_step, excess_max},
+                        "fields_" + tag + "_excess.dat")
+      << "set multiplot layout 1,2 title " << gnuplot_string(title.str()) << " font ',12'\n"
+      << frame.axes() << endpoint_labels(setup)
+      << "set key outside bottom center vertical maxrows 2 samplen 2\n"
+      << "set cblabel 'T_{start} [s]'\n"
+      << "# Viridis-like: dark = reached early. Unreachable nodes are NaN, drawn\n"
+      << "# transparent, so the bare relief marks them.\n"
+      << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 "
+         "'#fde725')\n"
+      << "set cbrange [0:" << fmt("%.10g", t_max) << "]\n";
+  figure.title("(a) minimum time from the start, T_{start}; isochrones every " +
+                   fmt("%g", t_step) + " s",
+               "", true);
+  figure.plot({relief, "'" + fields + "' using " + frame.xy() + ":3 with image notitle",
+               frame.contour_item("fields_" + tag + "_isochrones.dat",
+                                  "lc rgb 'white' lw 0.7 notitle"),
+               best_route + " with lines lw 5.5 lc rgb 'white' notitle",
+               best_route + " with lines lw 3 lc rgb '#e41a1c' title 'best route'",
+               frame.endpoint_items("endpoints.dat", 0)});
+  figure << "set cblabel 'T_{start} + T_{goal} − J* [s]'\n"
+         << "# Magma-like, reversed: dark valleys = nodes on near-optimal routes.\n"
+         << "set palette defined (0 '#000004', 0.25 '#51127c', 0.5 '#b73779', 0.75 '#fc8961', 1 "
+            "'#fcfdbf')\n"
+         << "set cbrange [0:" << fmt("%.10g", excess_max) << "]\n";
+  figure.title("(b) excess time of the best route through each node over J* = " +
+                   fmt("%.1f", best) + " s; lines every " + fmt("%g", excess_step) +
+                   " s, colours saturate at " + fmt("%.0f", excess_max) + " s",
+               "", true);
+  const std::string cap = fmt("%.10g", excess_max);
+  PlotItems items{relief,
+                  "'" + fields + "' using " + frame.xy() + ":($4 < " + cap + " ? $4 : " + cap +
+                      ") with image notitle",
+                  frame.contour_item("fields_" + tag + "_excess.dat",
+                                     "lc rgb 'white' lw 0.7 notitle")};
   for (std::size_t c = 0; c < r.candidates.size(); ++c) {
-    gp << "     keyentry with lines lw 2.5 lc rgb '"
-       << kCandidateColours[c % std::size(kCandidateColours)] << "' title 'candidate " << c + 1
-       << "', \\\n";
+    items.push_back("keyentry with lines lw 2.5 lc rgb '" + std::string(candidate_colour(c)) +
+                    "' title 'candidate " + std::to_string(c + 1) + "'");
   }
-  for (std::size_t c = r.candidates.size(); c-- > 0;) {
-    gp << "     'routes_" << tag << ".dat' index " << c
-       << " using ($1/1000):($2/1000) with lines lw 5 lc rgb 'white' notitle, \\\n"
-       << "     '' index " << c << " using ($1/1000):($2/1000) with lines lw 2.5 lc rgb '"
-       << kCandidateColours[c % std::size(kCandidateColours)] << "' notitle, \\\n";
-  }
-  gp << "     " << endpoint_items() << "\n"
-     << "unset multiplot\n";
-  const fs::path script = out_dir / ("fields_" + tag + ".gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  add_routes(items, frame, "routes_" + tag + ".dat", r.candidates.size(), "2.5", "5");
+  items.push_back(frame.endpoint_items("endpoints.dat", 0));
+  figure.plot(items) << "unset multiplot\n";
+  figure.render();
 }
 
 /// Figure 3: the best route at each friction on one map, with their
 /// elevation and terrain slope against distance.
-void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs, double contour_step,
-                     const fs::path& out_dir) {
+void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs,
+                     const ContourLevels& contours, const fs::path& out_dir) {
   // Shade where the lowest friction cannot reach: light where only it
   // fails, dark where every friction fails.
   const FrictionRun& high = runs.front();
   const FrictionRun& low = runs.back();
   write_unreachable(setup, low.result, &high.result, out_dir / "unreachable_compare.rgba");
-  const int width = 1900;
-  const int height =
-      static_cast<int>(std::clamp(260.0 + 800.0 * setup.height() / setup.width(), 700.0, 1300.0));
-  std::ostringstream gp;
-  gp << "# Best route at each friction, from `talus experiment global-search`.\n"
-     << "# Re-render in this folder with: gnuplot compare.gp\n"
-     << "# Inputs: relief.rgb, elevation.dat, unreachable_compare.rgba, routes_mu*.dat, "
-        "endpoints.dat.\n"
-     << png_terminal(width, height) << "set output 'compare.png'\n"
-     << contour_tracing(setup, contour_step) << "set multiplot title "
-     << gnuplot_string("Best route at μ = " + fmt("%g", high.friction) +
-                       " and μ = " + fmt("%g", low.friction) +
-                       ", Mount St. Helens (30 m DEM), point mass h = b = 0.8 m, v ≤ 20 m/s")
-     << " font ',13'\n"
-     << "# Left: the map (52 % of the width).\n"
-     << "set origin 0,0\nset size 0.52,0.96\n"
-     << map_axes(setup) << endpoint_markers(setup)
-     << "set key outside bottom center vertical maxrows 3 samplen 2\n"
-     << "set title 'routes; shaded: unreachable at μ = " << fmt("%g", low.friction)
-     << " (light: reachable at μ = " << fmt("%g", high.friction) << ", dark: at neither)'\n"
-     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
-     << "     'unreachable_compare.rgba' using ($1/1000):($2/1000):3:4:5:6 with rgbalpha "
-        "notitle, \\\n"
-     << "     'contours.dat' using ($1/1000):($2/1000) with lines lc rgb '#606060' lw 0.5 "
-        "notitle, \\\n";
+  const MapFrame frame = setup.frame();
+  GnuplotFigure figure(out_dir, "compare");
+  figure
+      .describe("Best route at each friction, from `talus experiment global-search`.",
+                "relief.rgb, elevation.dat, unreachable_compare.rgba, routes_mu*.dat, "
+                "endpoints.dat.")
+      .canvas(1900, frame.canvas_height(1060, 40))
+      << trace_contours("elevation.dat", 3, contours, "contours.dat") << "set multiplot title "
+      << gnuplot_string("Best route at μ = " + fmt("%g", high.friction) +
+                        " and μ = " + fmt("%g", low.friction) +
+                        ", Mount St. Helens (30 m DEM), point mass h = b = 0.8 m, v ≤ 20 m/s")
+      << " font ',13'\n"
+      << "# Left: the map (52 % of the width).\n"
+      << "set origin 0,0\nset size 0.52,0.96\n"
+      << frame.axes() << endpoint_labels(setup)
+      << "set key outside bottom center vertical maxrows 3 samplen 2\n";
+  figure.title("routes; shaded: unreachable at μ = " + fmt("%g", low.friction) +
+                   " (light: reachable at μ = " + fmt("%g", high.friction) + ", dark: at neither)",
+               "", true);
+  PlotItems items{"'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle",
+                  "'unreachable_compare.rgba' using " + frame.xy() +
+                      ":3:4:5:6 with rgbalpha notitle",
+                  frame.contour_item("contours.dat", "lc rgb '#606060' lw 0.5 notitle")};
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const FrictionRun& run = runs[k];
     const CandidatePath& best = run.result.candidates.front();
-    gp << "     'routes_" << friction_tag(run.friction)
-       << ".dat' index 0 using ($1/1000):($2/1000) with lines lw 6 lc rgb 'white' notitle, \\\n"
-       << "     '' index 0 using ($1/1000):($2/1000) with lines lw 3.5 lc rgb '"
-       << kFrictionColours[k % std::size(kFrictionColours)] << "' title "
-       << gnuplot_string("μ = " + fmt("%g", run.friction) +
-                         ": J = " + fmt("%.1f", best.cost_seconds) + " s, " +
-                         fmt("%.2f", best.length_m * 1e-3) + " km")
-       << ", \\\n";
+    const std::string block =
+        "'routes_" + friction_tag(run.friction) + ".dat' index 0 using " + frame.xy();
+    items.push_back(block + " with lines lw 6 lc rgb 'white' notitle");
+    items.push_back(block + " with lines lw 3.5 lc rgb '" +
+                    kFrictionColours[k % std::size(kFrictionColours)] + "' title " +
+                    gnuplot_string("μ = " + fmt("%g", run.friction) +
+                                   ": J = " + fmt("%.1f", best.cost_seconds) + " s, " +
+                                   fmt("%.2f", best.length_m * 1e-3) + " km"));
   }
+  items.push_back(frame.endpoint_items("endpoints.dat", 0));
+  figure.plot(items);
   // Slowest edge of either best route: when it is the top speed, J is just
   // length / v_max and panel (b) says so instead of plotting a flat line.
   double slowest = kInf;
   for (const FrictionRun& run : runs) slowest = std::min(slowest, run.info.front().min_edge_speed);
   const double top = high.vehicle.max_speed;
-  gp << "     " << endpoint_items() << "\n"
-     << "unset label\nset size noratio\nset autoscale\n"
-     << "set xlabel 'distance along the route s [km]'\nset grid lc rgb '#d0d0d0'\n"
-     << "set key inside top right opaque samplen 2\n";
+  figure << "unset label\nset size noratio\nset autoscale\n"
+         << "set xlabel 'distance along the route s [km]'\nset grid lc rgb '#d0d0d0'\n"
+         << "set key inside top right opaque samplen 2\n";
   // Right column: two stacked panels.
   const std::string slope_title =
       slowest >= top * (1.0 - 1e-9)
@@ -816,33 +745,32 @@ void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs, d
       {"terrain slope [°]", "5", slope_title},
   };
   for (int p = 0; p < 2; ++p) {
-    gp << "set origin 0.55," << fmt("%.4g", 0.49 - 0.46 * p) << "\nset size 0.44,0.46\n"
-       << "set ylabel '" << panels[p][0] << "'\nset title " << gnuplot_string(panels[p][2]) << "\n"
-       << (p == 1 ? "set yrange [0:" +
-                        fmt("%.0f",
-                            10.0 * std::ceil(degrees(std::atan(high.friction)) / 10.0) + 10.0) +
-                        "]\nset key horizontal maxrows 2\n"
-                  : std::string("set yrange [*:*]\n"))
-       << "plot ";
+    figure << "set origin 0.55," << fmt("%.4g", 0.49 - 0.46 * p) << "\nset size 0.44,0.46\n"
+           << "set ylabel '" << panels[p][0] << "'\n";
+    figure.title(panels[p][2], "", true)
+        << (p == 1 ? "set yrange [0:" +
+                         fmt("%.0f",
+                             10.0 * std::ceil(degrees(std::atan(high.friction)) / 10.0) + 10.0) +
+                         "]\nset key horizontal maxrows 2\n"
+                   : std::string("set yrange [*:*]\n"));
+    PlotItems profile;
     for (std::size_t k = 0; k < runs.size(); ++k) {
       const FrictionRun& run = runs[k];
-      const char* colour = kFrictionColours[k % std::size(kFrictionColours)];
-      gp << (k ? ", \\\n     " : "") << "'routes_" << friction_tag(run.friction)
-         << ".dat' index 0 using ($3/1000):" << panels[p][1] << " with lines lw 2 lc rgb '"
-         << colour << "' title 'μ = " << fmt("%g", run.friction) << "'";
+      const std::string colour = kFrictionColours[k % std::size(kFrictionColours)];
+      profile.push_back("'routes_" + friction_tag(run.friction) + ".dat' index 0 using ($3/1000):" +
+                        panels[p][1] + " with lines lw 2 lc rgb '" + colour + "' title 'μ = " +
+                        fmt("%g", run.friction) + "'");
       if (p == 1) {
-        gp << ", \\\n     " << fmt("%.6g", degrees(std::atan(run.friction)))
-           << " with lines dt (6,4) lw 1.5 lc rgb '" << colour << "' title 'atan "
-           << fmt("%g", run.friction) << " = " << fmt("%.1f", degrees(std::atan(run.friction)))
-           << "°'";
+        const double steep = degrees(std::atan(run.friction));
+        profile.push_back(fmt("%.6g", steep) + " with lines dt (6,4) lw 1.5 lc rgb '" + colour +
+                          "' title 'atan " + fmt("%g", run.friction) + " = " +
+                          fmt("%.1f", steep) + "°'");
       }
     }
-    gp << "\n";
+    figure.plot(profile);
   }
-  gp << "unset multiplot\n";
-  const fs::path script = out_dir / "compare.gp";
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  figure << "unset multiplot\n";
+  figure.render();
 }
 
 // ---------------------------------------------------------------------------
@@ -1177,20 +1105,20 @@ void run_global_search_experiment(const ExperimentContext& context) {
   std::vector<ControlRun> controls;
   for (const double mu : kFrictions) controls.push_back(run_control(setup, mu, options));
 
-  const double contour_step =
+  const ContourLevels contours =
       write_relief(setup, context.quick ? kQuickRasterMaxSamples : kRasterMaxSamples, out_dir);
   write_endpoints(setup, out_dir);
   for (const FrictionRun& run : runs) {
     const std::string tag = friction_tag(run.friction);
     write_candidates_csv(setup, run, out_dir / ("candidates_" + tag + ".csv"));
     write_route_blocks(setup, run, out_dir / ("routes_" + tag + ".dat"));
-    draw_routes(setup, run, contour_step, out_dir);
+    draw_routes(setup, run, contours, out_dir);
     draw_fields(setup, run, out_dir);
   }
-  draw_comparison(setup, runs, contour_step, out_dir);
+  draw_comparison(setup, runs, contours, out_dir);
   write_summary(runs, out_dir / "summary.csv");
   const double total = std::chrono::duration<double>(Clock::now() - t_start).count();
-  write_report(setup, runs, controls, context, total, contour_step);
+  write_report(setup, runs, controls, context, total, contours.step);
   std::cout << "global-search: wrote " << out_dir.string() << " in " << fmt("%.1f", total)
             << " s\n";
 }

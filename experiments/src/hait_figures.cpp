@@ -31,7 +31,7 @@ void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
   const MapFrame frame = MapFrame::of(grid);
   GnuplotFigure figure(dir, stem);
   write_relief_image(BPatch::interpolate(filled), frame,
-                     {.what = "interpolating B-patch of the grid"}, figure.file("_relief.rgb"));
+                     "interpolating B-patch of the grid", figure.file("_relief.rgb"));
 
   // Blocks: every route, then start and goal with a heading arrow of 1 m.
   const std::filesystem::path routes = figure.file("_routes.dat");

@@ -10,6 +10,7 @@
 #include "hait_figures.hpp"
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
+#include "report.hpp"
 #include "plot.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
@@ -77,9 +78,8 @@ void run_hait_smoothing(const ExperimentContext& context) {
   std::string csv =
       "variant,seed,control_changes_before,control_changes_after,length_before_m,length_after_m,"
       "replacements,placements\n";
-  std::ostringstream table;
-  table << "| variant | after (seed 1) | after, all seeds: min–max (median) | length after, seed 1 "
-           "[m] | placements, seed 1 |\n|---|---|---|---|---|\n";
+  Table table({"variant", "after (seed 1)", "after, all seeds: min–max (median)",
+               "length after, seed 1 [m]", "placements, seed 1"});
   std::vector<PathPoint> default_path, greedy_path;
   std::size_t default_after = 0, greedy_after = 0;
   for (const SmoothingVariant& v : kVariants) {
@@ -119,9 +119,11 @@ void run_hait_smoothing(const ExperimentContext& context) {
     }
     std::vector<std::size_t> sorted = after;
     std::sort(sorted.begin(), sorted.end());
-    table << "| `" << v.name << "`: " << v.description << " | " << first.control_changes_after
-          << " | " << sorted.front() << "–" << sorted.back() << " (" << sorted[sorted.size() / 2]
-          << ") | " << sig3(first.length_after) << " | " << first.placements << " |\n";
+    table.row({"`" + std::string(v.name) + "`: " + v.description,
+               std::to_string(first.control_changes_after),
+               std::to_string(sorted.front()) + "–" + std::to_string(sorted.back()) + " (" +
+                   std::to_string(sorted[sorted.size() / 2]) + ")",
+               sig3(first.length_after), std::to_string(first.placements)});
   }
   write_text_file(context.output_dir / "smoothing.csv", csv);
 
@@ -144,37 +146,39 @@ void run_hait_smoothing(const ExperimentContext& context) {
   map.title = "hait-smoothing: the potential-rs path before and after Reeds–Shepp smoothing";
   render_hait_map(context.output_dir, "smoothing", map);
 
-  std::ostringstream md;
-  md << "# hait-smoothing: Reeds–Shepp smoothing (Haït, Siméon, Taïx 2002, §4.4)\n\n"
-     << "**Problem.** The hait-heuristics problem (" << scenario.description
-     << ") with the potential-rs guidance and the articulated chassis; the found path (" << before
-     << " control changes, " << sig3(path_length(searched.path, radius))
-     << " m) is smoothed by `smooth_path` with each variant below. A Reeds–Shepp replacement "
-        "is kept only if every configuration on it is valid (checked every "
-     << options.check_spacing
-     << " m) and it removes control changes or keeps them and shortens the path; the "
-        "control changes of the replacement's own segments and of its two junctions count. "
-        "The paper (Fig. 21): 40 → 13, ratio "
-     << fmt("%.2f", 13.0 / 40.0) << ".\n\n"
-     << (context.quick ? "**Quick mode**: smaller map, two seeds.\n\n" : "")
-     << "Control changes after smoothing, from " << before << " (ratio to before for the "
-     << "default variant, seed 1: "
-     << fmt("%.2f",
-            static_cast<double>(default_after) / std::max<double>(1.0, static_cast<double>(before)))
-     << "):\n\n"
-     << table.str()
-     << "\n**Reading.** The paper's method is random pairs of *close* configurations; it does "
-        "not say how close. With our 5 m limit the random pairs stall in a local minimum (ten "
-        "times "
-        "more pairs gave the same count in our trials: every short portion is already as good as "
-        "one Reeds–Shepp curve "
-        "makes it), so the span limit, not the number of pairs, sets the result. Longer spans "
-        "come close to the paper's ratio or below it. The greedy shortcut is our addition "
-        "(`HaitSmoothingMethod::kRandomPairsThenGreedy`): from each control switch, the "
-        "farthest later switch reachable by a valid Reeds–Shepp curve; it is deterministic.\n\n"
-     << "Files: `smoothing.csv` (every variant and seed), `smoothing.png` (`smoothing.gp`).\n\n"
-        "![smoothing](smoothing.png)\n";
-  write_text_file(context.output_dir / "report.md", md.str());
+  Report report("hait-smoothing: Reeds–Shepp smoothing (Haït, Siméon, Taïx 2002, §4.4)");
+  report.paragraph(
+      "**Problem.** The hait-heuristics problem (" + scenario.description +
+      ") with the potential-rs guidance and the articulated chassis; the found path (" +
+      std::to_string(before) + " control changes, " + sig3(path_length(searched.path, radius)) +
+      " m) is smoothed by `smooth_path` with each variant below. A Reeds–Shepp replacement is "
+      "kept only if every configuration on it is valid (checked every " +
+      fmt("%g", options.check_spacing) +
+      " m) and it removes control changes or keeps them and shortens the path; the control "
+      "changes of the replacement's own segments and of its two junctions count. The paper "
+      "(Fig. 21): 40 → 13, ratio " +
+      fmt("%.2f", 13.0 / 40.0) + ".");
+  if (context.quick) report.paragraph("**Quick mode**: smaller map, two seeds.");
+  report
+      .paragraph("Control changes after smoothing, from " + std::to_string(before) +
+                 " (ratio to before for the default variant, seed 1: " +
+                 fmt("%.2f", static_cast<double>(default_after) /
+                                 std::max<double>(1.0, static_cast<double>(before))) +
+                 "):")
+      .table(table)
+      .paragraph(
+          "**Reading.** The paper's method is random pairs of *close* configurations; it does not "
+          "say how close. With our 5 m limit the random pairs stall in a local minimum (ten times "
+          "more pairs gave the same count in our trials: every short portion is already as good "
+          "as one Reeds–Shepp curve makes it), so the span limit, not the number of pairs, sets "
+          "the result. Longer spans come close to the paper's ratio or below it. The greedy "
+          "shortcut is our addition (`HaitSmoothingMethod::kRandomPairsThenGreedy`): from each "
+          "control switch, the farthest later switch reachable by a valid Reeds–Shepp curve; it "
+          "is deterministic.")
+      .paragraph(
+          "Files: `smoothing.csv` (every variant and seed), `smoothing.png` (`smoothing.gp`).")
+      .figure("smoothing", "smoothing.png")
+      .write(context.output_dir);
 }
 
 }  // namespace talus::experiments

@@ -734,11 +734,8 @@ void draw_map(const BPatch& patch, const ProfileRun& run, const std::vector<Vec2
   const Vec2& origin = frame.origin();
   GnuplotFigure figure(out_dir, "map");
   const double exaggeration =
-      write_relief_image(patch, frame,
-                         {.what = "smoothing B-patch (lambda " + fmt("%g", kSmoothingLambda) + ")",
-                          .max_samples = kRasterMaxSamples,
-                          .z_range = std::pair{zmin, zmax}},
-                         figure.file("_relief.rgb"))
+      write_relief_image(patch, frame, "smoothing B-patch (lambda " + fmt("%g", kSmoothingLambda) + ")",
+                         figure.file("_relief.rgb"), kRasterMaxSamples, std::pair{zmin, zmax})
           .colouring.exaggeration;
 
   // About 300 segments are plenty at map scale; with every station the seams

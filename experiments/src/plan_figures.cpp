@@ -23,7 +23,7 @@ void write_polyline(std::ofstream& out, const std::vector<Vec2>& points, const V
 void render_plan_map(const std::filesystem::path& dir, const PlanMapData& data) {
   const MapFrame frame(data.origin, data.width, data.height);
   GnuplotFigure figure(dir, "plan");
-  write_relief_image(*data.surface, frame, {.what = "fitted B-patch"}, figure.file("_relief.rgb"));
+  write_relief_image(*data.surface, frame, "fitted B-patch", figure.file("_relief.rgb"));
 
   // Blocks: the global candidates, then the optimised paths, then start and goal.
   const std::filesystem::path routes = figure.file("_routes.dat");

@@ -86,13 +86,16 @@ void write_elevation_raster(const ReliefRaster& raster, const std::string& heade
 }
 
 ReliefImage write_relief_image(const BPatch& surface, const MapFrame& frame,
-                               const ReliefImageSpec& spec, const std::filesystem::path& file) {
+                               const std::string& what, const std::filesystem::path& file,
+                               std::size_t max_samples,
+                               std::optional<std::pair<double, double>> z_range, bool washed,
+                               const SunPosition& sun) {
   ReliefImage image{sample_relief(surface, frame.origin(), frame.width(), frame.height(),
-                                  spec.max_samples),
+                                  max_samples),
                     {}};
   ReliefColouring& colouring = image.colouring;
-  if (spec.z_range) {
-    std::tie(colouring.zmin, colouring.zmax) = *spec.z_range;
+  if (z_range) {
+    std::tie(colouring.zmin, colouring.zmax) = *z_range;
   } else {
     const auto [low, high] = std::minmax_element(
         image.raster.samples.begin(), image.raster.samples.end(),
@@ -100,14 +103,14 @@ ReliefImage write_relief_image(const BPatch& surface, const MapFrame& frame,
     colouring.zmin = low->z;
     colouring.zmax = high->z;
   }
-  colouring.sun = spec.sun;
+  colouring.sun = sun;
   colouring.exaggeration = hillshade_exaggeration(slope_p95(image.raster));
-  colouring.washed = spec.washed;
-  const std::string header = "# " + spec.what + ": hypsometric colour x hillshade (azimuth " +
-                             fmt("%g", spec.sun.azimuth_deg) + " deg, altitude " +
-                             fmt("%g", spec.sun.altitude_deg) + " deg, exaggeration " +
+  colouring.washed = washed;
+  const std::string header = "# " + what + ": hypsometric colour x hillshade (azimuth " +
+                             fmt("%g", sun.azimuth_deg) + " deg, altitude " +
+                             fmt("%g", sun.altitude_deg) + " deg, exaggeration " +
                              fmt("%g", colouring.exaggeration) + ")" +
-                             (spec.washed ? ", washed 45 % towards white" : "") +
+                             (washed ? ", washed 45 % towards white" : "") +
                              "\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
   write_relief_rgb(image.raster, colouring, header, file);
   return image;

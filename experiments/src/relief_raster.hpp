@@ -65,26 +65,21 @@ void write_relief_rgb(const ReliefRaster& raster, const ReliefColouring& colouri
 void write_elevation_raster(const ReliefRaster& raster, const std::string& header,
                             const std::filesystem::path& file);
 
-/// What a map's relief image shows and how it is coloured.
-struct ReliefImageSpec {
-  std::string what;                ///< the surface, for the file's header comment
-  std::size_t max_samples = 500;   ///< samples along the longer side
-  bool washed = true;              ///< ReliefColouring::washed
-  /// The tint's elevation range; the raster's own if empty.
-  std::optional<std::pair<double, double>> z_range;
-  SunPosition sun;
-};
-
 /// A relief image as written, with what its colouring used.
 struct ReliefImage {
   ReliefRaster raster;
   ReliefColouring colouring;
 };
 
-/// Samples `surface` over the frame's rectangle and writes the shaded-relief
-/// image "x y r g b" (write_relief_rgb) to `file`, with the hillshade's
-/// exaggeration chosen from the slopes (hillshade_exaggeration).
+/// Samples `surface` over the frame's rectangle (`max_samples` along the
+/// longer side) and writes the shaded-relief image "x y r g b"
+/// (write_relief_rgb) to `file`, `what` naming the surface in its header. The
+/// tint spans `z_range` (the raster's own range if empty); the hillshade's
+/// exaggeration follows the slopes (hillshade_exaggeration).
 ReliefImage write_relief_image(const BPatch& surface, const MapFrame& frame,
-                               const ReliefImageSpec& spec, const std::filesystem::path& file);
+                               const std::string& what, const std::filesystem::path& file,
+                               std::size_t max_samples = 500,
+                               std::optional<std::pair<double, double>> z_range = {},
+                               bool washed = true, const SunPosition& sun = {});
 
 }  // namespace talus::experiments

@@ -512,11 +512,9 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
   const MapFrame frame = MapFrame::of(patch);
   const Vec2& origin = frame.origin();
   GnuplotFigure figure(out_dir, c.name + "_map");
-  exaggeration = write_relief_image(patch, frame,
-                                    {.what = c.label + ": interpolating B-patch",
-                                     .max_samples = kRasterMaxSamples,
-                                     .z_range = std::pair{c.zmin, c.zmax}},
-                                    out_dir / (c.name + "_relief.rgb"))
+  exaggeration = write_relief_image(patch, frame, c.label + ": interpolating B-patch",
+                                    out_dir / (c.name + "_relief.rgb"), kRasterMaxSamples,
+                                    std::pair{c.zmin, c.zmax})
                      .colouring.exaggeration;
 
   const VehicleRun& run = c.runs.front();

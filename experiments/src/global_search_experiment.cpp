@@ -23,6 +23,7 @@
 #include "plot.hpp"
 #include "relief.hpp"
 #include "relief_raster.hpp"
+#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/elevation_grid.hpp"
@@ -875,125 +876,135 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
   const double distance = (setup.goal - setup.start).norm();
   const double separation = default_separation(r0);
   const Vec2 o = setup.origin();
-  std::ostringstream md;
-  md << "# Global search: distinct minimum-time corridors across Mount St. Helens\n\n"
-     << "The global stage of the planner (`talus::global_search`) on a real DEM at its true "
-        "scale, for a car-like vehicle at two tyre frictions — the analogue of the "
-        "global-optimal-path figure of Iagnemma, Shimoda and Shiller (IROS 2008).\n\n"
-     << "## What was run\n\n"
-     << "- Terrain: `data/terrain/" << kDemStem
-     << ".asc` (USGS 30 m DEM of Mount St. Helens after the 1980 eruption, NAD27 / UTM 10N; "
-        "provenance in `data/terrain/README.md`), cropped to "
-     << kCrop.ncols << " × " << kCrop.nrows << " nodes (DEM columns " << kCrop.col << "–"
-     << kCrop.col + kCrop.ncols - 1 << " from the west, rows " << kCrop.row << "–"
-     << kCrop.row + kCrop.nrows - 1 << " from the south): " << fmt("%.2f", setup.width() * 1e-3)
-     << " × " << fmt("%.2f", setup.height() * 1e-3) << " km, elevation " << fmt("%.0f", setup.zmin)
-     << "–" << fmt("%.0f", setup.zmax) << " m, summit " << fmt("%.0f", setup.summit_z) << " m at ("
-     << fmt("%.2f", (setup.summit.x() - o.x()) * 1e-3) << ", "
-     << fmt("%.2f", (setup.summit.y() - o.y()) * 1e-3)
-     << ") km on the crater's south rim. True scale: slopes and curvatures are those of the "
-        "mountain.\n"
-     << "- Surface: `BPatch::fit_smoothing` with λ = " << fmt("%g", kSmoothingLambda)
-     << " (about one cell of smoothing), fitted in " << sig3(setup.fit_seconds)
-     << " s. Why not the interpolating fit: this early DEM carries an east–west striping "
-        "artefact (going north along a column on the flanks, one-cell steps of 15–25 m "
-        "alternate with flat or reversed cells; over the crop the mean |second difference| of the "
-        "nodes is "
-     << fmt("%.1f", setup.roughness_y) << " m along y against " << fmt("%.1f", setup.roughness_x)
-     << " m along x). The interpolating fit reproduces every step, and each step steeper than atan "
-        "μ becomes "
-        "a one-row untraversable bar across a passable flank. The control run below shows the "
-        "effect.\n"
-     << "- Vehicle: point mass, μ = 0.7 and μ = 0.35, centre-of-mass height h = 0.8 m, half "
-        "track b = 0.8 m, max speed 20 m/s, g = 9.81 m/s², no drive or brake limit "
-        "(friction alone bounds the tangential force).\n"
-     << "- Start (" << fmt("%.3f", (setup.start.x() - o.x()) * 1e-3) << ", "
-     << fmt("%.3f", (setup.start.y() - o.y()) * 1e-3) << ") km and goal ("
-     << fmt("%.3f", (setup.goal.x() - o.x()) * 1e-3) << ", "
-     << fmt("%.3f", (setup.goal.y() - o.y()) * 1e-3)
-     << ") km from the crop's south-west node (DEM nodes (" << fmt("%g", kStart.i) << ", "
-     << fmt("%g", kStart.j) << ") and (" << fmt("%g", kGoal.i) << ", " << fmt("%g", kGoal.j)
-     << ")): gentle ground west and east of the cone, " << fmt("%.2f", distance * 1e-3)
-     << " km apart, the straight line between them crossing the crater. They were chosen in "
-        "the one region of the crop that stays connected at μ = 0.35 (the lowland apron south "
-        "of the cone, which reaches up its west and east sides), so both runs succeed.\n"
-     << "- Search: `global_search` with candidates = " << kCandidates << ", connectivity "
-     << kConnectivity << ", lattice spacing " << fmt("%g", r0.spacing) << " m"
-     << (context.quick ? " (quick mode: 3 cells)" : " (= the cell size)") << ", " << r0.nx << " × "
-     << r0.ny
-     << " nodes, cost_fields = true, max_cost_ratio 2 (default). Cost J = ∫ ds / v_max along "
-        "straight lattice edges lifted onto the surface (Simpson's rule, stations at most half a "
-        "spacing apart); an edge is untraversable in a direction if at some station no speed "
-        "satisfies the speed limits (a), or the vehicle can neither climb nor hold its speed at "
-        "any admissible speed (b), or cannot brake at any admissible speed (c).\n"
-     << "- Distinctness (as documented in `global_search.hpp`): lattice nodes are taken in "
-        "increasing order of T_start + T_goal, the cost of the best route through them, up to "
-        "2 J*; a node's route (start tree + goal tree) is accepted if the node is at least the "
-        "separation away from every accepted candidate and the route's symmetric Hausdorff "
-        "distance to each of them is at least the separation — here the default max(10 % of "
-        "the start–goal distance, 3 spacings) = "
-     << fmt("%.0f", separation) << " m.\n"
-     << "- Relief: the smoothing patch on a raster, hypsometric tint × hillshade (sun azimuth "
-        "315°, altitude 45°), washed towards white; contours every "
-     << fmt("%g", contour_step)
-     << " m traced by gnuplot. Every figure's gnuplot script and data sit beside it "
-        "(`gnuplot <name>.gp` in this folder re-renders it).\n"
-     << "- Total run time " << fmt("%.1f", total_seconds)
-     << " s on this machine (searches, fits, data files and gnuplot).\n\n"
-     << "## Candidates\n\n"
-     << "Numbers also in `summary.csv`; vertices in `candidates_mu<μ>.csv` (absolute UTM "
-        "coordinates, z on the smoothing patch). Mean speed = length / J. Max slope: steepest "
-        "terrain slope at the search's edge stations along the route. Passes summit: distance "
-        "and compass direction from the summit of the point where the route crosses the line "
-        "through the summit perpendicular to the start→goal axis. Hausdorff / shared: "
-        "symmetric Hausdorff distance to candidate 1 (the quantity the distinctness rule "
-        "tests) and the share of the route's vertices within "
-     << fmt("%.0f", kSharedFraction * separation) << " m (a quarter of the separation) of "
-     << "candidate 1, i.e. in its corridor.\n\n"
-     << "| μ | candidate | J [s] | length [km] | mean speed [m/s] | max slope [°] | highest "
-        "point [m] | total climb [m] | passes summit | Hausdorff to 1 [m] | shared with 1 |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const FrictionRun& run : runs) {
-    for (std::size_t c = 0; c < run.result.candidates.size(); ++c) {
-      const CandidatePath& p = run.result.candidates[c];
-      const CandidateInfo& info = run.info[c];
-      md << "| " << fmt("%g", run.friction) << " | " << c + 1 << " | "
-         << fmt("%.1f", p.cost_seconds) << " | " << fmt("%.2f", p.length_m * 1e-3) << " | "
-         << fmt("%.2f", p.length_m / p.cost_seconds) << " | " << fmt("%.1f", info.max_slope)
-         << " | " << fmt("%.0f", info.max_z) << " | " << fmt("%.0f", info.climb) << " | "
-         << fmt("%.1f", info.summit_distance * 1e-3) << " km " << info.side << " | "
-         << (c == 0 ? "–" : fmt("%.0f", info.hausdorff_to_best)) << " | "
-         << (c == 0 ? "–" : fmt("%.0f", 100.0 * info.shared_with_best) + " %") << " |\n";
-    }
-  }
-  md << "\n| μ | lattice nodes | edges evaluated | reachable from start | steeper than atan μ | "
-        "search [s] |\n|---|---|---|---|---|---|\n";
+  const auto km = [&](const Vec2& p) {
+    return fmt("%.3f", (p.x() - o.x()) * 1e-3) + ", " + fmt("%.3f", (p.y() - o.y()) * 1e-3);
+  };
+  Report report("Global search: distinct minimum-time corridors across Mount St. Helens");
+  report.paragraph(
+      "The global stage of the planner (`talus::global_search`) on a real DEM at its true scale, "
+      "for a car-like vehicle at two tyre frictions — the analogue of the global-optimal-path "
+      "figure of Iagnemma, Shimoda and Shiller (IROS 2008).");
+  report.heading("What was run")
+      .bullet(
+          "Terrain: `data/terrain/" + std::string(kDemStem) +
+          ".asc` (USGS 30 m DEM of Mount St. Helens after the 1980 eruption, NAD27 / UTM 10N; "
+          "provenance in `data/terrain/README.md`), cropped to " +
+          std::to_string(kCrop.ncols) + " × " + std::to_string(kCrop.nrows) + " nodes (DEM columns " +
+          std::to_string(kCrop.col) + "–" + std::to_string(kCrop.col + kCrop.ncols - 1) +
+          " from the west, rows " + std::to_string(kCrop.row) + "–" +
+          std::to_string(kCrop.row + kCrop.nrows - 1) + " from the south): " +
+          fmt("%.2f", setup.width() * 1e-3) + " × " + fmt("%.2f", setup.height() * 1e-3) +
+          " km, elevation " + fmt("%.0f", setup.zmin) + "–" + fmt("%.0f", setup.zmax) +
+          " m, summit " + fmt("%.0f", setup.summit_z) + " m at (" +
+          fmt("%.2f", (setup.summit.x() - o.x()) * 1e-3) + ", " +
+          fmt("%.2f", (setup.summit.y() - o.y()) * 1e-3) +
+          ") km on the crater's south rim. True scale: slopes and curvatures are those of the "
+          "mountain.")
+      .bullet(
+          "Surface: `BPatch::fit_smoothing` with λ = " + fmt("%g", kSmoothingLambda) +
+          " (about one cell of smoothing), fitted in " + sig3(setup.fit_seconds) +
+          " s. Why not the interpolating fit: this early DEM carries an east–west striping "
+          "artefact (going north along a column on the flanks, one-cell steps of 15–25 m "
+          "alternate with flat or reversed cells; over the crop the mean |second difference| of "
+          "the nodes is " +
+          fmt("%.1f", setup.roughness_y) + " m along y against " + fmt("%.1f", setup.roughness_x) +
+          " m along x). The interpolating fit reproduces every step, and each step steeper than "
+          "atan μ becomes a one-row untraversable bar across a passable flank. The control run "
+          "below shows the effect.")
+      .bullet(
+          "Vehicle: point mass, μ = 0.7 and μ = 0.35, centre-of-mass height h = 0.8 m, half track "
+          "b = 0.8 m, max speed 20 m/s, g = 9.81 m/s², no drive or brake limit (friction alone "
+          "bounds the tangential force).")
+      .bullet(
+          "Start (" + km(setup.start) + ") km and goal (" + km(setup.goal) +
+          ") km from the crop's south-west node (DEM nodes (" + fmt("%g", kStart.i) + ", " +
+          fmt("%g", kStart.j) + ") and (" + fmt("%g", kGoal.i) + ", " + fmt("%g", kGoal.j) +
+          ")): gentle ground west and east of the cone, " + fmt("%.2f", distance * 1e-3) +
+          " km apart, the straight line between them crossing the crater. They were chosen in the "
+          "one region of the crop that stays connected at μ = 0.35 (the lowland apron south of "
+          "the cone, which reaches up its west and east sides), so both runs succeed.")
+      .bullet(
+          "Search: `global_search` with candidates = " + std::to_string(kCandidates) +
+          ", connectivity " + std::to_string(kConnectivity) + ", lattice spacing " +
+          fmt("%g", r0.spacing) + " m" +
+          (context.quick ? " (quick mode: 3 cells)" : " (= the cell size)") + ", " +
+          std::to_string(r0.nx) + " × " + std::to_string(r0.ny) +
+          " nodes, cost_fields = true, max_cost_ratio 2 (default). Cost J = ∫ ds / v_max along "
+          "straight lattice edges lifted onto the surface (Simpson's rule, stations at most half "
+          "a spacing apart); an edge is untraversable in a direction if at some station no speed "
+          "satisfies the speed limits (a), or the vehicle can neither climb nor hold its speed at "
+          "any admissible speed (b), or cannot brake at any admissible speed (c).")
+      .bullet(
+          "Distinctness (as documented in `global_search.hpp`): lattice nodes are taken in "
+          "increasing order of T_start + T_goal, the cost of the best route through them, up to "
+          "2 J*; a node's route (start tree + goal tree) is accepted if the node is at least the "
+          "separation away from every accepted candidate and the route's symmetric Hausdorff "
+          "distance to each of them is at least the separation — here the default max(10 % of "
+          "the start–goal distance, 3 spacings) = " +
+          fmt("%.0f", separation) + " m.")
+      .bullet(
+          "Relief: the smoothing patch on a raster, hypsometric tint × hillshade (sun azimuth "
+          "315°, altitude 45°), washed towards white; contours every " +
+          fmt("%g", contour_step) +
+          " m traced by gnuplot. Every figure's gnuplot script and data sit beside it "
+          "(`gnuplot <name>.gp` in this folder re-renders it).")
+      .bullet("Total run time " + fmt("%.1f", total_seconds) +
+              " s on this machine (searches, fits, data files and gnuplot).");
+  report.heading("Candidates")
+      .paragraph(
+          "Numbers also in `summary.csv`; vertices in `candidates_mu<μ>.csv` (absolute UTM "
+          "coordinates, z on the smoothing patch). Mean speed = length / J. Max slope: steepest "
+          "terrain slope at the search's edge stations along the route. Passes summit: distance "
+          "and compass direction from the summit of the point where the route crosses the line "
+          "through the summit perpendicular to the start→goal axis. Hausdorff / shared: "
+          "symmetric Hausdorff distance to candidate 1 (the quantity the distinctness rule tests) "
+          "and the share of the route's vertices within " +
+          fmt("%.0f", kSharedFraction * separation) +
+          " m (a quarter of the separation) of candidate 1, i.e. in its corridor.");
+  Table candidates({"μ", "candidate", "J [s]", "length [km]", "mean speed [m/s]", "max slope [°]",
+                    "highest point [m]", "total climb [m]", "passes summit", "Hausdorff to 1 [m]",
+                    "shared with 1"});
+  Table lattice({"μ", "lattice nodes", "edges evaluated", "reachable from start",
+                 "steeper than atan μ", "search [s]"});
   for (const FrictionRun& run : runs) {
     const GlobalSearchResult& r = run.result;
-    md << "| " << fmt("%g", run.friction) << " | " << r.nodes << " | " << r.edges_evaluated << " | "
-       << r.reachable_nodes << " (" << percent(r.reachable_nodes, r.nodes) << ") | "
-       << run.steep_nodes << " (" << percent(run.steep_nodes, r.nodes) << ") | "
-       << fmt("%.2f", r.search_seconds) << " |\n";
+    for (std::size_t c = 0; c < r.candidates.size(); ++c) {
+      const CandidatePath& p = r.candidates[c];
+      const CandidateInfo& info = run.info[c];
+      candidates.row({fmt("%g", run.friction), std::to_string(c + 1), fmt("%.1f", p.cost_seconds),
+                      fmt("%.2f", p.length_m * 1e-3), fmt("%.2f", p.length_m / p.cost_seconds),
+                      fmt("%.1f", info.max_slope), fmt("%.0f", info.max_z),
+                      fmt("%.0f", info.climb),
+                      fmt("%.1f", info.summit_distance * 1e-3) + " km " + info.side,
+                      c == 0 ? "–" : fmt("%.0f", info.hausdorff_to_best),
+                      c == 0 ? "–" : fmt("%.0f", 100.0 * info.shared_with_best) + " %"});
+    }
+    lattice.row({fmt("%g", run.friction), std::to_string(r.nodes),
+                 std::to_string(r.edges_evaluated),
+                 std::to_string(r.reachable_nodes) + " (" + percent(r.reachable_nodes, r.nodes) + ")",
+                 std::to_string(run.steep_nodes) + " (" + percent(run.steep_nodes, r.nodes) + ")",
+                 fmt("%.2f", r.search_seconds)});
   }
-  md << "\nControl run on the interpolating fit (same lattice, start and goal; best route "
-        "only):\n\n"
-     << "| μ | best J [s] | length [km] | steeper than atan μ | unreachable | J vs smoothing "
-        "fit |\n|---|---|---|---|---|---|\n";
+  Table control({"μ", "best J [s]", "length [km]", "steeper than atan μ", "unreachable",
+                 "J vs smoothing fit"});
   for (std::size_t k = 0; k < controls.size(); ++k) {
     const ControlRun& c = controls[k];
     const CandidatePath& best = runs[k].result.candidates.front();
-    md << "| " << fmt("%g", c.friction) << " | "
-       << (c.ok ? fmt("%.1f", c.cost) : std::string("unreachable")) << " | "
-       << (c.ok ? fmt("%.2f", c.length * 1e-3) : std::string("–")) << " | "
-       << percent(c.steep_nodes, c.nodes) << " | " << percent(c.unreachable, c.nodes) << " | "
-       << (c.ok ? fmt("%+.0f", 100.0 * (c.cost / best.cost_seconds - 1.0)) + " %"
-                : std::string("–"))
-       << " |\n";
+    control.row({fmt("%g", c.friction), c.ok ? fmt("%.1f", c.cost) : "unreachable",
+                 c.ok ? fmt("%.2f", c.length * 1e-3) : "–", percent(c.steep_nodes, c.nodes),
+                 percent(c.unreachable, c.nodes),
+                 c.ok ? fmt("%+.0f", 100.0 * (c.cost / best.cost_seconds - 1.0)) + " %" : "–"});
   }
-  md << "\n## What the figures show\n\n" << commentary(setup, runs) << "\n\n";
+  report.table(candidates)
+      .table(lattice)
+      .paragraph(
+          "Control run on the interpolating fit (same lattice, start and goal; best route only):")
+      .table(control)
+      .heading("What the figures show")
+      .paragraph(commentary(setup, runs));
 
   // Observations on the search's behaviour, measured rather than asserted.
-  md << "## Observations on the search\n\n";
+  report.heading("Observations on the search");
   for (const FrictionRun& run : runs) {
     const std::string mu = fmt("%g", run.friction);
     const GlobalSearchResult& r = run.result;
@@ -1005,20 +1016,21 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
                                  r.candidates[c].cost_seconds);
       any_reversal = any_reversal || run.info[c].reversals;
     }
-    md << "- μ = " << mu << ": J recomputed edge by edge with the public `edge_cost` agrees with "
-       << "`cost_seconds` to " << fmt("%.1e", worst_check) << " (relative); "
-       << (any_reversal ? "**a candidate revisits a lattice node** (its route goes out and back)"
-                        : "no candidate revisits a lattice node")
-       << ".";
+    std::string text =
+        "μ = " + mu + ": J recomputed edge by edge with the public `edge_cost` agrees with " +
+        "`cost_seconds` to " + fmt("%.1e", worst_check) + " (relative); " +
+        (any_reversal ? "**a candidate revisits a lattice node** (its route goes out and back)"
+                      : "no candidate revisits a lattice node") +
+        ".";
     for (std::size_t c = 1; c < r.candidates.size(); ++c) {
       const CandidateInfo& info = run.info[c];
       if (info.shared_with_best >= 0.5) {
-        md << " Candidate " << c + 1 << " passes the Hausdorff rule ("
-           << fmt("%.0f", info.hausdorff_to_best) << " m against " << fmt("%.0f", separation)
-           << " m) but " << fmt("%.0f", 100.0 * info.shared_with_best)
-           << " % of its vertices lie within " << fmt("%.0f", kSharedFraction * separation)
-           << " m of candidate 1: a variant of the same corridor with one bulge, not a "
-              "different way round.";
+        text += " Candidate " + std::to_string(c + 1) + " passes the Hausdorff rule (" +
+                fmt("%.0f", info.hausdorff_to_best) + " m against " + fmt("%.0f", separation) +
+                " m) but " + fmt("%.0f", 100.0 * info.shared_with_best) +
+                " % of its vertices lie within " + fmt("%.0f", kSharedFraction * separation) +
+                " m of candidate 1: a variant of the same corridor with one bulge, not a "
+                "different way round.";
       }
     }
     std::size_t steep = 0, speed_only = 0, concave = 0;
@@ -1028,31 +1040,31 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
       concave += info.concave_speed_only;
     }
     if (steep > 0) {
-      md << " Of the candidates' edge stations, " << steep << " are steeper than atan " << mu
-         << " = " << fmt("%.1f", degrees(std::atan(run.friction))) << "°; at " << speed_only
-         << " of them the vehicle could not stand still (at v = 0, a_max < 0 uphill or "
-            "a_min > 0 downhill), and "
-         << concave
-         << " of those lie on a concave stretch of the edge (κ_n > 0). The edges "
-            "pass rules (b) and (c) because these ask for *some* admissible speed at which the "
-            "vehicle can climb or brake, and at the top speed κ_n v² adds normal load. The "
-            "search's cost assumes the top speed there, so the local stage must carry speed "
-            "through these spots; a profile that has to slow down or start there will find "
-            "them infeasible.";
+      text += " Of the candidates' edge stations, " + std::to_string(steep) +
+              " are steeper than atan " + mu + " = " +
+              fmt("%.1f", degrees(std::atan(run.friction))) + "°; at " +
+              std::to_string(speed_only) +
+              " of them the vehicle could not stand still (at v = 0, a_max < 0 uphill or "
+              "a_min > 0 downhill), and " +
+              std::to_string(concave) +
+              " of those lie on a concave stretch of the edge (κ_n > 0). The edges pass rules (b) "
+              "and (c) because these ask for *some* admissible speed at which the vehicle can "
+              "climb or brake, and at the top speed κ_n v² adds normal load. The search's cost "
+              "assumes the top speed there, so the local stage must carry speed through these "
+              "spots; a profile that has to slow down or start there will find them infeasible.";
     }
-    md << "\n";
+    report.bullet(text);
   }
-  md << "\n## Figures\n\n";
+  report.heading("Figures");
   for (const FrictionRun& run : runs) {
-    const std::string tag = friction_tag(run.friction);
-    md << "### μ = " << fmt("%g", run.friction) << "\n\n"
-       << "![candidate routes at μ = " << fmt("%g", run.friction) << "](routes_" << tag
-       << ".png)\n\n"
-       << "![cost-to-go fields at μ = " << fmt("%g", run.friction) << "](fields_" << tag
-       << ".png)\n\n";
+    const std::string mu = fmt("%g", run.friction), tag = friction_tag(run.friction);
+    report.heading("μ = " + mu, 3)
+        .figure("candidate routes at μ = " + mu, "routes_" + tag + ".png")
+        .figure("cost-to-go fields at μ = " + mu, "fields_" + tag + ".png");
   }
-  md << "### Friction comparison\n\n![best route at each friction](compare.png)\n";
-  write_text_file(context.output_dir / "report.md", md.str());
+  report.heading("Friction comparison", 3)
+      .figure("best route at each friction", "compare.png")
+      .write(context.output_dir);
 }
 
 }  // namespace

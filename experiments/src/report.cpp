@@ -50,9 +50,9 @@ Report& Report::paragraph(std::string_view text) {
   return *this;
 }
 
-Report& Report::bullet(std::string_view text) {
+Report& Report::bullet(std::string_view text, int depth) {
   begin_block(true);
-  text_ += "- " + std::string(text) + "\n";
+  text_ += std::string(2 * static_cast<std::size_t>(depth), ' ') + "- " + std::string(text) + "\n";
   return *this;
 }
 

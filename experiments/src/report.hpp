@@ -34,8 +34,8 @@ class Report {
   Report& heading(std::string_view text, int level = 2);
   /// A paragraph of Markdown text (may span lines).
   Report& paragraph(std::string_view text);
-  /// A list item (may continue on indented lines, such as a nested list).
-  Report& bullet(std::string_view text);
+  /// A list item, nested `depth` levels deep.
+  Report& bullet(std::string_view text, int depth = 0);
   Report& table(const Table& table);
   /// An image link ![caption](file), as a block of its own.
   Report& figure(std::string_view caption, std::string_view file);

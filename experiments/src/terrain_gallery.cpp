@@ -21,6 +21,7 @@
 #include "plot.hpp"
 #include "relief.hpp"
 #include "relief_raster.hpp"
+#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
@@ -434,73 +435,81 @@ std::string commentary(const std::vector<TerrainResult>& results) {
 }
 
 void write_report(const std::vector<TerrainResult>& results, const SunPosition& sun,
-                  const ExperimentContext& context, const fs::path& path) {
-  std::ostringstream md;
-  md << "# Terrain gallery\n\n"
-     << "Every bundled DEM and one fractal terrain, drawn as shaded relief with contours from "
-        "the interpolating B-patch, with the residual map of the smoothing B-patch.\n\n"
-     << "## What was run\n\n"
-     << "- Inputs: " << (context.quick ? "quick mode: the two smallest " : "all ")
-     << "`data/terrain/*.asc` DEMs (provenance in `data/terrain/README.md`), and one fractal "
-        "terrain.\n";
+                  const ExperimentContext& context) {
+  const double ambient = ReliefColouring{}.ambient;
+  Report report("Terrain gallery");
+  report
+      .paragraph(
+          "Every bundled DEM and one fractal terrain, drawn as shaded relief with contours from "
+          "the interpolating B-patch, with the residual map of the smoothing B-patch.")
+      .heading("What was run")
+      .bullet(std::string("Inputs: ") + (context.quick ? "quick mode: the two smallest " : "all ") +
+              "`data/terrain/*.asc` DEMs (provenance in `data/terrain/README.md`), and one fractal "
+              "terrain.");
   for (const TerrainResult& r : results) {
-    md << "  - `" << r.name << "`: "
-       << (r.origin.starts_with("data/") ? describe_dem(r.name) + " (`" + r.origin + "`)"
-                                         : r.origin)
-       << (r.filled_voids ? "; NODATA nodes filled with the nearest valid value for the relief "
-                            "image only"
-                          : "")
-       << "\n";
+    report.bullet("`" + r.name + "`: " +
+                      (r.origin.starts_with("data/")
+                           ? describe_dem(r.name) + " (`" + r.origin + "`)"
+                           : r.origin) +
+                      (r.filled_voids ? "; NODATA nodes filled with the nearest valid value for "
+                                        "the relief image only"
+                                      : ""),
+                  1);
   }
-  md << "- Fits: `BPatch::interpolate` (exact at the nodes) and `BPatch::fit_smoothing` with "
-        "λ = "
-     << fmt("%g", kSmoothingLambda)
-     << " (thin-plate weight in grid-index units, about one cell of smoothing), each timed "
-        "once with `std::chrono::steady_clock` on this machine.\n"
-     << "- Relief images: the interpolating patch evaluated on a raster of " << kRasterMaxSamples
-     << " samples along the longer side (square pixels); colour = hypsometric tint of the "
-        "elevation × ("
-     << fmt("%g", ReliefColouring{}.ambient) << " + " << fmt("%g", 1.0 - ReliefColouring{}.ambient)
-     << " × hillshade). Hillshade = max(0, n · s), the Lambertian cosine between the surface "
-        "normal n = (−k z_x, −k z_y, 1)/|…| and the unit vector s towards a sun at azimuth "
-     << fmt("%g", sun.azimuth_deg) << "° (clockwise from north) and altitude "
-     << fmt("%g", sun.altitude_deg)
-     << "°; k is a vertical exaggeration, 1 unless the 95th-percentile slope is below 20° "
-        "(then the largest of 1, 2, 5, 10, … not exceeding tan 20° / that slope). Contours are "
-        "traced by gnuplot on the same raster at a {1, 2, 5} × 10^k interval giving 12–30 "
-        "levels. Axes are relative to the grid's south-west node.\n"
-     << "- Residual maps: smoothing fit minus data at every valid node (`BPatch::elevation` at "
-        "the node positions); diverging colours, symmetric about zero, saturating at the 99th "
-        "percentile of |residual|. The curvature share is the fraction of the summed squared "
-        "residual on the "
-     << fmt("%.0f", 100.0 * kCurvatureFraction)
-     << " % of nodes with the largest thin-plate energy z_uu² + 2 z_uv² + z_vv² of the "
-        "interpolating patch.\n"
-     << "- Every figure has its gnuplot script (`<name>_relief.gp`, `<name>_residual.gp`) and "
-        "data files next to it; `gnuplot <script>` in this folder re-renders it.\n\n"
-     << "## Results\n\n"
-     << "Numbers also in `summary.csv`.\n\n"
-     << "| terrain | nodes | cell [m] | z min … max [m] | voids | interpolate [s] | smoothing "
-        "[s] | max residual [m] | RMS residual [m] | RMS / relief | curvature share | VE | "
-        "contour step [m] |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  report
+      .bullet("Fits: `BPatch::interpolate` (exact at the nodes) and `BPatch::fit_smoothing` with "
+              "λ = " +
+              fmt("%g", kSmoothingLambda) +
+              " (thin-plate weight in grid-index units, about one cell of smoothing), each timed "
+              "once with `std::chrono::steady_clock` on this machine.")
+      .bullet("Relief images: the interpolating patch evaluated on a raster of " +
+              std::to_string(kRasterMaxSamples) +
+              " samples along the longer side (square pixels); colour = hypsometric tint of the "
+              "elevation × (" +
+              fmt("%g", ambient) + " + " + fmt("%g", 1.0 - ambient) +
+              " × hillshade). Hillshade = max(0, n · s), the Lambertian cosine between the "
+              "surface normal n = (−k z_x, −k z_y, 1)/|…| and the unit vector s towards a sun at "
+              "azimuth " +
+              fmt("%g", sun.azimuth_deg) + "° (clockwise from north) and altitude " +
+              fmt("%g", sun.altitude_deg) +
+              "°; k is a vertical exaggeration, 1 unless the 95th-percentile slope is below 20° "
+              "(then the largest of 1, 2, 5, 10, … not exceeding tan 20° / that slope). Contours "
+              "are traced by gnuplot on the same raster at a {1, 2, 5} × 10^k interval giving "
+              "12–30 levels. Axes are relative to the grid's south-west node.")
+      .bullet("Residual maps: smoothing fit minus data at every valid node (`BPatch::elevation` "
+              "at the node positions); diverging colours, symmetric about zero, saturating at the "
+              "99th percentile of |residual|. The curvature share is the fraction of the summed "
+              "squared residual on the " +
+              fmt("%.0f", 100.0 * kCurvatureFraction) +
+              " % of nodes with the largest thin-plate energy z_uu² + 2 z_uv² + z_vv² of the "
+              "interpolating patch.")
+      .bullet("Every figure has its gnuplot script (`<name>_relief.gp`, `<name>_residual.gp`) and "
+              "data files next to it; `gnuplot <script>` in this folder re-renders it.")
+      .heading("Results")
+      .paragraph("Numbers also in `summary.csv`.");
+  Table table({"terrain", "nodes", "cell [m]", "z min … max [m]", "voids", "interpolate [s]",
+               "smoothing [s]", "max residual [m]", "RMS residual [m]", "RMS / relief",
+               "curvature share", "VE", "contour step [m]"});
   for (const TerrainResult& r : results) {
     const double relief = r.zmax - r.zmin;
-    md << "| `" << r.name << "` | " << r.ncols << " × " << r.nrows << " | " << fmt("%g", r.cellsize)
-       << " | " << fmt("%.6g", r.zmin) << " … " << fmt("%.6g", r.zmax) << " | " << r.voids << " | "
-       << sig3(r.interpolate_seconds) << " | " << sig3(r.smoothing_seconds) << " | "
-       << sig3(r.max_residual) << " | " << sig3(r.rms_residual) << " | "
-       << (relief > 0.0 ? fmt("%.2g", 100.0 * r.rms_residual / relief) + " %" : "–") << " | "
-       << fmt("%.0f", 100.0 * r.curvature_share) << " % | " << fmt("%g", r.exaggeration) << " | "
-       << fmt("%g", r.contour_step) << " |\n";
+    table.row({"`" + r.name + "`", std::to_string(r.ncols) + " × " + std::to_string(r.nrows),
+               fmt("%g", r.cellsize), fmt("%.6g", r.zmin) + " … " + fmt("%.6g", r.zmax),
+               std::to_string(r.voids), sig3(r.interpolate_seconds), sig3(r.smoothing_seconds),
+               sig3(r.max_residual), sig3(r.rms_residual),
+               relief > 0.0 ? fmt("%.2g", 100.0 * r.rms_residual / relief) + " %" : "–",
+               fmt("%.0f", 100.0 * r.curvature_share) + " %", fmt("%g", r.exaggeration),
+               fmt("%g", r.contour_step)});
   }
-  md << "\n## What the figures show\n\n" << commentary(results) << "\n\n## Figures\n\n";
+  report.table(table)
+      .heading("What the figures show")
+      .paragraph(commentary(results))
+      .heading("Figures");
   for (const TerrainResult& r : results) {
-    md << "### " << r.name << "\n\n"
-       << "![" << r.name << " shaded relief](" << r.name << "_relief.png)\n\n"
-       << "![" << r.name << " smoothing residuals](" << r.name << "_residual.png)\n\n";
+    report.heading(r.name, 3)
+        .figure(r.name + " shaded relief", r.name + "_relief.png")
+        .figure(r.name + " smoothing residuals", r.name + "_residual.png");
   }
-  write_text_file(path, md.str());
+  report.write(context.output_dir);
 }
 
 }  // namespace
@@ -521,7 +530,7 @@ void run_terrain_gallery(const ExperimentContext& context) {
               << " m\n";
   }
   write_summary(results, context.output_dir / "summary.csv");
-  write_report(results, sun, context, context.output_dir / "report.md");
+  write_report(results, sun, context);
 }
 
 }  // namespace talus::experiments

@@ -18,13 +18,13 @@ Table& Table::row(std::vector<std::string> cells) {
   return *this;
 }
 
-std::string Table::markdown() const {
-  const auto line = [](const std::vector<std::string>& cells) {
-    std::string text = "|";
+std::string Table::markdown(std::string_view indent) const {
+  const auto line = [&](const std::vector<std::string>& cells) {
+    std::string text = std::string(indent) + "|";
     for (const std::string& cell : cells) text += " " + cell + " |";
     return text + "\n";
   };
-  std::string text = line(columns_) + "|";
+  std::string text = line(columns_) + std::string(indent) + "|";
   for (std::size_t k = 0; k < columns_.size(); ++k) text += "---|";
   text += "\n";
   for (const auto& cells : rows_) text += line(cells);

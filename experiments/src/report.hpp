@@ -16,8 +16,9 @@ class Table {
   explicit Table(std::vector<std::string> columns);
   /// Appends a row; throws talus::Error if its width differs from the header's.
   Table& row(std::vector<std::string> cells);
-  /// "| a | b |\n|---|---|\n| 1 | 2 |\n".
-  std::string markdown() const;
+  /// "| a | b |\n|---|---|\n| 1 | 2 |\n", every line after `indent` (for a
+  /// table inside a list item).
+  std::string markdown(std::string_view indent = "") const;
 
  private:
   std::vector<std::string> columns_;

@@ -21,6 +21,7 @@
 #include "plot.hpp"
 #include "relief.hpp"
 #include "relief_raster.hpp"
+#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/surface_path.hpp"
@@ -719,123 +720,129 @@ std::string commentary(const CaseResult& dem, const CaseResult& rover) {
 }
 
 void write_report(const std::vector<CaseResult>& cases, const std::vector<VehicleSpec>& vehicles,
-                  const ElevationGrid& dem, const ExperimentContext& context,
-                  const fs::path& file) {
-  std::ostringstream md;
-  md << "# Velocity limits along a path on a real DEM\n\n"
-     << "The speed limits v_min(s) ≤ ṡ ≤ v_max(s) of each dynamic constraint (sliding, lateral "
-        "tip-over, loss of contact) and the binding one, and the admissible tangential "
-        "acceleration, along one fixed curved path across the West Bijou escarpment, for three "
-        "vehicles, at the DEM's own scale and at rover scale.\n\n"
-     << "## What was run\n\n"
-     << "- Terrain: `data/terrain/" << kWestBijouStem
-     << ".asc` (West Bijou Creek escarpment, "
-        "Colorado; NASADEM, "
-     << dem.ncols() << " × " << dem.nrows() << " nodes, cell " << fmt("%g", dem.cellsize())
-     << " m, see `data/terrain/README.md`), fitted with the interpolating B-patch "
-        "(`BPatch::interpolate`, exact at every node).\n"
-     << "- Two cases:\n"
-     << "  - `dem`: the DEM as it is (25 m cells, elevations " << sig3(cases[0].zmin) << " to "
-     << sig3(cases[0].zmax) << " m).\n"
-     << "  - `rover`: the same DEM with x, y **and** z multiplied by k = 1/25 (README "
-        "\"Rover-scale use\"), built in code: 1 m cells, elevations "
-     << sig3(cases[1].zmin) << " to " << sig3(cases[1].zmax)
-     << " m, slopes unchanged, curvatures 25 × larger. At 25 m cells the terrain's "
-        "curvatures and the path's turns are too gentle for any limit to bind at vehicle "
-        "speeds; at 1 m they are rover-sized. Note that the DEM stores whole metres, so at "
-        "rover scale its 1 m quantisation steps become 4 cm steps per 1 m cell, which the "
-        "interpolating fit reproduces as small-scale curvature.\n"
-     << "- Path: `Curve2::interpolate` (cubic, chord-length parameters) through "
-     << std::size(kWestBijouPathCells)
-     << " fixed points given in cells from the south-west node (the same for both cases); "
-        "in metres from that node:\n\n"
-     << "  | point | cells (u, v) | `dem` x, y [m] | `rover` x, y [m] |\n"
-     << "  |---|---|---|---|\n";
+                  const ElevationGrid& dem, const ExperimentContext& context) {
+  Table points({"point", "cells (u, v)", "`dem` x, y [m]", "`rover` x, y [m]"});
   for (std::size_t i = 0; i < std::size(kWestBijouPathCells); ++i) {
-    md << "  | P" << i << " | " << fmt("%g", kWestBijouPathCells[i].u) << ", "
-       << fmt("%g", kWestBijouPathCells[i].v) << " | " << sig3(cases[0].points[i].x()) << ", "
-       << sig3(cases[0].points[i].y()) << " | " << sig3(cases[1].points[i].x()) << ", "
-       << sig3(cases[1].points[i].y()) << " |\n";
+    points.row({"P" + std::to_string(i),
+                fmt("%g", kWestBijouPathCells[i].u) + ", " + fmt("%g", kWestBijouPathCells[i].v),
+                sig3(cases[0].points[i].x()) + ", " + sig3(cases[0].points[i].y()),
+                sig3(cases[1].points[i].x()) + ", " + sig3(cases[1].points[i].y())});
   }
-  md << "\n  It runs south along the west plateau, turns east down the escarpment face, then "
-        "north-east, east across the lower plains, and south over the knoll to the south-east "
-        "corner.\n"
-     << "- Stations: " << cases[0].stations << (context.quick ? " (quick mode)" : "")
-     << ", equally spaced in the curve parameter (`VelocityLimits`, "
-        "`SurfacePath::sample_uniform_parameter`).\n"
-     << "- Vehicles (g = 9.81 m/s², no drive or brake limit):\n";
+  Report report("Velocity limits along a path on a real DEM");
+  report
+      .paragraph(
+          "The speed limits v_min(s) ≤ ṡ ≤ v_max(s) of each dynamic constraint (sliding, lateral "
+          "tip-over, loss of contact) and the binding one, and the admissible tangential "
+          "acceleration, along one fixed curved path across the West Bijou escarpment, for three "
+          "vehicles, at the DEM's own scale and at rover scale.")
+      .heading("What was run")
+      .bullet("Terrain: `data/terrain/" + std::string(kWestBijouStem) +
+              ".asc` (West Bijou Creek escarpment, Colorado; NASADEM, " +
+              std::to_string(dem.ncols()) + " × " + std::to_string(dem.nrows()) + " nodes, cell " +
+              fmt("%g", dem.cellsize()) +
+              " m, see `data/terrain/README.md`), fitted with the interpolating B-patch "
+              "(`BPatch::interpolate`, exact at every node).")
+      .bullet("Two cases:")
+      .bullet("`dem`: the DEM as it is (25 m cells, elevations " + sig3(cases[0].zmin) + " to " +
+                  sig3(cases[0].zmax) + " m).",
+              1)
+      .bullet("`rover`: the same DEM with x, y **and** z multiplied by k = 1/25 (README "
+              "\"Rover-scale use\"), built in code: 1 m cells, elevations " +
+                  sig3(cases[1].zmin) + " to " + sig3(cases[1].zmax) +
+                  " m, slopes unchanged, curvatures 25 × larger. At 25 m cells the terrain's "
+                  "curvatures and the path's turns are too gentle for any limit to bind at "
+                  "vehicle speeds; at 1 m they are rover-sized. Note that the DEM stores whole "
+                  "metres, so at rover scale its 1 m quantisation steps become 4 cm steps per 1 m "
+                  "cell, which the interpolating fit reproduces as small-scale curvature.",
+              1)
+      .bullet("Path: `Curve2::interpolate` (cubic, chord-length parameters) through " +
+              std::to_string(std::size(kWestBijouPathCells)) +
+              " fixed points given in cells from the south-west node (the same for both cases); "
+              "in metres from that node:\n\n" +
+              points.markdown("  ") +
+              "\n  It runs south along the west plateau, turns east down the escarpment face, "
+              "then north-east, east across the lower plains, and south over the knoll to the "
+              "south-east corner.")
+      .bullet("Stations: " + std::to_string(cases[0].stations) +
+              (context.quick ? " (quick mode)" : "") +
+              ", equally spaced in the curve parameter (`VelocityLimits`, "
+              "`SurfacePath::sample_uniform_parameter`).")
+      .bullet("Vehicles (g = 9.81 m/s², no drive or brake limit):");
   for (const VehicleSpec& v : vehicles) {
-    md << "  - `" << v.name << "`: "
-       << (v.vehicle.model == VehicleModel::kPointMass ? "point-mass model" : "rigid-body model")
-       << ", friction μ = " << fmt("%g", v.vehicle.friction)
-       << ", cg_height h = " << fmt("%g", v.vehicle.cg_height)
-       << " m, half_track b = " << fmt("%g", v.vehicle.half_track) << " m"
-       << (v.vehicle.model == VehicleModel::kRigidBody
-               ? ", half_wheelbase l = " + fmt("%g", v.vehicle.half_wheelbase) + " m"
-               : std::string())
-       << ", max_speed " << fmt("%g", v.vehicle.max_speed)
-       << " m/s (b/h = " << fmt("%.3g", v.vehicle.half_track / v.vehicle.cg_height) << ")\n";
+    const bool rigid = v.vehicle.model == VehicleModel::kRigidBody;
+    report.bullet(
+        "`" + v.name + "`: " + (rigid ? "rigid-body model" : "point-mass model") +
+            ", friction μ = " + fmt("%g", v.vehicle.friction) +
+            ", cg_height h = " + fmt("%g", v.vehicle.cg_height) +
+            " m, half_track b = " + fmt("%g", v.vehicle.half_track) + " m" +
+            (rigid ? ", half_wheelbase l = " + fmt("%g", v.vehicle.half_wheelbase) + " m" : "") +
+            ", max_speed " + fmt("%g", v.vehicle.max_speed) +
+            " m/s (b/h = " + fmt("%.3g", v.vehicle.half_track / v.vehicle.cg_height) + ")",
+        1);
   }
-  md << "- Per station: `SpeedLimits` (v_max, v_min, the binding constraint) and each "
-        "constraint's own interval of ṡ², plotted as √upper (∞ where unbounded, 0 where no "
-        "speed satisfies it). Acceleration bounds (`acceleration_bounds`) of all three vehicles at "
-        "one common speed per station, "
-     << fmt("%g", kAccelSpeedFraction)
-     << " × the smallest of their v_max(s) (raised to the largest v_min; v_max ≤ max speed, "
-        "so the speed is capped there already): the lateral load is then the same for all "
-        "three, and the curves differ only through the acceleration constraints.\n"
-     << "- Control run: the same path on the smoothing fit (`BPatch::fit_smoothing`, λ = "
-     << fmt("%g", kSmoothingLambda)
-     << ", dimensionless, so the same smoothing at both scales), point mass only (its "
-        "acceleration bounds at 0.8 × its own v_max), to separate the landforms from the "
-        "DEM's vertical quantisation (whole metres).\n"
-     << "- Files: `<case>_<vehicle>.csv` (columns s, x, y, z, v_max, v_min, binding, "
-        "v_sliding, v_tipover, v_contact, a_min, a_max, k_t, k_q, k_r, kappa_n, kappa_g; SI "
-        "units, `inf`/`nan` spelled out), `<case>_smoothed_point_mass.csv` (the control run, same "
-        "columns), `<case>_acceleration.csv` (per vehicle: evaluation "
-        "speed, a_min, a_max and what sets each), `summary.csv`, and every figure's gnuplot "
-        "script (`<case>_*.gp`) beside its PNG.\n\n"
-     << "## Results\n\n";
+  report
+      .bullet("Per station: `SpeedLimits` (v_max, v_min, the binding constraint) and each "
+              "constraint's own interval of ṡ², plotted as √upper (∞ where unbounded, 0 where no "
+              "speed satisfies it). Acceleration bounds (`acceleration_bounds`) of all three "
+              "vehicles at one common speed per station, " +
+              fmt("%g", kAccelSpeedFraction) +
+              " × the smallest of their v_max(s) (raised to the largest v_min; v_max ≤ max "
+              "speed, so the speed is capped there already): the lateral load is then the same "
+              "for all three, and the curves differ only through the acceleration constraints.")
+      .bullet("Control run: the same path on the smoothing fit (`BPatch::fit_smoothing`, λ = " +
+              fmt("%g", kSmoothingLambda) +
+              ", dimensionless, so the same smoothing at both scales), point mass only (its "
+              "acceleration bounds at 0.8 × its own v_max), to separate the landforms from the "
+              "DEM's vertical quantisation (whole metres).")
+      .bullet("Files: `<case>_<vehicle>.csv` (columns s, x, y, z, v_max, v_min, binding, "
+              "v_sliding, v_tipover, v_contact, a_min, a_max, k_t, k_q, k_r, kappa_n, kappa_g; SI "
+              "units, `inf`/`nan` spelled out), `<case>_smoothed_point_mass.csv` (the control "
+              "run, same columns), `<case>_acceleration.csv` (per vehicle: evaluation speed, "
+              "a_min, a_max and what sets each), `summary.csv`, and every figure's gnuplot script "
+              "(`<case>_*.gp`) beside its PNG.")
+      .heading("Results");
   for (const CaseResult& c : cases) {
-    md << "### `" << c.name << "`: " << c.label << "\n\n"
-       << "Path length " << sig3(c.length) << " m (3-D), " << c.stations
-       << " stations, limits computed in " << sig3(1e3 * c.compute_seconds)
-       << " ms (interpolating fit, path and all vehicles; the smoothing-fit control run "
-       << sig3(1e3 * c.smoothed_seconds) << " ms).\n\n"
-       << "| vehicle | min v_max [m/s] | median v_max [m/s] | contact | sliding | tip-over | "
-          "max speed | untraversable | stations with v_min > 0 | accel. bound by pitch-over | "
-          "median a_min … a_max [m/s²] |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    Table table({"vehicle", "min v_max [m/s]", "median v_max [m/s]", "contact", "sliding",
+                 "tip-over", "max speed", "untraversable", "stations with v_min > 0",
+                 "accel. bound by pitch-over", "median a_min … a_max [m/s²]"});
     std::vector<const VehicleRun*> rows;
     for (const VehicleRun& run : c.runs) rows.push_back(&run);
     rows.push_back(&c.smoothed.front());
     for (const VehicleRun* row : rows) {
-      const VehicleRun& run = *row;
-      const Summary& s = run.summary;
-      const std::size_t n = run.stations.size();
-      const bool control = row == rows.back();
-      md << "| `" << run.spec.name << "`" << (control ? " on the smoothing fit (control)" : "")
-         << " | " << sig3(s.min_v_max) << " | " << sig3(s.median_v_max) << " | "
-         << percent(s.upper_counts[index_of(Constraint::kContact)], n) << " | "
-         << percent(s.upper_counts[index_of(Constraint::kSliding)], n) << " | "
-         << percent(s.upper_counts[index_of(Constraint::kTipover)], n) << " | "
-         << percent(s.upper_counts[index_of(Constraint::kMaxSpeed)], n) << " | " << s.untraversable
-         << " | " << s.lower_bound_stations
-         << (s.lower_bound_stations > 0 ? " (max " + sig3(s.max_v_min) + " m/s)" : "") << " | "
-         << percent(s.pitch_stations, n) << " | " << sig3(s.median_a_min) << " … "
-         << sig3(s.median_a_max) << " |\n";
+      const Summary& s = row->summary;
+      const std::size_t n = row->stations.size();
+      const auto share = [&](Constraint constraint) {
+        return percent(s.upper_counts[index_of(constraint)], n);
+      };
+      table.row({"`" + row->spec.name + "`" +
+                     (row == rows.back() ? " on the smoothing fit (control)" : ""),
+                 sig3(s.min_v_max), sig3(s.median_v_max), share(Constraint::kContact),
+                 share(Constraint::kSliding), share(Constraint::kTipover),
+                 share(Constraint::kMaxSpeed), std::to_string(s.untraversable),
+                 std::to_string(s.lower_bound_stations) +
+                     (s.lower_bound_stations > 0 ? " (max " + sig3(s.max_v_min) + " m/s)" : ""),
+                 percent(s.pitch_stations, n), sig3(s.median_a_min) + " … " + sig3(s.median_a_max)});
     }
-    md << "\nShares are of all stations, by the constraint that sets v_max (an untraversable "
-          "station counts under the constraint that fails).\n\n";
+    report.heading("`" + c.name + "`: " + c.label, 3)
+        .paragraph("Path length " + sig3(c.length) + " m (3-D), " + std::to_string(c.stations) +
+                   " stations, limits computed in " + sig3(1e3 * c.compute_seconds) +
+                   " ms (interpolating fit, path and all vehicles; the smoothing-fit control run " +
+                   sig3(1e3 * c.smoothed_seconds) + " ms).")
+        .table(table)
+        .paragraph(
+            "Shares are of all stations, by the constraint that sets v_max (an untraversable "
+            "station counts under the constraint that fails).");
   }
-  md << "## What the figures show\n\n" << commentary(cases[0], cases[1]) << "\n\n## Figures\n\n";
+  report.heading("What the figures show")
+      .paragraph(commentary(cases[0], cases[1]))
+      .heading("Figures");
   for (const CaseResult& c : cases) {
-    md << "### `" << c.name << "`\n\n"
-       << "![" << c.name << " speed limits](" << c.name << "_speed_limits.png)\n\n"
-       << "![" << c.name << " acceleration bounds](" << c.name << "_acceleration.png)\n\n"
-       << "![" << c.name << " map](" << c.name << "_map.png)\n\n";
+    report.heading("`" + c.name + "`", 3)
+        .figure(c.name + " speed limits", c.name + "_speed_limits.png")
+        .figure(c.name + " acceleration bounds", c.name + "_acceleration.png")
+        .figure(c.name + " map", c.name + "_map.png");
   }
-  write_text_file(file, md.str());
+  report.write(context.output_dir);
 }
 
 }  // namespace
@@ -861,7 +868,7 @@ void run_velocity_limits(const ExperimentContext& context) {
               << " s; point mass min v_max " << sig3(c.runs.front().summary.min_v_max) << " m/s\n";
   }
   write_summary_csv(cases, context.output_dir / "summary.csv");
-  write_report(cases, vehicles, dem, context, context.output_dir / "report.md");
+  write_report(cases, vehicles, dem, context);
 }
 
 }  // namespace talus::experiments

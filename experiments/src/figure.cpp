@@ -25,8 +25,7 @@ GnuplotFigure& GnuplotFigure::describe(std::string_view what, std::string_view i
 }
 
 GnuplotFigure& GnuplotFigure::canvas(int width, int height) {
-  script_ << png_terminal(width, height) << "set output " << gnuplot_string(stem_ + ".png")
-          << "\n";
+  script_ << png_terminal(width, height) << "set output " << gnuplot_string(stem_ + ".png") << "\n";
   return *this;
 }
 

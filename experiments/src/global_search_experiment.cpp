@@ -574,12 +574,12 @@ void draw_routes(const Setup& setup, const FrictionRun& run, const ContourLevels
         << kConnectivity << "-connected lattice, spacing " << fmt("%g", r.spacing)
         << " m; shaded: unreachable from the start; contours every " << fmt("%g", contours.step)
         << " m";
-  PlotItems items{"'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle",
-                  "'unreachable_" + tag + ".rgba' using " + frame.xy() +
-                      ":3:4:5:6 with rgbalpha notitle",
-                  "keyentry with boxes fs solid 0.6 noborder fc rgb '#191919' "
-                  "title 'unreachable from the start'",
-                  frame.contour_item("contours.dat", "lc rgb '#606060' lw 0.5 notitle")};
+  PlotItems items{
+      "'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle",
+      "'unreachable_" + tag + ".rgba' using " + frame.xy() + ":3:4:5:6 with rgbalpha notitle",
+      "keyentry with boxes fs solid 0.6 noborder fc rgb '#191919' "
+      "title 'unreachable from the start'",
+      frame.contour_item("contours.dat", "lc rgb '#606060' lw 0.5 notitle")};
   // Legend best first.
   for (std::size_t c = 0; c < r.candidates.size(); ++c) {
     items.push_back("keyentry with lines lw 3 lc rgb '" + std::string(candidate_colour(c)) +
@@ -588,12 +588,11 @@ void draw_routes(const Setup& setup, const FrictionRun& run, const ContourLevels
   add_routes(items, frame, "routes_" + tag + ".dat", r.candidates.size(), "3", "5.5");
   items.push_back(frame.endpoint_items("endpoints.dat", 0));
   GnuplotFigure figure(out_dir, "routes_" + tag);
-  figure
-      .describe("Candidate routes at μ = " + fmt("%g", run.friction) +
-                    ", from `talus experiment global-search`.",
-                "relief.rgb, elevation.dat, unreachable_" + tag + ".rgba, routes_" + tag +
-                    ".dat (one block per candidate), endpoints.dat.")
-      .canvas(1100, frame.canvas_height(1100, 60))
+  figure.describe("Candidate routes at μ = " + fmt("%g", run.friction) +
+                      ", from `talus experiment global-search`.",
+                  "relief.rgb, elevation.dat, unreachable_" + tag + ".rgba, routes_" + tag +
+                      ".dat (one block per candidate), endpoints.dat.")
+          .canvas(1100, frame.canvas_height(1100, 60))
       << trace_contours("elevation.dat", 3, contours, "contours.dat") << frame.axes();
   figure.title(title.str(), ",10", true)
       << endpoint_labels(setup) << "set key outside bottom center vertical maxrows 3 samplen 2\n";
@@ -626,12 +625,11 @@ void draw_fields(const Setup& setup, const FrictionRun& run, const fs::path& out
         << kConnectivity << "-connected lattice, spacing " << fmt("%g", r.spacing)
         << " m; bare relief: unreachable from the start";
   GnuplotFigure figure(out_dir, "fields_" + tag);
-  figure
-      .describe("Cost-to-go fields at μ = " + fmt("%g", run.friction) +
-                    ", from `talus experiment global-search`.",
-                fields + " (x y T_start excess), relief.rgb, routes_" + tag +
-                    ".dat, endpoints.dat.")
-      .canvas(1800, frame.canvas_height(920))
+  figure.describe(
+            "Cost-to-go fields at μ = " + fmt("%g", run.friction) +
+                ", from `talus experiment global-search`.",
+            fields + " (x y T_start excess), relief.rgb, routes_" + tag + ".dat, endpoints.dat.")
+          .canvas(1800, frame.canvas_height(920))
       << trace_contours(fields, 3, {0.0, t_step, t_max}, "fields_" + tag + "_isochrones.dat")
       << trace_contours(fields, 4, {excess_step, excess_step, excess_max},
                         "fields_" + tag + "_excess.dat")
@@ -644,15 +642,15 @@ void draw_fields(const Setup& setup, const FrictionRun& run, const fs::path& out
       << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 "
          "'#fde725')\n"
       << "set cbrange [0:" << fmt("%.10g", t_max) << "]\n";
-  figure.title("(a) minimum time from the start, T_{start}; isochrones every " +
-                   fmt("%g", t_step) + " s",
-               "", true);
-  figure.plot({relief, "'" + fields + "' using " + frame.xy() + ":3 with image notitle",
-               frame.contour_item("fields_" + tag + "_isochrones.dat",
-                                  "lc rgb 'white' lw 0.7 notitle"),
-               best_route + " with lines lw 5.5 lc rgb 'white' notitle",
-               best_route + " with lines lw 3 lc rgb '#e41a1c' title 'best route'",
-               frame.endpoint_items("endpoints.dat", 0)});
+  figure.title(
+      "(a) minimum time from the start, T_{start}; isochrones every " + fmt("%g", t_step) + " s",
+      "", true);
+  figure.plot(
+      {relief, "'" + fields + "' using " + frame.xy() + ":3 with image notitle",
+       frame.contour_item("fields_" + tag + "_isochrones.dat", "lc rgb 'white' lw 0.7 notitle"),
+       best_route + " with lines lw 5.5 lc rgb 'white' notitle",
+       best_route + " with lines lw 3 lc rgb '#e41a1c' title 'best route'",
+       frame.endpoint_items("endpoints.dat", 0)});
   figure << "set cblabel 'T_{start} + T_{goal} − J* [s]'\n"
          << "# Magma-like, reversed: dark valleys = nodes on near-optimal routes.\n"
          << "set palette defined (0 '#000004', 0.25 '#51127c', 0.5 '#b73779', 0.75 '#fc8961', 1 "
@@ -663,11 +661,11 @@ void draw_fields(const Setup& setup, const FrictionRun& run, const fs::path& out
                    " s, colours saturate at " + fmt("%.0f", excess_max) + " s",
                "", true);
   const std::string cap = fmt("%.10g", excess_max);
-  PlotItems items{relief,
-                  "'" + fields + "' using " + frame.xy() + ":($4 < " + cap + " ? $4 : " + cap +
-                      ") with image notitle",
-                  frame.contour_item("fields_" + tag + "_excess.dat",
-                                     "lc rgb 'white' lw 0.7 notitle")};
+  PlotItems items{
+      relief,
+      "'" + fields + "' using " + frame.xy() + ":($4 < " + cap + " ? $4 : " + cap +
+          ") with image notitle",
+      frame.contour_item("fields_" + tag + "_excess.dat", "lc rgb 'white' lw 0.7 notitle")};
   for (std::size_t c = 0; c < r.candidates.size(); ++c) {
     items.push_back("keyentry with lines lw 2.5 lc rgb '" + std::string(candidate_colour(c)) +
                     "' title 'candidate " + std::to_string(c + 1) + "'");
@@ -689,11 +687,10 @@ void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs,
   write_unreachable(setup, low.result, &high.result, out_dir / "unreachable_compare.rgba");
   const MapFrame frame = setup.frame();
   GnuplotFigure figure(out_dir, "compare");
-  figure
-      .describe("Best route at each friction, from `talus experiment global-search`.",
-                "relief.rgb, elevation.dat, unreachable_compare.rgba, routes_mu*.dat, "
-                "endpoints.dat.")
-      .canvas(1900, frame.canvas_height(1060, 40))
+  figure.describe("Best route at each friction, from `talus experiment global-search`.",
+                  "relief.rgb, elevation.dat, unreachable_compare.rgba, routes_mu*.dat, "
+                  "endpoints.dat.")
+          .canvas(1900, frame.canvas_height(1060, 40))
       << trace_contours("elevation.dat", 3, contours, "contours.dat") << "set multiplot title "
       << gnuplot_string("Best route at μ = " + fmt("%g", high.friction) +
                         " and μ = " + fmt("%g", low.friction) +
@@ -706,10 +703,10 @@ void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs,
   figure.title("routes; shaded: unreachable at μ = " + fmt("%g", low.friction) +
                    " (light: reachable at μ = " + fmt("%g", high.friction) + ", dark: at neither)",
                "", true);
-  PlotItems items{"'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle",
-                  "'unreachable_compare.rgba' using " + frame.xy() +
-                      ":3:4:5:6 with rgbalpha notitle",
-                  frame.contour_item("contours.dat", "lc rgb '#606060' lw 0.5 notitle")};
+  PlotItems items{
+      "'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle",
+      "'unreachable_compare.rgba' using " + frame.xy() + ":3:4:5:6 with rgbalpha notitle",
+      frame.contour_item("contours.dat", "lc rgb '#606060' lw 0.5 notitle")};
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const FrictionRun& run = runs[k];
     const CandidatePath& best = run.result.candidates.front();
@@ -759,13 +756,13 @@ void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs,
       const FrictionRun& run = runs[k];
       const std::string colour = kFrictionColours[k % std::size(kFrictionColours)];
       profile.push_back("'routes_" + friction_tag(run.friction) + ".dat' index 0 using ($3/1000):" +
-                        panels[p][1] + " with lines lw 2 lc rgb '" + colour + "' title 'μ = " +
-                        fmt("%g", run.friction) + "'");
+                        panels[p][1] + " with lines lw 2 lc rgb '" + colour +
+                        "' title 'μ = " + fmt("%g", run.friction) + "'");
       if (p == 1) {
         const double steep = degrees(std::atan(run.friction));
         profile.push_back(fmt("%.6g", steep) + " with lines dt (6,4) lw 1.5 lc rgb '" + colour +
-                          "' title 'atan " + fmt("%g", run.friction) + " = " +
-                          fmt("%.1f", steep) + "°'");
+                          "' title 'atan " + fmt("%g", run.friction) + " = " + fmt("%.1f", steep) +
+                          "°'");
       }
     }
     figure.plot(profile);
@@ -885,21 +882,20 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
       "for a car-like vehicle at two tyre frictions — the analogue of the global-optimal-path "
       "figure of Iagnemma, Shimoda and Shiller (IROS 2008).");
   report.heading("What was run")
-      .bullet(
-          "Terrain: `data/terrain/" + std::string(kDemStem) +
-          ".asc` (USGS 30 m DEM of Mount St. Helens after the 1980 eruption, NAD27 / UTM 10N; "
-          "provenance in `data/terrain/README.md`), cropped to " +
-          std::to_string(kCrop.ncols) + " × " + std::to_string(kCrop.nrows) + " nodes (DEM columns " +
-          std::to_string(kCrop.col) + "–" + std::to_string(kCrop.col + kCrop.ncols - 1) +
-          " from the west, rows " + std::to_string(kCrop.row) + "–" +
-          std::to_string(kCrop.row + kCrop.nrows - 1) + " from the south): " +
-          fmt("%.2f", setup.width() * 1e-3) + " × " + fmt("%.2f", setup.height() * 1e-3) +
-          " km, elevation " + fmt("%.0f", setup.zmin) + "–" + fmt("%.0f", setup.zmax) +
-          " m, summit " + fmt("%.0f", setup.summit_z) + " m at (" +
-          fmt("%.2f", (setup.summit.x() - o.x()) * 1e-3) + ", " +
-          fmt("%.2f", (setup.summit.y() - o.y()) * 1e-3) +
-          ") km on the crater's south rim. True scale: slopes and curvatures are those of the "
-          "mountain.")
+      .bullet("Terrain: `data/terrain/" + std::string(kDemStem) +
+              ".asc` (USGS 30 m DEM of Mount St. Helens after the 1980 eruption, NAD27 / UTM 10N; "
+              "provenance in `data/terrain/README.md`), cropped to " +
+              std::to_string(kCrop.ncols) + " × " + std::to_string(kCrop.nrows) +
+              " nodes (DEM columns " + std::to_string(kCrop.col) + "–" +
+              std::to_string(kCrop.col + kCrop.ncols - 1) + " from the west, rows " +
+              std::to_string(kCrop.row) + "–" + std::to_string(kCrop.row + kCrop.nrows - 1) +
+              " from the south): " + fmt("%.2f", setup.width() * 1e-3) + " × " +
+              fmt("%.2f", setup.height() * 1e-3) + " km, elevation " + fmt("%.0f", setup.zmin) +
+              "–" + fmt("%.0f", setup.zmax) + " m, summit " + fmt("%.0f", setup.summit_z) +
+              " m at (" + fmt("%.2f", (setup.summit.x() - o.x()) * 1e-3) + ", " +
+              fmt("%.2f", (setup.summit.y() - o.y()) * 1e-3) +
+              ") km on the crater's south rim. True scale: slopes and curvatures are those of the "
+              "mountain.")
       .bullet(
           "Surface: `BPatch::fit_smoothing` with λ = " + fmt("%g", kSmoothingLambda) +
           " (about one cell of smoothing), fitted in " + sig3(setup.fit_seconds) +
@@ -973,17 +969,16 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
       const CandidateInfo& info = run.info[c];
       candidates.row({fmt("%g", run.friction), std::to_string(c + 1), fmt("%.1f", p.cost_seconds),
                       fmt("%.2f", p.length_m * 1e-3), fmt("%.2f", p.length_m / p.cost_seconds),
-                      fmt("%.1f", info.max_slope), fmt("%.0f", info.max_z),
-                      fmt("%.0f", info.climb),
+                      fmt("%.1f", info.max_slope), fmt("%.0f", info.max_z), fmt("%.0f", info.climb),
                       fmt("%.1f", info.summit_distance * 1e-3) + " km " + info.side,
                       c == 0 ? "–" : fmt("%.0f", info.hausdorff_to_best),
                       c == 0 ? "–" : fmt("%.0f", 100.0 * info.shared_with_best) + " %"});
     }
-    lattice.row({fmt("%g", run.friction), std::to_string(r.nodes),
-                 std::to_string(r.edges_evaluated),
-                 std::to_string(r.reachable_nodes) + " (" + percent(r.reachable_nodes, r.nodes) + ")",
-                 std::to_string(run.steep_nodes) + " (" + percent(run.steep_nodes, r.nodes) + ")",
-                 fmt("%.2f", r.search_seconds)});
+    lattice.row(
+        {fmt("%g", run.friction), std::to_string(r.nodes), std::to_string(r.edges_evaluated),
+         std::to_string(r.reachable_nodes) + " (" + percent(r.reachable_nodes, r.nodes) + ")",
+         std::to_string(run.steep_nodes) + " (" + percent(run.steep_nodes, r.nodes) + ")",
+         fmt("%.2f", r.search_seconds)});
   }
   Table control({"μ", "best J [s]", "length [km]", "steeper than atan μ", "unreachable",
                  "J vs smoothing fit"});

@@ -30,8 +30,8 @@ void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
   const ElevationGrid filled = grid.void_count() > 0 ? fill_voids(grid, VoidFill::kNearest) : grid;
   const MapFrame frame = MapFrame::of(grid);
   GnuplotFigure figure(dir, stem);
-  write_relief_image(BPatch::interpolate(filled), frame,
-                     "interpolating B-patch of the grid", figure.file("_relief.rgb"));
+  write_relief_image(BPatch::interpolate(filled), frame, "interpolating B-patch of the grid",
+                     figure.file("_relief.rgb"));
 
   // Blocks: every route, then start and goal with a heading arrow of 1 m.
   const std::filesystem::path routes = figure.file("_routes.dat");
@@ -52,7 +52,8 @@ void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
   close_output_file(out, routes);
 
   const std::string data_file = gnuplot_string(figure.name("_routes.dat"));
-  PlotItems items{gnuplot_string(figure.name("_relief.rgb")) + " using 1:2:3:4:5 with rgbimage notitle"};
+  PlotItems items{gnuplot_string(figure.name("_relief.rgb")) +
+                  " using 1:2:3:4:5 with rgbimage notitle"};
   for (std::size_t r = 0; r < data.routes.size(); ++r) {
     const std::string block = data_file + " index " + std::to_string(r) + " using 1:2 with lines ";
     items.push_back(block + "lw 5 lc rgb 'black' notitle");

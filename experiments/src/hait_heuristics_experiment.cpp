@@ -12,8 +12,8 @@
 #include "hait_figures.hpp"
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
-#include "report.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait_planner.hpp"
@@ -99,8 +99,8 @@ void run_hait_heuristics(const ExperimentContext& context) {
       {"search time [s]", [](const HaitResult& r) { return r.search_seconds; },
        [](const PaperRow& p) { return p.seconds; }, false},
   };
-  Table counts({"", "euclidean (ours)", "paper", "potential (ours)", "paper",
-                "potential-rs (ours)", "paper"});
+  Table counts({"", "euclidean (ours)", "paper", "potential (ours)", "paper", "potential-rs (ours)",
+                "paper"});
   Table reductions({"ratio", "euclidean / potential (ours)", "paper",
                     "euclidean / potential-rs (ours)", "paper"});
   for (const Measure& m : measures) {

@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "figure.hpp"
 #include "hait_experiments.hpp"
 #include "hait_scenarios.hpp"
-#include "figure.hpp"
 #include "number_format.hpp"
-#include "report.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "stopwatch.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/dynamics/chassis_placement.hpp"
@@ -173,18 +173,19 @@ void run_hait_preprocessing(const ExperimentContext& context) {
       << "set ylabel 'preprocessing time [s]'\nset xlabel 'terrain nodes'\n";
   figure.title("against size (exponent: fixed 0.25 m " + fmt("%.2f", size_exponent) + ")", ",10",
                true)
-      .plot({"'preprocessing.dat' index 0 using 1:3 with linespoints pt 7 lw 2 title 'fixed 0.25 "
-             "m spacing'",
-             "'' index 1 using 1:3 with linespoints pt 5 lw 2 title 'fixed " + sig3(area_side) +
-                 " m square'"})
+          .plot(
+              {"'preprocessing.dat' index 0 using 1:3 with linespoints pt 7 lw 2 title 'fixed 0.25 "
+               "m spacing'",
+               "'' index 1 using 1:3 with linespoints pt 5 lw 2 title 'fixed " + sig3(area_side) +
+                   " m square'"})
       << "set xlabel 'resolution 1/h [nodes per metre]'\n";
-  figure
-      .title("against resolution (exponents: fixed area " + fmt("%.2f", area_exponent) +
-                 ", fixed nodes " + fmt("%.2f", points_exponent) + ")",
-             ",10", true)
-      .plot({"'preprocessing.dat' index 1 using 2:3 with linespoints pt 5 lw 2 title 'fixed area'",
-             "'' index 2 using 2:3 with linespoints pt 9 lw 2 title 'fixed " +
-                 std::to_string(fixed_n * fixed_n) + " nodes'"})
+  figure.title("against resolution (exponents: fixed area " + fmt("%.2f", area_exponent) +
+                   ", fixed nodes " + fmt("%.2f", points_exponent) + ")",
+               ",10", true)
+          .plot({"'preprocessing.dat' index 1 using 2:3 with linespoints pt 5 lw 2 title 'fixed "
+                 "area'",
+                 "'' index 2 using 2:3 with linespoints pt 9 lw 2 title 'fixed " +
+                     std::to_string(fixed_n * fixed_n) + " nodes'"})
       << "unset multiplot\n";
   figure.render();
 
@@ -197,7 +198,8 @@ void run_hait_preprocessing(const ExperimentContext& context) {
                   "one per control point). Terrains: `hait_rough_terrain` (fractal D = 2.2 plus "
                   "steep hills, seed 3). Each time is the ") +
       (repeats > 1 ? "fastest of 2 runs" : "single run") + ", one core.");
-  if (quick) report.paragraph("**Quick mode**: small terrains; the exponents are not the reproduction.");
+  if (quick)
+    report.paragraph("**Quick mode**: small terrains; the exponents are not the reproduction.");
   report.paragraph(
       "**Reading the paper's \"resolution\".** The paper times terrains \"for a given "
       "resolution (25 cm between two consecutive points), and then for a given size of terrain "
@@ -216,7 +218,8 @@ void run_hait_preprocessing(const ExperimentContext& context) {
           .row({"(c) resolution, fixed " + nodes + " nodes", "1/h", fmt("%.2f", points_exponent),
                 "(the paper's wording; see above)"})
           .row({"(d) θ slices of the chassis table", "n_θ", fmt("%.2f", slices_exponent), "–"}));
-  Table timings({"sweep", "nodes", "spacing [m]", "table + quadtree [s]", "bitmap [s]", "total [s]"});
+  Table timings(
+      {"sweep", "nodes", "spacing [m]", "table + quadtree [s]", "bitmap [s]", "total [s]"});
   for (const Sample& s : samples) {
     timings.row({s.sweep, std::to_string(s.n * s.n), fmt("%.4g", s.spacing),
                  fmt("%.3g", s.validity_seconds), fmt("%.3g", s.bitmap_seconds),

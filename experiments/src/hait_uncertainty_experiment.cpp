@@ -11,8 +11,8 @@
 #include "hait_figures.hpp"
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
-#include "report.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
@@ -109,19 +109,19 @@ void run_hait_uncertainty(const ExperimentContext& context) {
       "worst-case checks, collision against T_max, cost bitmap grown by ρ.");
   if (context.quick) report.paragraph("**Quick mode**: a smaller map.");
   report
-      .table(Table({"", "without (ours)", "with (ours)", "paper without", "paper with"})
-                 .row({"route", route(0), route(1), "through the gorge", "avoids the gorge"})
-                 .row({"preprocessing [s]", fmt("%.3g", results[0].preprocessing_seconds),
-                       fmt("%.3g", results[1].preprocessing_seconds), "12", "72"})
-                 .row({"preprocessing ratio", "1", fmt("%.1f", ratio), "1", "6"})
-                 .row({"search [s]", fmt("%.3g", results[0].search_seconds),
-                       fmt("%.3g", results[1].search_seconds), "a few", "a few"})
-                 .row({"nodes created", std::to_string(results[0].nodes_created),
-                       std::to_string(results[1].nodes_created), "–", "–"})
-                 .row({"placements", std::to_string(results[0].placements),
-                       std::to_string(results[1].placements), "–", "–"})
-                 .row({"length [m]", sig3(results[0].length_m), sig3(results[1].length_m), "–",
-                       "–"}))
+      .table(
+          Table({"", "without (ours)", "with (ours)", "paper without", "paper with"})
+              .row({"route", route(0), route(1), "through the gorge", "avoids the gorge"})
+              .row({"preprocessing [s]", fmt("%.3g", results[0].preprocessing_seconds),
+                    fmt("%.3g", results[1].preprocessing_seconds), "12", "72"})
+              .row({"preprocessing ratio", "1", fmt("%.1f", ratio), "1", "6"})
+              .row({"search [s]", fmt("%.3g", results[0].search_seconds),
+                    fmt("%.3g", results[1].search_seconds), "a few", "a few"})
+              .row({"nodes created", std::to_string(results[0].nodes_created),
+                    std::to_string(results[1].nodes_created), "–", "–"})
+              .row({"placements", std::to_string(results[0].placements),
+                    std::to_string(results[1].placements), "–", "–"})
+              .row({"length [m]", sig3(results[0].length_m), sig3(results[1].length_m), "–", "–"}))
       .paragraph(
           "Our preprocessing under uncertainty builds the chassis placement table on five surface "
           "sets instead of one (the paper's four extra runs, §5.1.1), the quadtree on T_max and "

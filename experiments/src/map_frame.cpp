@@ -38,8 +38,8 @@ MapFrame MapFrame::of(const BPatch& surface, MapUnit unit) {
 }
 
 MapFrame MapFrame::of(const ElevationGrid& grid, MapUnit unit) {
-  return {{grid.x_min(), grid.y_min()}, grid.x_max() - grid.x_min(), grid.y_max() - grid.y_min(),
-          unit};
+  return {
+      {grid.x_min(), grid.y_min()}, grid.x_max() - grid.x_min(), grid.y_max() - grid.y_min(), unit};
 }
 
 int MapFrame::canvas_height(int canvas_width, int extra) const {
@@ -84,7 +84,8 @@ std::string MapFrame::endpoint_items(std::string_view file, std::size_t index) c
   const std::string goal = " every ::1::1 using " + xy() + " with points pt 5 ps ";
   return block + start + "2.4 lc rgb 'black' notitle, \\\n     " + block + start +
          "1.7 lc rgb '#1a9850' title 'start', \\\n     " + block + goal +
-         "2.4 lc rgb 'black' notitle, \\\n     " + block + goal + "1.7 lc rgb '#d73027' title 'goal'";
+         "2.4 lc rgb 'black' notitle, \\\n     " + block + goal +
+         "1.7 lc rgb '#d73027' title 'goal'";
 }
 
 std::string offset_row(const Vec2& position, const Vec2& origin) {

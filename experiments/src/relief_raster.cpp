@@ -90,28 +90,26 @@ ReliefImage write_relief_image(const BPatch& surface, const MapFrame& frame,
                                std::size_t max_samples,
                                std::optional<std::pair<double, double>> z_range, bool washed,
                                const SunPosition& sun) {
-  ReliefImage image{sample_relief(surface, frame.origin(), frame.width(), frame.height(),
-                                  max_samples),
-                    {}};
+  ReliefImage image{
+      sample_relief(surface, frame.origin(), frame.width(), frame.height(), max_samples), {}};
   ReliefColouring& colouring = image.colouring;
   if (z_range) {
     std::tie(colouring.zmin, colouring.zmax) = *z_range;
   } else {
-    const auto [low, high] = std::minmax_element(
-        image.raster.samples.begin(), image.raster.samples.end(),
-        [](const SurfacePoint& a, const SurfacePoint& b) { return a.z < b.z; });
+    const auto [low, high] =
+        std::minmax_element(image.raster.samples.begin(), image.raster.samples.end(),
+                            [](const SurfacePoint& a, const SurfacePoint& b) { return a.z < b.z; });
     colouring.zmin = low->z;
     colouring.zmax = high->z;
   }
   colouring.sun = sun;
   colouring.exaggeration = hillshade_exaggeration(slope_p95(image.raster));
   colouring.washed = washed;
-  const std::string header = "# " + what + ": hypsometric colour x hillshade (azimuth " +
-                             fmt("%g", sun.azimuth_deg) + " deg, altitude " +
-                             fmt("%g", sun.altitude_deg) + " deg, exaggeration " +
-                             fmt("%g", colouring.exaggeration) + ")" +
-                             (washed ? ", washed 45 % towards white" : "") +
-                             "\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
+  const std::string header =
+      "# " + what + ": hypsometric colour x hillshade (azimuth " + fmt("%g", sun.azimuth_deg) +
+      " deg, altitude " + fmt("%g", sun.altitude_deg) + " deg, exaggeration " +
+      fmt("%g", colouring.exaggeration) + ")" + (washed ? ", washed 45 % towards white" : "") +
+      "\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
   write_relief_rgb(image.raster, colouring, header, file);
   return image;
 }

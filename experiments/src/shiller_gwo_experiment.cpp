@@ -109,7 +109,8 @@ double worst(const nlohmann::json& summary, const char* key) {
 }
 
 void draw_solver_figure(const fs::path& dir, const std::vector<std::string>& solvers) {
-  const std::string columns = "for [c=1:" + std::to_string(solvers.size()) + "] 'solvers.csv' using ";
+  const std::string columns =
+      "for [c=1:" + std::to_string(solvers.size()) + "] 'solvers.csv' using ";
   GnuplotFigure figure(dir, "solvers");
   figure.describe("Local solvers compared, from `talus experiment shiller-gwo`.", "solvers.csv.")
           .canvas(1400, 600)
@@ -226,7 +227,8 @@ void run_shiller_gwo(const ExperimentContext& context) {
                  << csv_number(number(s, "travel_time"));
     }
     solver_csv << "\n";
-    report.table(solver_table).paragraph("Local optima of the Ipopt run (one per global candidate):");
+    report.table(solver_table)
+        .paragraph("Local optima of the Ipopt run (one per global candidate):");
     for (const Run& r : runs) {
       if (r.case_name != c.name || r.solver != "ipopt") continue;
       Table optima({"candidate", "initial fit [s]", "optimum [s]", "solver status", "iterations",
@@ -240,7 +242,8 @@ void run_shiller_gwo(const ExperimentContext& context) {
       }
       std::string timings = "Stage timings [s]: ";
       for (const char* stage : {"fit", "global", "local", "profile", "plots", "total"}) {
-        timings += std::string(stage) + " " + fmt("%.2f", number(r.summary.at("seconds"), stage)) + "; ";
+        timings +=
+            std::string(stage) + " " + fmt("%.2f", number(r.summary.at("seconds"), stage)) + "; ";
       }
       report.table(optima).paragraph(timings);
     }

@@ -167,9 +167,9 @@ void draw_relief(const TerrainInput& input, const BPatch& patch, const SunPositi
   const MapFrame frame = map_frame(grid);
   const std::string name = input.name;
   GnuplotFigure figure(out_dir, name + "_relief");
-  const ReliefImage image = write_relief_image(
-      patch, frame, name + ": interpolating B-patch", figure.file(".rgb"), kRasterMaxSamples,
-      std::pair{result.zmin, result.zmax}, false, sun);
+  const ReliefImage image =
+      write_relief_image(patch, frame, name + ": interpolating B-patch", figure.file(".rgb"),
+                         kRasterMaxSamples, std::pair{result.zmin, result.zmax}, false, sun);
   result.raster_nx = image.raster.size.nx;
   result.raster_ny = image.raster.size.ny;
   result.exaggeration = image.colouring.exaggeration;
@@ -189,18 +189,18 @@ void draw_relief(const TerrainInput& input, const BPatch& patch, const SunPositi
   if (result.exaggeration != 1.0) {
     title << ", vertical exaggeration × " << fmt("%g", result.exaggeration);
   }
-  figure
-      .describe("Shaded relief with contours of " + name +
-                    ", from `talus experiment terrain-gallery`.",
-                name + "_elevation.dat (x y z on the raster, for the contours) and " + name +
-                    "_relief.rgb (x y r g b: hypsometric tint x hillshade).")
-      .canvas(1000, frame.canvas_height(1000))
+  figure.describe(
+            "Shaded relief with contours of " + name + ", from `talus experiment terrain-gallery`.",
+            name + "_elevation.dat (x y z on the raster, for the contours) and " + name +
+                "_relief.rgb (x y r g b: hypsometric tint x hillshade).")
+          .canvas(1000, frame.canvas_height(1000))
       << trace_contours(name + "_elevation.dat", 3,
                         ContourLevels::within(result.zmin, result.zmax, result.contour_step),
                         name + "_contours.dat")
       << frame.axes();
-  figure.title(title.str(), "") << "# The colour key shows the unshaded tint (same stops as the image).\n"
-                                << "set palette defined (";
+  figure.title(title.str(), "")
+      << "# The colour key shows the unshaded tint (same stops as the image).\n"
+      << "set palette defined (";
   bool comma = false;
   for (const ColourStop& stop : hypsometric_stops()) {
     char hex[8];
@@ -299,12 +299,12 @@ void draw_residuals(const TerrainInput& input, const BPatch& interpolating, cons
   if (clipped) title << "; colours saturate beyond ±" << sig3(limit) << " m (99th pct.)";
 
   GnuplotFigure figure(out_dir, name + "_residual");
-  figure
-      .describe("Residual map of " + name + ", from `talus experiment terrain-gallery`.",
-                name + "_residual.dat (x y residual at every node); the grey lines are the "
-                       "contours traced by " +
-                    name + "_relief.gp (run that one first).")
-      .canvas(1000, frame.canvas_height(1000))
+  figure.describe("Residual map of " + name + ", from `talus experiment terrain-gallery`.",
+                  name +
+                      "_residual.dat (x y residual at every node); the grey lines are the "
+                      "contours traced by " +
+                      name + "_relief.gp (run that one first).")
+          .canvas(1000, frame.canvas_height(1000))
       << frame.axes();
   figure.title(title.str(), "")
       << "# Diverging palette (ColorBrewer RdBu): blue = fit below the data, red = above.\n"
@@ -447,21 +447,22 @@ void write_report(const std::vector<TerrainResult>& results, const SunPosition& 
               "`data/terrain/*.asc` DEMs (provenance in `data/terrain/README.md`), and one fractal "
               "terrain.");
   for (const TerrainResult& r : results) {
-    report.bullet("`" + r.name + "`: " +
-                      (r.origin.starts_with("data/")
-                           ? describe_dem(r.name) + " (`" + r.origin + "`)"
-                           : r.origin) +
-                      (r.filled_voids ? "; NODATA nodes filled with the nearest valid value for "
-                                        "the relief image only"
-                                      : ""),
-                  1);
+    report.bullet(
+        "`" + r.name + "`: " +
+            (r.origin.starts_with("data/") ? describe_dem(r.name) + " (`" + r.origin + "`)"
+                                           : r.origin) +
+            (r.filled_voids ? "; NODATA nodes filled with the nearest valid value for "
+                              "the relief image only"
+                            : ""),
+        1);
   }
   report
-      .bullet("Fits: `BPatch::interpolate` (exact at the nodes) and `BPatch::fit_smoothing` with "
-              "λ = " +
-              fmt("%g", kSmoothingLambda) +
-              " (thin-plate weight in grid-index units, about one cell of smoothing), each timed "
-              "once with `std::chrono::steady_clock` on this machine.")
+      .bullet(
+          "Fits: `BPatch::interpolate` (exact at the nodes) and `BPatch::fit_smoothing` with "
+          "λ = " +
+          fmt("%g", kSmoothingLambda) +
+          " (thin-plate weight in grid-index units, about one cell of smoothing), each timed "
+          "once with `std::chrono::steady_clock` on this machine.")
       .bullet("Relief images: the interpolating patch evaluated on a raster of " +
               std::to_string(kRasterMaxSamples) +
               " samples along the longer side (square pixels); colour = hypsometric tint of the "
@@ -476,15 +477,17 @@ void write_report(const std::vector<TerrainResult>& results, const SunPosition& 
               "(then the largest of 1, 2, 5, 10, … not exceeding tan 20° / that slope). Contours "
               "are traced by gnuplot on the same raster at a {1, 2, 5} × 10^k interval giving "
               "12–30 levels. Axes are relative to the grid's south-west node.")
-      .bullet("Residual maps: smoothing fit minus data at every valid node (`BPatch::elevation` "
-              "at the node positions); diverging colours, symmetric about zero, saturating at the "
-              "99th percentile of |residual|. The curvature share is the fraction of the summed "
-              "squared residual on the " +
-              fmt("%.0f", 100.0 * kCurvatureFraction) +
-              " % of nodes with the largest thin-plate energy z_uu² + 2 z_uv² + z_vv² of the "
-              "interpolating patch.")
-      .bullet("Every figure has its gnuplot script (`<name>_relief.gp`, `<name>_residual.gp`) and "
-              "data files next to it; `gnuplot <script>` in this folder re-renders it.")
+      .bullet(
+          "Residual maps: smoothing fit minus data at every valid node (`BPatch::elevation` "
+          "at the node positions); diverging colours, symmetric about zero, saturating at the "
+          "99th percentile of |residual|. The curvature share is the fraction of the summed "
+          "squared residual on the " +
+          fmt("%.0f", 100.0 * kCurvatureFraction) +
+          " % of nodes with the largest thin-plate energy z_uu² + 2 z_uv² + z_vv² of the "
+          "interpolating patch.")
+      .bullet(
+          "Every figure has its gnuplot script (`<name>_relief.gp`, `<name>_residual.gp`) and "
+          "data files next to it; `gnuplot <script>` in this folder re-renders it.")
       .heading("Results")
       .paragraph("Numbers also in `summary.csv`.");
   Table table({"terrain", "nodes", "cell [m]", "z min … max [m]", "voids", "interpolate [s]",

@@ -723,7 +723,7 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
                   const ElevationGrid& dem, const ExperimentContext& context) {
   Table points({"point", "cells (u, v)", "`dem` x, y [m]", "`rover` x, y [m]"});
   for (std::size_t i = 0; i < std::size(kWestBijouPathCells); ++i) {
-    points.row({"P" + std::to_string(i),
+    points.row({fmt("P%g", static_cast<double>(i)),
                 fmt("%g", kWestBijouPathCells[i].u) + ", " + fmt("%g", kWestBijouPathCells[i].v),
                 sig3(cases[0].points[i].x()) + ", " + sig3(cases[0].points[i].y()),
                 sig3(cases[1].points[i].x()) + ", " + sig3(cases[1].points[i].y())});
@@ -746,23 +746,21 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
       .bullet("`dem`: the DEM as it is (25 m cells, elevations " + sig3(cases[0].zmin) + " to " +
                   sig3(cases[0].zmax) + " m).",
               1)
-      .bullet("`rover`: the same DEM with x, y **and** z multiplied by k = 1/25 (README "
-              "\"Rover-scale use\"), built in code: 1 m cells, elevations " +
-                  sig3(cases[1].zmin) + " to " + sig3(cases[1].zmax) +
-                  " m, slopes unchanged, curvatures 25 × larger. At 25 m cells the terrain's "
-                  "curvatures and the path's turns are too gentle for any limit to bind at "
-                  "vehicle speeds; at 1 m they are rover-sized. Note that the DEM stores whole "
-                  "metres, so at rover scale its 1 m quantisation steps become 4 cm steps per 1 m "
-                  "cell, which the interpolating fit reproduces as small-scale curvature.",
-              1)
+      .bullet(
+          "`rover`: the same DEM with x, y **and** z multiplied by k = 1/25 (README "
+          "\"Rover-scale use\"), built in code: 1 m cells, elevations " +
+              sig3(cases[1].zmin) + " to " + sig3(cases[1].zmax) +
+              " m, slopes unchanged, curvatures 25 × larger. At 25 m cells the terrain's "
+              "curvatures and the path's turns are too gentle for any limit to bind at "
+              "vehicle speeds; at 1 m they are rover-sized. Note that the DEM stores whole "
+              "metres, so at rover scale its 1 m quantisation steps become 4 cm steps per 1 m "
+              "cell, which the interpolating fit reproduces as small-scale curvature.",
+          1)
       .bullet("Path: `Curve2::interpolate` (cubic, chord-length parameters) through " +
               std::to_string(std::size(kWestBijouPathCells)) +
               " fixed points given in cells from the south-west node (the same for both cases); "
               "in metres from that node:\n\n" +
-              points.markdown("  ") +
-              "\n  It runs south along the west plateau, turns east down the escarpment face, "
-              "then north-east, east across the lower plains, and south over the knoll to the "
-              "south-east corner.")
+              points.markdown("  ") + "\n  " + kWestBijouPathRoute)
       .bullet("Stations: " + std::to_string(cases[0].stations) +
               (context.quick ? " (quick mode)" : "") +
               ", equally spaced in the curve parameter (`VelocityLimits`, "
@@ -781,25 +779,27 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
         1);
   }
   report
-      .bullet("Per station: `SpeedLimits` (v_max, v_min, the binding constraint) and each "
-              "constraint's own interval of ṡ², plotted as √upper (∞ where unbounded, 0 where no "
-              "speed satisfies it). Acceleration bounds (`acceleration_bounds`) of all three "
-              "vehicles at one common speed per station, " +
-              fmt("%g", kAccelSpeedFraction) +
-              " × the smallest of their v_max(s) (raised to the largest v_min; v_max ≤ max "
-              "speed, so the speed is capped there already): the lateral load is then the same "
-              "for all three, and the curves differ only through the acceleration constraints.")
+      .bullet(
+          "Per station: `SpeedLimits` (v_max, v_min, the binding constraint) and each "
+          "constraint's own interval of ṡ², plotted as √upper (∞ where unbounded, 0 where no "
+          "speed satisfies it). Acceleration bounds (`acceleration_bounds`) of all three "
+          "vehicles at one common speed per station, " +
+          fmt("%g", kAccelSpeedFraction) +
+          " × the smallest of their v_max(s) (raised to the largest v_min; v_max ≤ max "
+          "speed, so the speed is capped there already): the lateral load is then the same "
+          "for all three, and the curves differ only through the acceleration constraints.")
       .bullet("Control run: the same path on the smoothing fit (`BPatch::fit_smoothing`, λ = " +
               fmt("%g", kSmoothingLambda) +
               ", dimensionless, so the same smoothing at both scales), point mass only (its "
               "acceleration bounds at 0.8 × its own v_max), to separate the landforms from the "
               "DEM's vertical quantisation (whole metres).")
-      .bullet("Files: `<case>_<vehicle>.csv` (columns s, x, y, z, v_max, v_min, binding, "
-              "v_sliding, v_tipover, v_contact, a_min, a_max, k_t, k_q, k_r, kappa_n, kappa_g; SI "
-              "units, `inf`/`nan` spelled out), `<case>_smoothed_point_mass.csv` (the control "
-              "run, same columns), `<case>_acceleration.csv` (per vehicle: evaluation speed, "
-              "a_min, a_max and what sets each), `summary.csv`, and every figure's gnuplot script "
-              "(`<case>_*.gp`) beside its PNG.")
+      .bullet(
+          "Files: `<case>_<vehicle>.csv` (columns s, x, y, z, v_max, v_min, binding, "
+          "v_sliding, v_tipover, v_contact, a_min, a_max, k_t, k_q, k_r, kappa_n, kappa_g; SI "
+          "units, `inf`/`nan` spelled out), `<case>_smoothed_point_mass.csv` (the control "
+          "run, same columns), `<case>_acceleration.csv` (per vehicle: evaluation speed, "
+          "a_min, a_max and what sets each), `summary.csv`, and every figure's gnuplot script "
+          "(`<case>_*.gp`) beside its PNG.")
       .heading("Results");
   for (const CaseResult& c : cases) {
     Table table({"vehicle", "min v_max [m/s]", "median v_max [m/s]", "contact", "sliding",
@@ -821,7 +821,8 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
                  share(Constraint::kMaxSpeed), std::to_string(s.untraversable),
                  std::to_string(s.lower_bound_stations) +
                      (s.lower_bound_stations > 0 ? " (max " + sig3(s.max_v_min) + " m/s)" : ""),
-                 percent(s.pitch_stations, n), sig3(s.median_a_min) + " … " + sig3(s.median_a_max)});
+                 percent(s.pitch_stations, n),
+                 sig3(s.median_a_min) + " … " + sig3(s.median_a_max)});
     }
     report.heading("`" + c.name + "`: " + c.label, 3)
         .paragraph("Path length " + sig3(c.length) + " m (3-D), " + std::to_string(c.stations) +

@@ -35,6 +35,11 @@ inline constexpr CellPoint kWestBijouPathCells[] = {{6.0, 74.0},  {18.0, 54.0}, 
                                                     {46.0, 38.0}, {60.0, 60.0}, {84.0, 62.0},
                                                     {92.0, 46.0}, {114.0, 20.0}};
 
+/// How the path runs, in a sentence, for the reports.
+inline constexpr const char* kWestBijouPathRoute =
+    "It runs south along the west plateau, turns east down the escarpment face, then north-east, "
+    "east across the lower plains, and south over the knoll to the south-east corner.";
+
 /// kWestBijouPathCells in `grid`'s coordinates [m]. Throws InputError, naming
 /// the experiment, if a point is not 2 cells inside `grid`.
 std::vector<Vec2> west_bijou_path_points(const ElevationGrid& grid, std::string_view experiment);

@@ -162,18 +162,16 @@ void run_dynamic_vs_kinematic(const ExperimentContext& context) {
            csv_number(r.talus_length) + "," + csv_number(r.talus_time) + "," +
            csv_number(r.talus_plan_seconds) + "," + csv_number(r.kinematic_time / r.talus_time) +
            "\n";
-    HaitMapData map;
-    map.grid = &s.grid;
-    map.routes.push_back(
+    std::vector<HaitRoute> routes;
+    routes.push_back(
         {r.kinematic_path,
          "kinematic (Hait et al.) + time-optimal profile: " + fmt("%.1f", r.kinematic_time) + " s",
          "#2c7fb8"});
-    map.routes.push_back(
+    routes.push_back(
         {r.talus_path, "Talus time-optimal: " + fmt("%.1f", r.talus_time) + " s", "#e6550d"});
-    map.start = s.start;
-    map.goal = s.goal;
-    map.title = "dynamic-vs-kinematic: " + name + " terrain";
-    render_hait_map(context.output_dir, "map_" + name, map);
+    render_hait_map(
+        context.output_dir, "map_" + name,
+        {&s.grid, routes, s.start, s.goal, "dynamic-vs-kinematic: " + name + " terrain"});
   }
   write_text_file(context.output_dir / "comparison.csv", csv);
 
@@ -204,9 +202,8 @@ void run_dynamic_vs_kinematic(const ExperimentContext& context) {
       .paragraph(
           "The paper has no such comparison (it plans kinematically only); time ratio = "
           "kinematic ÷ Talus.")
-      .paragraph("Files: `comparison.csv`, `map_crescent.png`, `map_gorge.png`.")
-      .figure("crescent", "map_crescent.png")
-      .figure("gorge", "map_gorge.png")
+      .files("`comparison.csv`, `map_crescent.png`, `map_gorge.png`.",
+             {{"crescent", "map_crescent.png"}, {"gorge", "map_gorge.png"}})
       .write(context.output_dir);
 }
 

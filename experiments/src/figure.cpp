@@ -15,6 +15,10 @@ std::string plot_command(const PlotItems& items) {
   return command + "\n";
 }
 
+std::string key_entry(std::string_view colour, std::string_view title) {
+  return "NaN with lines lw 4 lc rgb '" + std::string(colour) + "' title " + gnuplot_string(title);
+}
+
 GnuplotFigure::GnuplotFigure(std::filesystem::path dir, std::string stem)
     : dir_(std::move(dir)), stem_(std::move(stem)) {}
 

@@ -19,6 +19,10 @@ using PlotItems = std::vector<std::string>;
 /// "plot A, \\\n     B\n": the items joined one a line.
 std::string plot_command(const PlotItems& items);
 
+/// A plot item that draws nothing but a legend line of `colour` titled
+/// `title` (enhanced text), for series drawn in several colours at once.
+std::string key_entry(std::string_view colour, std::string_view title);
+
 /// Builds the script of one figure: append gnuplot text with `<<`, then
 /// render(). The PNG is `<stem>.png` and the script `<stem>.gp` in `dir`.
 class GnuplotFigure {

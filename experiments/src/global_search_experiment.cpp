@@ -1053,12 +1053,10 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
   report.heading("Figures");
   for (const FrictionRun& run : runs) {
     const std::string mu = fmt("%g", run.friction), tag = friction_tag(run.friction);
-    report.heading("μ = " + mu, 3)
-        .figure("candidate routes at μ = " + mu, "routes_" + tag + ".png")
-        .figure("cost-to-go fields at μ = " + mu, "fields_" + tag + ".png");
+    report.figures("μ = " + mu, {{"candidate routes at μ = " + mu, "routes_" + tag + ".png"},
+                                 {"cost-to-go fields at μ = " + mu, "fields_" + tag + ".png"}});
   }
-  report.heading("Friction comparison", 3)
-      .figure("best route at each friction", "compare.png")
+  report.figures("Friction comparison", {{"best route at each friction", "compare.png"}})
       .write(context.output_dir);
 }
 

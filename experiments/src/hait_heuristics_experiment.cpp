@@ -56,19 +56,17 @@ void run_hait_heuristics(const ExperimentContext& context) {
   write_text_file(context.output_dir / "results.csv", csv);
 
   const std::array<const char*, 3> colours{"#2c7fb8", "#31a354", "#e6550d"};
-  HaitMapData map;
-  map.grid = &scenario.grid;
+  std::vector<HaitRoute> routes;
   for (std::size_t k = 0; k < 3; ++k) {
-    map.routes.push_back({results[k].path,
-                          heuristic_name(kHeuristics[k]) + ": " +
-                              std::to_string(results[k].nodes_created) + " nodes, " +
-                              sig3(results[k].length_m) + " m",
-                          colours[k]});
+    routes.push_back({results[k].path,
+                      heuristic_name(kHeuristics[k]) + ": " +
+                          std::to_string(results[k].nodes_created) + " nodes, " +
+                          sig3(results[k].length_m) + " m",
+                      colours[k]});
   }
-  map.start = scenario.start;
-  map.goal = scenario.goal;
-  map.title = "hait-heuristics: the three search guidances (articulated chassis)";
-  render_hait_map(context.output_dir, "paths", map);
+  render_hait_map(context.output_dir, "paths",
+                  {&scenario.grid, routes, scenario.start, scenario.goal,
+                   "hait-heuristics: the three search guidances (articulated chassis)"});
 
   Report report("hait-heuristics: search guidance (Haït, Siméon, Taïx 2002, §4.3)");
   report.paragraph(
@@ -141,10 +139,10 @@ void run_hait_heuristics(const ExperimentContext& context) {
                  fmt("%.2f", kPaper[2].placements / kPaper[2].created) +
                  ". Our placements count every checked configuration of every arc (0.4 m steps "
                  "checked every 0.1 m: 4 per arc), the paper's seem to be about 2.3–2.5 per node.")
-      .paragraph(
-          "Files: `results.csv` (the table), `paths.png` (the three paths over shaded relief, "
-          "`paths.gp`).")
-      .figure("paths", "paths.png")
+      .files(
+          "`results.csv` (the table), `paths.png` (the three paths over shaded relief, "
+          "`paths.gp`).",
+          {{"paths", "paths.png"}})
       .write(context.output_dir);
 }
 

@@ -119,7 +119,7 @@ void run_hait_smoothing(const ExperimentContext& context) {
     }
     std::vector<std::size_t> sorted = after;
     std::sort(sorted.begin(), sorted.end());
-    table.row({"`" + std::string(v.name) + "`: " + v.description,
+    table.row({std::string("`").append(v.name).append("`: ").append(v.description),
                std::to_string(first.control_changes_after),
                std::to_string(sorted.front()) + "–" + std::to_string(sorted.back()) + " (" +
                    std::to_string(sorted[sorted.size() / 2]) + ")",
@@ -127,24 +127,22 @@ void run_hait_smoothing(const ExperimentContext& context) {
   }
   write_text_file(context.output_dir / "smoothing.csv", csv);
 
-  HaitMapData map;
-  map.grid = &scenario.grid;
-  map.routes.push_back({searched.path,
-                        "searched: " + std::to_string(before) + " control changes, " +
-                            sig3(path_length(searched.path, radius)) + " m",
-                        "#2c7fb8"});
-  map.routes.push_back({default_path,
-                        "random pairs (default, seed 1): " + std::to_string(default_after) +
-                            " control changes, " + sig3(path_length(default_path, radius)) + " m",
-                        "#e6550d"});
-  map.routes.push_back({greedy_path,
-                        "greedy (ours): " + std::to_string(greedy_after) + " control changes, " +
-                            sig3(path_length(greedy_path, radius)) + " m",
-                        "#31a354"});
-  map.start = scenario.start;
-  map.goal = scenario.goal;
-  map.title = "hait-smoothing: the potential-rs path before and after Reeds–Shepp smoothing";
-  render_hait_map(context.output_dir, "smoothing", map);
+  std::vector<HaitRoute> routes;
+  routes.push_back({searched.path,
+                    "searched: " + std::to_string(before) + " control changes, " +
+                        sig3(path_length(searched.path, radius)) + " m",
+                    "#2c7fb8"});
+  routes.push_back({default_path,
+                    "random pairs (default, seed 1): " + std::to_string(default_after) +
+                        " control changes, " + sig3(path_length(default_path, radius)) + " m",
+                    "#e6550d"});
+  routes.push_back({greedy_path,
+                    "greedy (ours): " + std::to_string(greedy_after) + " control changes, " +
+                        sig3(path_length(greedy_path, radius)) + " m",
+                    "#31a354"});
+  render_hait_map(context.output_dir, "smoothing",
+                  {&scenario.grid, routes, scenario.start, scenario.goal,
+                   "hait-smoothing: the potential-rs path before and after Reeds–Shepp smoothing"});
 
   Report report("hait-smoothing: Reeds–Shepp smoothing (Haït, Siméon, Taïx 2002, §4.4)");
   report.paragraph(
@@ -175,9 +173,8 @@ void run_hait_smoothing(const ExperimentContext& context) {
           "shortcut is our addition (`HaitSmoothingMethod::kRandomPairsThenGreedy`): from each "
           "control switch, the farthest later switch reachable by a valid Reeds–Shepp curve; it "
           "is deterministic.")
-      .paragraph(
-          "Files: `smoothing.csv` (every variant and seed), `smoothing.png` (`smoothing.gp`).")
-      .figure("smoothing", "smoothing.png")
+      .files("`smoothing.csv` (every variant and seed), `smoothing.png` (`smoothing.gp`).",
+             {{"smoothing", "smoothing.png"}})
       .write(context.output_dir);
 }
 

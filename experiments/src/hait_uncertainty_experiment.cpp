@@ -78,18 +78,16 @@ void run_hait_uncertainty(const ExperimentContext& context) {
   }
   write_text_file(context.output_dir / "uncertainty.csv", csv);
 
-  HaitMapData map;
-  map.grid = &scenario.grid;
-  map.routes.push_back(
+  std::vector<HaitRoute> routes;
+  routes.push_back(
       {results[0].path, "without uncertainty: " + sig3(results[0].length_m) + " m", "#2c7fb8"});
-  map.routes.push_back({results[1].path,
-                        "with uncertainty (ρ 0.3 m, Δθ 40°, δz " + sig3(kDeltaZ) +
-                            " m): " + sig3(results[1].length_m) + " m",
-                        "#e6550d"});
-  map.start = scenario.start;
-  map.goal = scenario.goal;
-  map.title = "hait-uncertainty: a ridge with a gorge, planned with and without uncertainty";
-  render_hait_map(context.output_dir, "uncertainty", map);
+  routes.push_back({results[1].path,
+                    "with uncertainty (ρ 0.3 m, Δθ 40°, δz " + sig3(kDeltaZ) +
+                        " m): " + sig3(results[1].length_m) + " m",
+                    "#e6550d"});
+  render_hait_map(context.output_dir, "uncertainty",
+                  {&scenario.grid, routes, scenario.start, scenario.goal,
+                   "hait-uncertainty: a ridge with a gorge, planned with and without uncertainty"});
 
   const auto through = [&](std::size_t k) {
     return std::isfinite(crossings[k]) && crossings[k] < scenario.ridge_end_y;
@@ -129,8 +127,8 @@ void run_hait_uncertainty(const ExperimentContext& context) {
           "overheads. Unlike the paper, our position uncertainty is checked by sampling the "
           "neighbourhood at search time (see hait_planner.hpp), so its cost shows in the search "
           "(placements), not in the preprocessing.")
-      .paragraph("Files: `uncertainty.csv`, `uncertainty.png` (`uncertainty.gp`).")
-      .figure("uncertainty", "uncertainty.png")
+      .files("`uncertainty.csv`, `uncertainty.png` (`uncertainty.gp`).",
+             {{"uncertainty", "uncertainty.png"}})
       .write(context.output_dir);
 }
 

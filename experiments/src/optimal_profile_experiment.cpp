@@ -665,8 +665,7 @@ std::string acceleration_panel(const ProfileRun& run) {
     if (!occurs) continue;
     for (const ConstraintStyle& s : kStyles)
       if (s.constraint == c)
-        gp << ", \\\n     NaN with lines lw 4 lc rgb '" << s.colour << "' title "
-           << gnuplot_string(std::string("bound set by ") + s.label);
+        gp << ", \\\n     " << key_entry(s.colour, std::string("bound set by ") + s.label);
   }
   gp << "\n";
   return gp.str();
@@ -681,22 +680,21 @@ void draw_profile(const std::vector<ProfileRun>& runs, double length, const std:
   const ProfileRun& pm = runs[0];
   const ProfileRun& rb = runs[1];
   const double max_speed = pm.spec->vehicle.max_speed;
-  std::ostringstream gp;
-  gp << "# Time-optimal velocity profile, from `talus experiment optimal-profile`.\n"
-     << "# Re-render in this folder with: gnuplot " << stem << ".gp\n"
-     << "# Inputs: profile_<vehicle>.csv (1 s, 5 v, 6 a, 8 v_max, 9 binding, 10 a_min, 11 a_max,"
-        " 13/14 a bound bindings), switching_<vehicle>.csv (2 s, 3 v, 7 new control).\n"
-     << png_terminal(1400, 1350) << "set output " << gnuplot_string(stem + ".png") << "\n"
-     << "set datafile separator ','\n"
-     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 3,1 title "
-     << gnuplot_string(title) << "\n"
-     << "set xrange [" << fmt("%.10g", s0) << ":" << fmt("%.10g", std::min(s1, length)) << "]\n"
-     << "set xlabel 'arc length s [m]'\n"
-     << "set grid xtics ytics lc rgb '#d8d8d8'\nset tics out nomirror\n"
-     << "set lmargin at screen 0.07\nset rmargin at screen 0.74\n"
-     << "set key at graph 1.02, graph 1 left top vertical Left reverse samplen 2 spacing 1.05 "
-        "font ',9'\n"
-     << "set xzeroaxis lt 1 lc rgb '#808080'\n";
+  GnuplotFigure gp(out_dir, stem);
+  gp.describe("Time-optimal velocity profile, from `talus experiment optimal-profile`.",
+              "profile_<vehicle>.csv (1 s, 5 v, 6 a, 8 v_max, 9 binding, 10 a_min, 11 a_max, "
+              "13/14 a bound bindings), switching_<vehicle>.csv (2 s, 3 v, 7 new control).")
+          .canvas(1400, 1350)
+      << "set datafile separator ','\n"
+      << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 3,1 title "
+      << gnuplot_string(title) << "\n"
+      << "set xrange [" << fmt("%.10g", s0) << ":" << fmt("%.10g", std::min(s1, length)) << "]\n"
+      << "set xlabel 'arc length s [m]'\n"
+      << "set grid xtics ytics lc rgb '#d8d8d8'\nset tics out nomirror\n"
+      << "set lmargin at screen 0.07\nset rmargin at screen 0.74\n"
+      << "set key at graph 1.02, graph 1 left top vertical Left reverse samplen 2 spacing 1.05 "
+         "font ',9'\n"
+      << "set xzeroaxis lt 1 lc rgb '#808080'\n";
   // Panel 1: speeds.
   gp << "set title 'speed: v_{max}(s) coloured by the constraint that sets it (the same for both "
         "vehicles), and the optimal v(s)'\n"
@@ -707,8 +705,7 @@ void draw_profile(const std::vector<ProfileRun>& runs, double length, const std:
     bool occurs = false;
     for (const Constraint c : pm.profile.binding) occurs |= c == s.constraint;
     if (occurs)
-      gp << ", \\\n     NaN with lines lw 4 lc rgb '" << s.colour << "' title "
-         << gnuplot_string(std::string("v_{max} set by ") + s.label);
+      gp << ", \\\n     " << key_entry(s.colour, std::string("v_{max} set by ") + s.label);
   }
   gp << ", \\\n     " << gnuplot_string(profile_csv_name(pm))
      << " skip 1 using 1:5 with lines lw 2 lc rgb 'black' title 'point mass v(s)', \\\n"
@@ -722,9 +719,7 @@ void draw_profile(const std::vector<ProfileRun>& runs, double length, const std:
                            std::to_string(pm.profile.switching_points.size()) + ")")
      << "\n";
   gp << acceleration_panel(pm) << acceleration_panel(rb) << "unset multiplot\n";
-  const fs::path script = out_dir / (stem + ".gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  gp.render();
 }
 
 /// The path over shaded relief of the smoothing fit, coloured by the point
@@ -825,66 +820,65 @@ void draw_convergence(const std::vector<Level>& levels, const fs::path& out_dir)
   const double e0 = std::max(std::abs(levels[anchor].error[0]), 1e-12);
   const double t_anchor =
       levels.back().solve_seconds[0] / static_cast<double>(levels.back().stations);
-  std::ostringstream gp;
-  gp << "# Convergence of the travel time in the station count, from `talus experiment "
-        "optimal-profile`.\n# Re-render in this folder with: gnuplot convergence.gp\n"
-     << "# Input: convergence.csv (1 stations, 2 mean spacing, 3/8 travel time, 4/9 relative "
-        "error, 5/10 solve seconds, 7 limits seconds, 11 default-spacing row, 12/13 point mass "
-        "on the interpolating fit; point mass, rigid body).\n"
-     << png_terminal(1800, 650) << "set output 'convergence.png'\n"
-     << "set datafile separator ','\n"
-     << "set multiplot layout 1,3 title "
-     << gnuplot_string(
-            "Convergence of the optimal travel time in the number of stations (same path; "
-            "reference: the finest level, " +
-            std::to_string(levels.back().stations) + " stations)")
-     << "\n"
-     << "set grid lc rgb '#d8d8d8'\nset tics out nomirror\nset key top right font ',10'\n"
-     << "set logscale x\nset format x '10^{%T}'\n"
-     // Panel (a).
-     << "set title '(a) travel time'\nset xlabel 'stations N'\nset ylabel 'travel time [s]'\n"
-     << "plot 'convergence.csv' skip 1 using 1:3 with linespoints pt 7 lw 1.5 lc rgb 'black' "
-        "title 'point mass', \\\n"
-     << "     '' skip 1 using 1:8 with linespoints pt 6 lw 1.5 dt (5,3) lc rgb '#e7298a' "
-        "title 'rigid body', \\\n"
-     << "     '' skip 1 using 1:($11 == 1 ? $3 : NaN) with points pt 4 ps 2.5 lw 2 lc rgb "
-        "'#1f77b4' title "
-     << gnuplot_string("default spacing " + fmt("%g", kDefaultStationSpacing) + " m") << ", \\\n"
-     << "     '' skip 1 using 1:($11 == 1 ? $8 : NaN) with points pt 4 ps 2.5 lw 2 lc rgb "
-        "'#1f77b4' notitle\n"
-     // Panel (b).
-     << "set title '(b) |relative error| (filled: too slow, open: too fast)'\n"
-     << "set logscale y\nset format y '10^{%T}'\n"
-     << "set xlabel 'mean station spacing [m]'\nset ylabel '|T_N / T_{ref} − 1|'\n"
-     << "set key bottom right\n"
-     << "set arrow 1 from " << fmt("%g", kDefaultStationSpacing) << ", graph 0 to "
-     << fmt("%g", kDefaultStationSpacing) << ", graph 1 nohead dt 2 lc rgb '#1f77b4'\n"
-     << "set label 1 'default " << fmt("%g", kDefaultStationSpacing) << " m' at "
-     << fmt("%g", kDefaultStationSpacing) << ", graph 0.96 offset char 0.5,0 tc rgb '#1f77b4'\n"
-     << "set arrow 2 from graph 0, first " << fmt("%g", kTargetError) << " to graph 1, first "
-     << fmt("%g", kTargetError) << " nohead dt 3 lc rgb '#808080'\n"
-     << "h0 = " << fmt("%.10g", h0) << "; e0 = " << fmt("%.10g", e0) << "\n"
-     << "plot " << error_series(levels)
-     << "     e0 * (x / h0) with lines dt 2 lc rgb '#909090' title 'slope 1 (O(h))', \\\n"
-     << "     e0 * (x / h0)**2 with lines dt 4 lc rgb '#909090' title 'slope 2 (O(h^2))'\n"
-     << "unset arrow 1\nunset arrow 2\nunset label 1\n"
-     // Panel (c).
-     << "set title '(c) time per solve (fastest of repeats)'\nset key top left\n"
-     << "set xlabel 'stations N'\nset ylabel 'seconds'\n"
-     << "t1 = " << fmt("%.10g", t_anchor) << "\n"
-     << "# Infeasible levels (travel time nan) are left out: their solve stops early.\n"
-     << "plot 'convergence.csv' skip 1 using 1:($3 == $3 ? $5 : NaN) with linespoints pt 7 lw "
-        "1.5 lc rgb 'black' title 'solver, point mass', \\\n"
-     << "     '' skip 1 using 1:($8 == $8 ? $10 : NaN) with linespoints pt 6 lw 1.5 dt (5,3) lc "
-        "rgb '#e7298a' "
-        "title 'solver, rigid body', \\\n"
-     << "     '' skip 1 using 1:7 with linespoints pt 2 lw 1 lc rgb '#2ca02c' "
-        "title 'VelocityLimits::compute (path + limits)', \\\n"
-     << "     t1 * x with lines dt 2 lc rgb '#909090' title 'O(N)'\n"
-     << "unset multiplot\n";
-  const fs::path script = out_dir / "convergence.gp";
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  GnuplotFigure gp(out_dir, "convergence");
+  gp.describe(
+        "Convergence of the travel time in the station count, from `talus experiment "
+        "optimal-profile`.",
+        "convergence.csv (1 stations, 2 mean spacing, 3/8 travel time, 4/9 relative error, "
+        "5/10 solve seconds, 7 limits seconds, 11 default-spacing row, 12/13 point mass on "
+        "the interpolating fit; point mass, rigid body).")
+          .canvas(1800, 650)
+      << "set datafile separator ','\n"
+      << "set multiplot layout 1,3 title "
+      << gnuplot_string(
+             "Convergence of the optimal travel time in the number of stations (same path; "
+             "reference: the finest level, " +
+             std::to_string(levels.back().stations) + " stations)")
+      << "\n"
+      << "set grid lc rgb '#d8d8d8'\nset tics out nomirror\nset key top right font ',10'\n"
+      << "set logscale x\nset format x '10^{%T}'\n"
+      // Panel (a).
+      << "set title '(a) travel time'\nset xlabel 'stations N'\nset ylabel 'travel time [s]'\n"
+      << "plot 'convergence.csv' skip 1 using 1:3 with linespoints pt 7 lw 1.5 lc rgb 'black' "
+         "title 'point mass', \\\n"
+      << "     '' skip 1 using 1:8 with linespoints pt 6 lw 1.5 dt (5,3) lc rgb '#e7298a' "
+         "title 'rigid body', \\\n"
+      << "     '' skip 1 using 1:($11 == 1 ? $3 : NaN) with points pt 4 ps 2.5 lw 2 lc rgb "
+         "'#1f77b4' title "
+      << gnuplot_string("default spacing " + fmt("%g", kDefaultStationSpacing) + " m") << ", \\\n"
+      << "     '' skip 1 using 1:($11 == 1 ? $8 : NaN) with points pt 4 ps 2.5 lw 2 lc rgb "
+         "'#1f77b4' notitle\n"
+      // Panel (b).
+      << "set title '(b) |relative error| (filled: too slow, open: too fast)'\n"
+      << "set logscale y\nset format y '10^{%T}'\n"
+      << "set xlabel 'mean station spacing [m]'\nset ylabel '|T_N / T_{ref} − 1|'\n"
+      << "set key bottom right\n"
+      << "set arrow 1 from " << fmt("%g", kDefaultStationSpacing) << ", graph 0 to "
+      << fmt("%g", kDefaultStationSpacing) << ", graph 1 nohead dt 2 lc rgb '#1f77b4'\n"
+      << "set label 1 'default " << fmt("%g", kDefaultStationSpacing) << " m' at "
+      << fmt("%g", kDefaultStationSpacing) << ", graph 0.96 offset char 0.5,0 tc rgb '#1f77b4'\n"
+      << "set arrow 2 from graph 0, first " << fmt("%g", kTargetError) << " to graph 1, first "
+      << fmt("%g", kTargetError) << " nohead dt 3 lc rgb '#808080'\n"
+      << "h0 = " << fmt("%.10g", h0) << "; e0 = " << fmt("%.10g", e0) << "\n"
+      << "plot " << error_series(levels)
+      << "     e0 * (x / h0) with lines dt 2 lc rgb '#909090' title 'slope 1 (O(h))', \\\n"
+      << "     e0 * (x / h0)**2 with lines dt 4 lc rgb '#909090' title 'slope 2 (O(h^2))'\n"
+      << "unset arrow 1\nunset arrow 2\nunset label 1\n"
+      // Panel (c).
+      << "set title '(c) time per solve (fastest of repeats)'\nset key top left\n"
+      << "set xlabel 'stations N'\nset ylabel 'seconds'\n"
+      << "t1 = " << fmt("%.10g", t_anchor) << "\n"
+      << "# Infeasible levels (travel time nan) are left out: their solve stops early.\n"
+      << "plot 'convergence.csv' skip 1 using 1:($3 == $3 ? $5 : NaN) with linespoints pt 7 lw "
+         "1.5 lc rgb 'black' title 'solver, point mass', \\\n"
+      << "     '' skip 1 using 1:($8 == $8 ? $10 : NaN) with linespoints pt 6 lw 1.5 dt (5,3) lc "
+         "rgb '#e7298a' "
+         "title 'solver, rigid body', \\\n"
+      << "     '' skip 1 using 1:7 with linespoints pt 2 lw 1 lc rgb '#2ca02c' "
+         "title 'VelocityLimits::compute (path + limits)', \\\n"
+      << "     t1 * x with lines dt 2 lc rgb '#909090' title 'O(N)'\n"
+      << "unset multiplot\n";
+  gp.render();
 }
 
 // ---------------------------------------------------------------------------
@@ -1089,11 +1083,8 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
           "(IROS 2008). Then a convergence study of the travel time in the number of stations, "
           "which is the evidence for the library's default station spacing.")
       .heading("What was run")
-      .bullet("Terrain: `data/terrain/" + std::string(kWestBijouStem) +
-              ".asc` (West Bijou Creek escarpment, Colorado; NASADEM, " +
-              std::to_string(dem.ncols()) + " × " + std::to_string(dem.nrows()) + " nodes, cell " +
-              fmt("%g", dem.cellsize()) +
-              " m; see `data/terrain/README.md`), scaled to rover size by multiplying x, y **and** "
+      .bullet("Terrain: " + west_bijou_terrain_text(dem) +
+              ", scaled to rover size by multiplying x, y **and** "
               "z by 1/25 (README \"Rover-scale use\"): 1 m cells, elevations " +
               sig3(setup.zmin) + " to " + sig3(setup.zmax) +
               " m, slopes unchanged, curvatures 25 × larger.")

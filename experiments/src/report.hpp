@@ -25,6 +25,11 @@ class Table {
   std::vector<std::vector<std::string>> rows_;
 };
 
+/// An image of a report: its caption (alt text) and file name.
+struct FigureLink {
+  std::string caption, file;
+};
+
 /// Builds a report: a title, then blocks in order. Consecutive bullets form
 /// one list; every other block is separated from its neighbours by a blank line.
 class Report {
@@ -40,6 +45,11 @@ class Report {
   Report& table(const Table& table);
   /// An image link ![caption](file), as a block of its own.
   Report& figure(std::string_view caption, std::string_view file);
+
+  /// "Files: `list`" and the figures among them, each a block.
+  Report& files(std::string_view list, const std::vector<FigureLink>& figures);
+  /// A level-3 heading and its figures, one block each.
+  Report& figures(std::string_view heading, const std::vector<FigureLink>& links);
 
   std::string markdown() const { return text_; }
   /// Writes `dir`/report.md.

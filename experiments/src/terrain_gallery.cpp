@@ -508,9 +508,8 @@ void write_report(const std::vector<TerrainResult>& results, const SunPosition& 
       .paragraph(commentary(results))
       .heading("Figures");
   for (const TerrainResult& r : results) {
-    report.heading(r.name, 3)
-        .figure(r.name + " shaded relief", r.name + "_relief.png")
-        .figure(r.name + " smoothing residuals", r.name + "_residual.png");
+    report.figures(r.name, {{r.name + " shaded relief", r.name + "_relief.png"},
+                            {r.name + " smoothing residuals", r.name + "_residual.png"}});
   }
   report.write(context.output_dir);
 }

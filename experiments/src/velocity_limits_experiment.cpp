@@ -351,36 +351,34 @@ std::string smoothed_csv_name(const CaseResult& c) {
 void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
   const double max_speed = c.runs.front().spec.vehicle.max_speed;
   const double cap = kClipFactor * max_speed;
-  const std::string png = c.name + "_speed_limits.png";
   const int panel_height = 400;
-  std::ostringstream gp;
-  gp << "# Speed limits along the path, " << c.label << ", from `talus experiment "
-     << "velocity-limits`.\n# Re-render in this folder with: gnuplot " << c.name
-     << "_speed_limits.gp\n# Inputs: " << c.name
-     << "_<vehicle>.csv (columns: 1 s, 5 v_max, 6 v_min, 7 binding, 8 v_sliding, 9 v_tipover, "
-        "10 v_contact).\n"
-     << png_terminal(1250, 90 + panel_height * static_cast<int>(c.runs.size())) << "set output "
-     << gnuplot_string(png) << "\n"
-     << "set datafile separator ','\n"
-     << "CAP = " << fmt("%g", cap) << "\n"
-     << "# Limits above CAP (and ∞) are drawn just above the plot so their lines leave it.\n"
-     << "clip(v) = (v > CAP) ? 1.02 * CAP : v\n"
-     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout "
-     << c.runs.size() << ",1 title "
-     << gnuplot_string(c.label +
-                       ": speed limits along the path [m/s]\nthin: each constraint's own "
-                       "limit, clipped at " +
-                       fmt("%g", cap) + " m/s = " + fmt("%g", kClipFactor) +
-                       " × max speed (∞ where it does not bound the speed); thick: v_{max}(s) "
-                       "coloured by the constraint that sets it")
-     << "\n"
-     << "set xrange [0:" << fmt("%.10g", c.length) << "]\nset yrange [0:CAP]\n"
-     << "set xlabel 'arc length s [m]'\nset ylabel 'speed [m/s]'\n"
-     << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
-     << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
-     << "# The key sits right of each panel, at a fixed place so the panels line up.\n"
-     << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 2 spacing 1.1 "
-        "font ',10'\n";
+  GnuplotFigure gp(out_dir, c.name + "_speed_limits");
+  gp.describe(
+        "Speed limits along the path, " + c.label + ", from `talus experiment velocity-limits`.",
+        c.name +
+            "_<vehicle>.csv (columns: 1 s, 5 v_max, 6 v_min, 7 binding, 8 v_sliding, "
+            "9 v_tipover, 10 v_contact).")
+          .canvas(1250, 90 + panel_height * static_cast<int>(c.runs.size()))
+      << "set datafile separator ','\n"
+      << "CAP = " << fmt("%g", cap) << "\n"
+      << "# Limits above CAP (and ∞) are drawn just above the plot so their lines leave it.\n"
+      << "clip(v) = (v > CAP) ? 1.02 * CAP : v\n"
+      << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout "
+      << c.runs.size() << ",1 title "
+      << gnuplot_string(c.label +
+                        ": speed limits along the path [m/s]\nthin: each constraint's own "
+                        "limit, clipped at " +
+                        fmt("%g", cap) + " m/s = " + fmt("%g", kClipFactor) +
+                        " × max speed (∞ where it does not bound the speed); thick: v_{max}(s) "
+                        "coloured by the constraint that sets it")
+      << "\n"
+      << "set xrange [0:" << fmt("%.10g", c.length) << "]\nset yrange [0:CAP]\n"
+      << "set xlabel 'arc length s [m]'\nset ylabel 'speed [m/s]'\n"
+      << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
+      << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
+      << "# The key sits right of each panel, at a fixed place so the panels line up.\n"
+      << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 2 spacing 1.1 "
+         "font ',10'\n";
   for (const VehicleRun& run : c.runs) {
     const Summary& sum = run.summary;
     const std::string file = gnuplot_string(csv_name(c, run));
@@ -407,9 +405,9 @@ void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
     for (const ConstraintStyle& s : kStyles) {
       const std::size_t count = sum.upper_counts[index_of(s.constraint)];
       if (count == 0) continue;  // legend only for constraints that occur
-      gp << ", \\\n     NaN with lines lw 4 lc rgb '" << s.colour << "' title "
-         << gnuplot_string(std::string("v_{max} set by ") + s.label + " (" +
-                           percent(count, run.stations.size()) + ")");
+      gp << ", \\\n     "
+         << key_entry(s.colour, std::string("v_{max} set by ") + s.label + " (" +
+                                    percent(count, run.stations.size()) + ")");
     }
     if (sum.untraversable > 0) {
       gp << ", \\\n     '' skip 1 using 1:($5 == 0 ? 0 : NaN) with points pt 2 ps 1.2 lc rgb "
@@ -424,39 +422,37 @@ void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
     gp << "\n";
   }
   gp << "unset multiplot\n";
-  const fs::path script = out_dir / (c.name + "_speed_limits.gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  gp.render();
 }
 
 /// Figure 2: tangential-acceleration bounds. Top: point mass vs rigid body.
 /// Bottom: the tall rigid body, segments coloured by what sets the bound.
 void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
-  const std::string png = c.name + "_acceleration.png";
   const std::string data = gnuplot_string(c.name + "_acceleration.csv");
   // Column of vehicle v's quantity q (0 speed, 1 a_min, 2 a_max, 3 lower, 4 upper).
   const auto col = [](std::size_t v, int q) { return std::to_string(2 + 5 * v + q); };
-  std::ostringstream gp;
-  gp << "# Tangential-acceleration bounds along the path, " << c.label
-     << ", from `talus experiment velocity-limits`.\n# Re-render in this folder with: gnuplot "
-     << c.name << "_acceleration.gp\n# Input: " << c.name
-     << "_acceleration.csv (per vehicle: speed, a_min, a_max, lower and upper binding).\n"
-     << png_terminal(1250, 900) << "set output " << gnuplot_string(png) << "\n"
-     << "set datafile separator ','\n"
-     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 2,1 title "
-     << gnuplot_string(c.label +
-                       ": admissible tangential acceleration s̈ ∈ [a_{min}, a_{max}] [m/s²]\n"
-                       "all vehicles at one common speed per station, " +
-                       fmt("%g", kAccelSpeedFraction) +
-                       " × the smallest v_{max}(s) of the three; no drive or brake limit")
-     << "\n"
-     << "set xrange [0:" << fmt("%.10g", c.length) << "]\n"
-     << "set xlabel 'arc length s [m]'\nset ylabel 'acceleration [m/s²]'\n"
-     << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
-     << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
-     << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 3 spacing 1.1 "
-        "font ',10'\n"
-     << "set xzeroaxis lt 1 lc rgb '#808080'\n";
+  GnuplotFigure gp(out_dir, c.name + "_acceleration");
+  gp.describe("Tangential-acceleration bounds along the path, " + c.label +
+                  ", from `talus experiment velocity-limits`.",
+              c.name +
+                  "_acceleration.csv (per vehicle: speed, a_min, a_max, lower and upper "
+                  "binding).")
+          .canvas(1250, 900)
+      << "set datafile separator ','\n"
+      << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 2,1 title "
+      << gnuplot_string(c.label +
+                        ": admissible tangential acceleration s̈ ∈ [a_{min}, a_{max}] [m/s²]\n"
+                        "all vehicles at one common speed per station, " +
+                        fmt("%g", kAccelSpeedFraction) +
+                        " × the smallest v_{max}(s) of the three; no drive or brake limit")
+      << "\n"
+      << "set xrange [0:" << fmt("%.10g", c.length) << "]\n"
+      << "set xlabel 'arc length s [m]'\nset ylabel 'acceleration [m/s²]'\n"
+      << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
+      << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
+      << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 3 spacing 1.1 "
+         "font ',10'\n"
+      << "set xzeroaxis lt 1 lc rgb '#808080'\n";
   // Top panel: vehicles 0 and 1 (point mass, rigid body).
   const Vehicle& rigid = c.runs[1].spec.vehicle;
   const std::size_t rigid_pitch = c.runs[1].summary.pitch_stations;
@@ -495,15 +491,13 @@ void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
         occurs |=
             st.accel.feasible && (st.accel.upper_binding == cst || st.accel.lower_binding == cst);
       if (!occurs) continue;
-      gp << ", \\\n     NaN with lines lw 4 lc rgb '" << style(cst).colour << "' title "
-         << gnuplot_string(std::string("bound set by ") + style(cst).label);
+      gp << ", \\\n     "
+         << key_entry(style(cst).colour, std::string("bound set by ") + style(cst).label);
     }
     gp << "\n";
   }
   gp << "unset multiplot\n";
-  const fs::path script = out_dir / (c.name + "_acceleration.gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  gp.render();
 }
 
 /// Figure 3: the path over shaded relief, coloured by v_max of the point mass
@@ -736,11 +730,8 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
           "acceleration, along one fixed curved path across the West Bijou escarpment, for three "
           "vehicles, at the DEM's own scale and at rover scale.")
       .heading("What was run")
-      .bullet("Terrain: `data/terrain/" + std::string(kWestBijouStem) +
-              ".asc` (West Bijou Creek escarpment, Colorado; NASADEM, " +
-              std::to_string(dem.ncols()) + " × " + std::to_string(dem.nrows()) + " nodes, cell " +
-              fmt("%g", dem.cellsize()) +
-              " m, see `data/terrain/README.md`), fitted with the interpolating B-patch "
+      .bullet("Terrain: " + west_bijou_terrain_text(dem) +
+              ", fitted with the interpolating B-patch "
               "(`BPatch::interpolate`, exact at every node).")
       .bullet("Two cases:")
       .bullet("`dem`: the DEM as it is (25 m cells, elevations " + sig3(cases[0].zmin) + " to " +
@@ -838,10 +829,10 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
       .paragraph(commentary(cases[0], cases[1]))
       .heading("Figures");
   for (const CaseResult& c : cases) {
-    report.heading("`" + c.name + "`", 3)
-        .figure(c.name + " speed limits", c.name + "_speed_limits.png")
-        .figure(c.name + " acceleration bounds", c.name + "_acceleration.png")
-        .figure(c.name + " map", c.name + "_map.png");
+    report.figures("`" + c.name + "`",
+                   {{c.name + " speed limits", c.name + "_speed_limits.png"},
+                    {c.name + " acceleration bounds", c.name + "_acceleration.png"},
+                    {c.name + " map", c.name + "_map.png"}});
   }
   report.write(context.output_dir);
 }

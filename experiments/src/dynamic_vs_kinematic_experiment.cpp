@@ -202,9 +202,8 @@ void run_dynamic_vs_kinematic(const ExperimentContext& context) {
       .paragraph(
           "The paper has no such comparison (it plans kinematically only); time ratio = "
           "kinematic ÷ Talus.")
-      .files("`comparison.csv`, `map_crescent.png`, `map_gorge.png`.",
-             {{"crescent", "map_crescent.png"}, {"gorge", "map_gorge.png"}})
-      .write(context.output_dir);
+      .write(context.output_dir, "`comparison.csv`, `map_crescent.png`, `map_gorge.png`.",
+             {{"crescent", "map_crescent.png"}, {"gorge", "map_gorge.png"}});
 }
 
 }  // namespace talus::experiments

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <utility>
 
 #include "figure.hpp"
 #include "map_frame.hpp"
@@ -67,6 +68,14 @@ void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
   figure.canvas(1100, frame.canvas_height(1100))
       << frame.axes() << "set key outside bottom center horizontal samplen 2\n";
   figure.title(data.title).plot(items).render();
+}
+
+void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
+                     const HaitScenario& scenario, std::vector<HaitRoute> routes,
+                     std::string title) {
+  render_hait_map(
+      dir, stem,
+      {&scenario.grid, std::move(routes), scenario.start, scenario.goal, std::move(title)});
 }
 
 std::string hait_path_csv(const std::vector<PathPoint>& path) {

@@ -64,9 +64,8 @@ void run_hait_heuristics(const ExperimentContext& context) {
                           sig3(results[k].length_m) + " m",
                       colours[k]});
   }
-  render_hait_map(context.output_dir, "paths",
-                  {&scenario.grid, routes, scenario.start, scenario.goal,
-                   "hait-heuristics: the three search guidances (articulated chassis)"});
+  render_hait_map(context.output_dir, "paths", scenario, routes,
+                  "hait-heuristics: the three search guidances (articulated chassis)");
 
   Report report("hait-heuristics: search guidance (Haït, Siméon, Taïx 2002, §4.3)");
   report.paragraph(
@@ -139,11 +138,10 @@ void run_hait_heuristics(const ExperimentContext& context) {
                  fmt("%.2f", kPaper[2].placements / kPaper[2].created) +
                  ". Our placements count every checked configuration of every arc (0.4 m steps "
                  "checked every 0.1 m: 4 per arc), the paper's seem to be about 2.3–2.5 per node.")
-      .files(
-          "`results.csv` (the table), `paths.png` (the three paths over shaded relief, "
-          "`paths.gp`).",
-          {{"paths", "paths.png"}})
-      .write(context.output_dir);
+      .write(context.output_dir,
+             "`results.csv` (the table), `paths.png` (the three paths over shaded relief, "
+             "`paths.gp`).",
+             {{"paths", "paths.png"}});
 }
 
 }  // namespace talus::experiments

@@ -236,9 +236,9 @@ void run_hait_preprocessing(const ExperimentContext& context) {
           "The paper's absolute times (Fig. 20, a 2002 workstation) are not given in the text; "
           "its 12 s for one terrain without uncertainty (§5.4) compares with our total at about "
           "20000 nodes above.")
-      .files("`preprocessing.csv`, `preprocessing.png` (`preprocessing.gp`, `preprocessing.dat`).",
-             {{"preprocessing", "preprocessing.png"}})
-      .write(context.output_dir);
+      .write(context.output_dir,
+             "`preprocessing.csv`, `preprocessing.png` (`preprocessing.gp`, `preprocessing.dat`).",
+             {{"preprocessing", "preprocessing.png"}});
 }
 
 }  // namespace talus::experiments

@@ -140,9 +140,8 @@ void run_hait_smoothing(const ExperimentContext& context) {
                     "greedy (ours): " + std::to_string(greedy_after) + " control changes, " +
                         sig3(path_length(greedy_path, radius)) + " m",
                     "#31a354"});
-  render_hait_map(context.output_dir, "smoothing",
-                  {&scenario.grid, routes, scenario.start, scenario.goal,
-                   "hait-smoothing: the potential-rs path before and after Reeds–Shepp smoothing"});
+  render_hait_map(context.output_dir, "smoothing", scenario, routes,
+                  "hait-smoothing: the potential-rs path before and after Reeds–Shepp smoothing");
 
   Report report("hait-smoothing: Reeds–Shepp smoothing (Haït, Siméon, Taïx 2002, §4.4)");
   report.paragraph(
@@ -173,9 +172,9 @@ void run_hait_smoothing(const ExperimentContext& context) {
           "shortcut is our addition (`HaitSmoothingMethod::kRandomPairsThenGreedy`): from each "
           "control switch, the farthest later switch reachable by a valid Reeds–Shepp curve; it "
           "is deterministic.")
-      .files("`smoothing.csv` (every variant and seed), `smoothing.png` (`smoothing.gp`).",
-             {{"smoothing", "smoothing.png"}})
-      .write(context.output_dir);
+      .write(context.output_dir,
+             "`smoothing.csv` (every variant and seed), `smoothing.png` (`smoothing.gp`).",
+             {{"smoothing", "smoothing.png"}});
 }
 
 }  // namespace talus::experiments

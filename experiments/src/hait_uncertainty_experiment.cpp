@@ -85,9 +85,8 @@ void run_hait_uncertainty(const ExperimentContext& context) {
                     "with uncertainty (ρ 0.3 m, Δθ 40°, δz " + sig3(kDeltaZ) +
                         " m): " + sig3(results[1].length_m) + " m",
                     "#e6550d"});
-  render_hait_map(context.output_dir, "uncertainty",
-                  {&scenario.grid, routes, scenario.start, scenario.goal,
-                   "hait-uncertainty: a ridge with a gorge, planned with and without uncertainty"});
+  render_hait_map(context.output_dir, "uncertainty", scenario, routes,
+                  "hait-uncertainty: a ridge with a gorge, planned with and without uncertainty");
 
   const auto through = [&](std::size_t k) {
     return std::isfinite(crossings[k]) && crossings[k] < scenario.ridge_end_y;
@@ -127,9 +126,8 @@ void run_hait_uncertainty(const ExperimentContext& context) {
           "overheads. Unlike the paper, our position uncertainty is checked by sampling the "
           "neighbourhood at search time (see hait_planner.hpp), so its cost shows in the search "
           "(placements), not in the preprocessing.")
-      .files("`uncertainty.csv`, `uncertainty.png` (`uncertainty.gp`).",
-             {{"uncertainty", "uncertainty.png"}})
-      .write(context.output_dir);
+      .write(context.output_dir, "`uncertainty.csv`, `uncertainty.png` (`uncertainty.gp`).",
+             {{"uncertainty", "uncertainty.png"}});
 }
 
 }  // namespace talus::experiments

@@ -68,12 +68,6 @@ Report& Report::figure(std::string_view caption, std::string_view file) {
   return *this;
 }
 
-Report& Report::files(std::string_view list, const std::vector<FigureLink>& figures) {
-  paragraph("Files: " + std::string(list));
-  for (const FigureLink& link : figures) figure(link.caption, link.file);
-  return *this;
-}
-
 Report& Report::figures(std::string_view heading, const std::vector<FigureLink>& links) {
   this->heading(heading, 3);
   for (const FigureLink& link : links) figure(link.caption, link.file);
@@ -82,6 +76,13 @@ Report& Report::figures(std::string_view heading, const std::vector<FigureLink>&
 
 void Report::write(const std::filesystem::path& dir) const {
   write_text_file(dir / "report.md", text_);
+}
+
+void Report::write(const std::filesystem::path& dir, std::string_view files,
+                   const std::vector<FigureLink>& figures) {
+  paragraph("Files: " + std::string(files));
+  for (const FigureLink& link : figures) figure(link.caption, link.file);
+  write(dir);
 }
 
 }  // namespace talus::experiments

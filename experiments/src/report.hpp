@@ -46,14 +46,16 @@ class Report {
   /// An image link ![caption](file), as a block of its own.
   Report& figure(std::string_view caption, std::string_view file);
 
-  /// "Files: `list`" and the figures among them, each a block.
-  Report& files(std::string_view list, const std::vector<FigureLink>& figures);
   /// A level-3 heading and its figures, one block each.
   Report& figures(std::string_view heading, const std::vector<FigureLink>& links);
 
   std::string markdown() const { return text_; }
   /// Writes `dir`/report.md.
   void write(const std::filesystem::path& dir) const;
+  /// Ends the report with "Files: `files`" and the figures among them, then
+  /// writes it to `dir`/report.md.
+  void write(const std::filesystem::path& dir, std::string_view files,
+             const std::vector<FigureLink>& figures);
 
  private:
   /// Starts a block: a blank line after the previous one (none between bullets).

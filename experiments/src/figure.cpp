@@ -5,6 +5,7 @@
 #include "plot.hpp"
 
 namespace talus::experiments {
+namespace {
 
 std::string plot_command(const PlotItems& items) {
   std::string command = "plot ";
@@ -14,6 +15,8 @@ std::string plot_command(const PlotItems& items) {
   }
   return command + "\n";
 }
+
+}  // namespace
 
 std::string key_entry(std::string_view colour, std::string_view title) {
   return "NaN with lines lw 4 lc rgb '" + std::string(colour) + "' title " + gnuplot_string(title);

@@ -16,9 +16,6 @@ namespace talus::experiments {
 /// "'a.dat' using 1:2 with lines notitle".
 using PlotItems = std::vector<std::string>;
 
-/// "plot A, \\\n     B\n": the items joined one a line.
-std::string plot_command(const PlotItems& items);
-
 /// A plot item that draws nothing but a legend line of `colour` titled
 /// `title` (enhanced text), for series drawn in several colours at once.
 std::string key_entry(std::string_view colour, std::string_view title);
@@ -40,7 +37,7 @@ class GnuplotFigure {
   /// names print literally) or, with `markup`, with enhanced text as written.
   GnuplotFigure& title(std::string_view text, std::string_view font = ",10", bool markup = false);
 
-  /// Appends plot_command(items).
+  /// Appends "plot A, \\\n     B\n": the items, one per line.
   GnuplotFigure& plot(const PlotItems& items);
 
   template <typename Text>

@@ -49,7 +49,6 @@ class Report {
   /// A level-3 heading and its figures, one block each.
   Report& figures(std::string_view heading, const std::vector<FigureLink>& links);
 
-  std::string markdown() const { return text_; }
   /// Writes `dir`/report.md.
   void write(const std::filesystem::path& dir) const;
   /// Ends the report with "Files: `files`" and the figures among them, then

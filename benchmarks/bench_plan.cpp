@@ -1,8 +1,8 @@
 // The whole time-optimal plan (issue target: a 256 x 256 DEM with 5
 // candidates in < 5 s wall time on one core): B-patch fit, global search with
 // 5 distinct candidates, Ipopt local optimisation of each with the adjoint
-// gradient, and each optimum's profile at the default 0.1 m stations — what
-// `talus plan` does, without files and figures. Baseline in the same run: the
+// gradient, and each optimum's profile at the default 0.1 m stations:
+// talus::plan, what `talus plan` calls, without files and figures. Baseline in the same run: the
 // global stage alone (fit included). Terrain: 256 x 256 nodes of the Mount
 // St. Helens USGS DEM (30 m; columns 30.., rows 100.. from the south-west:
 // the cone's western half and the lowlands), smoothing fit lambda = 1 as the
@@ -16,13 +16,10 @@
 #include <limits>
 #include <string>
 
-#include "talus/bspline/surface_path.hpp"
 #include "talus/core/esri_ascii.hpp"
-#include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/global_search.hpp"
-#include "talus/optimal/path_optimizer.hpp"
-#include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/optimal/planner.hpp"
 
 namespace {
 
@@ -73,29 +70,21 @@ void BM_GlobalStageOnly(benchmark::State& state) {
 BENCHMARK(BM_GlobalStageOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_FullPlan(benchmark::State& state) {
+  talus::PlannerOptions options;
+  options.global = search_options();
   double best = std::numeric_limits<double>::infinity(), global_best = best;
   std::size_t evaluations = 0;
   for (auto _ : state) {
     const talus::BPatch terrain = talus::BPatch::fit_smoothing(dem(), 1.0);
-    const talus::Vec2 start = start_point(terrain), goal = goal_point(terrain);
-    const talus::GlobalSearchResult global =
-        talus::global_search(terrain, rover(), start, goal, search_options());
-    if (global.status != talus::GlobalSearchStatus::kOk) state.SkipWithError("unreachable");
-    talus::TimeOptimalProfileSolver solver;
+    const talus::PlannerResult result = talus::plan(
+        talus::PlanningProblem(terrain, rover(), start_point(terrain), goal_point(terrain)),
+        options);
+    if (result.status != talus::PlannerStatus::kOk) state.SkipWithError("no trajectory");
+    best = result.travel_time();
+    global_best = result.global_travel_time();
     evaluations = 0;
-    for (const talus::CandidatePath& c : global.candidates) {
-      std::vector<talus::Vec2> polyline = c.vertices;
-      polyline.front() = start;
-      polyline.back() = goal;
-      const talus::OptimizedPath local =
-          talus::optimize_path(terrain, rover(), polyline, talus::PathOptimizerOptions{});
-      evaluations += local.evaluations;
-      global_best = std::min(global_best, local.initial_time);
-      const talus::SurfacePath path(terrain, local.curve);
-      const talus::VelocityLimits limits(
-          rover(), path,
-          static_cast<std::size_t>(path.length() / talus::kDefaultStationSpacing) + 1);
-      best = std::min(best, solver.solve(limits, {}).travel_time);
+    for (const talus::CandidateOutcome& c : result.candidates) {
+      if (c.optimization) evaluations += c.optimization->evaluations;
     }
   }
   state.counters["travel_time_s"] = best;

@@ -11,6 +11,7 @@
 #include "talus/core/esri_ascii.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/optimal/trajectory.hpp"
 
 int main(int argc, char** argv) {
   using namespace talus;
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < vertices.size(); k += 4) through.push_back(vertices[k]);
     if (through.back() != vertices.back()) through.push_back(vertices.back());
     const SurfacePath path(terrain, Curve2::interpolate(through));
-    const auto stations = static_cast<std::size_t>(path.length() / kDefaultStationSpacing) + 1;
+    const auto stations = station_count(path.length());
     const VelocityLimits limits(rover, path, stations);
     std::printf("3. Path: %.1f m, %zu stations (%.2f m apart)\n", path.length(), stations,
                 kDefaultStationSpacing);

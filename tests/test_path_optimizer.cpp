@@ -10,6 +10,7 @@
 #include "talus/optimal/global_search.hpp"
 #include "talus/optimal/path_optimizer.hpp"
 #include "talus/optimal/path_time_objective.hpp"
+#include "talus/optimal/trajectory.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -126,7 +127,7 @@ TEST(PathOptimizer, OptimisedTrajectoryOnFractalTerrainSatisfiesEveryConstraint)
   EXPECT_LE(best.travel_time, best.initial_time);
 
   const SurfacePath path(terrain, best.curve);
-  const auto stations = static_cast<std::size_t>(path.length() / kDefaultStationSpacing) + 1;
+  const auto stations = station_count(path.length());
   const VelocityLimits limits(v, path, stations);
   TimeOptimalProfileSolver solver;
   const TimeOptimalProfile profile = solver.solve(limits, {});

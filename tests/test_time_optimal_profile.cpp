@@ -10,6 +10,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/optimal/trajectory.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -33,9 +34,7 @@ Vehicle vehicle(double mu, double max_accel = INFINITY, double max_decel = INFIN
 }
 
 /// The library's default spacing (the issue: analytic times within 0.5 % at the default spacing).
-std::size_t stations_for(double length) {
-  return static_cast<std::size_t>(length / kDefaultStationSpacing) + 1;
-}
+std::size_t stations_for(double length) { return station_count(length); }
 
 TimeOptimalProfile solve_straight(const BPatch& patch, const Vec2& a, const Vec2& b,
                                   const Vehicle& v, double v0 = 0.0, double v1 = 0.0) {

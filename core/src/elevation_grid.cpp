@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "talus/core/error.hpp"
+#include "talus/core/memory_budget.hpp"
 
 namespace talus {
 
@@ -24,6 +25,10 @@ ElevationGrid::ElevationGrid(std::size_t ncols, std::size_t nrows, double cellsi
   if (!std::isfinite(x_min) || !std::isfinite(y_min) || !std::isfinite(fill)) {
     throw InputError("elevation grid origin and fill value must be finite");
   }
+  // ncols * nrows may wrap: compare in doubles first.
+  require_memory(static_cast<double>(ncols) * static_cast<double>(nrows) * 9.0,
+                 "a " + std::to_string(ncols) + " x " + std::to_string(nrows) + " elevation grid",
+                 "use fewer nodes (crop or resample the terrain, or smaller --ncols/--nrows)");
   z_.assign(ncols * nrows, fill);
   valid_.assign(ncols * nrows, 1);
 }

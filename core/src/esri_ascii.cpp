@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "talus/core/error.hpp"
+#include "talus/core/input_file.hpp"
 
 namespace talus {
 namespace {
@@ -56,9 +57,28 @@ std::optional<double> parse_number(std::string_view token) {
   return value;
 }
 
+/// Why `token` is no number: out of a double's range (1e-400, 1e400) or not
+/// a number at all.
+std::string not_a_number(std::string_view token) {
+  double value = 0.0;
+  const char* first = token.data();
+  const char* last = token.data() + token.size();
+  if (first != last && *first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  std::string quoted = "'";
+  quoted += printable(std::string(token));
+  quoted += "'";
+  if (ec == std::errc::result_out_of_range && ptr == last) {
+    return quoted + " is out of the range of a double (about 1e-308 to 1e308 in magnitude)";
+  }
+  return quoted + " is not a number";
+}
+
 bool starts_like_number(std::string_view token) {
   const char c = token.front();
-  return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
+  if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.') return true;
+  // inf and nan parse as numbers: data (refused as non-finite), not a header key.
+  return parse_number(token).has_value();
 }
 
 std::string lower(std::string_view s) {
@@ -85,6 +105,13 @@ Header read_header(Tokenizer& tokens, const std::string& source,
       fail(source, tokens.line(), "file ends inside the header: no elevation values");
     }
     if (starts_like_number(*token)) {
+      if (header.values.empty()) {
+        fail(source, tokens.line(),
+             "the header is missing: the file starts with the value '" +
+                 printable(std::string(*token)) +
+                 "' (an ESRI ASCII grid starts with ncols, nrows, xllcorner, yllcorner, "
+                 "cellsize)");
+      }
       first_data = token;
       return header;
     }
@@ -92,7 +119,7 @@ Header read_header(Tokenizer& tokens, const std::string& source,
     const std::size_t line = tokens.line();
     if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown)) {
       fail(source, line,
-           "unknown header key '" + std::string(*token) +
+           "unknown header key '" + printable(std::string(*token)) +
                "' (expected ncols, nrows, xllcorner|xllcenter, yllcorner|yllcenter, cellsize, "
                "NODATA_value): not an ESRI ASCII grid?");
     }
@@ -103,11 +130,18 @@ Header read_header(Tokenizer& tokens, const std::string& source,
     const auto value = parse_number(*value_token);
     if (!value || !std::isfinite(*value)) {
       fail(source, line,
-           "header key '" + key + "' has value '" + std::string(*value_token) +
+           "header key '" + key + "' has value '" + printable(std::string(*value_token)) +
                "', expected a finite number");
     }
     header.values[key] = *value;
     header.lines[key] = line;
+    // One value per header line: "ncols 4 4" is a typo, not the first datum.
+    Tokenizer peek = tokens;
+    if (const auto extra = peek.next(); extra && peek.line() == line) {
+      fail(source, line,
+           "header key '" + key + "' has more than one value ('" +
+               printable(std::string(*extra)) + "' follows)");
+    }
   }
 }
 
@@ -115,7 +149,8 @@ std::size_t positive_count(const Header& header, const std::string& key,
                            const std::string& source) {
   const double v = header.values.at(key);
   if (v < 2 || v != std::floor(v) || v > 1e8) {
-    fail(source, header.lines.at(key), key + " must be an integer >= 2, got " + std::to_string(v));
+    fail(source, header.lines.at(key),
+         key + " must be an integer in [2, 1e8], got " + std::to_string(v));
   }
   return static_cast<std::size_t>(v);
 }
@@ -133,12 +168,16 @@ double corner_or_centre(const Header& header, const std::string& axis, double ce
   fail(source, 1, "missing header key " + corner + " (or " + centre + ")");
 }
 
-}  // namespace
+/// Values left after the header's first datum (included), and the line of the last.
+std::pair<std::size_t, std::size_t> count_values(Tokenizer tokens) {
+  std::size_t n = 1;
+  while (tokens.next()) ++n;
+  return {n, tokens.line()};
+}
 
-ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) {
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+ElevationGrid parse_esri_ascii(std::string_view text, const std::string& source_name) {
+  constexpr std::string_view kBom = "\xEF\xBB\xBF";  // some editors start UTF-8 with it
+  if (text.substr(0, kBom.size()) == kBom) text.remove_prefix(kBom.size());
   Tokenizer tokens(text);
   std::optional<std::string_view> token;
   const Header header = read_header(tokens, source_name, token);
@@ -158,8 +197,16 @@ ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) 
   const bool has_nodata = header.values.count("nodata_value") != 0;
   const double nodata = has_nodata ? header.values.at("nodata_value") : 0.0;
 
-  ElevationGrid grid(ncols, nrows, cellsize, x_min, y_min);
+  // Count before allocating: a 100-byte file must not claim 20000 x 20000.
   const std::size_t expected = ncols * nrows;
+  const auto [values, last_line] = count_values(tokens);
+  if (values < expected) {
+    fail(source_name, last_line,
+         "file ends after " + std::to_string(values) +
+             " values, expected ncols x nrows = " + std::to_string(ncols) + " x " +
+             std::to_string(nrows) + " = " + std::to_string(expected));
+  }
+  ElevationGrid grid(ncols, nrows, cellsize, x_min, y_min);
   std::size_t count = 0;
   // Rows are expected one per line; a file that wraps rows over several lines
   // is accepted as long as the total count is right.
@@ -169,15 +216,13 @@ ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) 
     if (count == expected) {
       fail(source_name, line,
            "more values than ncols x nrows = " + std::to_string(expected) + " (extra token '" +
-               std::string(*token) + "')");
+               printable(std::string(*token)) + "')");
     }
     const auto value = parse_number(*token);
-    if (!value) {
-      fail(source_name, line, "value '" + std::string(*token) + "' is not a number");
-    }
+    if (!value) fail(source_name, line, "value " + not_a_number(*token));
     if (!std::isfinite(*value)) {
       fail(source_name, line,
-           "value '" + std::string(*token) +
+           "value '" + printable(std::string(*token)) +
                "' is not finite (NaN/Inf are not "
                "allowed; use NODATA_value for voids)");
     }
@@ -192,12 +237,6 @@ ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) 
     ++per_line[line];
     ++count;
   }
-  if (count < expected) {
-    fail(source_name, tokens.line(),
-         "file ends after " + std::to_string(count) +
-             " values, expected ncols x nrows = " + std::to_string(ncols) + " x " +
-             std::to_string(nrows) + " = " + std::to_string(expected));
-  }
   if (per_line.size() == nrows) {
     for (const auto& [line, n] : per_line) {
       if (n != ncols) {
@@ -209,10 +248,15 @@ ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) 
   return grid;
 }
 
+}  // namespace
+
+ElevationGrid read_esri_ascii(std::istream& in, const std::string& source_name) {
+  const std::string text = read_input_stream(in, source_name, kMaxGridFileBytes);
+  return parse_esri_ascii(text, source_name);
+}
+
 ElevationGrid read_esri_ascii(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file for reading");
-  return read_esri_ascii(in, path);
+  return parse_esri_ascii(read_input_file(path, kMaxGridFileBytes), printable(path, 200));
 }
 
 void write_esri_ascii(const ElevationGrid& grid, std::ostream& out, double nodata_value) {

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "talus/core/error.hpp"
+#include "talus/core/input_file.hpp"
 
 namespace talus {
 namespace {
@@ -27,11 +28,9 @@ std::string_view trim(std::string_view s) {
 
 /// The text quoted for an error message, shortened if it is long.
 std::string quoted(std::string_view s) {
-  constexpr std::size_t kMax = 40;
-  std::string out(1, '\'');
-  out.append(s.substr(0, kMax));
-  if (s.size() > kMax) out.append("...");
-  out.push_back('\'');
+  std::string out = "'";
+  out += printable(std::string(s), 40);
+  out += "'";
   return out;
 }
 
@@ -72,13 +71,7 @@ double parse_coordinate(std::string_view field, const char* name, const std::str
   return value;
 }
 
-}  // namespace
-
-std::vector<Vec2> read_path_csv(std::istream& in, const std::string& source_name) {
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  std::string_view rest(text);
+std::vector<Vec2> parse_path_csv(std::string_view rest, const std::string& source_name) {
   constexpr std::string_view kBom = "\xEF\xBB\xBF";
   if (rest.substr(0, kBom.size()) == kBom) rest.remove_prefix(kBom.size());
 
@@ -139,10 +132,14 @@ std::vector<Vec2> read_path_csv(std::istream& in, const std::string& source_name
   return points;
 }
 
+}  // namespace
+
+std::vector<Vec2> read_path_csv(std::istream& in, const std::string& source_name) {
+  return parse_path_csv(read_input_stream(in, source_name, kMaxPathFileBytes), source_name);
+}
+
 std::vector<Vec2> read_path_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file for reading");
-  return read_path_csv(in, path);
+  return parse_path_csv(read_input_file(path, kMaxPathFileBytes), printable(path, 200));
 }
 
 }  // namespace talus

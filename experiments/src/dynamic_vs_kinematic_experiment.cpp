@@ -16,15 +16,11 @@
 #include "stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/curve_fit.hpp"
-#include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/kinematic/hait_planner.hpp"
-#include "talus/optimal/global_search.hpp"
-#include "talus/optimal/path_optimizer.hpp"
-#include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/optimal/planner.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -54,19 +50,9 @@ double piece_time(const BPatch& surface, const Vehicle& vehicle, const std::vect
     length += (polyline[k] - polyline[k - 1]).norm();
   if (length < 1e-6) return 0.0;
   const auto m = static_cast<std::size_t>(std::clamp(std::ceil(length), 4.0, 48.0));
-  try {
-    const Curve2 curve = fit_clamped_cubic(
-        resample_polyline(polyline, std::max<std::size_t>(10 * m, polyline.size())), m);
-    const SurfacePath path(surface, curve);
-    const auto stations = std::max<std::size_t>(
-        static_cast<std::size_t>(std::ceil(path.length() / kDefaultStationSpacing)) + 1, 2);
-    const VelocityLimits limits(vehicle, path, stations);
-    TimeOptimalProfile profile;
-    solver.solve(limits, ProfileOptions{}, profile);
-    return profile.status == ProfileStatus::kOk ? profile.travel_time : kInf;
-  } catch (const InputError&) {
-    return kInf;
-  }
+  const Curve2 curve = fit_clamped_cubic(
+      resample_polyline(polyline, std::max<std::size_t>(10 * m, polyline.size())), m);
+  return evaluate_trajectory(surface, vehicle, curve, TrajectoryOptions{}, &solver).travel_time();
 }
 
 struct Row {
@@ -114,29 +100,22 @@ Row compare(const std::string& name, const HaitScenario& s, const Robot& robot,
   flush();
 
   // Talus: global minimum-time search, then the local optimiser (Ipopt).
-  const auto t1 = Clock::now();
-  GlobalSearchOptions go;
-  go.candidates = 1;
-  const GlobalSearchResult g =
-      global_search(surface, vehicle, s.start.position(), s.goal.position(), go);
-  if (g.status != GlobalSearchStatus::kOk) throw SolverError(name + ": no global candidate");
-  std::vector<Vec2> polyline = g.candidates.front().vertices;
-  polyline.front() = s.start.position();
-  polyline.back() = s.goal.position();
-  PathOptimizerOptions po;
-  po.solver = PathSolver::kIpopt;
-  const OptimizedPath opt = optimize_path(surface, vehicle, polyline, po);
-  row.talus_plan_seconds = seconds_since(t1);
-  const SurfacePath path(surface, opt.curve);
-  const auto stations = std::max<std::size_t>(
-      static_cast<std::size_t>(std::ceil(path.length() / kDefaultStationSpacing)) + 1, 2);
-  const VelocityLimits limits(vehicle, path, stations);
-  TimeOptimalProfile profile;
-  solver.solve(limits, ProfileOptions{}, profile);
-  row.talus_time = profile.status == ProfileStatus::kOk ? profile.travel_time : kInf;
-  row.talus_length = path.length();
-  for (std::size_t k = 0; k < limits.size(); k += 5) {
-    row.talus_path.push_back({{limits.frame(k).point.x(), limits.frame(k).point.y(), 0.0}, {}});
+  PlannerOptions options;
+  options.global.candidates = 1;
+  options.local.solver = PathSolver::kIpopt;
+  const PlannerResult planned =
+      plan(PlanningProblem(surface, vehicle, s.start.position(), s.goal.position()), options);
+  if (planned.status == PlannerStatus::kUnreachable) {
+    throw SolverError(name + ": no global candidate");
+  }
+  row.talus_plan_seconds = planned.seconds.total;
+  if (const Trajectory* best = planned.best()) {
+    row.talus_time = best->travel_time();
+    row.talus_length = best->length();
+    for (std::size_t k = 0; k < best->limits->size(); k += 5) {
+      const Vec3& p = best->limits->frame(k).point;
+      row.talus_path.push_back({{p.x(), p.y(), 0.0}, {}});
+    }
   }
   return row;
 }

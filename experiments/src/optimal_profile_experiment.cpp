@@ -32,6 +32,7 @@
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/optimal/trajectory.hpp"
 #include "west_bijou_path.hpp"
 
 namespace talus::experiments {
@@ -419,11 +420,8 @@ struct Level {
   std::array<Failure, kSeries> failure;                 ///< message empty if feasible
 };
 
-/// The station count the library's callers use for this path: the smallest
-/// count whose mean spacing is at most kDefaultStationSpacing.
-std::size_t default_station_count(double length) {
-  return static_cast<std::size_t>(std::ceil(length / kDefaultStationSpacing)) + 1;
-}
+/// The station count the library's callers use for this path (station_count).
+std::size_t default_station_count(double length) { return station_count(length); }
 
 bool is_doubling_level(const Level& level) {
   return std::find(std::begin(kLevels), std::end(kLevels), level.stations) != std::end(kLevels);

@@ -1,7 +1,6 @@
 #include "plan_command.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -18,15 +17,10 @@
 #include "plot.hpp"
 #include "stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
-#include "talus/bspline/curve_fit.hpp"
-#include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
-#include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
-#include "talus/optimal/global_search.hpp"
-#include "talus/optimal/path_optimizer.hpp"
-#include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/optimal/planner.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -133,36 +127,6 @@ std::string fields_csv(const GlobalSearchResult& result) {
   return csv;
 }
 
-/// A path's time-optimal profile at kDefaultStationSpacing. The SurfacePath
-/// lives on the heap: it must not move.
-struct EvaluatedPath {
-  std::unique_ptr<const SurfacePath> path;
-  std::unique_ptr<const VelocityLimits> limits;
-  TimeOptimalProfile profile;
-  std::string message;  ///< why there is no profile
-  bool feasible() const { return profile.status == ProfileStatus::kOk; }
-  double travel_time() const {
-    return feasible() ? profile.travel_time : std::numeric_limits<double>::infinity();
-  }
-};
-
-EvaluatedPath evaluate_path(const BPatch& surface, const Vehicle& vehicle, const Curve2& curve,
-                            const ProfileOptions& speeds, TimeOptimalProfileSolver& solver) {
-  EvaluatedPath e;
-  try {
-    e.path = std::make_unique<const SurfacePath>(surface, curve);
-    const auto stations = std::max<std::size_t>(
-        static_cast<std::size_t>(std::ceil(e.path->length() / kDefaultStationSpacing)) + 1, 2);
-    e.limits = std::make_unique<const VelocityLimits>(vehicle, *e.path, stations);
-    solver.solve(*e.limits, speeds, e.profile);
-    if (!e.feasible()) e.message = e.profile.message;
-  } catch (const InputError& error) {
-    e.profile.status = ProfileStatus::kInfeasible;
-    e.message = error.what();
-  }
-  return e;
-}
-
 /// Station indices of a profile with `n` stations, thinned to about `rows`.
 std::vector<std::size_t> thinned(std::size_t n, std::size_t rows) {
   const std::size_t stride = std::max<std::size_t>(1, (n + rows - 1) / rows);
@@ -172,7 +136,7 @@ std::vector<std::size_t> thinned(std::size_t n, std::size_t rows) {
   return out;
 }
 
-std::string trajectory_csv(const EvaluatedPath* best) {
+std::string trajectory_csv(const Trajectory* best) {
   std::string csv = kTrajectoryCsvHeader;
   csv += '\n';
   if (best == nullptr) return csv;
@@ -192,204 +156,151 @@ std::string trajectory_csv(const EvaluatedPath* best) {
   return csv;
 }
 
-nlohmann::json finite_or_null(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-/// The local stage: optimises every candidate, writes trajectory.csv,
-/// optima.csv and the figures, and adds the local stage's fields to
-/// `summary`. Returns whether a feasible trajectory exists.
-bool run_full_stage(const PlanRequest& request, const BPatch& surface, const ElevationGrid& grid,
-                    const Vehicle& vehicle, const Vec2& start, const Vec2& goal,
-                    const GlobalSearchResult& result, const std::filesystem::path& dir,
-                    nlohmann::json& summary, nlohmann::json& seconds) {
-  PathOptimizerOptions options;
-  options.solver = parse_path_solver(request.solver);
-  options.control_points = static_cast<std::size_t>(request.control_points);
-  options.max_control_points = std::max(options.max_control_points, options.control_points);
-  options.speeds.start_speed = request.start_speed;
-  options.speeds.end_speed = request.end_speed;
-  TimeOptimalProfileSolver solver;
-
-  std::vector<EvaluatedPath> optimised;
-  nlohmann::json optima = nlohmann::json::array();
-  double local_seconds = 0.0, profile_seconds = 0.0;
-  double global_time = std::numeric_limits<double>::infinity();
-  std::size_t best = result.candidates.size();
-  for (std::size_t c = 0; c < result.candidates.size(); ++c) {
-    std::vector<Vec2> polyline = result.candidates[c].vertices;
-    polyline.front() = start;  // the exact start and goal, not the snapped nodes
-    polyline.back() = goal;
-    nlohmann::json entry;
-    entry["candidate"] = c;
-
-    const auto local_start = Clock::now();
-    std::optional<OptimizedPath> local;
-    std::string failure;
-    try {
-      local.emplace(optimize_path(surface, vehicle, polyline, options));
-    } catch (const InputError& error) {
-      failure = error.what();
-    }
-    local_seconds += seconds_since(local_start);
-
-    // The candidate's own time before optimisation: the optimiser's initial
-    // fit (with the control points it needed), at the final spacing.
-    auto profile_start = Clock::now();
-    const Curve2 initial =
-        local ? local->initial_curve
-              : fit_clamped_cubic(
-                    resample_polyline(polyline, std::max<std::size_t>(10 * options.control_points,
-                                                                      polyline.size())),
-                    options.control_points);
-    EvaluatedPath initial_path = evaluate_path(surface, vehicle, initial, options.speeds, solver);
-    profile_seconds += seconds_since(profile_start);
-    global_time = std::min(global_time, initial_path.travel_time());
-
-    profile_start = Clock::now();
-    EvaluatedPath path = failure.empty()
-                             ? evaluate_path(surface, vehicle, local->curve, options.speeds, solver)
-                             : EvaluatedPath{};
-    if (failure.empty() && !path.feasible()) failure = path.message;
-    // The search's coarser stations can favour a path that is slower at the
-    // default spacing: never report one slower than its own initial fit.
-    const bool kept_initial =
-        initial_path.feasible() && !(path.travel_time() <= initial_path.travel_time());
-    // Why the optimiser gave nothing, even when the initial fit stands in.
-    entry["optimizer_message"] = local ? nlohmann::json(nullptr) : nlohmann::json(failure);
-    if (kept_initial) {
-      path = std::move(initial_path);
-      failure.clear();
-    }
-    profile_seconds += seconds_since(profile_start);
-
-    const bool ok = path.feasible();
-    entry["status"] = ok ? "ok" : "infeasible";
-    entry["message"] = ok ? nlohmann::json(nullptr) : nlohmann::json(failure);
-    entry["travel_time"] = finite_or_null(path.travel_time());
-    entry["initial_time"] =
-        finite_or_null(kept_initial ? path.travel_time() : initial_path.travel_time());
-    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-    entry["travel_time_search_spacing"] = finite_or_null(local ? local->travel_time : kNaN);
-    entry["initial_time_search_spacing"] = finite_or_null(local ? local->initial_time : kNaN);
-    entry["kept_initial"] = kept_initial;
-    entry["solver"] = request.solver;
-    entry["solver_status"] = local ? nlohmann::json(local->solver_status) : nlohmann::json(nullptr);
-    entry["solver_failed"] = local ? local->solver_failed : false;
-    entry["iterations"] = local ? local->iterations : 0;
-    entry["evaluations"] = local ? local->evaluations : 0;
-    entry["gradient_evaluations"] = local ? local->gradient_evaluations : 0;
-    entry["finite_difference_gradients"] = local ? local->finite_difference_fallbacks : 0;
-    entry["optimality"] = finite_or_null(local ? local->optimality : kNaN);
-    entry["search_stations"] = local ? local->stations : 0;
-    entry["control_points"] = local ? local->control_points : 0;
-    entry["seconds"] = local ? local->seconds : 0.0;
-    entry["length_m"] = ok ? nlohmann::json(path.path->length()) : nlohmann::json(nullptr);
-    optima.push_back(std::move(entry));
-    if (ok &&
-        (best == result.candidates.size() || path.travel_time() < optimised[best].travel_time())) {
-      best = c;
-    }
-    optimised.push_back(std::move(path));
-  }
-  const bool feasible = best < optimised.size();
-  const EvaluatedPath* best_path = feasible ? &optimised[best] : nullptr;
-
-  // Files.
-  const std::string trajectory_file = (dir / "trajectory.csv").string();
-  const std::string optima_file = (dir / "optima.csv").string();
-  write_text_file(trajectory_file, trajectory_csv(best_path));
+std::string optima_csv(const PlannerResult& result) {
   std::string csv = kOptimaCsvHeader;
   csv += '\n';
-  for (std::size_t c = 0; c < optimised.size(); ++c) {
-    const EvaluatedPath& e = optimised[c];
-    if (!e.feasible()) continue;
-    for (const std::size_t k : thinned(e.limits->size(), kMaxOptimaRows)) {
-      const PathFrame& f = e.limits->frame(k);
-      csv += std::to_string(c);
-      for (const double value : {f.s, f.point.x(), f.point.y(), e.profile.v[k]}) {
+  for (const CandidateOutcome& c : result.candidates) {
+    if (!c.feasible()) continue;
+    const VelocityLimits& limits = *c.trajectory.limits;
+    for (const std::size_t k : thinned(limits.size(), kMaxOptimaRows)) {
+      const PathFrame& f = limits.frame(k);
+      csv += std::to_string(c.candidate);
+      for (const double value : {f.s, f.point.x(), f.point.y(), c.trajectory.profile.v[k]}) {
         csv += ',';
         append_csv_number(csv, value);
       }
       csv += '\n';
     }
   }
-  write_text_file(optima_file, csv);
+  return csv;
+}
+
+nlohmann::json finite_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+/// optima[] of the summary: one entry per candidate of the local stage.
+nlohmann::json optimum_json(const CandidateOutcome& c, const std::string& solver) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const OptimizedPath* o = c.optimization ? &*c.optimization : nullptr;
+  nlohmann::json entry;
+  entry["candidate"] = c.candidate;
+  entry["optimizer_message"] = o ? nlohmann::json(nullptr) : nlohmann::json(c.optimizer_message);
+  entry["status"] = c.feasible() ? "ok" : "infeasible";
+  entry["message"] = c.feasible() ? nlohmann::json(nullptr) : nlohmann::json(c.trajectory.message);
+  entry["travel_time"] = finite_or_null(c.trajectory.travel_time());
+  entry["initial_time"] = finite_or_null(c.initial.travel_time());
+  entry["travel_time_search_spacing"] = finite_or_null(o ? o->travel_time : kNaN);
+  entry["initial_time_search_spacing"] = finite_or_null(o ? o->initial_time : kNaN);
+  entry["kept_initial"] = c.kept_initial;
+  entry["solver"] = solver;
+  entry["solver_status"] = o ? nlohmann::json(o->solver_status) : nlohmann::json(nullptr);
+  entry["solver_failed"] = o ? o->solver_failed : false;
+  entry["iterations"] = o ? o->iterations : 0;
+  entry["evaluations"] = o ? o->evaluations : 0;
+  entry["gradient_evaluations"] = o ? o->gradient_evaluations : 0;
+  entry["finite_difference_gradients"] = o ? o->finite_difference_fallbacks : 0;
+  entry["optimality"] = finite_or_null(o ? o->optimality : kNaN);
+  entry["search_stations"] = o ? o->stations : 0;
+  entry["control_points"] = o ? o->control_points : 0;
+  entry["seconds"] = o ? o->seconds : 0.0;
+  entry["length_m"] = c.feasible() ? nlohmann::json(c.trajectory.length()) : nullptr;
+  return entry;
+}
+
+/// plan.png and profile.png of a plan with a best trajectory.
+void render_plan_figures(const PlanRequest& request, const ElevationGrid& grid,
+                         const PlanningProblem& problem, const PlannerResult& result,
+                         const std::filesystem::path& dir) {
+  const Trajectory& best = *result.best();
+  PlanMapData map;
+  map.surface = problem.surface;
+  map.origin = Vec2(grid.x_min(), grid.y_min());
+  map.width = grid.x_max() - grid.x_min();
+  map.height = grid.y_max() - grid.y_min();
+  for (const CandidatePath& c : result.global.candidates) map.candidates.push_back(c.vertices);
+  for (const CandidateOutcome& c : result.candidates) {
+    std::vector<Vec2> points;
+    if (c.feasible()) {
+      for (const std::size_t k : thinned(c.trajectory.limits->size(), kMaxOptimaRows)) {
+        points.push_back(c.trajectory.limits->frame(k).point.head<2>());
+      }
+    }
+    map.optimised.push_back(std::move(points));
+    map.optimised_times.push_back(c.trajectory.travel_time());
+  }
+  map.best = *result.best_candidate;
+  map.start = problem.start;
+  map.goal = problem.goal;
+  std::ostringstream title;
+  title.precision(4);
+  title << "talus plan: " << std::filesystem::path(request.terrain).filename().string() << ", "
+        << result.global.candidates.size() << " global candidates, best optimised path "
+        << best.travel_time() << " s (global " << result.global_travel_time() << " s)";
+  map.title = title.str();
+  render_plan_map(dir, map);
+
+  PlanProfileData figure;
+  const TimeOptimalProfile& p = best.profile;
+  for (const std::size_t k : thinned(best.limits->size(), 20 * kMaxOptimaRows)) {
+    figure.s.push_back(p.s[k]);
+    figure.v.push_back(p.v[k]);
+    figure.v_max.push_back(p.v_max[k]);
+  }
+  for (const SwitchingPoint& sp : p.switching_points) {
+    figure.switch_s.push_back(sp.s);
+    figure.switch_v.push_back(p.v[sp.station]);
+  }
+  std::ostringstream profile_title;
+  profile_title.precision(4);
+  profile_title << "best trajectory (candidate " << *result.best_candidate << "): travel time "
+                << p.travel_time << " s, " << p.switching_points.size() << " switching points";
+  figure.title = profile_title.str();
+  render_plan_profile(dir, figure);
+}
+
+/// The local stage's files (trajectory.csv, optima.csv, the figures) and
+/// summary fields.
+void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
+                      const PlanningProblem& problem, const PlannerOptions& options,
+                      const PlannerResult& result, const std::filesystem::path& dir,
+                      nlohmann::json& summary, nlohmann::json& seconds) {
+  const Trajectory* best = result.best();
+  const std::string trajectory_file = (dir / "trajectory.csv").string();
+  const std::string optima_file = (dir / "optima.csv").string();
+  write_text_file(trajectory_file, trajectory_csv(best));
+  write_text_file(optima_file, optima_csv(result));
 
   const auto plots_start = Clock::now();
-  const bool plots = feasible && gnuplot_available();
+  const bool plots = best != nullptr && gnuplot_available();
   std::error_code error;
   for (const char* name : {"plan.png", "profile.png"}) std::filesystem::remove(dir / name, error);
-  if (plots) {
-    PlanMapData map;
-    map.surface = &surface;
-    map.origin = Vec2(grid.x_min(), grid.y_min());
-    map.width = grid.x_max() - grid.x_min();
-    map.height = grid.y_max() - grid.y_min();
-    for (const CandidatePath& c : result.candidates) map.candidates.push_back(c.vertices);
-    for (const EvaluatedPath& e : optimised) {
-      std::vector<Vec2> points;
-      if (e.feasible()) {
-        for (const std::size_t k : thinned(e.limits->size(), kMaxOptimaRows)) {
-          points.push_back(e.limits->frame(k).point.head<2>());
-        }
-      }
-      map.optimised.push_back(std::move(points));
-      map.optimised_times.push_back(e.travel_time());
-    }
-    map.best = best;
-    map.start = start;
-    map.goal = goal;
-    std::ostringstream title;
-    title.precision(4);
-    title << "talus plan: " << std::filesystem::path(request.terrain).filename().string() << ", "
-          << result.candidates.size() << " global candidates, best optimised path "
-          << best_path->travel_time() << " s (global " << global_time << " s)";
-    map.title = title.str();
-    render_plan_map(dir, map);
-
-    PlanProfileData figure;
-    const TimeOptimalProfile& p = best_path->profile;
-    for (const std::size_t k : thinned(best_path->limits->size(), 20 * kMaxOptimaRows)) {
-      figure.s.push_back(p.s[k]);
-      figure.v.push_back(p.v[k]);
-      figure.v_max.push_back(p.v_max[k]);
-    }
-    for (const SwitchingPoint& sp : p.switching_points) {
-      figure.switch_s.push_back(sp.s);
-      figure.switch_v.push_back(p.v[sp.station]);
-    }
-    std::ostringstream profile_title;
-    profile_title.precision(4);
-    profile_title << "best trajectory (candidate " << best << "): travel time " << p.travel_time
-                  << " s, " << p.switching_points.size() << " switching points";
-    figure.title = profile_title.str();
-    render_plan_profile(dir, figure);
-  }
+  if (plots) render_plan_figures(request, grid, problem, result, dir);
   const double plots_seconds = seconds_since(plots_start);
 
-  const double best_time =
-      feasible ? best_path->travel_time() : std::numeric_limits<double>::quiet_NaN();
-  if (!feasible) {
+  nlohmann::json optima = nlohmann::json::array();
+  for (const CandidateOutcome& c : result.candidates) {
+    optima.push_back(optimum_json(c, request.solver));
+  }
+  if (result.status == PlannerStatus::kInfeasible) {
     summary["status"] = "infeasible";
     summary["message"] = "no candidate has a feasible trajectory (see optima[].message)";
   }
-  summary["travel_time"] = finite_or_null(best_time);
-  summary["global_travel_time"] = finite_or_null(global_time);
-  summary["improvement_percent"] = finite_or_null(100.0 * (global_time - best_time) / global_time);
-  summary["best_candidate"] = feasible ? nlohmann::json(best) : nlohmann::json(nullptr);
+  summary["travel_time"] = finite_or_null(best ? best->travel_time() : NAN);
+  summary["global_travel_time"] = finite_or_null(result.global_travel_time());
+  summary["improvement_percent"] = finite_or_null(result.improvement_percent());
+  summary["best_candidate"] = best ? nlohmann::json(*result.best_candidate) : nullptr;
   // The best path itself, to rebuild it exactly: a clamped cubic on uniform
   // breakpoints in [0, 1] with these control points.
   nlohmann::json control = nlohmann::json::array();
-  if (feasible) {
-    for (const Vec2& c : best_path->path->curve().control_points())
-      control.push_back(point_json(c));
+  if (best) {
+    for (const Vec2& c : best->path->curve().control_points()) control.push_back(point_json(c));
   }
   summary["best_control_points"] = std::move(control);
-  summary["length_m"] = feasible ? nlohmann::json(best_path->path->length()) : nullptr;
-  summary["stations"] = feasible ? nlohmann::json(best_path->limits->size()) : nullptr;
+  summary["length_m"] = best ? nlohmann::json(best->length()) : nullptr;
+  summary["stations"] = best ? nlohmann::json(best->limits->size()) : nullptr;
   summary["switching_points"] =
-      feasible ? nlohmann::json(best_path->profile.switching_points.size()) : nullptr;
+      best ? nlohmann::json(best->profile.switching_points.size()) : nullptr;
   summary["optima"] = std::move(optima);
   summary["solver"] = request.solver;
   summary["optimality_note"] =
@@ -399,19 +310,33 @@ bool run_full_stage(const PlanRequest& request, const BPatch& surface, const Ele
   summary["control_points"] = request.control_points;
   summary["start_speed"] = request.start_speed;
   summary["end_speed"] = request.end_speed;
-  summary["station_spacing"] = kDefaultStationSpacing;
-  summary["search_station_spacing"] = options.station_spacing;
-  summary["max_evaluations"] = options.max_evaluations;
+  summary["station_spacing"] = options.station_spacing;
+  summary["search_station_spacing"] = options.local.station_spacing;
+  summary["max_evaluations"] = options.local.max_evaluations;
   summary["files"]["trajectory"] = trajectory_file;
   summary["files"]["optima"] = optima_file;
   summary["files"]["plan_png"] =
       plots ? nlohmann::json((dir / "plan.png").string()) : nlohmann::json(nullptr);
   summary["files"]["profile_png"] =
       plots ? nlohmann::json((dir / "profile.png").string()) : nlohmann::json(nullptr);
-  seconds["local"] = local_seconds;
-  seconds["profile"] = profile_seconds;
+  seconds["local"] = result.seconds.local;
+  seconds["profile"] = result.seconds.evaluation;
   seconds["plots"] = plots_seconds;
-  return feasible;
+}
+
+/// The request's options as the library planner's.
+PlannerOptions planner_options(const PlanRequest& request) {
+  PlannerOptions options;
+  options.global.lattice_spacing = request.lattice_spacing;
+  options.global.connectivity = request.connectivity;
+  options.global.candidates = static_cast<std::size_t>(request.candidates);
+  options.global.cost_fields = true;  // fields.csv
+  options.optimize = request.stage == kPlanStageFull;
+  options.local.solver = parse_path_solver(request.solver);
+  options.local.control_points = static_cast<std::size_t>(request.control_points);
+  options.local.max_control_points =
+      std::max(options.local.max_control_points, options.local.control_points);
+  return options;
 }
 
 }  // namespace
@@ -451,22 +376,26 @@ PlanOutcome plan(const PlanRequest& request) {
   check_in_domain("--start", start, grid, request.terrain);
   check_in_domain("--goal", goal, grid, request.terrain);
   const auto fit_start = Clock::now();
-  const BPatch surface = [&] {
+  PlanOutcome outcome;
+  outcome.surface = std::make_shared<const BPatch>([&] {
     try {
       return request.smoothing ? BPatch::fit_smoothing(grid, *request.smoothing)
                                : BPatch::interpolate(grid);
     } catch (const InputError& e) {
       throw InputError(request.terrain + ": " + e.what());
     }
-  }();
+  }());
   const double fit_seconds = seconds_since(fit_start);
 
-  GlobalSearchOptions options;
-  options.lattice_spacing = request.lattice_spacing;
-  options.connectivity = request.connectivity;
-  options.candidates = static_cast<std::size_t>(request.candidates);
-  options.cost_fields = true;
-  const GlobalSearchResult result = global_search(surface, vehicle, start, goal, options);
+  PlanningProblem problem(*outcome.surface, vehicle, start, goal);
+  if (request.stage == kPlanStageFull) {  // the global stage ignores speeds
+    problem.start_speed = request.start_speed;
+    problem.end_speed = request.end_speed;
+  }
+  const PlannerOptions options = planner_options(request);
+  outcome.result = talus::plan(problem, options);
+  const PlannerResult& planned = outcome.result;
+  const GlobalSearchResult& result = planned.global;
   const bool reachable = result.status == GlobalSearchStatus::kOk;
 
   const std::filesystem::path dir(request.output_dir);
@@ -522,12 +451,14 @@ PlanOutcome plan(const PlanRequest& request) {
   if (request.stage == kPlanStageGlobal) {
     summary["seconds"] = seconds_since(start_time);
     write_text_file(summary_file, summary.dump(2) + "\n");
-    return {std::move(summary), reachable};
+    outcome.summary = std::move(summary);
+    outcome.reachable = reachable;
+    return outcome;
   }
   nlohmann::json seconds = {{"fit", fit_seconds}, {"global", result.search_seconds}};
-  const bool feasible = reachable && run_full_stage(request, surface, grid, vehicle, start, goal,
-                                                    result, dir, summary, seconds);
-  if (!reachable) {  // no trajectory: the full stage's fields are empty
+  if (reachable) {
+    write_full_stage(request, grid, problem, options, planned, dir, summary, seconds);
+  } else {  // no trajectory: the full stage's fields are empty
     write_text_file((dir / "trajectory.csv").string(), trajectory_csv(nullptr));
     write_text_file((dir / "optima.csv").string(), std::string(kOptimaCsvHeader) + "\n");
     for (const char* name : {"plan.png", "profile.png"}) std::filesystem::remove(dir / name, error);
@@ -542,7 +473,9 @@ PlanOutcome plan(const PlanRequest& request) {
   seconds["total"] = seconds_since(start_time);
   summary["seconds"] = std::move(seconds);
   write_text_file(summary_file, summary.dump(2) + "\n");
-  return {std::move(summary), feasible};
+  outcome.summary = std::move(summary);
+  outcome.reachable = planned.status == PlannerStatus::kOk;
+  return outcome;
 }
 
 }  // namespace talus::experiments

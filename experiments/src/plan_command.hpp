@@ -7,12 +7,14 @@
 /// (talus::optimize_path: a clamped cubic B-spline minimising the exact
 /// time-optimal profile's travel time, Ipopt or NLopt) and keeps the best.
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "talus/core/types.hpp"
+#include "talus/optimal/planner.hpp"
 
 namespace talus::experiments {
 
@@ -71,6 +73,8 @@ Vec2 parse_point(const std::string& option, const std::string& text);
 /// and whether a result exists (the goal was reached; with --stage full, a
 /// feasible trajectory was found too).
 struct PlanOutcome {
+  std::shared_ptr<const BPatch> surface;  ///< the fitted terrain the result's paths lie on
+  PlannerResult result;  ///< the library planner's result (talus::plan)
   nlohmann::json summary;
   bool reachable = false;
 };

@@ -14,6 +14,7 @@
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/optimal/trajectory.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -34,9 +35,11 @@ nlohmann::json or_null(bool present, double value) {
 
 std::size_t default_profile_station_count(double length) {
   if (!(length >= 0.0)) return kMinDefaultProfileStations;
-  const double n = std::ceil(length / kDefaultStationSpacing) + 1.0;
-  if (n >= static_cast<double>(kMaxDefaultProfileStations)) return kMaxDefaultProfileStations;
-  return std::max(kMinDefaultProfileStations, static_cast<std::size_t>(n));
+  if (!(length / kDefaultStationSpacing < static_cast<double>(kMaxDefaultProfileStations))) {
+    return kMaxDefaultProfileStations;
+  }
+  return std::clamp(station_count(length), kMinDefaultProfileStations,
+                    kMaxDefaultProfileStations);
 }
 
 std::string default_profile_stations_text() {

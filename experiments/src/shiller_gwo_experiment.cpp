@@ -59,11 +59,23 @@ Case fractal_case(const fs::path& dir, bool quick) {
           file, "10,10", fmt("%g", far) + "," + fmt("%g", far)};
 }
 
+double number(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : NAN;
+}
+
+double finite_or_nan(double value) {
+  return std::isfinite(value) ? value : NAN;
+}
+
 struct Run {
   std::string case_name, solver;
   long long control_points = 0;
-  nlohmann::json summary;
-  bool ok = false;
+  PlanOutcome outcome;
+  const PlannerResult& result() const { return outcome.result; }
+  /// A stage's wall time [s] as `talus plan` reports it (fit and plots are the command's).
+  double seconds(const char* stage) const { return number(outcome.summary.at("seconds"), stage); }
+  double travel_time() const { return finite_or_nan(result().travel_time()); }
+  double global_travel_time() const { return finite_or_nan(result().global_travel_time()); }
 };
 
 Run run_plan(const Case& c, const std::string& vehicle, const std::string& solver,
@@ -78,19 +90,21 @@ Run run_plan(const Case& c, const std::string& vehicle, const std::string& solve
   request.solver = solver;
   request.control_points = control_points;
   request.output_dir = dir.string();
-  const PlanOutcome outcome = plan(request);
-  return {c.name, solver, control_points, outcome.summary, outcome.reachable};
+  return {c.name, solver, control_points, plan(request)};
 }
 
-double number(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : NAN;
-}
-
-/// Sum over the optima of a per-candidate field.
-double total(const nlohmann::json& summary, const char* key) {
+/// Sum over the optimised candidates of a solver diagnostic.
+template <typename Field>
+double total(const Run& run, Field field) {
   double sum = 0.0;
-  for (const nlohmann::json& o : summary.at("optima")) sum += number(o, key);
+  for (const CandidateOutcome& c : run.result().candidates) {
+    if (c.optimization) sum += static_cast<double>(field(*c.optimization));
+  }
   return sum;
+}
+
+double optimality(const CandidateOutcome& c) {
+  return c.optimization ? c.optimization->optimality : NAN;
 }
 
 /// Two significant digits, or "-" for a missing value.
@@ -98,11 +112,11 @@ std::string scientific(double value) {
   return std::isfinite(value) ? fmt("%.1e", value) : "-";
 }
 
-/// Largest per-candidate value of `key`; NaN when no candidate has one.
-double worst(const nlohmann::json& summary, const char* key) {
+/// Largest per-candidate optimality [s/m]; NaN when no candidate has one.
+double worst_optimality(const Run& run) {
   double value = NAN;
-  for (const nlohmann::json& o : summary.at("optima")) {
-    const double v = number(o, key);
+  for (const CandidateOutcome& c : run.result().candidates) {
+    const double v = optimality(c);
     if (std::isfinite(v) && !(v <= value)) value = v;
   }
   return value;
@@ -187,15 +201,17 @@ void run_shiller_gwo(const ExperimentContext& context) {
       "6 m/s²). Smoothing B-patch (lambda 1), " +
       std::to_string(candidates) + " global candidates, 16-connected lattice at the cell size.");
   const auto add_row = [&](const Run& r) {
-    const nlohmann::json& s = r.summary;
-    const double local = number(s.at("seconds"), "local"), all = number(s.at("seconds"), "total");
     results << r.case_name << "," << r.solver << "," << r.control_points << ","
-            << s.value("status", "?") << "," << csv_number(number(s, "travel_time")) << ","
-            << csv_number(number(s, "global_travel_time")) << ","
-            << csv_number(number(s, "improvement_percent")) << "," << csv_number(local) << ","
-            << csv_number(all) << "," << csv_number(total(s, "evaluations")) << ","
-            << csv_number(total(s, "iterations")) << "," << csv_number(worst(s, "optimality"))
-            << "," << csv_number(total(s, "finite_difference_gradients")) << "\n";
+            << to_string(r.result().status) << "," << csv_number(r.travel_time()) << ","
+            << csv_number(r.global_travel_time()) << ","
+            << csv_number(r.result().improvement_percent()) << "," << csv_number(r.seconds("local"))
+            << "," << csv_number(r.seconds("total")) << ","
+            << csv_number(total(r, [](const OptimizedPath& o) { return o.evaluations; })) << ","
+            << csv_number(total(r, [](const OptimizedPath& o) { return o.iterations; })) << ","
+            << csv_number(worst_optimality(r)) << ","
+            << csv_number(
+                   total(r, [](const OptimizedPath& o) { return o.finite_difference_fallbacks; }))
+            << "\n";
   };
   for (const Run& r : runs) add_row(r);
   for (const Run& r : study) add_row(r);
@@ -215,16 +231,13 @@ void run_shiller_gwo(const ExperimentContext& context) {
     solver_csv << c.name;
     for (const Run& r : runs) {
       if (r.case_name != c.name) continue;
-      const nlohmann::json& s = r.summary;
-      solver_table.row({r.solver, fmt("%.2f", number(s, "travel_time")),
-                        fmt("%.2f", number(s, "global_travel_time")),
-                        fmt("%.2f %%", number(s, "improvement_percent")),
-                        fmt("%.2f", number(s.at("seconds"), "local")),
-                        fmt("%.2f", number(s.at("seconds"), "total")),
-                        fmt("%.0f", total(s, "evaluations")), scientific(worst(s, "optimality"))});
-      solver_csv << "," << csv_number(number(s, "improvement_percent")) << ","
-                 << csv_number(number(s.at("seconds"), "local")) << ","
-                 << csv_number(number(s, "travel_time"));
+      solver_table.row({r.solver, fmt("%.2f", r.travel_time()), fmt("%.2f", r.global_travel_time()),
+                        fmt("%.2f %%", r.result().improvement_percent()),
+                        fmt("%.2f", r.seconds("local")), fmt("%.2f", r.seconds("total")),
+                        fmt("%.0f", total(r, [](const OptimizedPath& o) { return o.evaluations; })),
+                        scientific(worst_optimality(r))});
+      solver_csv << "," << csv_number(r.result().improvement_percent()) << ","
+                 << csv_number(r.seconds("local")) << "," << csv_number(r.travel_time());
     }
     solver_csv << "\n";
     report.table(solver_table)
@@ -233,17 +246,17 @@ void run_shiller_gwo(const ExperimentContext& context) {
       if (r.case_name != c.name || r.solver != "ipopt") continue;
       Table optima({"candidate", "initial fit [s]", "optimum [s]", "solver status", "iterations",
                     "optimality [s/m]"});
-      for (const nlohmann::json& o : r.summary.at("optima")) {
-        optima.row({std::to_string(o.value("candidate", 0)), fmt("%.2f", number(o, "initial_time")),
-                    fmt("%.2f", number(o, "travel_time")),
-                    o.at("solver_status").is_string() ? o.at("solver_status").get<std::string>()
-                                                      : std::string("-"),
-                    std::to_string(o.value("iterations", 0)), scientific(number(o, "optimality"))});
+      for (const CandidateOutcome& o : r.result().candidates) {
+        optima.row({std::to_string(o.candidate),
+                    fmt("%.2f", finite_or_nan(o.initial.travel_time())),
+                    fmt("%.2f", finite_or_nan(o.trajectory.travel_time())),
+                    o.optimization ? o.optimization->solver_status : std::string("-"),
+                    std::to_string(o.optimization ? o.optimization->iterations : 0),
+                    scientific(optimality(o))});
       }
       std::string timings = "Stage timings [s]: ";
       for (const char* stage : {"fit", "global", "local", "profile", "plots", "total"}) {
-        timings +=
-            std::string(stage) + " " + fmt("%.2f", number(r.summary.at("seconds"), stage)) + "; ";
+        timings += std::string(stage) + " " + fmt("%.2f", r.seconds(stage)) + "; ";
       }
       report.table(optima).paragraph(timings);
     }
@@ -252,8 +265,8 @@ void run_shiller_gwo(const ExperimentContext& context) {
       for (const std::vector<Run>* set : {&runs, &study}) {
         for (const Run& r : *set) {
           if (r.case_name != c.name || r.solver != "ipopt" || r.control_points != m) continue;
-          study_table.row({std::to_string(m), fmt("%.2f", number(r.summary, "travel_time")),
-                           fmt("%.2f", number(r.summary.at("seconds"), "local"))});
+          study_table.row(
+              {std::to_string(m), fmt("%.2f", r.travel_time()), fmt("%.2f", r.seconds("local"))});
         }
       }
     }

@@ -3,13 +3,15 @@
 #
 # cmake -DTALUS_BUILD_DIR=... -DCONSUMER_SOURCE_DIR=... -DINSTALL_PREFIX=...
 #       -DCONSUMER_BUILD_DIR=... -DCONFIG=... -DGENERATOR=... -DCXX_COMPILER=...
-#       [-DMAKE_PROGRAM=...] [-DEXTRA_CXX_FLAGS=...] -P run_install_consumer_test.cmake
+#       -DREADME=... [-DMAKE_PROGRAM=...] [-DEXTRA_CXX_FLAGS=...] -P run_install_consumer_test.cmake
 #
 # (a) installs the Talus build tree into a fresh prefix, (b) configures the
-# consumer project against that prefix only, (c) builds it, (d) runs it.
+# consumer project against that prefix only, with the README's "Use it from
+# C++" program extracted beside it, (c) builds both, (d) runs both, the
+# README's program on the installed West Bijou DEM and rover.yaml.
 cmake_minimum_required(VERSION 3.25)
 
-foreach(var TALUS_BUILD_DIR CONSUMER_SOURCE_DIR INSTALL_PREFIX CONSUMER_BUILD_DIR GENERATOR)
+foreach(var TALUS_BUILD_DIR CONSUMER_SOURCE_DIR INSTALL_PREFIX CONSUMER_BUILD_DIR GENERATOR README)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
     message(FATAL_ERROR "run_install_consumer_test.cmake: ${var} is not set")
   endif()
@@ -24,7 +26,7 @@ function(run_step name)
 endfunction()
 
 # Start clean each run.
-file(REMOVE_RECURSE "${INSTALL_PREFIX}" "${CONSUMER_BUILD_DIR}")
+file(REMOVE_RECURSE "${INSTALL_PREFIX}" "${CONSUMER_BUILD_DIR}" "${CONSUMER_BUILD_DIR}-readme")
 
 set(config_args)
 if(CONFIG)
@@ -38,9 +40,21 @@ if(NOT talus_config)
   message(FATAL_ERROR "InstallConsumer: no talusConfig.cmake under ${INSTALL_PREFIX} after install")
 endif()
 
+# The README's "Use it from C++" program, exactly as the README shows it
+# (between the consumer-example markers, without the ```cpp fence).
+file(READ "${README}" readme)
+string(REGEX MATCH "<!-- consumer-example:begin -->\n```cpp\n(.*)```\n<!-- consumer-example:end -->"
+       example_block "${readme}")
+if(NOT CMAKE_MATCH_1)
+  message(FATAL_ERROR "InstallConsumer: no consumer-example block in ${README}")
+endif()
+set(example_source "${CONSUMER_BUILD_DIR}-readme/plan_example.cpp")
+file(WRITE "${example_source}" "${CMAKE_MATCH_1}")
+
 # (b) configure, seeing only the fresh prefix (no package registries)
 set(configure_args
   -S ${CONSUMER_SOURCE_DIR} -B ${CONSUMER_BUILD_DIR} -G ${GENERATOR}
+  -DREADME_EXAMPLE=${example_source}
   -DCMAKE_PREFIX_PATH=${INSTALL_PREFIX}
   -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
   -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF)
@@ -88,4 +102,18 @@ if(NOT exe)
   message(FATAL_ERROR "InstallConsumer: talus_consumer executable not found in ${CONSUMER_BUILD_DIR}")
 endif()
 run_step(run ${exe})
+
+# The README's program plans on the installed data and prints its brief report.
+set(data "${INSTALL_PREFIX}/share/talus/data")
+execute_process(
+  COMMAND "${CONSUMER_BUILD_DIR}/plan_example"
+          "${data}/terrain/west_bijou_escarpment_nasadem25m.asc" "${data}/vehicles/rover.yaml"
+  RESULT_VARIABLE rv OUTPUT_VARIABLE report)
+message(STATUS "---- README example:\n${report}")
+if(NOT rv EQUAL 0)
+  message(FATAL_ERROR "InstallConsumer: the README's plan_example exited ${rv}")
+endif()
+if(NOT report MATCHES "Talus plan: ok" OR NOT report MATCHES "best: candidate [0-9]+, travel time [0-9.]+ s")
+  message(FATAL_ERROR "InstallConsumer: the README's plan_example printed no successful plan")
+endif()
 message(STATUS "InstallConsumer: OK")

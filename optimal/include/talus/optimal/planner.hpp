@@ -1,0 +1,150 @@
+#pragma once
+/// @file
+/// The two-stage time-optimal planner in one call (Shiller & Gwo 1991;
+/// Iagnemma, Shimoda & Shiller 2008):
+/// 1. global_search(): distinct minimum-time candidate corridors on a lattice
+///    (edge cost J = ∫ ds / v_max);
+/// 2. optimize_path() of each candidate (its end vertices replaced by the
+///    exact start and goal): a clamped cubic B-spline minimising the travel
+///    time of its exact time-optimal profile;
+/// 3. every optimum and its initial fit re-evaluated with
+///    evaluate_trajectory() at PlannerOptions::station_spacing; an optimum
+///    slower there than its own initial fit is replaced by the fit (the
+///    search's coarser stations can favour it), so no candidate's result is
+///    slower than where it started;
+/// 4. the fastest feasible trajectory is the result.
+///
+/// Expected outcomes (an unreachable goal, no feasible candidate, a solver
+/// failure, a stop request) are statuses; only invalid input throws
+/// InputError.
+///
+/// Example:
+///   const BPatch surface = BPatch::interpolate(read_esri_ascii("dem.asc"));
+///   const PlanningProblem problem(surface, load_vehicle("rover.yaml"), {x0, y0}, {x1, y1});
+///   const PlannerResult result = plan(problem, PlannerOptions{});
+///   std::cout << result.brief_report();
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/optimal/global_search.hpp"
+#include "talus/optimal/path_optimizer.hpp"
+#include "talus/optimal/trajectory.hpp"
+
+namespace talus {
+
+/// What to plan: a vehicle from `start` to `goal` on a fitted surface.
+struct PlanningProblem {
+  PlanningProblem(const BPatch& terrain, Vehicle model, const Vec2& from, const Vec2& to)
+      : surface(&terrain), vehicle(std::move(model)), start(from), goal(to) {}
+  /// Not owned: it must outlive the problem and the result's trajectories.
+  const BPatch* surface;
+  Vehicle vehicle;            ///< needs a finite max_speed (the global cost is time at the limit)
+  Vec2 start;                 ///< [m], in the surface's domain
+  Vec2 goal;                  ///< [m], in the surface's domain
+  double start_speed = 0.0;   ///< ṡ at the start [m/s], in [0, max_speed]
+  double end_speed = 0.0;     ///< ṡ at the goal [m/s], in [0, max_speed]
+  /// Throws InputError naming what is wrong.
+  void validate() const;
+};
+
+/// Which stage the planner is in, for progress reports.
+enum class PlannerStage { kGlobalSearch, kLocalOptimisation, kDone };
+std::string_view to_string(PlannerStage stage);
+
+/// A progress report: sent before the global search, before each
+/// candidate's optimisation and at the end.
+struct PlannerProgress {
+  PlannerStage stage = PlannerStage::kGlobalSearch;
+  std::size_t candidate = 0;   ///< the candidate about to be optimised (local stage)
+  std::size_t candidates = 0;  ///< candidates from the global stage (0 before it)
+  double seconds = 0.0;        ///< since plan() started
+};
+
+struct PlannerOptions {
+  /// The global stage. Its `candidates` (3) is how many corridors are optimised.
+  GlobalSearchOptions global;
+  /// The local stage. Its `speeds` are ignored: the problem's start and end
+  /// speeds are used.
+  PathOptimizerOptions local;
+  /// false: stop after the global stage (no trajectories; status kOk when the
+  /// goal is reachable).
+  bool optimize = true;
+  /// Station spacing [m] of the final evaluation of every path (> 0).
+  double station_spacing = kDefaultStationSpacing;
+  /// Called at each PlannerProgress; returning false stops the plan before
+  /// its next step (status kStopped, what was done so far kept). A step is
+  /// one candidate's optimisation, bounded by local.max_evaluations.
+  std::function<bool(const PlannerProgress&)> progress;
+  /// Throws InputError naming the field.
+  void validate() const;
+};
+
+enum class PlannerStatus {
+  kOk,           ///< a best trajectory exists (or, with optimize = false, candidates)
+  kUnreachable,  ///< the global search found no route from start to goal
+  kInfeasible,   ///< candidates exist, but none has a feasible trajectory
+  kStopped,      ///< the progress callback asked to stop
+};
+std::string_view to_string(PlannerStatus status);
+
+/// One candidate through the local stage.
+struct CandidateOutcome {
+  std::size_t candidate = 0;  ///< index into GlobalSearchResult::candidates
+  /// The optimiser's result with its diagnostics; empty when it refused the
+  /// candidate (its fit leaves the data or has no admissible profile), see
+  /// optimizer_message.
+  std::optional<OptimizedPath> optimization;
+  std::string optimizer_message;  ///< why optimization is empty
+  /// The optimiser's initial fit to the candidate, at station_spacing.
+  Trajectory initial;
+  /// The result: the optimum, or the initial fit where that is faster (or
+  /// the optimiser failed), at station_spacing.
+  Trajectory trajectory;
+  bool kept_initial = false;  ///< trajectory is the initial fit
+  double seconds = 0.0;       ///< this candidate's local stage and evaluations [s]
+  bool feasible() const { return trajectory.feasible(); }
+};
+
+/// Wall-clock time of each stage [s].
+struct PlannerTimings {
+  double global = 0.0;      ///< global_search
+  double local = 0.0;       ///< optimize_path, all candidates
+  double evaluation = 0.0;  ///< the re-evaluations at station_spacing
+  double total = 0.0;
+};
+
+struct PlannerResult {
+  PlannerStatus status = PlannerStatus::kUnreachable;
+  std::string message;  ///< why, when not kOk; empty otherwise
+  GlobalSearchResult global;
+  std::vector<CandidateOutcome> candidates;  ///< in the global search's order
+  std::optional<std::size_t> best_candidate;  ///< the fastest feasible one
+  PlannerTimings seconds;
+
+  /// The best trajectory; null without one.
+  const Trajectory* best() const;
+  /// Its travel time [s]; +inf without one.
+  double travel_time() const;
+  /// The fastest initial fit's travel time [s] (the global stage's answer at
+  /// the same stations); +inf without one.
+  double global_travel_time() const;
+  /// 100 (global − best) / global; NaN unless both are finite.
+  double improvement_percent() const;
+  /// A few lines: status, best time against the global candidates', each
+  /// candidate's outcome and solver, stage timings.
+  std::string brief_report() const;
+};
+
+/// Plans `problem` with `options` (both validated first: InputError).
+/// Invalid input also includes a start or goal on NODATA or untraversable
+/// ground (from global_search).
+PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options);
+
+}  // namespace talus

@@ -1,0 +1,265 @@
+#include "talus/optimal/planner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "talus/bspline/curve_fit.hpp"
+#include "talus/core/error.hpp"
+
+namespace talus {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string point_text(const Vec2& p) {
+  std::ostringstream text;
+  text << "(" << p.x() << ", " << p.y() << ")";
+  return text.str();
+}
+
+/// The optimiser's own initial fit to `polyline` with `control_points`:
+/// used when the optimiser refused the candidate, so that its outcome still
+/// says how the candidate itself drives.
+Curve2 initial_fit(const std::vector<Vec2>& polyline, std::size_t control_points) {
+  return fit_clamped_cubic(
+      resample_polyline(polyline, std::max<std::size_t>(10 * control_points, polyline.size())),
+      control_points);
+}
+
+/// Optimises candidate `c` and evaluates the optimum and its initial fit.
+CandidateOutcome optimise_candidate(const PlanningProblem& problem,
+                                    const PathOptimizerOptions& local,
+                                    const TrajectoryOptions& evaluation,
+                                    const GlobalSearchResult& global, std::size_t c,
+                                    TimeOptimalProfileSolver& workspace, PlannerTimings& timings) {
+  const auto started = Clock::now();
+  CandidateOutcome outcome;
+  outcome.candidate = c;
+  std::vector<Vec2> polyline = global.candidates[c].vertices;
+  polyline.front() = problem.start;
+  polyline.back() = problem.goal;
+  try {
+    outcome.optimization.emplace(
+        optimize_path(*problem.surface, problem.vehicle, polyline, local));
+  } catch (const InputError& error) {
+    outcome.optimizer_message = error.what();
+  }
+  timings.local += seconds_since(started);
+
+  const auto evaluation_started = Clock::now();
+  const BPatch& surface = *problem.surface;
+  outcome.initial = evaluate_trajectory(
+      surface, problem.vehicle,
+      outcome.optimization ? outcome.optimization->initial_curve
+                           : initial_fit(polyline, local.control_points),
+      evaluation, &workspace);
+  if (outcome.optimization) {
+    outcome.trajectory = evaluate_trajectory(surface, problem.vehicle,
+                                             outcome.optimization->curve, evaluation, &workspace);
+  } else {
+    outcome.trajectory.message = outcome.optimizer_message;
+  }
+  // The search's coarser stations can favour a path that is slower at the
+  // final spacing: never return one slower than its own initial fit.
+  if (outcome.initial.feasible() &&
+      !(outcome.trajectory.travel_time() <= outcome.initial.travel_time())) {
+    outcome.trajectory = outcome.initial;
+    outcome.kept_initial = true;
+  }
+  timings.evaluation += seconds_since(evaluation_started);
+  outcome.seconds = seconds_since(started);
+  return outcome;
+}
+
+}  // namespace
+
+void PlanningProblem::validate() const {
+  if (surface == nullptr) throw InputError("PlanningProblem.surface is null");
+  vehicle.validate();
+  if (!std::isfinite(vehicle.max_speed)) {
+    throw InputError(
+        "the planner needs a vehicle with a finite max_speed (the global cost is the travel "
+        "time at the speed limit, and an unlimited straight road would cost nothing)");
+  }
+  for (const auto& [name, p] : {std::pair{"start", start}, std::pair{"goal", goal}}) {
+    if (!surface->contains(p)) {
+      std::ostringstream message;
+      message << "PlanningProblem." << name << " " << point_text(p)
+              << " is off the surface, whose domain is [" << surface->x_min() << ", "
+              << surface->x_max() << "] x [" << surface->y_min() << ", " << surface->y_max()
+              << "]";
+      throw InputError(message.str());
+    }
+  }
+  for (const auto& [name, speed] :
+       {std::pair{"start_speed", start_speed}, std::pair{"end_speed", end_speed}}) {
+    if (!(std::isfinite(speed) && speed >= 0.0 && speed <= vehicle.max_speed)) {
+      std::ostringstream message;
+      message << "PlanningProblem." << name << " must be in [0, max_speed = " << vehicle.max_speed
+              << "] m/s, got " << speed;
+      throw InputError(message.str());
+    }
+  }
+}
+
+std::string_view to_string(PlannerStage stage) {
+  switch (stage) {
+    case PlannerStage::kGlobalSearch:
+      return "global search";
+    case PlannerStage::kLocalOptimisation:
+      return "local optimisation";
+    case PlannerStage::kDone:
+      return "done";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(PlannerStatus status) {
+  switch (status) {
+    case PlannerStatus::kOk:
+      return "ok";
+    case PlannerStatus::kUnreachable:
+      return "unreachable";
+    case PlannerStatus::kInfeasible:
+      return "infeasible";
+    case PlannerStatus::kStopped:
+      return "stopped";
+  }
+  return "unknown";
+}
+
+void PlannerOptions::validate() const {
+  global.validate();
+  local.validate();
+  if (!(std::isfinite(station_spacing) && station_spacing > 0.0)) {
+    throw InputError("PlannerOptions.station_spacing must be a positive finite number [m]");
+  }
+}
+
+const Trajectory* PlannerResult::best() const {
+  return best_candidate ? &candidates.at(*best_candidate).trajectory : nullptr;
+}
+
+double PlannerResult::travel_time() const {
+  return best() != nullptr ? best()->travel_time() : std::numeric_limits<double>::infinity();
+}
+
+double PlannerResult::global_travel_time() const {
+  double best_initial = std::numeric_limits<double>::infinity();
+  for (const CandidateOutcome& c : candidates) {
+    best_initial = std::min(best_initial, c.initial.travel_time());
+  }
+  return best_initial;
+}
+
+double PlannerResult::improvement_percent() const {
+  const double global_time = global_travel_time(), best_time = travel_time();
+  if (!(std::isfinite(global_time) && std::isfinite(best_time))) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return 100.0 * (global_time - best_time) / global_time;
+}
+
+std::string PlannerResult::brief_report() const {
+  std::ostringstream report;
+  report.precision(6);
+  report << "Talus plan: " << to_string(status);
+  if (!message.empty()) report << " (" << message << ")";
+  report << "\n";
+  if (const Trajectory* t = best()) {
+    report << "  best: candidate " << *best_candidate << ", travel time " << t->travel_time()
+           << " s over " << t->length() << " m; best global candidate " << global_travel_time()
+           << " s (" << improvement_percent() << " % faster)\n";
+  }
+  report << "  global search: " << global.candidates.size() << " candidates, " << global.nodes
+         << " nodes, " << global.edges_evaluated << " edges\n";
+  for (const CandidateOutcome& c : candidates) {
+    report << "  candidate " << c.candidate << ": ";
+    if (c.feasible()) {
+      report << c.trajectory.travel_time() << " s (initial fit " << c.initial.travel_time()
+             << " s)";
+    } else {
+      report << "infeasible: " << c.trajectory.message;
+    }
+    if (c.optimization) {
+      const OptimizedPath& o = *c.optimization;
+      report << "; " << o.solver << " " << o.solver_status << ", " << o.iterations
+             << " iterations, " << o.evaluations << " evaluations, optimality " << o.optimality
+             << " s/m";
+    }
+    if (c.kept_initial) report << "; kept the initial fit";
+    report << "\n";
+  }
+  report << "  seconds: global " << seconds.global << ", local " << seconds.local
+         << ", evaluation " << seconds.evaluation << ", total " << seconds.total << "\n";
+  return report.str();
+}
+
+PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options) {
+  const auto started = Clock::now();
+  problem.validate();
+  options.validate();
+  PlannerResult result;
+  const auto keep_going = [&](PlannerStage stage, std::size_t candidate) {
+    if (!options.progress) return true;
+    const PlannerProgress progress{stage, candidate, result.global.candidates.size(),
+                                   seconds_since(started)};
+    return options.progress(progress);
+  };
+  const auto finish = [&](PlannerStatus status, std::string message) {
+    result.status = status;
+    result.message = std::move(message);
+    result.seconds.total = seconds_since(started);
+    if (options.progress) {
+      options.progress(
+          {PlannerStage::kDone, 0, result.global.candidates.size(), result.seconds.total});
+    }
+    return std::move(result);
+  };
+  constexpr const char* kStopMessage = "stopped by the progress callback";
+
+  if (!keep_going(PlannerStage::kGlobalSearch, 0)) return finish(PlannerStatus::kStopped, kStopMessage);
+  const auto global_started = Clock::now();
+  result.global =
+      global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, options.global);
+  result.seconds.global = seconds_since(global_started);
+  if (result.global.status != GlobalSearchStatus::kOk) {
+    return finish(PlannerStatus::kUnreachable, result.global.message);
+  }
+  if (!options.optimize) return finish(PlannerStatus::kOk, "");
+
+  PathOptimizerOptions local = options.local;
+  local.speeds = {problem.start_speed, problem.end_speed};
+  TrajectoryOptions evaluation;
+  evaluation.speeds = local.speeds;
+  evaluation.station_spacing = options.station_spacing;
+  TimeOptimalProfileSolver workspace;
+  for (std::size_t c = 0; c < result.global.candidates.size(); ++c) {
+    if (!keep_going(PlannerStage::kLocalOptimisation, c)) {
+      return finish(PlannerStatus::kStopped, kStopMessage);
+    }
+    result.candidates.push_back(
+        optimise_candidate(problem, local, evaluation, result.global, c, workspace,
+                           result.seconds));
+    const CandidateOutcome& outcome = result.candidates.back();
+    if (outcome.feasible() &&
+        (!result.best_candidate || outcome.trajectory.travel_time() < result.travel_time())) {
+      result.best_candidate = c;
+    }
+  }
+  if (!result.best_candidate) {
+    return finish(PlannerStatus::kInfeasible,
+                  "no candidate has a feasible trajectory (see each candidate's message)");
+  }
+  return finish(PlannerStatus::kOk, "");
+}
+
+}  // namespace talus

@@ -148,9 +148,8 @@ void run_dynamic_vs_kinematic(const ExperimentContext& context) {
          "#2c7fb8"});
     routes.push_back(
         {r.talus_path, "Talus time-optimal: " + fmt("%.1f", r.talus_time) + " s", "#e6550d"});
-    render_hait_map(
-        context.output_dir, "map_" + name,
-        {&s.grid, routes, s.start, s.goal, "dynamic-vs-kinematic: " + name + " terrain"});
+    render_hait_map(context.output_dir, "map_" + name, s, routes,
+                    "dynamic-vs-kinematic: " + name + " terrain");
   }
   write_text_file(context.output_dir / "comparison.csv", csv);
 

@@ -4,7 +4,7 @@
 /// (velocity-limits: v_max; optimal-profile: the optimal v): the points file
 /// and the gnuplot lines both experiments share. Positions are offsets [m]
 /// from the surface's south-west corner; the relief image comes from
-/// write_relief_rgb() (relief_raster.hpp).
+/// write_relief_image() (relief_raster.hpp).
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -30,8 +30,8 @@ void write_raster_file(const ReliefRaster& raster, const std::string& header,
   close_output_file(out, file);
 }
 
-}  // namespace
-
+/// `patch` on the raster over [origin, origin + (width, height)]; the last
+/// row and column are clamped so that rounding never leaves the domain.
 ReliefRaster sample_relief(const BPatch& patch, const Vec2& origin, double width, double height,
                            std::size_t max_samples) {
   ReliefRaster raster;
@@ -52,6 +52,7 @@ ReliefRaster sample_relief(const BPatch& patch, const Vec2& origin, double width
   return raster;
 }
 
+/// Element floor(0.95 n) of the slopes in ascending order.
 double slope_p95(const ReliefRaster& raster) {
   std::vector<double> slopes = raster.slopes;
   const auto p95 = slopes.begin() + static_cast<long>(0.95 * static_cast<double>(slopes.size()));
@@ -77,6 +78,8 @@ void write_relief_rgb(const ReliefRaster& raster, const ReliefColouring& colouri
     out << to_byte(colour.r) << ' ' << to_byte(colour.g) << ' ' << to_byte(colour.b);
   });
 }
+
+}  // namespace
 
 void write_elevation_raster(const ReliefRaster& raster, const std::string& header,
                             const std::filesystem::path& file) {

@@ -11,9 +11,9 @@
 
 #include "hait_scenarios.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/chassis_placement.hpp"
-#include "talus/dynamics/placement.hpp"
-#include "talus/kinematic/hait_planner.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
+#include "talus/kinematic/hait/placement.hpp"
 
 namespace {
 

@@ -29,7 +29,7 @@ find_dependency(NLopt 2.7 CONFIG HINTS /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cm
 
 find_dependency(SUNDIALS 6.4 CONFIG COMPONENTS cvode)
 
-# Vehicle files (dynamics). The 0.7 target is plain `yaml-cpp` (namespaced from 0.8 on).
+# Vehicle files (dynamics) and robot files (kinematic). The 0.7 target is plain `yaml-cpp` (namespaced from 0.8 on).
 find_dependency(yaml-cpp 0.7 CONFIG)
 
 # OMPL 1.5 (Reeds–Shepp curves of the kinematic planners). Its config sets

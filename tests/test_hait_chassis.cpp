@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "talus/core/error.hpp"
-#include "talus/dynamics/chassis_uncertainty_table.hpp"
-#include "talus/dynamics/robot.hpp"
-#include "talus/dynamics/robot_validity.hpp"
-#include "talus/kinematic/hait_planner.hpp"
-#include "talus/kinematic/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/chassis_uncertainty_table.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
+#include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/robot.hpp"
+#include "talus/kinematic/hait/robot_validity.hpp"
 
 namespace talus {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/graph_search.hpp"
-#include "talus/kinematic/hait_planner.hpp"
-#include "talus/kinematic/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
+#include "talus/kinematic/hait/hait_robot_validity.hpp"
 
 namespace talus {
 namespace {

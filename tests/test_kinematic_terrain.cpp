@@ -10,8 +10,8 @@
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/terrain_generators.hpp"
-#include "talus/kinematic/potential_bitmap.hpp"
-#include "talus/kinematic/terrain_quadtree.hpp"
+#include "talus/kinematic/hait/potential_bitmap.hpp"
+#include "talus/kinematic/hait/terrain_quadtree.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {

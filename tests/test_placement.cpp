@@ -8,9 +8,9 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/chassis_placement.hpp"
-#include "talus/dynamics/placement.hpp"
-#include "talus/dynamics/robot_validity.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
+#include "talus/kinematic/hait/placement.hpp"
+#include "talus/kinematic/hait/robot_validity.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "talus/core/error.hpp"
-#include "talus/dynamics/robot.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus {
 namespace {

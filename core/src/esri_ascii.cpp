@@ -226,6 +226,11 @@ ElevationGrid parse_esri_ascii(std::string_view text, const std::string& source_
                "' is not finite (NaN/Inf are not "
                "allowed; use NODATA_value for voids)");
     }
+    if (!(has_nodata && *value == nodata) && !(std::abs(*value) <= kMaxElevationMagnitude)) {
+      fail(source_name, line,
+           "value '" + printable(std::string(*token)) + "' is beyond the supported elevation " +
+               "magnitude of 1e9 m (a void? declare it with NODATA_value)");
+    }
     const std::size_t row_from_north = count / ncols;
     const std::size_t i = count % ncols;
     const std::size_t j = nrows - 1 - row_from_north;

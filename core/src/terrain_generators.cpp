@@ -9,8 +9,10 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include <unsupported/Eigen/FFT>
 
@@ -299,6 +301,23 @@ Vec2 nearest_node(const ElevationGrid& grid, const Vec2& p) {
                             snap(p.y(), grid.y_min(), grid.cellsize(), grid.nrows()));
 }
 
+/// The generated grid, or InputError when an option drove an elevation past
+/// kMaxElevationMagnitude (or to inf/NaN): a result Talus could not read back.
+ElevationGrid checked(ElevationGrid grid, const char* generator) {
+  for (std::size_t j = 0; j < grid.nrows(); ++j) {
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      if (grid.valid(i, j) && !(std::abs(grid.at(i, j)) <= kMaxElevationMagnitude)) {
+        std::ostringstream message;
+        message << generator << " terrain: the options give elevation " << grid.at(i, j)
+                << " m at node (" << i << ", " << j << "), beyond the supported magnitude of "
+                << kMaxElevationMagnitude << " m; use smaller heights, curvatures or slopes";
+        throw InputError(message.str());
+      }
+    }
+  }
+  return grid;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -319,6 +338,10 @@ void FractalTerrainOptions::validate() const {
   require_non_negative(kOwner, "undulation_wavelength", undulation_wavelength);
   require_non_negative(kOwner, "peak_height", peak_height);
   require_positive(kOwner, "peak_radius", peak_radius);
+  if (peaks > kMaxFractalPeaks) {
+    throw_option_error(kOwner, "peaks", "at most " + std::to_string(kMaxFractalPeaks),
+                       std::to_string(peaks));
+  }
 }
 
 void PlaneOptions::validate() const {
@@ -438,7 +461,7 @@ ElevationGrid generate_fractal_terrain(const FractalTerrainOptions& options) {
       });
     }
   }
-  return grid;
+  return checked(std::move(grid), "fractal");
 }
 
 ElevationGrid generate_plane(const PlaneOptions& options) {
@@ -448,7 +471,7 @@ ElevationGrid generate_plane(const PlaneOptions& options) {
   const Vec2 uphill(std::cos(options.aspect), std::sin(options.aspect));
   const double gradient = std::tan(options.slope);
   add_to_nodes(grid, [&](const Vec2& p) { return options.z0 + gradient * uphill.dot(p - centre); });
-  return grid;
+  return checked(std::move(grid), "plane");
 }
 
 ElevationGrid generate_cylinder(const CylinderOptions& options) {
@@ -462,7 +485,7 @@ ElevationGrid generate_cylinder(const CylinderOptions& options) {
     // max() only guards against rounding: validate() ensured d < R at the corners.
     return options.z0 + sign * (std::sqrt(std::max(0.0, r * r - d * d)) - r);
   });
-  return grid;
+  return checked(std::move(grid), "cylinder");
 }
 
 ElevationGrid generate_sphere_cap(const SphereCapOptions& options) {
@@ -474,7 +497,7 @@ ElevationGrid generate_sphere_cap(const SphereCapOptions& options) {
     const double rho_squared = (p - centre).squaredNorm();
     return options.z0 + std::sqrt(std::max(0.0, r * r - rho_squared)) - r;
   });
-  return grid;
+  return checked(std::move(grid), "sphere-cap");
 }
 
 ElevationGrid generate_gaussian_hills(const GaussianHillsOptions& options) {
@@ -494,7 +517,7 @@ ElevationGrid generate_gaussian_hills(const GaussianHillsOptions& options) {
     }
     return z;
   });
-  return grid;
+  return checked(std::move(grid), "gaussian-hills");
 }
 
 ElevationGrid generate_bowl(const BowlOptions& options) {
@@ -504,7 +527,7 @@ ElevationGrid generate_bowl(const BowlOptions& options) {
   add_to_nodes(grid, [&](const Vec2& p) {
     return options.z0 + 0.5 * options.curvature * (p - centre).squaredNorm();
   });
-  return grid;
+  return checked(std::move(grid), "bowl");
 }
 
 ElevationGrid generate_eldershaw_yim(const EldershawYimOptions& options) {
@@ -548,7 +571,7 @@ ElevationGrid generate_eldershaw_yim(const EldershawYimOptions& options) {
         grid.at(i, j) += options.roughness * noise.normal();
     }
   }
-  return grid;
+  return checked(std::move(grid), "eldershaw-yim");
 }
 
 }  // namespace talus

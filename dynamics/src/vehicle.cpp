@@ -3,11 +3,12 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
+#include "strict_yaml.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/input_file.hpp"
 
 namespace talus {
 namespace {
@@ -28,7 +29,7 @@ double read_number(const YAML::Node& node, const std::string& key, const std::st
     return value;
   } catch (const YAML::Exception&) {
     throw InputError(source + ": key '" + key + "' must be a number, got '" +
-                     node.as<std::string>("<not a scalar>") + "'");
+                     printable(node.as<std::string>("<not a scalar>")) + "'");
   }
 }
 
@@ -46,12 +47,7 @@ void Vehicle::validate() const {
 }
 
 Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ": not valid YAML/JSON: " + e.what());
-  }
+  const YAML::Node root = detail::load_strict_yaml(yaml_text, source);
   if (!root.IsMap())
     throw InputError(source + ": a vehicle file must be a mapping of keys to values");
 
@@ -62,7 +58,7 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>("");
     if (!kKnown.count(key)) {
-      throw InputError(source + ": unknown key '" + key +
+      throw InputError(source + ": unknown key '" + printable(key) +
                        "' (known: model, gravity, friction, cg_height, half_track, "
                        "half_wheelbase, max_speed, max_accel, max_decel)");
     }
@@ -77,8 +73,8 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   } else if (model == "rigid_body") {
     v.model = VehicleModel::kRigidBody;
   } else {
-    throw InputError(source + ": key 'model' must be point_mass or rigid_body, got '" + model +
-                     "'");
+    throw InputError(source + ": key 'model' must be point_mass or rigid_body, got '" +
+                     printable(model) + "'");
   }
   std::vector<std::string> required = {"friction", "cg_height", "half_track"};
   if (v.model == VehicleModel::kRigidBody) required.push_back("half_wheelbase");
@@ -107,11 +103,7 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
 }
 
 Vehicle load_vehicle(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open vehicle file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_vehicle(text.str(), path);
+  return parse_vehicle(read_input_file(path, kMaxConfigFileBytes), printable(path, 200));
 }
 
 }  // namespace talus

@@ -1,14 +1,9 @@
 #include "baseline_command.hpp"
 
-#include <charconv>
-#include <chrono>
-#include <cmath>
 #include <filesystem>
-#include <numbers>
-#include <sstream>
+#include <memory>
 #include <system_error>
 #include <variant>
-#include <vector>
 
 #include "cli_values.hpp"
 #include "hait_figures.hpp"
@@ -19,19 +14,10 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/robot.hpp"
-#include "talus/kinematic/hait_planner.hpp"
+#include "talus/kinematic/baseline_registry.hpp"
 
 namespace talus::experiments {
 namespace {
-
-std::string robot_kind(const Robot& robot) {
-  return std::holds_alternative<WheeledRobot>(robot) ? "wheeled" : "articulated_chassis";
-}
-
-std::string robot_name(const Robot& robot) {
-  return std::visit([](const auto& r) { return r.name; }, robot);
-}
 
 nlohmann::json pose_json(const SE2Pose& q) {
   return {{"x", q.x}, {"y", q.y}, {"theta", q.theta}};
@@ -54,6 +40,15 @@ void check_on_map(const char* option, const SE2Pose& q, const RuledTerrain& terr
   }
 }
 
+/// The planner from the registry; a bad option value is named as its flag.
+std::unique_ptr<BaselinePlanner> make_planner(const BaselineRequest& request) {
+  try {
+    return BaselineRegistry::builtin().make(request.baseline, request.options);
+  } catch (const BaselineOptionError& e) {
+    throw InputError("--" + e.key() + ": " + e.reason());
+  }
+}
+
 }  // namespace
 
 SE2Pose parse_pose(const std::string& option, const std::string& text) {
@@ -64,32 +59,9 @@ SE2Pose parse_pose(const std::string& option, const std::string& text) {
                    text + "'");
 }
 
-BaselineOutcome baseline_hait(const BaselineHaitRequest& request) {
+BaselineOutcome run_baseline(const BaselineRequest& request) {
   const auto start_time = Clock::now();
-  HaitOptions options;
-  try {
-    options.heuristic = parse_heuristic(request.heuristic);
-  } catch (const InputError& e) {
-    throw InputError(std::string("--heuristic: ") + e.what());
-  }
-  options.smooth = request.smooth;
-  if (!(std::isfinite(request.terrain_uncertainty) && request.terrain_uncertainty >= 0.0)) {
-    throw InputError("--terrain-uncertainty must be a finite number >= 0 [m], got " +
-                     format_number(request.terrain_uncertainty));
-  }
-  options.terrain_uncertainty = request.terrain_uncertainty;
-  if (!request.position_uncertainty.empty()) {
-    const auto v = parse_numbers(request.position_uncertainty, 2);
-    if (!v || (*v)[0] < 0.0 || (*v)[1] < 0.0 || (*v)[1] >= std::numbers::pi) {
-      throw InputError(
-          "--position-uncertainty must be RHO,DTHETA: rho >= 0 [m] and 0 <= dtheta < pi "
-          "[rad], got '" +
-          request.position_uncertainty + "'");
-    }
-    options.position_uncertainty = (*v)[0];
-    options.heading_uncertainty = (*v)[1];
-  }
-  options.validate();
+  const std::unique_ptr<BaselinePlanner> planner = make_planner(request);
   const SE2Pose start = parse_pose("--start", request.start);
   const SE2Pose goal = parse_pose("--goal", request.goal);
   if (request.output_dir.empty()) throw InputError("no output folder given (--out DIR)");
@@ -98,8 +70,6 @@ BaselineOutcome baseline_hait(const BaselineHaitRequest& request) {
       !std::filesystem::is_directory(request.output_dir, error)) {
     throw InputError("--out " + request.output_dir + " exists and is not a folder");
   }
-
-  const Robot robot = load_robot(request.robot);
   const RuledTerrain terrain(read_esri_ascii(request.terrain));
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
     throw InputError(request.terrain + ": the planner needs at least 2 x 2 nodes");
@@ -107,8 +77,8 @@ BaselineOutcome baseline_hait(const BaselineHaitRequest& request) {
   check_on_map("--start", start, terrain, request.terrain);
   check_on_map("--goal", goal, terrain, request.terrain);
 
-  const HaitResult result = plan_hait(terrain, robot, start, goal, options);
-  const bool found = result.status == HaitStatus::kFound;
+  const BaselineResult result = planner->plan(terrain, start, goal);
+  const bool found = result.found();
 
   const std::filesystem::path dir(request.output_dir);
   std::filesystem::create_directories(dir, error);
@@ -119,7 +89,7 @@ BaselineOutcome baseline_hait(const BaselineHaitRequest& request) {
   const std::string path_file = (dir / "path.csv").string();
   const std::string summary_file = (dir / "summary.json").string();
   const std::filesystem::path png = dir / "path.png";
-  write_text_file(path_file, hait_path_csv(result.path));
+  write_text_file(path_file, baseline_path_csv(result.path, result.motions));
 
   const auto plot_start = Clock::now();
   std::filesystem::remove(png, error);  // never leave a stale figure
@@ -127,39 +97,28 @@ BaselineOutcome baseline_hait(const BaselineHaitRequest& request) {
   if (plots) {
     HaitMapData map;
     map.grid = &terrain.grid();
-    if (options.smooth) {
-      map.routes.push_back({result.unsmoothed_path, "searched path", "#2c7fb8"});
-    }
-    map.routes.push_back({result.path,
-                          (options.smooth ? "smoothed path, " : "path, ") + sig3(result.length_m) +
-                              " m, " + std::to_string(result.control_changes) + " control changes",
-                          "#e6550d"});
+    HaitRoute route{{}, "path, " + sig3(result.length_m) + " m", "#e6550d"};
+    for (const SE2Pose& q : result.path) route.path.push_back({q, {}});
+    map.routes.push_back(std::move(route));
     map.start = start;
     map.goal = goal;
-    map.title = "talus baseline hait (" + heuristic_name(options.heuristic) +
-                "): " + std::filesystem::path(request.terrain).filename().string() + ", " +
-                robot_name(robot) + ", " + std::to_string(result.nodes_created) +
-                " nodes created, " + std::to_string(result.placements) + " placements";
+    map.title = "talus baseline " + planner->name() + ": " +
+                std::filesystem::path(request.terrain).filename().string();
     render_hait_map(dir, "path", map);
   }
 
   nlohmann::json summary;
-  summary["status"] = status_name(result.status);
+  summary["baseline"] = planner->name();
+  summary["status"] = to_string(result.status);
   summary["message"] = result.message;
-  summary["nodes_created"] = result.nodes_created;
-  summary["nodes_developed"] = result.nodes_developed;
-  summary["placements"] = result.placements;
+  for (const auto& [key, value] : result.counters) summary[key] = value;
   summary["preprocessing_seconds"] = result.preprocessing_seconds;
   summary["search_seconds"] = result.search_seconds;
-  summary["smoothing_seconds"] = result.smoothing_seconds;
   summary["length_m"] = found ? nlohmann::json(result.length_m) : nlohmann::json(nullptr);
-  summary["control_changes"] = found ? nlohmann::json(result.control_changes) : nullptr;
-  summary["control_changes_before_smoothing"] =
-      found ? nlohmann::json(result.control_changes_unsmoothed) : nullptr;
-  summary["connected_to_goal"] = result.connected_to_goal;
   summary["path_points"] = result.path.size();
-  summary["robot"] = {
-      {"file", request.robot}, {"kind", robot_kind(robot)}, {"name", robot_name(robot)}};
+  for (const BaselineSetting& s : planner->settings()) {
+    std::visit([&](const auto& v) { summary[s.section][s.key] = v; }, s.value);
+  }
   const ElevationGrid& g = terrain.grid();
   summary["terrain"] = {{"file", request.terrain},
                         {"ncols", g.ncols()},
@@ -167,21 +126,6 @@ BaselineOutcome baseline_hait(const BaselineHaitRequest& request) {
                         {"cellsize", g.cellsize()}};
   summary["start"] = pose_json(start);
   summary["goal"] = pose_json(goal);
-  summary["options"] = {{"heuristic", heuristic_name(options.heuristic)},
-                        {"smooth", options.smooth},
-                        {"terrain_uncertainty", options.terrain_uncertainty},
-                        {"position_uncertainty", options.position_uncertainty},
-                        {"heading_uncertainty", options.heading_uncertainty},
-                        {"cell_size", options.cell_size},
-                        {"theta_bins", options.theta_bins},
-                        {"step", options.step},
-                        {"turning_radius", options.turning_radius},
-                        {"check_spacing", options.check_spacing},
-                        {"margin_weight", options.margin_weight},
-                        {"max_nodes", options.max_nodes},
-                        {"connect_goal", options.connect_goal},
-                        {"smoothing_iterations", options.smoothing.iterations},
-                        {"smoothing_seed", options.smoothing.seed}};
   summary["files"] = {{"path", path_file},
                       {"summary", summary_file},
                       {"path_png", plots ? nlohmann::json(png.string()) : nullptr}};

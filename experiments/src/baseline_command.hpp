@@ -1,66 +1,78 @@
 #pragma once
 /// @file
-/// The `talus baseline hait` command's work, separate from argument parsing:
-/// the Haït–Siméon–Taïx kinematic planner (talus::plan_hait) on a terrain file
-/// for a robot file, writing the path, a JSON summary and a map.
-#include <optional>
+/// The `talus baseline NAME` command's work, separate from argument parsing:
+/// any registered kinematic baseline (talus::BaselineRegistry::builtin()) on a
+/// terrain file, writing the path, a JSON summary and a map.
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "talus/kinematic/baseline_options.hpp"
 #include "talus/kinematic/configuration_space.hpp"
 
 namespace talus::experiments {
 
-/// `talus baseline hait --terrain T.asc --robot R.yaml --start X,Y,THETA
-/// --goal X,Y,THETA [--heuristic euclidean|potential|potential-rs] [--smooth]
-/// [--terrain-uncertainty DZ] [--position-uncertainty RHO,DTHETA] --out DIR`.
-struct BaselineHaitRequest {
-  std::string terrain;                     ///< ESRI ASCII grid
-  std::string robot;                       ///< robot YAML (load_robot, data/robots/README.md)
-  std::string start;                       ///< "X,Y,THETA": [m], [m], heading [rad]
-  std::string goal;                        ///< "X,Y,THETA"
-  std::string heuristic = "potential-rs";  ///< parse_heuristic()
-  bool smooth = false;                     ///< Reeds–Shepp smoothing of the found path (§4.4)
-  double terrain_uncertainty = 0.0;        ///< δz [m] (>= 0)
-  std::string position_uncertainty;        ///< "RHO,DTHETA" [m], [rad]; empty = none
-  std::string output_dir;                  ///< --out: created if needed
+/// `talus baseline NAME --terrain T.asc --start X,Y,THETA --goal X,Y,THETA
+/// --out DIR [--KEY VALUE | --FLAG ...]`, the KEYs being the baseline's own
+/// options (BaselineEntry::options).
+struct BaselineRequest {
+  std::string baseline;     ///< registry name, e.g. "hait"
+  std::string terrain;      ///< ESRI ASCII grid
+  std::string start;        ///< "X,Y,THETA": [m], [m], heading [rad]
+  std::string goal;         ///< "X,Y,THETA"
+  std::string output_dir;   ///< --out: created if needed
+  BaselineOptions options;  ///< the baseline's options given on the command line
 };
 
-/// Exit code of `talus baseline hait` when no path exists or the start or
-/// goal configuration is not valid for the robot (the summary is still written).
+/// Exit code of `talus baseline NAME` when no path was found: none exists,
+/// the start or goal configuration is not valid, or the budget ran out (the
+/// summary is still written).
 inline constexpr int kBaselineNoPathExitCode = 2;
 
 /// The columns of DIR/path.csv.
 inline constexpr const char* kBaselinePathCsvHeader = "x,y,theta,control";
 
+/// What `talus baseline NAME` writes, for its --help.
+inline constexpr const char* kBaselineOutputHelp =
+    "Angles in radians, counter-clockwise from east. Writes, in --out DIR (created if needed): "
+    "path.csv (columns x,y,theta,control: every configuration of the path from start to goal, "
+    "control = the motion reaching it as the planner names it, e.g. forward, forward-left, "
+    "reverse-right, or none on the first row), summary.json (status found | no_path | "
+    "start_invalid | goal_invalid | budget_exceeded, message, the planner's counters, "
+    "preprocessing_seconds, search_seconds, length_m, the planner's settings such as robot and "
+    "options, ...; also printed) and path.png (the path over shaded relief). Exit code 0 when a "
+    "path is found; 2 when none exists, the start or goal configuration is invalid or the "
+    "budget ran out (summary still written); 1 on bad input: malformed numbers or options, "
+    "missing or bad files, a start or goal off the map or on NODATA (one line on stderr, "
+    "nothing written)";
+
 /// Parses "X,Y,THETA" (three finite numbers, spaces allowed around them) given
 /// to `option`; anything else is an InputError naming the option and the text.
 SE2Pose parse_pose(const std::string& option, const std::string& text);
 
-/// What `baseline_hait` returns: the summary (also DIR/summary.json) and
+/// What `run_baseline` returns: the summary (also DIR/summary.json) and
 /// whether a path was found.
 struct BaselineOutcome {
   nlohmann::json summary;
   bool found = false;
 };
 
-/// Checks the options, reads the terrain and the robot, runs plan_hait with
-/// the default HaitOptions except for the request's heuristic, smoothing and
-/// uncertainties, and writes in request.output_dir:
-/// - path.csv: kBaselinePathCsvHeader, the dense configurations of the path
-///   (start first; control = the one reaching the row, "none" on the first
-///   row); header only when no path was found;
-/// - summary.json: status (found | no_path | start_invalid | goal_invalid |
-///   node_limit), message, nodes_created, nodes_developed, placements,
-///   preprocessing_seconds, search_seconds, smoothing_seconds, length_m,
-///   control_changes, control_changes_before_smoothing, connected_to_goal,
-///   path_points, robot {kind, name}, terrain {file, ncols, nrows, cellsize},
-///   start, goal, options {...}, files, seconds;
+/// Checks the request, builds the baseline from the registry with the
+/// request's options, reads the terrain, plans, and writes in
+/// request.output_dir:
+/// - path.csv: kBaselinePathCsvHeader, one row per pose of the path (control
+///   = the planner's motion label, "none" when it gives none); header only
+///   when no path was found;
+/// - summary.json: baseline, status (to_string(BaselineStatus)), message,
+///   every counter of the result as a top-level key, preprocessing_seconds,
+///   search_seconds, length_m (null unless found), path_points, one object
+///   per section of the planner's settings (e.g. robot, options), terrain
+///   {file, ncols, nrows, cellsize}, start, goal, files, plot_seconds, seconds;
 /// - path.png: the path over the terrain's shaded relief (when a path exists
 ///   and gnuplot is installed).
-/// Bad input (options, malformed numbers, missing or bad files, a start or
-/// goal off the map or on NODATA) throws InputError and writes nothing.
-BaselineOutcome baseline_hait(const BaselineHaitRequest& request);
+/// Bad input (an unknown baseline, bad options, malformed numbers, missing or
+/// bad files, a start or goal off the map or on NODATA) throws InputError,
+/// naming a bad option as its flag (--KEY), and writes nothing.
+BaselineOutcome run_baseline(const BaselineRequest& request);
 
 }  // namespace talus::experiments

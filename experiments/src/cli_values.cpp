@@ -2,8 +2,12 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <system_error>
+
+#include "talus/core/error.hpp"
+#include "talus/core/input_file.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -48,6 +52,21 @@ std::string format_number(double value) {
   out.precision(15);
   out << value;
   return out.str();
+}
+
+void check_output_is_not_an_input(const std::string& option, const std::string& output,
+                                  const std::vector<std::pair<std::string, std::string>>& inputs) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  for (const auto& [input_option, input] : inputs) {
+    const bool same = fs::exists(output, error) && fs::exists(input, error)
+                          ? fs::equivalent(output, input, error)
+                          : fs::weakly_canonical(output, error) == fs::weakly_canonical(input, error);
+    if (same && !error) {
+      throw InputError(option + " " + printable(output, 200) + " is the " + input_option +
+                       " input: writing it would destroy that file; choose another output");
+    }
+  }
 }
 
 }  // namespace talus::experiments

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,7 +20,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/dynamics/vehicle.hpp"
-#include "talus/kinematic/hait_planner.hpp"
+#include "talus/kinematic/baseline_registry.hpp"
 #include "talus/optimal/planner.hpp"
 
 namespace talus::experiments {
@@ -64,38 +65,39 @@ struct Row {
   std::vector<PathPoint> talus_path;
 };
 
-Row compare(const std::string& name, const HaitScenario& s, const Robot& robot,
+Row compare(const std::string& name, const HaitScenario& s, const BaselinePlanner& kinematic,
             const Vehicle& vehicle) {
   Row row;
   row.terrain = name;
   const BPatch surface = BPatch::interpolate(s.grid);
   TimeOptimalProfileSolver solver;
 
-  // Kinematic: plan, then split at cusps (each piece driven rest to rest).
-  HaitOptions ho;
-  ho.heuristic = HaitHeuristic::kPotentialRs;
-  ho.smooth = true;
+  // Kinematic: plan, then split at cusps (each piece driven rest to rest); a
+  // step against the heading is driven in reverse.
   const auto t0 = Clock::now();
-  const HaitResult hr = plan_hait(RuledTerrain(s.grid), robot, s.start, s.goal, ho);
+  const BaselineResult kr = kinematic.plan(RuledTerrain(s.grid), s.start, s.goal);
   row.kinematic_plan_seconds = seconds_since(t0);
-  if (hr.status != HaitStatus::kFound) throw SolverError(name + ": no kinematic path");
-  row.kinematic_path = hr.path;
-  row.kinematic_length = hr.length_m;
+  if (!kr.found()) throw SolverError(name + ": no kinematic path (" + kr.message + ")");
+  for (const SE2Pose& q : kr.path) row.kinematic_path.push_back({q, {}});
+  row.kinematic_length = kr.length_m;
   row.kinematic_time = 0.0;
-  std::vector<Vec2> piece{hr.path.front().pose.position()};
+  std::vector<Vec2> piece{kr.path.front().position()};
   int direction = 0;
   const auto flush = [&] {
     row.kinematic_time += piece_time(surface, vehicle, piece, solver);
     ++row.pieces;
   };
-  for (std::size_t k = 1; k < hr.path.size(); ++k) {
-    const int v = hr.path[k].control.v;
+  for (std::size_t k = 1; k < kr.path.size(); ++k) {
+    const SE2Pose& q = kr.path[k];
+    const double along =
+        (q.position() - kr.path[k - 1].position()).dot(Vec2(std::cos(q.theta), std::sin(q.theta)));
+    const int v = along > 0.0 ? 1 : (along < 0.0 ? -1 : direction);
     if (direction != 0 && v != direction) {  // a cusp: stop, then drive the other way
       flush();
       piece = {piece.back()};
     }
     direction = v;
-    piece.push_back(hr.path[k].pose.position());
+    piece.push_back(q.position());
   }
   flush();
 
@@ -124,7 +126,10 @@ Row compare(const std::string& name, const HaitScenario& s, const Robot& robot,
 
 void run_dynamic_vs_kinematic(const ExperimentContext& context) {
   require_gnuplot();
-  const Robot robot = load_hait_chassis(context.data_dir);
+  const std::unique_ptr<BaselinePlanner> kinematic = BaselineRegistry::builtin().make(
+      "hait", {{"robot", (context.data_dir / "robots" / "marsokhod_chassis.yaml").string()},
+               {"heuristic", "potential-rs"},
+               {"smooth", "true"}});
   const Vehicle vehicle = matched_vehicle();
   std::vector<std::pair<std::string, HaitScenario>> scenarios{
       {"crescent", hait_heuristics_scenario(context.quick)},
@@ -134,7 +139,7 @@ void run_dynamic_vs_kinematic(const ExperimentContext& context) {
       "terrain,kinematic_length_m,kinematic_pieces,kinematic_time_s,kinematic_plan_seconds,"
       "talus_length_m,talus_time_s,talus_plan_seconds,time_ratio\n";
   for (const auto& [name, s] : scenarios) {
-    rows.push_back(compare(name, s, robot, vehicle));
+    rows.push_back(compare(name, s, *kinematic, vehicle));
     const Row& r = rows.back();
     csv += name + "," + csv_number(r.kinematic_length) + "," + std::to_string(r.pieces) + "," +
            csv_number(r.kinematic_time) + "," + csv_number(r.kinematic_plan_seconds) + "," +

@@ -78,16 +78,17 @@ void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
       {&scenario.grid, std::move(routes), scenario.start, scenario.goal, std::move(title)});
 }
 
-std::string hait_path_csv(const std::vector<PathPoint>& path) {
+std::string baseline_path_csv(const std::vector<SE2Pose>& path,
+                              const std::vector<std::string>& motions) {
   std::string csv = "x,y,theta,control\n";
-  for (const PathPoint& p : path) {
-    append_number(csv, p.pose.x);
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    append_number(csv, path[k].x);
     csv += ',';
-    append_number(csv, p.pose.y);
+    append_number(csv, path[k].y);
     csv += ',';
-    append_number(csv, p.pose.theta);
+    append_number(csv, path[k].theta);
     csv += ',';
-    csv += control_name(p.control);
+    csv += k < motions.size() ? motions[k] : std::string("none");
     csv += '\n';
   }
   return csv;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The map figure of the Haït–Siméon–Taïx experiments and of `talus baseline
-/// hait`: one or more planned (x, y) routes over the terrain's shaded relief,
+/// NAME`: one or more planned (x, y) routes over the terrain's shaded relief,
 /// with start and goal. A gnuplot script is saved beside the PNG (plot.hpp).
 #include <filesystem>
 #include <string>
@@ -42,8 +42,10 @@ void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
                      const HaitScenario& scenario, std::vector<HaitRoute> routes,
                      std::string title);
 
-/// The (x, y, θ, control) rows of a path as CSV with header `x,y,theta,control`
-/// (control names as control_name()).
-std::string hait_path_csv(const std::vector<PathPoint>& path);
+/// The (x, y, θ, control) rows of a baseline's path as CSV with header
+/// `x,y,theta,control`: control = motions[k] (BaselineResult::motions), "none"
+/// where `motions` has no label.
+std::string baseline_path_csv(const std::vector<SE2Pose>& path,
+                              const std::vector<std::string>& motions);
 
 }  // namespace talus::experiments

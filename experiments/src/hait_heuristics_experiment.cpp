@@ -16,7 +16,7 @@
 #include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/kinematic/hait_planner.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -18,9 +18,9 @@
 #include "report.hpp"
 #include "stopwatch.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/chassis_placement.hpp"
-#include "talus/kinematic/hait_robot_validity.hpp"
-#include "talus/kinematic/potential_bitmap.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
+#include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/potential_bitmap.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "talus/core/elevation_grid.hpp"
-#include "talus/dynamics/robot.hpp"
 #include "talus/kinematic/configuration_space.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus::experiments {
 

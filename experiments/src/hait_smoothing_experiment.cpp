@@ -14,9 +14,9 @@
 #include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/kinematic/hait_planner.hpp"
-#include "talus/kinematic/hait_robot_validity.hpp"
-#include "talus/kinematic/hait_smoothing.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
+#include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/hait_smoothing.hpp"
 #include "talus/kinematic/reeds_shepp.hpp"
 
 namespace talus::experiments {

@@ -16,7 +16,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/kinematic/hait_planner.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <vector>
 
+#include "cli_values.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/surface_path.hpp"
@@ -19,6 +20,7 @@
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
+#include "talus/optimal/trajectory.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -69,6 +71,25 @@ void check_points_on_data(const std::vector<Vec2>& points, const BPatch& surface
     if (!surface.on_data(points[k])) {
       throw InputError(describe_point(points, k, path_file) + " lies in a NODATA cell of " +
                        terrain_file + " (a corner of its cell has no elevation)");
+    }
+  }
+}
+
+/// The one NODATA policy of `limits` and `profile` (as `plan`, which treats
+/// voids as impassable): a path that crosses a NODATA cell anywhere, not
+/// only at a way point, is refused, naming the first place. Sampled at a
+/// quarter of the cell size, so no cell the path crosses is skipped.
+void check_path_on_data(const SurfacePath& path, const std::string& path_file,
+                        const std::string& terrain_file) {
+  const BPatch& surface = path.surface();
+  std::vector<PathFrame> frames;
+  path.sample_uniform_parameter(station_count(path.length(), 0.25 * surface.cellsize()), frames);
+  for (const PathFrame& f : frames) {
+    const Vec2 p = f.point.head<2>();
+    if (!surface.on_data(p)) {
+      throw InputError(path_file + ": the path crosses a NODATA cell of " + terrain_file +
+                       " at s = " + format_number(f.s) + " m, (" + format_number(p.x()) + ", " +
+                       format_number(p.y()) + ")");
     }
   }
 }
@@ -157,6 +178,7 @@ TerrainPath build_terrain_path(const std::string& terrain_file, const std::strin
   Curve2 curve = Curve2::interpolate(points);
   check_curve_in_domain(curve, points, *surface, path_file, terrain_file, grid);
   auto path = std::make_unique<const SurfacePath>(*surface, std::move(curve));
+  check_path_on_data(*path, path_file, terrain_file);
   return TerrainPath{std::move(surface), std::move(path), planar_polyline_length(points)};
 }
 
@@ -170,6 +192,10 @@ std::size_t default_station_count(double planar_length) {
 nlohmann::json limits(const LimitsRequest& request) {
   const auto start = std::chrono::steady_clock::now();
   check_path_options(request.stations, request.smoothing, request.output);
+  check_output_is_not_an_input("-o", request.output,
+                               {{"--terrain", request.terrain},
+                                {"--path", request.path},
+                                {"--vehicle", request.vehicle}});
 
   const Vehicle vehicle = load_vehicle(request.vehicle);
   const TerrainPath terrain_path =

@@ -3,6 +3,9 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <list>
+#include <map>
+#include <string>
 
 #include "baseline_command.hpp"
 #include "experiment.hpp"
@@ -12,16 +15,31 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/terrain_generators.hpp"
+#include "talus/kinematic/baseline_registry.hpp"
 #include "terrain_commands.hpp"
 
 namespace {
+
+/// An unsigned option's text: "-1" would wrap to 2^64 - 1 in CLI11's conversion.
+const CLI::Validator kWholeNumber(
+    [](std::string& text) {
+      return text.find_first_not_of("0123456789") == std::string::npos && !text.empty()
+                 ? std::string()
+                 : "must be a whole number >= 0, got '" + text + "'";
+    },
+    "UINT");
 
 using namespace talus;
 namespace ex = talus::experiments;
 
 void add_shape_options(CLI::App& command, GridShape& shape) {
-  command.add_option("--ncols", shape.ncols, "nodes west to east")->capture_default_str();
-  command.add_option("--nrows", shape.nrows, "nodes south to north")->capture_default_str();
+  // Unsigned fields: "-1" would wrap to 2^64 - 1 without the range checks.
+  command.add_option("--ncols", shape.ncols, "nodes west to east")
+      ->check(CLI::Range(2.0, 1e8))
+      ->capture_default_str();
+  command.add_option("--nrows", shape.nrows, "nodes south to north")
+      ->check(CLI::Range(2.0, 1e8))
+      ->capture_default_str();
   command.add_option("--cellsize", shape.cellsize, "node spacing [m]")->capture_default_str();
   command.add_option("--xmin", shape.x_min, "x of the south-west node [m]")->capture_default_str();
   command.add_option("--ymin", shape.y_min, "y of the south-west node [m]")->capture_default_str();
@@ -67,11 +85,14 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
                    "[m], 0 = grid's longer side")
       ->capture_default_str();
   fractal->add_option("--peaks", o.fractal.peaks, "number of discrete Gaussian peaks")
+      ->check(CLI::Range(0.0, static_cast<double>(talus::kMaxFractalPeaks)))
       ->capture_default_str();
   fractal->add_option("--peak-height", o.fractal.peak_height, "[m]")->capture_default_str();
   fractal->add_option("--peak-radius", o.fractal.peak_radius, "Gaussian standard deviation [m]")
       ->capture_default_str();
-  fractal->add_option("--seed", o.fractal.seed, "random seed")->capture_default_str();
+  fractal->add_option("--seed", o.fractal.seed, "random seed")
+      ->check(kWholeNumber)
+      ->capture_default_str();
   output(fractal);
 
   CLI::App* plane = generate->add_subcommand("plane", "inclined plane");
@@ -123,7 +144,9 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   ey->add_option("--peak-height", o.eldershaw_yim.peak_height, "[m]")->capture_default_str();
   ey->add_option("--roughness", o.eldershaw_yim.roughness, "standard deviation [m]")
       ->capture_default_str();
-  ey->add_option("--seed", o.eldershaw_yim.seed, "random seed")->capture_default_str();
+  ey->add_option("--seed", o.eldershaw_yim.seed, "random seed")
+      ->check(kWholeNumber)
+      ->capture_default_str();
   output(ey);
 
   generate->callback([generate, &o]() {
@@ -335,57 +358,53 @@ int main(int argc, char** argv) {
   });
 
   CLI::App* baseline = app.add_subcommand(
-      "baseline", "kinematic baseline planners of the literature (`talus baseline hait`)");
+      "baseline",
+      "kinematic baseline planners of the literature (`talus baseline NAME`, one "
+      "subcommand per registered baseline)");
   baseline->require_subcommand(1);
-  ex::BaselineHaitRequest hait_request;
-  CLI::App* hait = baseline->add_subcommand(
-      "hait",
-      "the rough-terrain planner of Hait, Simeon, Taix (Advanced Robotics 16(8), 2002): A* over "
-      "(x, y, theta) with the robot placed on the ruled terrain at every checked configuration "
-      "(stability, mechanical limits, collision), guided by --heuristic. Angles in radians, "
-      "counter-clockwise from east. Writes, in --out DIR (created if needed): path.csv "
-      "(columns x,y,theta,control: every checked configuration from start to goal, control = "
-      "forward, forward-left, forward-right, reverse, reverse-left, reverse-right, or none on "
-      "the first row), summary.json (status found | no_path | start_invalid | goal_invalid | "
-      "node_limit, message, nodes_created, nodes_developed, placements, "
-      "preprocessing_seconds, search_seconds, smoothing_seconds, length_m, control_changes, "
-      "control_changes_before_smoothing, robot, options, ...; also printed) and path.png (the "
-      "path over shaded relief). Exit code 0 when a path is found; 2 when none exists or the "
-      "start or goal configuration is invalid for the robot (summary still written); 1 on bad "
-      "input: malformed numbers, missing or bad files, a start or goal off the map or on "
-      "NODATA (one line on stderr, nothing written)");
-  hait->add_option("--terrain", hait_request.terrain, "ESRI ASCII grid (.asc)")->required();
-  hait->add_option("--robot", hait_request.robot,
-                   "robot YAML: wheeled or articulated_chassis (see data/robots/README.md)")
-      ->required();
-  hait->add_option("--start", hait_request.start,
-                   "start configuration X,Y,THETA: position [m] in the terrain's frame, heading "
-                   "[rad] counter-clockwise from east")
-      ->required();
-  hait->add_option("--goal", hait_request.goal, "goal configuration X,Y,THETA [m, m, rad]")
-      ->required();
-  hait->add_option("--heuristic", hait_request.heuristic,
-                   "search guidance: euclidean (straight-line distance), potential (potential "
-                   "bitmap at two control points) or potential-rs (potential, plus the "
-                   "Reeds-Shepp distance near the goal)")
-      ->capture_default_str();
-  hait->add_flag("--smooth", hait_request.smooth,
-                 "smooth the path by valid Reeds-Shepp shortcuts between random configurations "
-                 "on it (fewer control changes)");
-  hait->add_option("--terrain-uncertainty", hait_request.terrain_uncertainty,
-                   "elevation interval half-width DZ >= 0 [m] at every node: worst-case checks "
-                   "between the envelopes z - DZ and z + DZ")
-      ->capture_default_str();
-  hait->add_option("--position-uncertainty", hait_request.position_uncertainty,
-                   "RHO,DTHETA: position uncertainty RHO >= 0 [m] and heading uncertainty "
-                   "0 <= DTHETA < pi [rad]; the whole neighbourhood must be valid");
-  hait->add_option("--out", hait_request.output_dir, "output folder (created if needed)")
-      ->required();
-  hait->callback([&]() {
-    const ex::BaselineOutcome outcome = ex::baseline_hait(hait_request);
-    std::cout << outcome.summary.dump(2) << "\n";
-    if (!outcome.found) exit_code = ex::kBaselineNoPathExitCode;
-  });
+  // One subcommand per registry entry: the shared query flags, then the
+  // baseline's own options as --KEY (flags for booleans), passed on as text.
+  struct BaselineFlags {
+    ex::BaselineRequest request;
+    std::map<std::string, std::string> values;
+    std::map<std::string, bool> flags;
+  };
+  std::list<BaselineFlags> baseline_flags;  // stable addresses for CLI11's bindings
+  const BaselineRegistry& baselines = BaselineRegistry::builtin();
+  for (const std::string& name : baselines.names()) {
+    const BaselineEntry& entry = baselines.entry(name);
+    BaselineFlags& f = baseline_flags.emplace_back();
+    f.request.baseline = entry.name;
+    CLI::App* sub =
+        baseline->add_subcommand(entry.name, entry.summary + ". " + ex::kBaselineOutputHelp);
+    sub->add_option("--terrain", f.request.terrain, "ESRI ASCII grid (.asc)")->required();
+    sub->add_option("--start", f.request.start,
+                    "start configuration X,Y,THETA: position [m] in the terrain's frame, "
+                    "heading [rad] counter-clockwise from east")
+        ->required();
+    sub->add_option("--goal", f.request.goal, "goal configuration X,Y,THETA [m, m, rad]")
+        ->required();
+    for (const BaselineOptionSpec& spec : entry.options) {
+      const std::string flag = "--" + spec.key;
+      if (spec.flag) {
+        sub->add_flag(flag, f.flags[spec.key], spec.help);
+        continue;
+      }
+      std::string& value = f.values[spec.key];
+      value = spec.default_value;
+      CLI::Option* option = sub->add_option(flag, value, spec.help);
+      if (spec.required) option->required();
+      if (!spec.default_value.empty()) option->capture_default_str();
+    }
+    sub->add_option("--out", f.request.output_dir, "output folder (created if needed)")->required();
+    sub->callback([&f, &exit_code]() {
+      for (const auto& [key, value] : f.values) f.request.options[key] = value;
+      for (const auto& [key, on] : f.flags) f.request.options[key] = on ? "true" : "false";
+      const ex::BaselineOutcome outcome = ex::run_baseline(f.request);
+      std::cout << outcome.summary.dump(2) << "\n";
+      if (!outcome.found) exit_code = ex::kBaselineNoPathExitCode;
+    });
+  }
 
   std::string experiment_name, out_dir = "talus-out", data_dir;
   bool quick = false;

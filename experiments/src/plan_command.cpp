@@ -352,6 +352,10 @@ PlanOutcome plan(const PlanRequest& request) {
   check_plan_options(request);
   const Vec2 start = parse_point("--start", request.start);
   const Vec2 goal = parse_point("--goal", request.goal);
+  if (start == goal) {
+    throw InputError("--start and --goal are the same point " + format_point(start) +
+                     ": there is nothing to plan");
+  }
 
   const Vehicle vehicle = load_vehicle(request.vehicle);
   if (!std::isfinite(vehicle.max_speed)) {

@@ -9,6 +9,7 @@
 
 #include "limits_command.hpp"
 #include "stopwatch.hpp"
+#include "cli_values.hpp"
 #include "talus/core/error.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
@@ -54,6 +55,10 @@ std::string default_profile_stations_text() {
 ProfileOutcome profile(const ProfileRequest& request) {
   const auto start = Clock::now();
   check_path_options(request.stations, request.smoothing, request.output);
+  check_output_is_not_an_input("-o", request.output,
+                               {{"--terrain", request.terrain},
+                                {"--path", request.path},
+                                {"--vehicle", request.vehicle}});
   check_speed_option("--v0", request.start_speed);
   check_speed_option("--v1", request.end_speed);
 

@@ -43,7 +43,10 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
   const auto started = Clock::now();
   CandidateOutcome outcome;
   outcome.candidate = c;
+  // The candidate from the exact start to the exact goal (both snap to the
+  // same node when they share a lattice cell: then the straight segment).
   std::vector<Vec2> polyline = global.candidates[c].vertices;
+  if (polyline.size() < 2) polyline = {problem.start, problem.goal};
   polyline.front() = problem.start;
   polyline.back() = problem.goal;
   try {
@@ -98,6 +101,10 @@ void PlanningProblem::validate() const {
               << "]";
       throw InputError(message.str());
     }
+  }
+  if (start == goal) {
+    throw InputError("PlanningProblem: start and goal are the same point " + point_text(start) +
+                     "; there is nothing to plan");
   }
   for (const auto& [name, speed] :
        {std::pair{"start_speed", start_speed}, std::pair{"end_speed", end_speed}}) {

@@ -10,6 +10,8 @@
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/kinematic/baseline_registry.hpp"
+#include "talus/kinematic/hait/hait_baseline.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
 
 namespace {
@@ -84,6 +86,22 @@ int main() {
   check(profile.status == talus::ProfileStatus::kOk &&
             std::abs(profile.travel_time - expected) < 0.005 * expected,
         "time-optimal profile on a flat line");
+
+  // The kinematic layer: a robot from YAML (yaml-cpp) planned across flat
+  // ground by the registered Hait-Simeon-Taix baseline, a straight 2 m line.
+  const talus::Robot robot = talus::parse_robot(
+      "type: wheeled\nwheels: [[0.3, 0.2], [0.3, -0.2], [-0.3, -0.2], [-0.3, 0.2]]\n"
+      "cg_height: 0.2\nmax_spring_extension: 0.05\nmax_roll: 0.3\nmax_pitch: 0.3\n"
+      "body: {front: 0.4, rear: 0.4, half_width: 0.25, clearance: 0.1}\n",
+      "<consumer>");
+  talus::HaitOptions hait;
+  hait.heuristic = talus::HaitHeuristic::kEuclidean;
+  const talus::HaitBaseline baseline(robot, hait);
+  const talus::BaselineResult route =
+      baseline.plan(talus::RuledTerrain(talus::ElevationGrid(17, 9, 0.25, 0.0, 0.0, 1.0)),
+                    {1.0, 1.0, 0.0}, {3.0, 1.0, 0.0});
+  check(route.found() && std::abs(route.length_m - 2.0) < 1e-6, "hait baseline on flat ground");
+  check(!talus::BaselineRegistry::builtin().names().empty(), "registered baselines");
 
   if (failures != 0) {
     std::cerr << failures << " check(s) failed\n";

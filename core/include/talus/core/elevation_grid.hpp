@@ -19,6 +19,12 @@
 
 namespace talus {
 
+/// Largest |elevation| Talus accepts [m] (readers and generators refuse
+/// more). Earth's relief spans about 2e4 m; the bound keeps squares and
+/// B-patch fits far from overflow, and catches a float NODATA (-3.4e38) that
+/// the file forgot to declare.
+inline constexpr double kMaxElevationMagnitude = 1e9;
+
 /// Regular grid of elevations [m] with a validity mask (false = NODATA).
 class ElevationGrid {
  public:

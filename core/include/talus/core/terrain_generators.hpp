@@ -29,13 +29,16 @@ struct GridShape {
 /// undulation and discrete peaks (Iagnemma, Shimoda, Shiller, IROS 2008, §V).
 /// Defaults reproduce that study for a 0.12 m wheel: D = 2.05, spacing 2 wheel
 /// diameters (0.24 m), height scale 35 wheel diameters (4.2 m).
+/// Most peaks a fractal terrain takes: each one visits every node.
+inline constexpr std::size_t kMaxFractalPeaks = 100'000;
+
 struct FractalTerrainOptions {
   GridShape shape{129, 129, 0.24, 0.0, 0.0};
   double fractal_dimension = 2.05;     ///< D in (2, 3); Hurst exponent H = 3 - D
   double height_scale = 4.2;           ///< peak-to-peak range of the fractal part [m] (>= 0)
   double undulation_amplitude = 0.0;   ///< amplitude of the gross undulation [m] (>= 0)
   double undulation_wavelength = 0.0;  ///< its wavelength [m]; 0 = the grid's longer side
-  std::size_t peaks = 0;               ///< number of discrete peaks added
+  std::size_t peaks = 0;               ///< number of discrete peaks added (<= kMaxFractalPeaks)
   double peak_height = 0.0;            ///< height of each peak [m] (>= 0)
   double peak_radius = 1.0;            ///< Gaussian radius (standard deviation) of a peak [m] (> 0)
   std::uint64_t seed = 1;              ///< random seed

@@ -12,7 +12,7 @@
 
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/types.hpp"
-#include "talus/dynamics/robot.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus {
 

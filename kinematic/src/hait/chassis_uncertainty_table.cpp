@@ -1,4 +1,4 @@
-#include "talus/dynamics/chassis_uncertainty_table.hpp"
+#include "talus/kinematic/hait/chassis_uncertainty_table.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "talus/dynamics/placement.hpp"
+#include "talus/kinematic/hait/placement.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "talus/kinematic/hait_planner.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
 
 #include <algorithm>
 #include <chrono>

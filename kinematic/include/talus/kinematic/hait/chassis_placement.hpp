@@ -16,8 +16,8 @@
 
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/types.hpp"
-#include "talus/dynamics/placement.hpp"
-#include "talus/dynamics/robot.hpp"
+#include "talus/kinematic/hait/placement.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus {
 

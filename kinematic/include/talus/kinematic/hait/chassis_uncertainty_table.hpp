@@ -36,10 +36,10 @@
 #include <vector>
 
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/chassis_placement.hpp"
-#include "talus/dynamics/placement.hpp"
-#include "talus/dynamics/robot.hpp"
-#include "talus/dynamics/robot_validity.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
+#include "talus/kinematic/hait/placement.hpp"
+#include "talus/kinematic/hait/robot.hpp"
+#include "talus/kinematic/hait/robot_validity.hpp"
 
 namespace talus {
 

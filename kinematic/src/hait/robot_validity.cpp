@@ -1,4 +1,4 @@
-#include "talus/dynamics/robot_validity.hpp"
+#include "talus/kinematic/hait/robot_validity.hpp"
 
 #include <algorithm>
 #include <cmath>

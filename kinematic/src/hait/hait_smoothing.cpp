@@ -1,4 +1,4 @@
-#include "talus/kinematic/hait_smoothing.hpp"
+#include "talus/kinematic/hait/hait_smoothing.hpp"
 
 #include <algorithm>
 #include <cmath>

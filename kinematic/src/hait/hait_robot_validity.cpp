@@ -1,4 +1,4 @@
-#include "talus/kinematic/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/hait_robot_validity.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,12 +8,12 @@
 #include <variant>
 
 #include "talus/core/error.hpp"
-#include "talus/dynamics/chassis_placement.hpp"
-#include "talus/dynamics/chassis_uncertainty_table.hpp"
-#include "talus/dynamics/placement.hpp"
-#include "talus/dynamics/robot_validity.hpp"
-#include "talus/kinematic/hait_planner.hpp"
-#include "talus/kinematic/terrain_quadtree.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
+#include "talus/kinematic/hait/chassis_uncertainty_table.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
+#include "talus/kinematic/hait/placement.hpp"
+#include "talus/kinematic/hait/robot_validity.hpp"
+#include "talus/kinematic/hait/terrain_quadtree.hpp"
 
 namespace talus {
 

@@ -24,8 +24,8 @@
 #include <numbers>
 
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/robot.hpp"
 #include "talus/kinematic/configuration_space.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus {
 

@@ -1,4 +1,4 @@
-#include "talus/dynamics/chassis_placement.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
 
 #include <algorithm>
 #include <chrono>

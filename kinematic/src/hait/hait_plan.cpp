@@ -13,9 +13,9 @@
 #include <variant>
 
 #include "talus/core/error.hpp"
-#include "talus/kinematic/hait_planner.hpp"
-#include "talus/kinematic/hait_robot_validity.hpp"
-#include "talus/kinematic/potential_bitmap.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
+#include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/potential_bitmap.hpp"
 
 namespace talus {
 
@@ -52,6 +52,16 @@ PotentialBitmapOptions bitmap_options(const Robot& robot, double radius, double 
 
 }  // namespace
 
+HaitValidityOptions hait_validity_options(const HaitOptions& options) {
+  HaitValidityOptions vo;
+  vo.terrain_uncertainty = options.terrain_uncertainty;
+  vo.position_uncertainty = options.position_uncertainty;
+  vo.heading_uncertainty = options.heading_uncertainty;
+  vo.sample_spacing = options.check_spacing;
+  vo.sample_angle_step = 2.0 * std::numbers::pi / options.theta_bins;
+  return vo;
+}
+
 HaitResult plan_hait(const RuledTerrain& terrain, const Robot& robot, const SE2Pose& start,
                      const SE2Pose& goal, const HaitOptions& options) {
   options.validate();
@@ -64,13 +74,7 @@ HaitResult plan_hait(const RuledTerrain& terrain, const Robot& robot, const SE2P
   // placement surfaces and moved faces; the sprung rigid body, for which the
   // paper gives no surfaces, its sampled neighbourhood (every check_spacing
   // across, every heading cell), both inside HaitRobotValidity.
-  HaitValidityOptions vo;
-  vo.terrain_uncertainty = options.terrain_uncertainty;
-  vo.position_uncertainty = options.position_uncertainty;
-  vo.heading_uncertainty = options.heading_uncertainty;
-  vo.sample_spacing = options.check_spacing;
-  vo.sample_angle_step = 2.0 * std::numbers::pi / options.theta_bins;
-  const HaitRobotValidity model(terrain, robot, vo);
+  const HaitRobotValidity model(terrain, robot, hait_validity_options(options));
   const ValidityFunction validity = model.function();
 
   // Two control points ahead of and behind the reference point (§4.2.2 after

@@ -1,4 +1,4 @@
-#include "talus/kinematic/terrain_quadtree.hpp"
+#include "talus/kinematic/hait/terrain_quadtree.hpp"
 
 #include <algorithm>
 #include <array>

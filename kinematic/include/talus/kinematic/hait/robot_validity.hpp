@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "talus/core/types.hpp"
-#include "talus/dynamics/chassis_placement.hpp"
-#include "talus/dynamics/placement.hpp"
-#include "talus/dynamics/robot.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
+#include "talus/kinematic/hait/placement.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus {
 

@@ -62,9 +62,10 @@
 #include <vector>
 
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/robot.hpp"
 #include "talus/kinematic/configuration_space.hpp"
-#include "talus/kinematic/hait_smoothing.hpp"
+#include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "talus/kinematic/hait/hait_smoothing.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 namespace talus {
 
@@ -166,6 +167,11 @@ HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction
 /// returns `base` unchanged.
 ValidityFunction neighbourhood_validity(ValidityFunction base, double rho, double dtheta,
                                         double spacing, double angle_step);
+
+/// The validity options plan_hait() gives HaitRobotValidity: the options'
+/// uncertainties, sampled (rigid body under ρ or Δθ) every check_spacing
+/// across and every heading cell, 2π / theta_bins.
+HaitValidityOptions hait_validity_options(const HaitOptions& options);
 
 /// The full planner: placement and validity of `robot` on `terrain` (with the
 /// worst-case checks of §5 when uncertainties are set), collision through the

@@ -1,4 +1,4 @@
-#include "talus/dynamics/robot.hpp"
+#include "talus/kinematic/hait/robot.hpp"
 
 #include <yaml-cpp/yaml.h>
 

@@ -1,4 +1,4 @@
-#include "talus/kinematic/potential_bitmap.hpp"
+#include "talus/kinematic/hait/potential_bitmap.hpp"
 
 #include <algorithm>
 #include <array>

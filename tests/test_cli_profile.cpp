@@ -193,7 +193,7 @@ TEST(CliProfile, StationsSmoothingRigidBodyAndStartEndSpeeds) {
 
 TEST(CliProfile, StraightPathOnFlatGroundFromRestToRestTakesTwoSqrtLOverMuG) {
   const double mu = 0.7, g = 9.81, length = 100.0;
-  const std::string out = scratch_file("straight.csv");
+  const std::string out = scratch_file("straight_profile.csv");
   const nlohmann::json j = run_profile_ok(
       "--terrain " + quoted(flat_terrain()) + " --path " +
       quoted(write_points("straight.csv", {{{10, 60}}, {{110, 60}}})) + " --vehicle " +
@@ -220,7 +220,7 @@ TEST(CliProfile, StraightPathOnFlatGroundFromRestToRestTakesTwoSqrtLOverMuG) {
 
 TEST(CliProfile, StartAndEndSpeedsOnFlatGroundMatchTheBangBangTime) {
   const double mu = 0.7, g = 9.81, length = 100.0, v0 = 5.0, v1 = 3.0;
-  const std::string out = scratch_file("speeds.csv");
+  const std::string out = scratch_file("speeds_profile.csv");
   const nlohmann::json j = run_profile_ok(
       "--terrain " + quoted(flat_terrain()) + " --path " +
       quoted(write_points("speeds.csv", {{{10, 60}}, {{110, 60}}})) + " --vehicle " +
@@ -294,7 +294,7 @@ TEST(CliProfile, StartSpeedThatCannotBeBrakedInTimeIsInfeasible) {
 }
 
 TEST(CliProfile, DefaultStationCountIsClampedBelowAt100) {
-  const std::string out = scratch_file("tiny.csv");
+  const std::string out = scratch_file("tiny_profile.csv");
   const nlohmann::json j =
       run_profile_ok("--terrain " + quoted(flat_terrain()) + " --path " +
                      quoted(write_points("tiny.csv", {{{10, 10}}, {{14, 13}}})) + " --vehicle " +

@@ -100,6 +100,14 @@ TEST(RobotYaml, BundledRobotFilesLoad) {
       std::holds_alternative<ArticulatedChassis>(load_robot(dir + "marsokhod_chassis.yaml")));
 }
 
+TEST(RobotYaml, DuplicateKeysAndSecondDocumentsAreErrors) {
+  // yaml-cpp alone would take the first max_roll and ignore the second document.
+  expect_error_naming(kChassis + "max_roll: 0.1\n", "'max_roll' appears twice");
+  expect_error_naming(edit(kWheeled, "  clearance:", "  clearance: 0.25\n  clearance: 0.2"),
+                      "'clearance' appears twice");
+  expect_error_naming(kChassis + "---\n" + kWheeled, "second YAML document");
+}
+
 TEST(RobotYaml, MissingFileIsInputError) {
   EXPECT_THROW(load_robot("/nonexistent/robot.yaml"), InputError);
 }

@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "strict_yaml.hpp"
+#include "talus/core/detail/strict_yaml.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
 

@@ -112,6 +112,8 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   summary["status"] = to_string(result.status);
   summary["message"] = result.message;
   for (const auto& [key, value] : result.counters) summary[key] = value;
+  for (const auto& [key, value] : result.flags) summary[key] = value;
+  for (const auto& [stage, value] : result.stage_seconds) summary[stage + "_seconds"] = value;
   summary["preprocessing_seconds"] = result.preprocessing_seconds;
   summary["search_seconds"] = result.search_seconds;
   summary["length_m"] = found ? nlohmann::json(result.length_m) : nlohmann::json(nullptr);

@@ -139,8 +139,9 @@ BaselineResult HaitBaseline::solve(const RuledTerrain& terrain, const SE2Pose& s
                   {"nodes_developed", r.nodes_developed},
                   {"placements", r.placements},
                   {"control_changes", r.control_changes},
-                  {"control_changes_before_smoothing", r.control_changes_unsmoothed},
-                  {"connected_to_goal", r.connected_to_goal ? 1u : 0u}};
+                  {"control_changes_before_smoothing", r.control_changes_unsmoothed}};
+  out.stage_seconds = {{"smoothing", r.smoothing_seconds}};
+  out.flags = {{"connected_to_goal", r.connected_to_goal}};
   return out;
 }
 

@@ -9,7 +9,9 @@
 #include <set>
 #include <sstream>
 
+#include "talus/core/detail/strict_yaml.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/input_file.hpp"
 
 namespace talus {
 namespace {
@@ -202,12 +204,7 @@ void validate(const Robot& robot) {
 }
 
 Robot parse_robot(std::string_view yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(yaml_text));
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ": not valid YAML/JSON: " + e.what());
-  }
+  const YAML::Node root = detail::load_strict_yaml(std::string(yaml_text), source);
   if (!root.IsMap())
     throw InputError(source + ": a robot file must be a mapping of keys to values");
   const YAML::Node type_node = root["type"];
@@ -227,8 +224,8 @@ Robot parse_robot(std::string_view yaml_text, const std::string& source) {
          "min_pitch", "max_pitch", "min_body_angle", "max_body_angle", "body"});
     robot = parse_chassis(m, source);
   } else {
-    throw InputError(source + ": key 'type' must be wheeled or articulated_chassis, got '" + type +
-                     "'");
+    throw InputError(source + ": key 'type' must be wheeled or articulated_chassis, got '" +
+                     printable(type) + "'");
   }
   try {
     validate(robot);
@@ -239,11 +236,8 @@ Robot parse_robot(std::string_view yaml_text, const std::string& source) {
 }
 
 Robot load_robot(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string() + ": cannot open robot file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_robot(text.str(), path.string());
+  return parse_robot(read_input_file(path.string(), kMaxConfigFileBytes),
+                     printable(path.string(), 200));
 }
 
 }  // namespace talus

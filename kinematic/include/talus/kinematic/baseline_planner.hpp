@@ -55,6 +55,10 @@ struct BaselineResult {
   double search_seconds = 0.0;  ///< wall-clock time of the query after it (with smoothing) [s]
   /// Named work counters of the planner (snake_case keys, e.g. "nodes_created", "placements").
   std::map<std::string, std::size_t> counters;
+  /// Named parts of search_seconds [s] (snake_case stage names, e.g. "smoothing").
+  std::map<std::string, double> stage_seconds;
+  /// Named yes/no facts about the result (snake_case, e.g. "connected_to_goal").
+  std::map<std::string, bool> flags;
 
   bool found() const { return status == BaselineStatus::kFound; }
   /// One line: status, length, path size, times and counters, then the message.

@@ -15,10 +15,10 @@
 ///
 /// Every other HaitOptions field keeps its default. Results: the path's
 /// motions are control_name() of each configuration's control; search_seconds
-/// is the A* plus the smoothing; counters nodes_created, nodes_developed,
-/// placements, control_changes, control_changes_before_smoothing and
-/// connected_to_goal (1 when the path ends with a Reeds–Shepp curve to the
-/// exact goal). validity() is HaitRobotValidity with the options'
+/// is the A* plus the smoothing (stage_seconds "smoothing" the latter);
+/// counters nodes_created, nodes_developed, placements, control_changes and
+/// control_changes_before_smoothing; flag connected_to_goal (the path ends
+/// with a Reeds–Shepp curve to the exact goal). validity() is HaitRobotValidity with the options'
 /// uncertainties, the oracle the search uses.
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "strict_yaml.hpp"
+#include "talus/core/detail/strict_yaml.hpp"
 
 #include <yaml-cpp/eventhandler.h>
 

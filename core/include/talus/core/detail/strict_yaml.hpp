@@ -1,5 +1,7 @@
 #pragma once
-// Strict YAML for Talus's configuration files (vehicles, robots): one
+/// @file
+/// Internal to Talus (its layers' configuration readers; yaml-cpp needed to
+/// include it). Strict YAML for Talus's configuration files (vehicles, robots): one
 // document, no key twice in any mapping. yaml-cpp alone resolves a duplicate
 // key silently to its first value and ignores documents after the first, so
 // `friction: 0.7 ... friction: 0.1` would run with 0.7.

@@ -9,6 +9,7 @@
 #include "hait_figures.hpp"
 #include "limits_command.hpp"
 #include "number_format.hpp"
+#include "output_folder.hpp"
 #include "plot.hpp"
 #include "stopwatch.hpp"
 #include "talus/core/error.hpp"
@@ -70,6 +71,7 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
       !std::filesystem::is_directory(request.output_dir, error)) {
     throw InputError("--out " + request.output_dir + " exists and is not a folder");
   }
+  OutputFolder out(request.output_dir);  // locked for the whole run
   const RuledTerrain terrain(read_esri_ascii(request.terrain));
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
     throw InputError(request.terrain + ": the planner needs at least 2 x 2 nodes");
@@ -80,19 +82,10 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   const BaselineResult result = planner->plan(terrain, start, goal);
   const bool found = result.found();
 
-  const std::filesystem::path dir(request.output_dir);
-  std::filesystem::create_directories(dir, error);
-  if (error) {
-    throw InputError("--out " + request.output_dir + ": cannot create the folder (" +
-                     error.message() + ")");
-  }
-  const std::string path_file = (dir / "path.csv").string();
-  const std::string summary_file = (dir / "summary.json").string();
-  const std::filesystem::path png = dir / "path.png";
-  write_text_file(path_file, baseline_path_csv(result.path, result.motions));
+  const std::filesystem::path& dir = out.staging();
+  write_text_file(dir / "path.csv", baseline_path_csv(result.path, result.motions));
 
   const auto plot_start = Clock::now();
-  std::filesystem::remove(png, error);  // never leave a stale figure
   const bool plots = found && gnuplot_available();
   if (plots) {
     HaitMapData map;
@@ -128,12 +121,14 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
                         {"cellsize", g.cellsize()}};
   summary["start"] = pose_json(start);
   summary["goal"] = pose_json(goal);
-  summary["files"] = {{"path", path_file},
-                      {"summary", summary_file},
-                      {"path_png", plots ? nlohmann::json(png.string()) : nullptr}};
+  summary["files"] = {
+      {"path", out.final_path("path.csv").string()},
+      {"summary", out.final_path("summary.json").string()},
+      {"path_png", plots ? nlohmann::json(out.final_path("path.png").string()) : nullptr}};
   summary["plot_seconds"] = seconds_since(plot_start);
   summary["seconds"] = seconds_since(start_time);
-  write_text_file(summary_file, summary.dump(2) + "\n");
+  write_text_file(dir / "summary.json", summary.dump(2) + "\n");
+  out.commit();
   return {std::move(summary), found};
 }
 

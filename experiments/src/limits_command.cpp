@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli_values.hpp"
+#include "plot.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/surface_path.hpp"
@@ -133,14 +134,6 @@ void append_csv_number(std::string& out, double value) {
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   out.append(buffer, result.ptr);
-}
-
-void write_text_file(const std::string& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  if (!out) throw InputError(file + ": cannot open file for writing");
-  out << text;
-  out.close();
-  if (!out) throw InputError(file + ": write failed");
 }
 
 void check_path_options(const std::optional<long long>& stations,

@@ -66,9 +66,6 @@ TerrainPath build_terrain_path(const std::string& terrain_file, const std::strin
 /// Appends the shortest text that reads back as exactly `value`; infinity is "inf".
 void append_csv_number(std::string& out, double value);
 
-/// Writes `text` to `file`; InputError if it cannot be opened or written.
-void write_text_file(const std::string& file, const std::string& text);
-
 /// The columns of the CSV, in order.
 inline constexpr const char* kLimitsCsvHeader =
     "s,x,y,z,v_min,v_max,binding,k_t,k_q,k_r,kappa_n,kappa_g";

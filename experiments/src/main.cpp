@@ -5,15 +5,18 @@
 #include <iostream>
 #include <list>
 #include <map>
+#include <new>
 #include <string>
 
 #include "baseline_command.hpp"
 #include "experiment.hpp"
 #include "limits_command.hpp"
+#include "output_folder.hpp"
 #include "plan_command.hpp"
 #include "profile_command.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/input_file.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "terrain_commands.hpp"
@@ -193,6 +196,7 @@ void add_path_input_options(CLI::App& command, Request& request) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ex::exit_cleanly_on_signals();
   CLI::App app{
       "Talus: time-optimal trajectory planning of ground vehicles over rough terrain.\n"
       "Units are SI; x east, y north, z up (see README, Conventions)."};
@@ -424,12 +428,14 @@ int main(int argc, char** argv) {
     for (const ex::Experiment& e : experiments) {
       if (e.name != experiment_name) continue;
       ex::ExperimentContext context;
-      context.output_dir = std::filesystem::path(out_dir) / e.name;
+      const std::filesystem::path folder = std::filesystem::path(out_dir) / e.name;
       context.data_dir = ex::find_data_dir(data_dir);
       context.quick = quick;
-      std::filesystem::create_directories(context.output_dir);
+      ex::OutputFolder out(folder);
+      context.output_dir = out.staging();
       e.run(context);
-      std::cout << "wrote " << (context.output_dir / "report.md").string() << "\n";
+      out.commit();
+      std::cout << "wrote " << (folder / "report.md").string() << "\n";
       return;
     }
     throw InputError("unknown experiment '" + experiment_name + "' (run `talus experiment list`)");
@@ -442,13 +448,17 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "talus: error: " << e.what() << " (see --help)\n";
+    std::cerr << "talus: error: " << talus::printable(e.what(), 600) << " (see --help)\n";
     return 1;
   } catch (const talus::Error& e) {
-    std::cerr << "talus: error: " << e.what() << "\n";
+    std::cerr << "talus: error: " << talus::printable(e.what(), 600) << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "talus: error: out of memory (a larger input or option than this machine "
+                 "holds; see the memory budget in the README)\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "talus: error: " << e.what() << "\n";
+    std::cerr << "talus: error: " << talus::printable(e.what(), 600) << "\n";
     return 1;
   }
   return exit_code;

@@ -13,6 +13,7 @@
 
 #include "cli_values.hpp"
 #include "limits_command.hpp"
+#include "output_folder.hpp"
 #include "plan_figures.hpp"
 #include "plot.hpp"
 #include "stopwatch.hpp"
@@ -263,18 +264,15 @@ void render_plan_figures(const PlanRequest& request, const ElevationGrid& grid,
 /// summary fields.
 void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
                       const PlanningProblem& problem, const PlannerOptions& options,
-                      const PlannerResult& result, const std::filesystem::path& dir,
+                      const PlannerResult& result, const OutputFolder& out,
                       nlohmann::json& summary, nlohmann::json& seconds) {
   const Trajectory* best = result.best();
-  const std::string trajectory_file = (dir / "trajectory.csv").string();
-  const std::string optima_file = (dir / "optima.csv").string();
-  write_text_file(trajectory_file, trajectory_csv(best));
-  write_text_file(optima_file, optima_csv(result));
+  const std::filesystem::path& dir = out.staging();
+  write_text_file(dir / "trajectory.csv", trajectory_csv(best));
+  write_text_file(dir / "optima.csv", optima_csv(result));
 
   const auto plots_start = Clock::now();
   const bool plots = best != nullptr && gnuplot_available();
-  std::error_code error;
-  for (const char* name : {"plan.png", "profile.png"}) std::filesystem::remove(dir / name, error);
   if (plots) render_plan_figures(request, grid, problem, result, dir);
   const double plots_seconds = seconds_since(plots_start);
 
@@ -313,12 +311,12 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   summary["station_spacing"] = options.station_spacing;
   summary["search_station_spacing"] = options.local.station_spacing;
   summary["max_evaluations"] = options.local.max_evaluations;
-  summary["files"]["trajectory"] = trajectory_file;
-  summary["files"]["optima"] = optima_file;
+  summary["files"]["trajectory"] = out.final_path("trajectory.csv").string();
+  summary["files"]["optima"] = out.final_path("optima.csv").string();
   summary["files"]["plan_png"] =
-      plots ? nlohmann::json((dir / "plan.png").string()) : nlohmann::json(nullptr);
+      plots ? nlohmann::json(out.final_path("plan.png").string()) : nlohmann::json(nullptr);
   summary["files"]["profile_png"] =
-      plots ? nlohmann::json((dir / "profile.png").string()) : nlohmann::json(nullptr);
+      plots ? nlohmann::json(out.final_path("profile.png").string()) : nlohmann::json(nullptr);
   seconds["local"] = result.seconds.local;
   seconds["profile"] = result.seconds.evaluation;
   seconds["plots"] = plots_seconds;
@@ -350,6 +348,7 @@ Vec2 parse_point(const std::string& option, const std::string& text) {
 PlanOutcome plan(const PlanRequest& request) {
   const auto start_time = Clock::now();
   check_plan_options(request);
+  OutputFolder out(request.output_dir);  // locked for the whole run
   const Vec2 start = parse_point("--start", request.start);
   const Vec2 goal = parse_point("--goal", request.goal);
   if (start == goal) {
@@ -402,23 +401,11 @@ PlanOutcome plan(const PlanRequest& request) {
   const GlobalSearchResult& result = planned.global;
   const bool reachable = result.status == GlobalSearchStatus::kOk;
 
-  const std::filesystem::path dir(request.output_dir);
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) {
-    throw InputError("--out " + request.output_dir + ": cannot create the folder (" +
-                     error.message() + ")");
-  }
-  const std::string candidates_file = (dir / "candidates.csv").string();
-  const std::string fields_file = (dir / "fields.csv").string();
-  const std::string summary_file = (dir / "summary.json").string();
-  write_text_file(candidates_file, candidates_csv(result));
+  const std::filesystem::path& dir = out.staging();
+  write_text_file(dir / "candidates.csv", candidates_csv(result));
   const bool write_fields = result.nx * result.ny <= kMaxFieldNodes;
-  if (write_fields) {
-    write_text_file(fields_file, fields_csv(result));
-  } else {
-    std::filesystem::remove(fields_file, error);  // never leave a stale one
-  }
+  if (write_fields) write_text_file(dir / "fields.csv", fields_csv(result));
+  const std::string summary_file = out.final_path("summary.json").string();
 
   nlohmann::json candidates = nlohmann::json::array();
   for (const CandidatePath& c : result.candidates) {
@@ -447,25 +434,26 @@ PlanOutcome plan(const PlanRequest& request) {
   summary["fit"] = request.smoothing ? "smoothing" : "interpolating";
   summary["smoothing"] =
       request.smoothing ? nlohmann::json(*request.smoothing) : nlohmann::json(nullptr);
-  summary["files"] = {{"candidates", candidates_file},
-                      {"fields", write_fields ? nlohmann::json(fields_file) : nullptr},
-                      {"summary", summary_file}};
+  summary["files"] = {
+      {"candidates", out.final_path("candidates.csv").string()},
+      {"fields", write_fields ? nlohmann::json(out.final_path("fields.csv").string()) : nullptr},
+      {"summary", summary_file}};
   summary["fit_seconds"] = fit_seconds;
   summary["search_seconds"] = result.search_seconds;
   if (request.stage == kPlanStageGlobal) {
     summary["seconds"] = seconds_since(start_time);
-    write_text_file(summary_file, summary.dump(2) + "\n");
+    write_text_file(dir / "summary.json", summary.dump(2) + "\n");
+    out.commit();
     outcome.summary = std::move(summary);
     outcome.reachable = reachable;
     return outcome;
   }
   nlohmann::json seconds = {{"fit", fit_seconds}, {"global", result.search_seconds}};
   if (reachable) {
-    write_full_stage(request, grid, problem, options, planned, dir, summary, seconds);
+    write_full_stage(request, grid, problem, options, planned, out, summary, seconds);
   } else {  // no trajectory: the full stage's fields are empty
-    write_text_file((dir / "trajectory.csv").string(), trajectory_csv(nullptr));
-    write_text_file((dir / "optima.csv").string(), std::string(kOptimaCsvHeader) + "\n");
-    for (const char* name : {"plan.png", "profile.png"}) std::filesystem::remove(dir / name, error);
+    write_text_file(dir / "trajectory.csv", trajectory_csv(nullptr));
+    write_text_file(dir / "optima.csv", std::string(kOptimaCsvHeader) + "\n");
     for (const char* key : {"travel_time", "global_travel_time", "improvement_percent"}) {
       summary[key] = nullptr;
     }
@@ -476,7 +464,8 @@ PlanOutcome plan(const PlanRequest& request) {
   }
   seconds["total"] = seconds_since(start_time);
   summary["seconds"] = std::move(seconds);
-  write_text_file(summary_file, summary.dump(2) + "\n");
+  write_text_file(dir / "summary.json", summary.dump(2) + "\n");
+  out.commit();
   outcome.summary = std::move(summary);
   outcome.reachable = planned.status == PlannerStatus::kOk;
   return outcome;

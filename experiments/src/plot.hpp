@@ -50,7 +50,8 @@ std::ofstream open_output_file(const std::filesystem::path& path);
 /// unnoticed into a figure.
 void close_output_file(std::ofstream& out, const std::filesystem::path& path);
 
-/// Writes `text` to `path` in one go (open_output_file + close_output_file).
+/// Writes `text` to `path` atomically: into a temporary file beside it, then
+/// renamed over it, so no reader ever sees it half-written.
 void write_text_file(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace talus::experiments

@@ -7,9 +7,10 @@
 #include <sstream>
 #include <vector>
 
-#include "limits_command.hpp"
-#include "stopwatch.hpp"
 #include "cli_values.hpp"
+#include "limits_command.hpp"
+#include "plot.hpp"
+#include "stopwatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"

@@ -13,6 +13,7 @@
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/curve_fit.hpp"
@@ -145,50 +146,47 @@ void run_dynamic_vs_kinematic(const ExperimentContext& context) {
            csv_number(r.talus_length) + "," + csv_number(r.talus_time) + "," +
            csv_number(r.talus_plan_seconds) + "," + csv_number(r.kinematic_time / r.talus_time) +
            "\n";
-    HaitMapData map;
-    map.grid = &s.grid;
-    map.routes.push_back(
+    std::vector<HaitRoute> routes;
+    routes.push_back(
         {r.kinematic_path,
          "kinematic (Hait et al.) + time-optimal profile: " + fmt("%.1f", r.kinematic_time) + " s",
          "#2c7fb8"});
-    map.routes.push_back(
+    routes.push_back(
         {r.talus_path, "Talus time-optimal: " + fmt("%.1f", r.talus_time) + " s", "#e6550d"});
-    map.start = s.start;
-    map.goal = s.goal;
-    map.title = "dynamic-vs-kinematic: " + name + " terrain";
-    render_hait_map(context.output_dir, "map_" + name, map);
+    render_hait_map(context.output_dir, "map_" + name, s, routes,
+                    "dynamic-vs-kinematic: " + name + " terrain");
   }
   write_text_file(context.output_dir / "comparison.csv", csv);
 
-  std::ostringstream md;
-  md << "# dynamic-vs-kinematic: path–velocity decomposition vs Talus's time-optimal plan\n\n"
-     << "**Set-up.** Terrains: the hait-heuristics problem (`crescent`) and the "
-        "hait-uncertainty problem (`gorge`, without uncertainty). The kinematic path is "
-        "`plan_hait` (articulated chassis `marsokhod_chassis.yaml`, potential-rs, smoothed); it "
-        "is split at its cusps and each forward or reverse piece is fitted with a clamped cubic "
-        "(`resample_polyline` + `fit_clamped_cubic`, one control point per metre, 4–48) and "
-        "driven rest to rest at its exact time-optimal profile; the travel time is the sum. "
-        "Talus's plan is `global_search` (one candidate) then `optimize_path` (Ipopt), from rest "
-        "to rest, its profile recomputed at 0.1 m stations. Both profiles use the interpolating "
-        "B-patch of the same grid. Vehicle: a point mass matched to the chassis: half track "
-        "0.45 m (the axle half width), centre of mass 0.35 m high, friction 0.7, max speed 2 "
-        "m/s, drive and brake 1 m/s². The kinematic planner knows nothing of speed, so this "
-        "compares routes, not planners of the same problem.\n\n"
-     << (context.quick ? "**Quick mode**: smaller maps.\n\n" : "")
-     << "| terrain | kinematic length [m] | pieces | kinematic time [s] | Talus length [m] | "
-        "Talus time [s] | time ratio | kinematic planning [s] | Talus planning [s] |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
+  Report report("dynamic-vs-kinematic: path–velocity decomposition vs Talus's time-optimal plan");
+  report.paragraph(
+      "**Set-up.** Terrains: the hait-heuristics problem (`crescent`) and the hait-uncertainty "
+      "problem (`gorge`, without uncertainty). The kinematic path is `plan_hait` (articulated "
+      "chassis `marsokhod_chassis.yaml`, potential-rs, smoothed); it is split at its cusps and "
+      "each forward or reverse piece is fitted with a clamped cubic (`resample_polyline` + "
+      "`fit_clamped_cubic`, one control point per metre, 4–48) and driven rest to rest at its "
+      "exact time-optimal profile; the travel time is the sum. Talus's plan is `global_search` "
+      "(one candidate) then `optimize_path` (Ipopt), from rest to rest, its profile recomputed at "
+      "0.1 m stations. Both profiles use the interpolating B-patch of the same grid. Vehicle: a "
+      "point mass matched to the chassis: half track 0.45 m (the axle half width), centre of mass "
+      "0.35 m high, friction 0.7, max speed 2 m/s, drive and brake 1 m/s². The kinematic planner "
+      "knows nothing of speed, so this compares routes, not planners of the same problem.");
+  if (context.quick) report.paragraph("**Quick mode**: smaller maps.");
+  Table table({"terrain", "kinematic length [m]", "pieces", "kinematic time [s]",
+               "Talus length [m]", "Talus time [s]", "time ratio", "kinematic planning [s]",
+               "Talus planning [s]"});
   for (const Row& r : rows) {
-    md << "| " << r.terrain << " | " << sig3(r.kinematic_length) << " | " << r.pieces << " | "
-       << fmt("%.2f", r.kinematic_time) << " | " << sig3(r.talus_length) << " | "
-       << fmt("%.2f", r.talus_time) << " | " << fmt("%.2f", r.kinematic_time / r.talus_time)
-       << " | " << fmt("%.3g", r.kinematic_plan_seconds) << " | "
-       << fmt("%.3g", r.talus_plan_seconds) << " |\n";
+    table.row({r.terrain, sig3(r.kinematic_length), std::to_string(r.pieces),
+               fmt("%.2f", r.kinematic_time), sig3(r.talus_length), fmt("%.2f", r.talus_time),
+               fmt("%.2f", r.kinematic_time / r.talus_time), fmt("%.3g", r.kinematic_plan_seconds),
+               fmt("%.3g", r.talus_plan_seconds)});
   }
-  md << "\nThe paper has no such comparison (it plans kinematically only); time ratio = "
-        "kinematic ÷ Talus.\n\nFiles: `comparison.csv`, `map_crescent.png`, `map_gorge.png`.\n\n"
-        "![crescent](map_crescent.png)\n\n![gorge](map_gorge.png)\n";
-  write_text_file(context.output_dir / "report.md", md.str());
+  report.table(table)
+      .paragraph(
+          "The paper has no such comparison (it plans kinematically only); time ratio = "
+          "kinematic ÷ Talus.")
+      .write(context.output_dir, "`comparison.csv`, `map_crescent.png`, `map_gorge.png`.",
+             {{"crescent", "map_crescent.png"}, {"gorge", "map_gorge.png"}});
 }
 
 }  // namespace talus::experiments

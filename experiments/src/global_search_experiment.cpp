@@ -17,10 +17,13 @@
 #include <vector>
 
 #include "experiment_terrain.hpp"
+#include "figure.hpp"
+#include "map_frame.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
 #include "relief_raster.hpp"
+#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/elevation_grid.hpp"
@@ -90,7 +93,6 @@ constexpr double kQuickLatticeCells = 3.0;
 
 constexpr std::size_t kRasterMaxSamples = 480;  // relief raster, longer side
 constexpr std::size_t kQuickRasterMaxSamples = 240;
-constexpr double kAmbient = 0.35;  // hillshade floor, as in terrain-gallery
 constexpr int kContourTargetLevels = 12;
 constexpr double kExcessShare = 0.2;  // colour range of the excess panel, × J*
 /// A candidate's vertex "shares" the best route's corridor if it lies within
@@ -198,6 +200,7 @@ struct Setup {
   /// the row terracing shows as a larger value along y.
   double roughness_x = 0.0, roughness_y = 0.0;
   Vec2 origin() const { return {patch.x_min(), patch.y_min()}; }
+  MapFrame frame() const { return MapFrame::of(patch, MapUnit::kKilometre); }
   double width() const { return patch.x_max() - patch.x_min(); }
   double height() const { return patch.y_max() - patch.y_min(); }
 };
@@ -412,24 +415,18 @@ ControlRun run_control(const Setup& setup, double friction, GlobalSearchOptions 
 
 /// Shaded relief raster (washed towards white so that routes and overlays
 /// read on top of it) and the elevation raster gnuplot traces contours on.
-/// Shared by every map; returns the contour interval.
-double write_relief(const Setup& setup, std::size_t max_samples, const fs::path& out_dir) {
-  const ReliefRaster raster =
-      sample_relief(setup.patch, setup.origin(), setup.width(), setup.height(), max_samples);
-  const double exaggeration = hillshade_exaggeration(slope_p95(raster));
-  std::ostringstream rgb_header, elevation_header;
-  rgb_header << "# " << kDemStem
-             << " crop, smoothing B-patch: hypsometric colour x hillshade (azimuth 315 deg, "
-                "altitude 45 deg, exaggeration "
-             << exaggeration
-             << "), washed 45 % towards white\n# x - x_min [m], y - y_min [m], red, green, blue\n";
+/// Shared by every map; returns the contour levels.
+ContourLevels write_relief(const Setup& setup, std::size_t max_samples, const fs::path& out_dir) {
+  const ReliefImage image = write_relief_image(
+      setup.patch, setup.frame(), std::string(kDemStem) + " crop, smoothing B-patch",
+      out_dir / "relief.rgb", max_samples, std::pair{setup.zmin, setup.zmax});
+  std::ostringstream elevation_header;
   elevation_header << "# " << kDemStem << " crop: smoothing B-patch (lambda " << kSmoothingLambda
-                   << ") on a " << raster.size.nx << " x " << raster.size.ny
+                   << ") on a " << image.raster.size.nx << " x " << image.raster.size.ny
                    << " raster\n# x - x_min [m], y - y_min [m], z [m]\n";
-  write_relief_rgb(raster, {setup.zmin, setup.zmax, {315.0, 45.0}, exaggeration, kAmbient, true},
-                   rgb_header.str(), out_dir / "relief.rgb");
-  write_elevation_raster(raster, elevation_header.str(), out_dir / "elevation.dat");
-  return contour_interval(setup.zmax - setup.zmin, kContourTargetLevels);
+  write_elevation_raster(image.raster, elevation_header.str(), out_dir / "elevation.dat");
+  return ContourLevels::within(setup.zmin, setup.zmax,
+                               contour_interval(setup.zmax - setup.zmin, kContourTargetLevels));
 }
 
 /// Lattice nodes of `r` as offsets from the crop's south-west node.
@@ -519,63 +516,22 @@ void write_fields(const Setup& setup, const FrictionRun& run, const fs::path& fi
 // ---------------------------------------------------------------------------
 // Figures.
 
-/// gnuplot lines tracing the elevation contours into contours.dat.
-std::string contour_tracing(const Setup& setup, double step) {
-  const double first = std::ceil(setup.zmin / step) * step;
-  const double last = std::floor(setup.zmax / step) * step;
-  std::ostringstream gp;
-  gp << "# Elevation contours, traced by gnuplot on the elevation raster into a table.\n"
-     << "set contour base\nunset surface\nset view map\nset cntrparam linear\n"
-     << "set cntrparam levels incremental " << fmt("%.10g", first) << ", " << fmt("%.10g", step)
-     << ", " << fmt("%.10g", last) << "\n"
-     << "set table 'contours.dat'\n"
-     << "splot 'elevation.dat' using 1:2:3 with lines notitle\n"
-     << "unset table\nunset contour\nset surface\n";
-  return gp.str();
-}
-
-std::string map_axes(const Setup& setup) {
-  std::ostringstream gp;
-  gp << "set size ratio -1\n"
-     << "set xrange [0:" << fmt("%.10g", setup.width() * 1e-3) << "]\n"
-     << "set yrange [0:" << fmt("%.10g", setup.height() * 1e-3) << "]\n"
-     << "set xlabel 'x − x_{min} [km]  (east)'\nset ylabel 'y − y_{min} [km]  (north)'\n"
-     << "set tics out nomirror\n";
-  return gp.str();
-}
-
-/// Start and goal markers with labels (offsets in metres from the crop's SW node).
-std::string endpoint_markers(const Setup& setup) {
-  const Vec2 s = (setup.start - setup.origin()) * 1e-3, g = (setup.goal - setup.origin()) * 1e-3;
-  std::ostringstream gp;
-  // Boxed in white: the labels must read over dark field colours too.
-  gp << "set style textbox opaque noborder fillcolor rgb 'white' margins 1,1\n"
-     << "set label 101 'start' at " << fmt("%.6g", s.x()) << "," << fmt("%.6g", s.y())
-     << " offset char -1.5,1.3 front boxed font ',12' tc rgb 'black'\n"
-     << "set label 102 'goal' at " << fmt("%.6g", g.x()) << "," << fmt("%.6g", g.y())
-     << " offset char 0.9,0.9 front boxed font ',12' tc rgb 'black'\n";
-  return gp.str();
-}
-
-/// Plot items drawing start (circle) and goal (square) from endpoints.dat.
-std::string endpoint_items() {
-  return "'endpoints.dat' index 0 using ($1/1000):($2/1000) with points pt 7 ps 2.2 "
-         "lc rgb 'black' notitle, \\\n"
-         "     '' index 0 using ($1/1000):($2/1000) with points pt 7 ps 1.5 lc rgb '#4dff4d' "
-         "title 'start', \\\n"
-         "     '' index 1 using ($1/1000):($2/1000) with points pt 5 ps 2.2 lc rgb 'black' "
-         "notitle, \\\n"
-         "     '' index 1 using ($1/1000):($2/1000) with points pt 5 ps 1.5 lc rgb '#ffd700' "
-         "title 'goal'";
+/// Start and goal labels, boxed in white: they must read over dark field
+/// colours too.
+std::string endpoint_labels(const Setup& setup) {
+  const MapFrame frame = setup.frame();
+  return "set style textbox opaque noborder fillcolor rgb 'white' margins 1,1\n"
+         "set label 101 'start' at " +
+         frame.at(setup.start) +
+         " offset char -1.5,1.3 front boxed font ',12' tc rgb 'black'\n"
+         "set label 102 'goal' at " +
+         frame.at(setup.goal) + " offset char 0.9,0.9 front boxed font ',12' tc rgb 'black'\n";
 }
 
 void write_endpoints(const Setup& setup, const fs::path& out_dir) {
-  std::ostringstream text;
-  const Vec2 s = setup.start - setup.origin(), g = setup.goal - setup.origin();
-  text << "# start, then goal: x - x_min [m], y - y_min [m]\n"
-       << fmt("%.7g", s.x()) << ' ' << fmt("%.7g", s.y()) << "\n\n\n"
-       << fmt("%.7g", g.x()) << ' ' << fmt("%.7g", g.y()) << '\n';
-  write_text_file(out_dir / "endpoints.dat", text.str());
+  write_text_file(out_dir / "endpoints.dat", "# start, then goal: x - x_min [m], y - y_min [m]\n" +
+                                                 offset_row(setup.start, setup.origin()) + "\n" +
+                                                 offset_row(setup.goal, setup.origin()) + "\n");
 }
 
 std::string candidate_title(std::size_t c, const CandidatePath& path) {
@@ -589,59 +545,58 @@ std::string vehicle_text(const Vehicle& v) {
          " m, b = " + fmt("%g", v.half_track) + " m, v_{max} ≤ " + fmt("%g", v.max_speed) + " m/s";
 }
 
-int map_canvas_height(const Setup& setup, int width) {
-  return static_cast<int>(
-      std::clamp(230.0 + (width - 260.0) * setup.height() / setup.width(), 450.0, 1200.0));
+const char* candidate_colour(std::size_t c) {
+  return kCandidateColours[c % std::size(kCandidateColours)];
+}
+
+/// Plot items of the candidates of `routes_file` in a white casing, drawn
+/// worst first so the best lies on top where routes share a corridor.
+void add_routes(PlotItems& items, const MapFrame& frame, const std::string& routes_file,
+                std::size_t count, const std::string& width, const std::string& casing) {
+  for (std::size_t c = count; c-- > 0;) {
+    const std::string block = "'" + routes_file + "' index " + std::to_string(c) + " using " +
+                              frame.xy() + " with lines lw ";
+    items.push_back(block + casing + " lc rgb 'white' notitle");
+    items.push_back(block + width + " lc rgb '" + candidate_colour(c) + "' notitle");
+  }
 }
 
 /// Figure 1: the candidates of one friction over shaded relief.
-void draw_routes(const Setup& setup, const FrictionRun& run, double contour_step,
+void draw_routes(const Setup& setup, const FrictionRun& run, const ContourLevels& contours,
                  const fs::path& out_dir) {
   const std::string tag = friction_tag(run.friction);
   write_unreachable(setup, run.result, nullptr, out_dir / ("unreachable_" + tag + ".rgba"));
   const GlobalSearchResult& r = run.result;
+  const MapFrame frame = setup.frame();
   std::ostringstream title;
   title << "Global search on Mount St. Helens (30 m DEM): " << r.candidates.size()
         << " distinct candidates, " << vehicle_text(run.vehicle) << "\n"
         << kConnectivity << "-connected lattice, spacing " << fmt("%g", r.spacing)
-        << " m; shaded: unreachable from the start; contours every " << fmt("%g", contour_step)
+        << " m; shaded: unreachable from the start; contours every " << fmt("%g", contours.step)
         << " m";
-  const int width = 1100;
-  std::ostringstream gp;
-  gp << "# Candidate routes at μ = " << run.friction << ", from `talus experiment global-search`.\n"
-     << "# Re-render in this folder with: gnuplot routes_" << tag << ".gp\n"
-     << "# Inputs: relief.rgb, elevation.dat, unreachable_" << tag << ".rgba, routes_" << tag
-     << ".dat (one block per candidate), endpoints.dat.\n"
-     << png_terminal(width, map_canvas_height(setup, width) + 60) << "set output 'routes_" << tag
-     << ".png'\n"
-     << contour_tracing(setup, contour_step) << map_axes(setup) << "set title "
-     << gnuplot_string(title.str()) << " font ',10'\n"
-     << endpoint_markers(setup) << "set key outside bottom center vertical maxrows 3 samplen 2\n"
-     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
-     << "     'unreachable_" << tag
-     << ".rgba' using ($1/1000):($2/1000):3:4:5:6 with rgbalpha notitle, \\\n"
-     << "     keyentry with boxes fs solid 0.6 noborder fc rgb '#191919' "
-        "title 'unreachable from the start', \\\n"
-     << "     'contours.dat' using ($1/1000):($2/1000) with lines lc rgb '#606060' lw 0.5 "
-        "notitle, \\\n";
-  // Legend best first; lines drawn worst first, so the best lies on top
-  // where routes share a corridor.
+  PlotItems items{
+      "'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle",
+      "'unreachable_" + tag + ".rgba' using " + frame.xy() + ":3:4:5:6 with rgbalpha notitle",
+      "keyentry with boxes fs solid 0.6 noborder fc rgb '#191919' "
+      "title 'unreachable from the start'",
+      frame.contour_item("contours.dat", "lc rgb '#606060' lw 0.5 notitle")};
+  // Legend best first.
   for (std::size_t c = 0; c < r.candidates.size(); ++c) {
-    gp << "     keyentry with lines lw 3 lc rgb '"
-       << kCandidateColours[c % std::size(kCandidateColours)] << "' title "
-       << gnuplot_string(candidate_title(c, r.candidates[c])) << ", \\\n";
+    items.push_back("keyentry with lines lw 3 lc rgb '" + std::string(candidate_colour(c)) +
+                    "' title " + gnuplot_string(candidate_title(c, r.candidates[c])));
   }
-  for (std::size_t c = r.candidates.size(); c-- > 0;) {
-    const char* colour = kCandidateColours[c % std::size(kCandidateColours)];
-    gp << "     'routes_" << tag << ".dat' index " << c
-       << " using ($1/1000):($2/1000) with lines lw 5.5 lc rgb 'white' notitle, \\\n"
-       << "     '' index " << c << " using ($1/1000):($2/1000) with lines lw 3 lc rgb '" << colour
-       << "' notitle, \\\n";
-  }
-  gp << "     " << endpoint_items() << "\n";
-  const fs::path script = out_dir / ("routes_" + tag + ".gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  add_routes(items, frame, "routes_" + tag + ".dat", r.candidates.size(), "3", "5.5");
+  items.push_back(frame.endpoint_items("endpoints.dat", 0));
+  GnuplotFigure figure(out_dir, "routes_" + tag);
+  figure.describe("Candidate routes at μ = " + fmt("%g", run.friction) +
+                      ", from `talus experiment global-search`.",
+                  "relief.rgb, elevation.dat, unreachable_" + tag + ".rgba, routes_" + tag +
+                      ".dat (one block per candidate), endpoints.dat.")
+          .canvas(1100, frame.canvas_height(1100, 60))
+      << trace_contours("elevation.dat", 3, contours, "contours.dat") << frame.axes();
+  figure.title(title.str(), ",10", true)
+      << endpoint_labels(setup) << "set key outside bottom center vertical maxrows 3 samplen 2\n";
+  figure.plot(items).render();
 }
 
 /// Figure 2: the cost-to-go field from the start and the excess of the best
@@ -650,6 +605,7 @@ void draw_fields(const Setup& setup, const FrictionRun& run, const fs::path& out
   const std::string tag = friction_tag(run.friction);
   write_fields(setup, run, out_dir / ("fields_" + tag + ".dat"));
   const GlobalSearchResult& r = run.result;
+  const MapFrame frame = setup.frame();
   const double best = r.candidates.front().cost_seconds;
   double t_max = 0.0;
   for (const double t : r.cost_from_start)
@@ -660,148 +616,119 @@ void draw_fields(const Setup& setup, const FrictionRun& run, const fs::path& out
   // few per cent of it and would all look alike on a [0, J*] scale.
   const double excess_max = kExcessShare * best;
   const double excess_step = contour_interval(excess_max, 6);
+  const std::string fields = "fields_" + tag + ".dat";
+  const std::string relief = "'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle";
+  const std::string best_route = "'routes_" + tag + ".dat' index 0 using " + frame.xy();
 
-  const int width = 1800;
-  const int height =
-      static_cast<int>(std::clamp(220.0 + 660.0 * setup.height() / setup.width(), 500.0, 1300.0));
   std::ostringstream title;
   title << "Cost-to-go fields on Mount St. Helens, " << vehicle_text(run.vehicle) << ", "
         << kConnectivity << "-connected lattice, spacing " << fmt("%g", r.spacing)
         << " m; bare relief: unreachable from the start";
-  std::ostringstream gp;
-  gp << "# Cost-to-go fields at μ = " << run.friction
-     << ", from `talus experiment global-search`.\n"
-     << "# Re-render in this folder with: gnuplot fields_" << tag << ".gp\n"
-     << "# Inputs: fields_" << tag << ".dat (x y T_start excess), relief.rgb, routes_" << tag
-     << ".dat, endpoints.dat.\n"
-     << png_terminal(width, height) << "set output 'fields_" << tag << ".png'\n"
-     << "# Isochrones of T_start and iso-excess lines, traced by gnuplot into tables.\n"
-     << "set contour base\nunset surface\nset view map\nset cntrparam linear\n"
-     << "set cntrparam levels incremental 0, " << fmt("%.10g", t_step) << ", "
-     << fmt("%.10g", t_max) << "\n"
-     << "set table 'fields_" << tag << "_isochrones.dat'\n"
-     << "splot 'fields_" << tag << ".dat' using 1:2:3 with lines notitle\n"
-     << "unset table\n"
-     << "set cntrparam levels incremental " << fmt("%.10g", excess_step) << ", "
-     << fmt("%.10g", excess_step) << ", " << fmt("%.10g", excess_max) << "\n"
-     << "set table 'fields_" << tag << "_excess.dat'\n"
-     << "splot 'fields_" << tag << ".dat' using 1:2:4 with lines notitle\n"
-     << "unset table\nunset contour\nset surface\n"
-     << "set multiplot layout 1,2 title " << gnuplot_string(title.str()) << " font ',12'\n"
-     << map_axes(setup) << endpoint_markers(setup)
-     << "set key outside bottom center vertical maxrows 2 samplen 2\n"
-     << "set cblabel 'T_{start} [s]'\n"
-     << "# Viridis-like: dark = reached early. Unreachable nodes are NaN, drawn\n"
-     << "# transparent, so the bare relief marks them.\n"
-     << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 "
-        "'#fde725')\n"
-     << "set cbrange [0:" << fmt("%.10g", t_max) << "]\n"
-     << "set title "
-     << gnuplot_string("(a) minimum time from the start, T_{start}; isochrones every " +
-                       fmt("%g", t_step) + " s")
-     << "\n"
-     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
-     << "     'fields_" << tag << ".dat' using ($1/1000):($2/1000):3 with image notitle, \\\n"
-     << "     'fields_" << tag
-     << "_isochrones.dat' using ($1/1000):($2/1000) with lines lc rgb "
-        "'white' lw 0.7 notitle, \\\n"
-     << "     'routes_" << tag
-     << ".dat' index 0 using ($1/1000):($2/1000) with lines lw 5.5 lc rgb 'white' notitle, \\\n"
-     << "     '' index 0 using ($1/1000):($2/1000) with lines lw 3 lc rgb '#e41a1c' title "
-        "'best route', \\\n"
-     << "     " << endpoint_items() << "\n"
-     << "set cblabel 'T_{start} + T_{goal} − J* [s]'\n"
-     << "# Magma-like, reversed: dark valleys = nodes on near-optimal routes.\n"
-     << "set palette defined (0 '#000004', 0.25 '#51127c', 0.5 '#b73779', 0.75 '#fc8961', 1 "
-        "'#fcfdbf')\n"
-     << "set cbrange [0:" << fmt("%.10g", excess_max) << "]\n"
-     << "set title "
-     << gnuplot_string(
-            "(b) excess time of the best route through each node "
-            "over J* = " +
-            fmt("%.1f", best) + " s; lines every " + fmt("%g", excess_step) +
-            " s, colours saturate at " + fmt("%.0f", excess_max) + " s")
-     << "\n"
-     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
-     << "     'fields_" << tag << ".dat' using ($1/1000):($2/1000):($4 < "
-     << fmt("%.10g", excess_max) << " ? $4 : " << fmt("%.10g", excess_max)
-     << ") with image notitle, \\\n"
-     << "     'fields_" << tag
-     << "_excess.dat' using ($1/1000):($2/1000) with lines lc rgb "
-        "'white' lw 0.7 notitle, \\\n";
+  GnuplotFigure figure(out_dir, "fields_" + tag);
+  figure.describe(
+            "Cost-to-go fields at μ = " + fmt("%g", run.friction) +
+                ", from `talus experiment global-search`.",
+            fields + " (x y T_start excess), relief.rgb, routes_" + tag + ".dat, endpoints.dat.")
+          .canvas(1800, frame.canvas_height(920))
+      << trace_contours(fields, 3, {0.0, t_step, t_max}, "fields_" + tag + "_isochrones.dat")
+      << trace_contours(fields, 4, {excess_step, excess_step, excess_max},
+                        "fields_" + tag + "_excess.dat")
+      << "set multiplot layout 1,2 title " << gnuplot_string(title.str()) << " font ',12'\n"
+      << frame.axes() << endpoint_labels(setup)
+      << "set key outside bottom center vertical maxrows 2 samplen 2\n"
+      << "set cblabel 'T_{start} [s]'\n"
+      << "# Viridis-like: dark = reached early. Unreachable nodes are NaN, drawn\n"
+      << "# transparent, so the bare relief marks them.\n"
+      << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 "
+         "'#fde725')\n"
+      << "set cbrange [0:" << fmt("%.10g", t_max) << "]\n";
+  figure.title(
+      "(a) minimum time from the start, T_{start}; isochrones every " + fmt("%g", t_step) + " s",
+      "", true);
+  figure.plot(
+      {relief, "'" + fields + "' using " + frame.xy() + ":3 with image notitle",
+       frame.contour_item("fields_" + tag + "_isochrones.dat", "lc rgb 'white' lw 0.7 notitle"),
+       best_route + " with lines lw 5.5 lc rgb 'white' notitle",
+       best_route + " with lines lw 3 lc rgb '#e41a1c' title 'best route'",
+       frame.endpoint_items("endpoints.dat", 0)});
+  figure << "set cblabel 'T_{start} + T_{goal} − J* [s]'\n"
+         << "# Magma-like, reversed: dark valleys = nodes on near-optimal routes.\n"
+         << "set palette defined (0 '#000004', 0.25 '#51127c', 0.5 '#b73779', 0.75 '#fc8961', 1 "
+            "'#fcfdbf')\n"
+         << "set cbrange [0:" << fmt("%.10g", excess_max) << "]\n";
+  figure.title("(b) excess time of the best route through each node over J* = " +
+                   fmt("%.1f", best) + " s; lines every " + fmt("%g", excess_step) +
+                   " s, colours saturate at " + fmt("%.0f", excess_max) + " s",
+               "", true);
+  const std::string cap = fmt("%.10g", excess_max);
+  PlotItems items{
+      relief,
+      "'" + fields + "' using " + frame.xy() + ":($4 < " + cap + " ? $4 : " + cap +
+          ") with image notitle",
+      frame.contour_item("fields_" + tag + "_excess.dat", "lc rgb 'white' lw 0.7 notitle")};
   for (std::size_t c = 0; c < r.candidates.size(); ++c) {
-    gp << "     keyentry with lines lw 2.5 lc rgb '"
-       << kCandidateColours[c % std::size(kCandidateColours)] << "' title 'candidate " << c + 1
-       << "', \\\n";
+    items.push_back("keyentry with lines lw 2.5 lc rgb '" + std::string(candidate_colour(c)) +
+                    "' title 'candidate " + std::to_string(c + 1) + "'");
   }
-  for (std::size_t c = r.candidates.size(); c-- > 0;) {
-    gp << "     'routes_" << tag << ".dat' index " << c
-       << " using ($1/1000):($2/1000) with lines lw 5 lc rgb 'white' notitle, \\\n"
-       << "     '' index " << c << " using ($1/1000):($2/1000) with lines lw 2.5 lc rgb '"
-       << kCandidateColours[c % std::size(kCandidateColours)] << "' notitle, \\\n";
-  }
-  gp << "     " << endpoint_items() << "\n"
-     << "unset multiplot\n";
-  const fs::path script = out_dir / ("fields_" + tag + ".gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  add_routes(items, frame, "routes_" + tag + ".dat", r.candidates.size(), "2.5", "5");
+  items.push_back(frame.endpoint_items("endpoints.dat", 0));
+  figure.plot(items) << "unset multiplot\n";
+  figure.render();
 }
 
 /// Figure 3: the best route at each friction on one map, with their
 /// elevation and terrain slope against distance.
-void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs, double contour_step,
-                     const fs::path& out_dir) {
+void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs,
+                     const ContourLevels& contours, const fs::path& out_dir) {
   // Shade where the lowest friction cannot reach: light where only it
   // fails, dark where every friction fails.
   const FrictionRun& high = runs.front();
   const FrictionRun& low = runs.back();
   write_unreachable(setup, low.result, &high.result, out_dir / "unreachable_compare.rgba");
-  const int width = 1900;
-  const int height =
-      static_cast<int>(std::clamp(260.0 + 800.0 * setup.height() / setup.width(), 700.0, 1300.0));
-  std::ostringstream gp;
-  gp << "# Best route at each friction, from `talus experiment global-search`.\n"
-     << "# Re-render in this folder with: gnuplot compare.gp\n"
-     << "# Inputs: relief.rgb, elevation.dat, unreachable_compare.rgba, routes_mu*.dat, "
-        "endpoints.dat.\n"
-     << png_terminal(width, height) << "set output 'compare.png'\n"
-     << contour_tracing(setup, contour_step) << "set multiplot title "
-     << gnuplot_string("Best route at μ = " + fmt("%g", high.friction) +
-                       " and μ = " + fmt("%g", low.friction) +
-                       ", Mount St. Helens (30 m DEM), point mass h = b = 0.8 m, v ≤ 20 m/s")
-     << " font ',13'\n"
-     << "# Left: the map (52 % of the width).\n"
-     << "set origin 0,0\nset size 0.52,0.96\n"
-     << map_axes(setup) << endpoint_markers(setup)
-     << "set key outside bottom center vertical maxrows 3 samplen 2\n"
-     << "set title 'routes; shaded: unreachable at μ = " << fmt("%g", low.friction)
-     << " (light: reachable at μ = " << fmt("%g", high.friction) << ", dark: at neither)'\n"
-     << "plot 'relief.rgb' using ($1/1000):($2/1000):3:4:5 with rgbimage notitle, \\\n"
-     << "     'unreachable_compare.rgba' using ($1/1000):($2/1000):3:4:5:6 with rgbalpha "
-        "notitle, \\\n"
-     << "     'contours.dat' using ($1/1000):($2/1000) with lines lc rgb '#606060' lw 0.5 "
-        "notitle, \\\n";
+  const MapFrame frame = setup.frame();
+  GnuplotFigure figure(out_dir, "compare");
+  figure.describe("Best route at each friction, from `talus experiment global-search`.",
+                  "relief.rgb, elevation.dat, unreachable_compare.rgba, routes_mu*.dat, "
+                  "endpoints.dat.")
+          .canvas(1900, frame.canvas_height(1060, 40))
+      << trace_contours("elevation.dat", 3, contours, "contours.dat") << "set multiplot title "
+      << gnuplot_string("Best route at μ = " + fmt("%g", high.friction) +
+                        " and μ = " + fmt("%g", low.friction) +
+                        ", Mount St. Helens (30 m DEM), point mass h = b = 0.8 m, v ≤ 20 m/s")
+      << " font ',13'\n"
+      << "# Left: the map (52 % of the width).\n"
+      << "set origin 0,0\nset size 0.52,0.96\n"
+      << frame.axes() << endpoint_labels(setup)
+      << "set key outside bottom center vertical maxrows 3 samplen 2\n";
+  figure.title("routes; shaded: unreachable at μ = " + fmt("%g", low.friction) +
+                   " (light: reachable at μ = " + fmt("%g", high.friction) + ", dark: at neither)",
+               "", true);
+  PlotItems items{
+      "'relief.rgb' using " + frame.xy() + ":3:4:5 with rgbimage notitle",
+      "'unreachable_compare.rgba' using " + frame.xy() + ":3:4:5:6 with rgbalpha notitle",
+      frame.contour_item("contours.dat", "lc rgb '#606060' lw 0.5 notitle")};
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const FrictionRun& run = runs[k];
     const CandidatePath& best = run.result.candidates.front();
-    gp << "     'routes_" << friction_tag(run.friction)
-       << ".dat' index 0 using ($1/1000):($2/1000) with lines lw 6 lc rgb 'white' notitle, \\\n"
-       << "     '' index 0 using ($1/1000):($2/1000) with lines lw 3.5 lc rgb '"
-       << kFrictionColours[k % std::size(kFrictionColours)] << "' title "
-       << gnuplot_string("μ = " + fmt("%g", run.friction) +
-                         ": J = " + fmt("%.1f", best.cost_seconds) + " s, " +
-                         fmt("%.2f", best.length_m * 1e-3) + " km")
-       << ", \\\n";
+    const std::string block =
+        "'routes_" + friction_tag(run.friction) + ".dat' index 0 using " + frame.xy();
+    items.push_back(block + " with lines lw 6 lc rgb 'white' notitle");
+    items.push_back(block + " with lines lw 3.5 lc rgb '" +
+                    kFrictionColours[k % std::size(kFrictionColours)] + "' title " +
+                    gnuplot_string("μ = " + fmt("%g", run.friction) +
+                                   ": J = " + fmt("%.1f", best.cost_seconds) + " s, " +
+                                   fmt("%.2f", best.length_m * 1e-3) + " km"));
   }
+  items.push_back(frame.endpoint_items("endpoints.dat", 0));
+  figure.plot(items);
   // Slowest edge of either best route: when it is the top speed, J is just
   // length / v_max and panel (b) says so instead of plotting a flat line.
   double slowest = kInf;
   for (const FrictionRun& run : runs) slowest = std::min(slowest, run.info.front().min_edge_speed);
   const double top = high.vehicle.max_speed;
-  gp << "     " << endpoint_items() << "\n"
-     << "unset label\nset size noratio\nset autoscale\n"
-     << "set xlabel 'distance along the route s [km]'\nset grid lc rgb '#d0d0d0'\n"
-     << "set key inside top right opaque samplen 2\n";
+  figure << "unset label\nset size noratio\nset autoscale\n"
+         << "set xlabel 'distance along the route s [km]'\nset grid lc rgb '#d0d0d0'\n"
+         << "set key inside top right opaque samplen 2\n";
   // Right column: two stacked panels.
   const std::string slope_title =
       slowest >= top * (1.0 - 1e-9)
@@ -816,33 +743,32 @@ void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs, d
       {"terrain slope [°]", "5", slope_title},
   };
   for (int p = 0; p < 2; ++p) {
-    gp << "set origin 0.55," << fmt("%.4g", 0.49 - 0.46 * p) << "\nset size 0.44,0.46\n"
-       << "set ylabel '" << panels[p][0] << "'\nset title " << gnuplot_string(panels[p][2]) << "\n"
-       << (p == 1 ? "set yrange [0:" +
-                        fmt("%.0f",
-                            10.0 * std::ceil(degrees(std::atan(high.friction)) / 10.0) + 10.0) +
-                        "]\nset key horizontal maxrows 2\n"
-                  : std::string("set yrange [*:*]\n"))
-       << "plot ";
+    figure << "set origin 0.55," << fmt("%.4g", 0.49 - 0.46 * p) << "\nset size 0.44,0.46\n"
+           << "set ylabel '" << panels[p][0] << "'\n";
+    figure.title(panels[p][2], "", true)
+        << (p == 1 ? "set yrange [0:" +
+                         fmt("%.0f",
+                             10.0 * std::ceil(degrees(std::atan(high.friction)) / 10.0) + 10.0) +
+                         "]\nset key horizontal maxrows 2\n"
+                   : std::string("set yrange [*:*]\n"));
+    PlotItems profile;
     for (std::size_t k = 0; k < runs.size(); ++k) {
       const FrictionRun& run = runs[k];
-      const char* colour = kFrictionColours[k % std::size(kFrictionColours)];
-      gp << (k ? ", \\\n     " : "") << "'routes_" << friction_tag(run.friction)
-         << ".dat' index 0 using ($3/1000):" << panels[p][1] << " with lines lw 2 lc rgb '"
-         << colour << "' title 'μ = " << fmt("%g", run.friction) << "'";
+      const std::string colour = kFrictionColours[k % std::size(kFrictionColours)];
+      profile.push_back("'routes_" + friction_tag(run.friction) + ".dat' index 0 using ($3/1000):" +
+                        panels[p][1] + " with lines lw 2 lc rgb '" + colour +
+                        "' title 'μ = " + fmt("%g", run.friction) + "'");
       if (p == 1) {
-        gp << ", \\\n     " << fmt("%.6g", degrees(std::atan(run.friction)))
-           << " with lines dt (6,4) lw 1.5 lc rgb '" << colour << "' title 'atan "
-           << fmt("%g", run.friction) << " = " << fmt("%.1f", degrees(std::atan(run.friction)))
-           << "°'";
+        const double steep = degrees(std::atan(run.friction));
+        profile.push_back(fmt("%.6g", steep) + " with lines dt (6,4) lw 1.5 lc rgb '" + colour +
+                          "' title 'atan " + fmt("%g", run.friction) + " = " + fmt("%.1f", steep) +
+                          "°'");
       }
     }
-    gp << "\n";
+    figure.plot(profile);
   }
-  gp << "unset multiplot\n";
-  const fs::path script = out_dir / "compare.gp";
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  figure << "unset multiplot\n";
+  figure.render();
 }
 
 // ---------------------------------------------------------------------------
@@ -947,125 +873,133 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
   const double distance = (setup.goal - setup.start).norm();
   const double separation = default_separation(r0);
   const Vec2 o = setup.origin();
-  std::ostringstream md;
-  md << "# Global search: distinct minimum-time corridors across Mount St. Helens\n\n"
-     << "The global stage of the planner (`talus::global_search`) on a real DEM at its true "
-        "scale, for a car-like vehicle at two tyre frictions — the analogue of the "
-        "global-optimal-path figure of Iagnemma, Shimoda and Shiller (IROS 2008).\n\n"
-     << "## What was run\n\n"
-     << "- Terrain: `data/terrain/" << kDemStem
-     << ".asc` (USGS 30 m DEM of Mount St. Helens after the 1980 eruption, NAD27 / UTM 10N; "
-        "provenance in `data/terrain/README.md`), cropped to "
-     << kCrop.ncols << " × " << kCrop.nrows << " nodes (DEM columns " << kCrop.col << "–"
-     << kCrop.col + kCrop.ncols - 1 << " from the west, rows " << kCrop.row << "–"
-     << kCrop.row + kCrop.nrows - 1 << " from the south): " << fmt("%.2f", setup.width() * 1e-3)
-     << " × " << fmt("%.2f", setup.height() * 1e-3) << " km, elevation " << fmt("%.0f", setup.zmin)
-     << "–" << fmt("%.0f", setup.zmax) << " m, summit " << fmt("%.0f", setup.summit_z) << " m at ("
-     << fmt("%.2f", (setup.summit.x() - o.x()) * 1e-3) << ", "
-     << fmt("%.2f", (setup.summit.y() - o.y()) * 1e-3)
-     << ") km on the crater's south rim. True scale: slopes and curvatures are those of the "
-        "mountain.\n"
-     << "- Surface: `BPatch::fit_smoothing` with λ = " << fmt("%g", kSmoothingLambda)
-     << " (about one cell of smoothing), fitted in " << sig3(setup.fit_seconds)
-     << " s. Why not the interpolating fit: this early DEM carries an east–west striping "
-        "artefact (going north along a column on the flanks, one-cell steps of 15–25 m "
-        "alternate with flat or reversed cells; over the crop the mean |second difference| of the "
-        "nodes is "
-     << fmt("%.1f", setup.roughness_y) << " m along y against " << fmt("%.1f", setup.roughness_x)
-     << " m along x). The interpolating fit reproduces every step, and each step steeper than atan "
-        "μ becomes "
-        "a one-row untraversable bar across a passable flank. The control run below shows the "
-        "effect.\n"
-     << "- Vehicle: point mass, μ = 0.7 and μ = 0.35, centre-of-mass height h = 0.8 m, half "
-        "track b = 0.8 m, max speed 20 m/s, g = 9.81 m/s², no drive or brake limit "
-        "(friction alone bounds the tangential force).\n"
-     << "- Start (" << fmt("%.3f", (setup.start.x() - o.x()) * 1e-3) << ", "
-     << fmt("%.3f", (setup.start.y() - o.y()) * 1e-3) << ") km and goal ("
-     << fmt("%.3f", (setup.goal.x() - o.x()) * 1e-3) << ", "
-     << fmt("%.3f", (setup.goal.y() - o.y()) * 1e-3)
-     << ") km from the crop's south-west node (DEM nodes (" << fmt("%g", kStart.i) << ", "
-     << fmt("%g", kStart.j) << ") and (" << fmt("%g", kGoal.i) << ", " << fmt("%g", kGoal.j)
-     << ")): gentle ground west and east of the cone, " << fmt("%.2f", distance * 1e-3)
-     << " km apart, the straight line between them crossing the crater. They were chosen in "
-        "the one region of the crop that stays connected at μ = 0.35 (the lowland apron south "
-        "of the cone, which reaches up its west and east sides), so both runs succeed.\n"
-     << "- Search: `global_search` with candidates = " << kCandidates << ", connectivity "
-     << kConnectivity << ", lattice spacing " << fmt("%g", r0.spacing) << " m"
-     << (context.quick ? " (quick mode: 3 cells)" : " (= the cell size)") << ", " << r0.nx << " × "
-     << r0.ny
-     << " nodes, cost_fields = true, max_cost_ratio 2 (default). Cost J = ∫ ds / v_max along "
-        "straight lattice edges lifted onto the surface (Simpson's rule, stations at most half a "
-        "spacing apart); an edge is untraversable in a direction if at some station no speed "
-        "satisfies the speed limits (a), or the vehicle can neither climb nor hold its speed at "
-        "any admissible speed (b), or cannot brake at any admissible speed (c).\n"
-     << "- Distinctness (as documented in `global_search.hpp`): lattice nodes are taken in "
-        "increasing order of T_start + T_goal, the cost of the best route through them, up to "
-        "2 J*; a node's route (start tree + goal tree) is accepted if the node is at least the "
-        "separation away from every accepted candidate and the route's symmetric Hausdorff "
-        "distance to each of them is at least the separation — here the default max(10 % of "
-        "the start–goal distance, 3 spacings) = "
-     << fmt("%.0f", separation) << " m.\n"
-     << "- Relief: the smoothing patch on a raster, hypsometric tint × hillshade (sun azimuth "
-        "315°, altitude 45°), washed towards white; contours every "
-     << fmt("%g", contour_step)
-     << " m traced by gnuplot. Every figure's gnuplot script and data sit beside it "
-        "(`gnuplot <name>.gp` in this folder re-renders it).\n"
-     << "- Total run time " << fmt("%.1f", total_seconds)
-     << " s on this machine (searches, fits, data files and gnuplot).\n\n"
-     << "## Candidates\n\n"
-     << "Numbers also in `summary.csv`; vertices in `candidates_mu<μ>.csv` (absolute UTM "
-        "coordinates, z on the smoothing patch). Mean speed = length / J. Max slope: steepest "
-        "terrain slope at the search's edge stations along the route. Passes summit: distance "
-        "and compass direction from the summit of the point where the route crosses the line "
-        "through the summit perpendicular to the start→goal axis. Hausdorff / shared: "
-        "symmetric Hausdorff distance to candidate 1 (the quantity the distinctness rule "
-        "tests) and the share of the route's vertices within "
-     << fmt("%.0f", kSharedFraction * separation) << " m (a quarter of the separation) of "
-     << "candidate 1, i.e. in its corridor.\n\n"
-     << "| μ | candidate | J [s] | length [km] | mean speed [m/s] | max slope [°] | highest "
-        "point [m] | total climb [m] | passes summit | Hausdorff to 1 [m] | shared with 1 |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const FrictionRun& run : runs) {
-    for (std::size_t c = 0; c < run.result.candidates.size(); ++c) {
-      const CandidatePath& p = run.result.candidates[c];
-      const CandidateInfo& info = run.info[c];
-      md << "| " << fmt("%g", run.friction) << " | " << c + 1 << " | "
-         << fmt("%.1f", p.cost_seconds) << " | " << fmt("%.2f", p.length_m * 1e-3) << " | "
-         << fmt("%.2f", p.length_m / p.cost_seconds) << " | " << fmt("%.1f", info.max_slope)
-         << " | " << fmt("%.0f", info.max_z) << " | " << fmt("%.0f", info.climb) << " | "
-         << fmt("%.1f", info.summit_distance * 1e-3) << " km " << info.side << " | "
-         << (c == 0 ? "–" : fmt("%.0f", info.hausdorff_to_best)) << " | "
-         << (c == 0 ? "–" : fmt("%.0f", 100.0 * info.shared_with_best) + " %") << " |\n";
-    }
-  }
-  md << "\n| μ | lattice nodes | edges evaluated | reachable from start | steeper than atan μ | "
-        "search [s] |\n|---|---|---|---|---|---|\n";
+  const auto km = [&](const Vec2& p) {
+    return fmt("%.3f", (p.x() - o.x()) * 1e-3) + ", " + fmt("%.3f", (p.y() - o.y()) * 1e-3);
+  };
+  Report report("Global search: distinct minimum-time corridors across Mount St. Helens");
+  report.paragraph(
+      "The global stage of the planner (`talus::global_search`) on a real DEM at its true scale, "
+      "for a car-like vehicle at two tyre frictions — the analogue of the global-optimal-path "
+      "figure of Iagnemma, Shimoda and Shiller (IROS 2008).");
+  report.heading("What was run")
+      .bullet("Terrain: `data/terrain/" + std::string(kDemStem) +
+              ".asc` (USGS 30 m DEM of Mount St. Helens after the 1980 eruption, NAD27 / UTM 10N; "
+              "provenance in `data/terrain/README.md`), cropped to " +
+              std::to_string(kCrop.ncols) + " × " + std::to_string(kCrop.nrows) +
+              " nodes (DEM columns " + std::to_string(kCrop.col) + "–" +
+              std::to_string(kCrop.col + kCrop.ncols - 1) + " from the west, rows " +
+              std::to_string(kCrop.row) + "–" + std::to_string(kCrop.row + kCrop.nrows - 1) +
+              " from the south): " + fmt("%.2f", setup.width() * 1e-3) + " × " +
+              fmt("%.2f", setup.height() * 1e-3) + " km, elevation " + fmt("%.0f", setup.zmin) +
+              "–" + fmt("%.0f", setup.zmax) + " m, summit " + fmt("%.0f", setup.summit_z) +
+              " m at (" + fmt("%.2f", (setup.summit.x() - o.x()) * 1e-3) + ", " +
+              fmt("%.2f", (setup.summit.y() - o.y()) * 1e-3) +
+              ") km on the crater's south rim. True scale: slopes and curvatures are those of the "
+              "mountain.")
+      .bullet(
+          "Surface: `BPatch::fit_smoothing` with λ = " + fmt("%g", kSmoothingLambda) +
+          " (about one cell of smoothing), fitted in " + sig3(setup.fit_seconds) +
+          " s. Why not the interpolating fit: this early DEM carries an east–west striping "
+          "artefact (going north along a column on the flanks, one-cell steps of 15–25 m "
+          "alternate with flat or reversed cells; over the crop the mean |second difference| of "
+          "the nodes is " +
+          fmt("%.1f", setup.roughness_y) + " m along y against " + fmt("%.1f", setup.roughness_x) +
+          " m along x). The interpolating fit reproduces every step, and each step steeper than "
+          "atan μ becomes a one-row untraversable bar across a passable flank. The control run "
+          "below shows the effect.")
+      .bullet(
+          "Vehicle: point mass, μ = 0.7 and μ = 0.35, centre-of-mass height h = 0.8 m, half track "
+          "b = 0.8 m, max speed 20 m/s, g = 9.81 m/s², no drive or brake limit (friction alone "
+          "bounds the tangential force).")
+      .bullet(
+          "Start (" + km(setup.start) + ") km and goal (" + km(setup.goal) +
+          ") km from the crop's south-west node (DEM nodes (" + fmt("%g", kStart.i) + ", " +
+          fmt("%g", kStart.j) + ") and (" + fmt("%g", kGoal.i) + ", " + fmt("%g", kGoal.j) +
+          ")): gentle ground west and east of the cone, " + fmt("%.2f", distance * 1e-3) +
+          " km apart, the straight line between them crossing the crater. They were chosen in the "
+          "one region of the crop that stays connected at μ = 0.35 (the lowland apron south of "
+          "the cone, which reaches up its west and east sides), so both runs succeed.")
+      .bullet(
+          "Search: `global_search` with candidates = " + std::to_string(kCandidates) +
+          ", connectivity " + std::to_string(kConnectivity) + ", lattice spacing " +
+          fmt("%g", r0.spacing) + " m" +
+          (context.quick ? " (quick mode: 3 cells)" : " (= the cell size)") + ", " +
+          std::to_string(r0.nx) + " × " + std::to_string(r0.ny) +
+          " nodes, cost_fields = true, max_cost_ratio 2 (default). Cost J = ∫ ds / v_max along "
+          "straight lattice edges lifted onto the surface (Simpson's rule, stations at most half "
+          "a spacing apart); an edge is untraversable in a direction if at some station no speed "
+          "satisfies the speed limits (a), or the vehicle can neither climb nor hold its speed at "
+          "any admissible speed (b), or cannot brake at any admissible speed (c).")
+      .bullet(
+          "Distinctness (as documented in `global_search.hpp`): lattice nodes are taken in "
+          "increasing order of T_start + T_goal, the cost of the best route through them, up to "
+          "2 J*; a node's route (start tree + goal tree) is accepted if the node is at least the "
+          "separation away from every accepted candidate and the route's symmetric Hausdorff "
+          "distance to each of them is at least the separation — here the default max(10 % of "
+          "the start–goal distance, 3 spacings) = " +
+          fmt("%.0f", separation) + " m.")
+      .bullet(
+          "Relief: the smoothing patch on a raster, hypsometric tint × hillshade (sun azimuth "
+          "315°, altitude 45°), washed towards white; contours every " +
+          fmt("%g", contour_step) +
+          " m traced by gnuplot. Every figure's gnuplot script and data sit beside it "
+          "(`gnuplot <name>.gp` in this folder re-renders it).")
+      .bullet("Total run time " + fmt("%.1f", total_seconds) +
+              " s on this machine (searches, fits, data files and gnuplot).");
+  report.heading("Candidates")
+      .paragraph(
+          "Numbers also in `summary.csv`; vertices in `candidates_mu<μ>.csv` (absolute UTM "
+          "coordinates, z on the smoothing patch). Mean speed = length / J. Max slope: steepest "
+          "terrain slope at the search's edge stations along the route. Passes summit: distance "
+          "and compass direction from the summit of the point where the route crosses the line "
+          "through the summit perpendicular to the start→goal axis. Hausdorff / shared: "
+          "symmetric Hausdorff distance to candidate 1 (the quantity the distinctness rule tests) "
+          "and the share of the route's vertices within " +
+          fmt("%.0f", kSharedFraction * separation) +
+          " m (a quarter of the separation) of candidate 1, i.e. in its corridor.");
+  Table candidates({"μ", "candidate", "J [s]", "length [km]", "mean speed [m/s]", "max slope [°]",
+                    "highest point [m]", "total climb [m]", "passes summit", "Hausdorff to 1 [m]",
+                    "shared with 1"});
+  Table lattice({"μ", "lattice nodes", "edges evaluated", "reachable from start",
+                 "steeper than atan μ", "search [s]"});
   for (const FrictionRun& run : runs) {
     const GlobalSearchResult& r = run.result;
-    md << "| " << fmt("%g", run.friction) << " | " << r.nodes << " | " << r.edges_evaluated << " | "
-       << r.reachable_nodes << " (" << percent(r.reachable_nodes, r.nodes) << ") | "
-       << run.steep_nodes << " (" << percent(run.steep_nodes, r.nodes) << ") | "
-       << fmt("%.2f", r.search_seconds) << " |\n";
+    for (std::size_t c = 0; c < r.candidates.size(); ++c) {
+      const CandidatePath& p = r.candidates[c];
+      const CandidateInfo& info = run.info[c];
+      candidates.row({fmt("%g", run.friction), std::to_string(c + 1), fmt("%.1f", p.cost_seconds),
+                      fmt("%.2f", p.length_m * 1e-3), fmt("%.2f", p.length_m / p.cost_seconds),
+                      fmt("%.1f", info.max_slope), fmt("%.0f", info.max_z), fmt("%.0f", info.climb),
+                      fmt("%.1f", info.summit_distance * 1e-3) + " km " + info.side,
+                      c == 0 ? "–" : fmt("%.0f", info.hausdorff_to_best),
+                      c == 0 ? "–" : fmt("%.0f", 100.0 * info.shared_with_best) + " %"});
+    }
+    lattice.row(
+        {fmt("%g", run.friction), std::to_string(r.nodes), std::to_string(r.edges_evaluated),
+         std::to_string(r.reachable_nodes) + " (" + percent(r.reachable_nodes, r.nodes) + ")",
+         std::to_string(run.steep_nodes) + " (" + percent(run.steep_nodes, r.nodes) + ")",
+         fmt("%.2f", r.search_seconds)});
   }
-  md << "\nControl run on the interpolating fit (same lattice, start and goal; best route "
-        "only):\n\n"
-     << "| μ | best J [s] | length [km] | steeper than atan μ | unreachable | J vs smoothing "
-        "fit |\n|---|---|---|---|---|---|\n";
+  Table control({"μ", "best J [s]", "length [km]", "steeper than atan μ", "unreachable",
+                 "J vs smoothing fit"});
   for (std::size_t k = 0; k < controls.size(); ++k) {
     const ControlRun& c = controls[k];
     const CandidatePath& best = runs[k].result.candidates.front();
-    md << "| " << fmt("%g", c.friction) << " | "
-       << (c.ok ? fmt("%.1f", c.cost) : std::string("unreachable")) << " | "
-       << (c.ok ? fmt("%.2f", c.length * 1e-3) : std::string("–")) << " | "
-       << percent(c.steep_nodes, c.nodes) << " | " << percent(c.unreachable, c.nodes) << " | "
-       << (c.ok ? fmt("%+.0f", 100.0 * (c.cost / best.cost_seconds - 1.0)) + " %"
-                : std::string("–"))
-       << " |\n";
+    control.row({fmt("%g", c.friction), c.ok ? fmt("%.1f", c.cost) : "unreachable",
+                 c.ok ? fmt("%.2f", c.length * 1e-3) : "–", percent(c.steep_nodes, c.nodes),
+                 percent(c.unreachable, c.nodes),
+                 c.ok ? fmt("%+.0f", 100.0 * (c.cost / best.cost_seconds - 1.0)) + " %" : "–"});
   }
-  md << "\n## What the figures show\n\n" << commentary(setup, runs) << "\n\n";
+  report.table(candidates)
+      .table(lattice)
+      .paragraph(
+          "Control run on the interpolating fit (same lattice, start and goal; best route only):")
+      .table(control)
+      .heading("What the figures show")
+      .paragraph(commentary(setup, runs));
 
   // Observations on the search's behaviour, measured rather than asserted.
-  md << "## Observations on the search\n\n";
+  report.heading("Observations on the search");
   for (const FrictionRun& run : runs) {
     const std::string mu = fmt("%g", run.friction);
     const GlobalSearchResult& r = run.result;
@@ -1077,20 +1011,21 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
                                  r.candidates[c].cost_seconds);
       any_reversal = any_reversal || run.info[c].reversals;
     }
-    md << "- μ = " << mu << ": J recomputed edge by edge with the public `edge_cost` agrees with "
-       << "`cost_seconds` to " << fmt("%.1e", worst_check) << " (relative); "
-       << (any_reversal ? "**a candidate revisits a lattice node** (its route goes out and back)"
-                        : "no candidate revisits a lattice node")
-       << ".";
+    std::string text =
+        "μ = " + mu + ": J recomputed edge by edge with the public `edge_cost` agrees with " +
+        "`cost_seconds` to " + fmt("%.1e", worst_check) + " (relative); " +
+        (any_reversal ? "**a candidate revisits a lattice node** (its route goes out and back)"
+                      : "no candidate revisits a lattice node") +
+        ".";
     for (std::size_t c = 1; c < r.candidates.size(); ++c) {
       const CandidateInfo& info = run.info[c];
       if (info.shared_with_best >= 0.5) {
-        md << " Candidate " << c + 1 << " passes the Hausdorff rule ("
-           << fmt("%.0f", info.hausdorff_to_best) << " m against " << fmt("%.0f", separation)
-           << " m) but " << fmt("%.0f", 100.0 * info.shared_with_best)
-           << " % of its vertices lie within " << fmt("%.0f", kSharedFraction * separation)
-           << " m of candidate 1: a variant of the same corridor with one bulge, not a "
-              "different way round.";
+        text += " Candidate " + std::to_string(c + 1) + " passes the Hausdorff rule (" +
+                fmt("%.0f", info.hausdorff_to_best) + " m against " + fmt("%.0f", separation) +
+                " m) but " + fmt("%.0f", 100.0 * info.shared_with_best) +
+                " % of its vertices lie within " + fmt("%.0f", kSharedFraction * separation) +
+                " m of candidate 1: a variant of the same corridor with one bulge, not a "
+                "different way round.";
       }
     }
     std::size_t steep = 0, speed_only = 0, concave = 0;
@@ -1100,31 +1035,29 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
       concave += info.concave_speed_only;
     }
     if (steep > 0) {
-      md << " Of the candidates' edge stations, " << steep << " are steeper than atan " << mu
-         << " = " << fmt("%.1f", degrees(std::atan(run.friction))) << "°; at " << speed_only
-         << " of them the vehicle could not stand still (at v = 0, a_max < 0 uphill or "
-            "a_min > 0 downhill), and "
-         << concave
-         << " of those lie on a concave stretch of the edge (κ_n > 0). The edges "
-            "pass rules (b) and (c) because these ask for *some* admissible speed at which the "
-            "vehicle can climb or brake, and at the top speed κ_n v² adds normal load. The "
-            "search's cost assumes the top speed there, so the local stage must carry speed "
-            "through these spots; a profile that has to slow down or start there will find "
-            "them infeasible.";
+      text += " Of the candidates' edge stations, " + std::to_string(steep) +
+              " are steeper than atan " + mu + " = " +
+              fmt("%.1f", degrees(std::atan(run.friction))) + "°; at " +
+              std::to_string(speed_only) +
+              " of them the vehicle could not stand still (at v = 0, a_max < 0 uphill or "
+              "a_min > 0 downhill), and " +
+              std::to_string(concave) +
+              " of those lie on a concave stretch of the edge (κ_n > 0). The edges pass rules (b) "
+              "and (c) because these ask for *some* admissible speed at which the vehicle can "
+              "climb or brake, and at the top speed κ_n v² adds normal load. The search's cost "
+              "assumes the top speed there, so the local stage must carry speed through these "
+              "spots; a profile that has to slow down or start there will find them infeasible.";
     }
-    md << "\n";
+    report.bullet(text);
   }
-  md << "\n## Figures\n\n";
+  report.heading("Figures");
   for (const FrictionRun& run : runs) {
-    const std::string tag = friction_tag(run.friction);
-    md << "### μ = " << fmt("%g", run.friction) << "\n\n"
-       << "![candidate routes at μ = " << fmt("%g", run.friction) << "](routes_" << tag
-       << ".png)\n\n"
-       << "![cost-to-go fields at μ = " << fmt("%g", run.friction) << "](fields_" << tag
-       << ".png)\n\n";
+    const std::string mu = fmt("%g", run.friction), tag = friction_tag(run.friction);
+    report.figures("μ = " + mu, {{"candidate routes at μ = " + mu, "routes_" + tag + ".png"},
+                                 {"cost-to-go fields at μ = " + mu, "fields_" + tag + ".png"}});
   }
-  md << "### Friction comparison\n\n![best route at each friction](compare.png)\n";
-  write_text_file(context.output_dir / "report.md", md.str());
+  report.figures("Friction comparison", {{"best route at each friction", "compare.png"}})
+      .write(context.output_dir);
 }
 
 }  // namespace
@@ -1177,20 +1110,20 @@ void run_global_search_experiment(const ExperimentContext& context) {
   std::vector<ControlRun> controls;
   for (const double mu : kFrictions) controls.push_back(run_control(setup, mu, options));
 
-  const double contour_step =
+  const ContourLevels contours =
       write_relief(setup, context.quick ? kQuickRasterMaxSamples : kRasterMaxSamples, out_dir);
   write_endpoints(setup, out_dir);
   for (const FrictionRun& run : runs) {
     const std::string tag = friction_tag(run.friction);
     write_candidates_csv(setup, run, out_dir / ("candidates_" + tag + ".csv"));
     write_route_blocks(setup, run, out_dir / ("routes_" + tag + ".dat"));
-    draw_routes(setup, run, contour_step, out_dir);
+    draw_routes(setup, run, contours, out_dir);
     draw_fields(setup, run, out_dir);
   }
-  draw_comparison(setup, runs, contour_step, out_dir);
+  draw_comparison(setup, runs, contours, out_dir);
   write_summary(runs, out_dir / "summary.csv");
   const double total = std::chrono::duration<double>(Clock::now() - t_start).count();
-  write_report(setup, runs, controls, context, total, contour_step);
+  write_report(setup, runs, controls, context, total, contours.step);
   std::cout << "global-search: wrote " << out_dir.string() << " in " << fmt("%.1f", total)
             << " s\n";
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "hait_scenarios.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/types.hpp"
 #include "talus/kinematic/configuration_space.hpp"
@@ -35,6 +36,11 @@ struct HaitMapData {
 /// drawn as arrows at start and goal.
 void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
                      const HaitMapData& data);
+
+/// render_hait_map() of `routes` on the scenario's grid, from its start to its goal.
+void render_hait_map(const std::filesystem::path& dir, const std::string& stem,
+                     const HaitScenario& scenario, std::vector<HaitRoute> routes,
+                     std::string title);
 
 /// The (x, y, θ, control) rows of a baseline's path as CSV with header
 /// `x,y,theta,control`: control = motions[k] (BaselineResult::motions), "none"

@@ -10,10 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "figure.hpp"
 #include "hait_experiments.hpp"
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "stopwatch.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
@@ -165,67 +167,78 @@ void run_hait_preprocessing(const ExperimentContext& context) {
          "# blocks: fixed 0.25 m spacing, fixed area, fixed number of nodes\n";
   for (const char* sweep : {"size", "area", "points"}) write_series(out, samples, sweep);
   close_output_file(out, dat);
-  std::ostringstream gp;
-  gp << png_terminal(1100, 500) << "set output 'preprocessing.png'\n"
-     << "set multiplot layout 1,2\nset logscale xy\nset grid\nset key top left\n"
-     << "set ylabel 'preprocessing time [s]'\n"
-     << "set xlabel 'terrain nodes'\nset title 'against size (exponent: fixed 0.25 m "
-     << fmt("%.2f", size_exponent) << ")' font ',10'\n"
-     << "plot 'preprocessing.dat' index 0 using 1:3 with linespoints pt 7 lw 2 title 'fixed 0.25 "
-        "m spacing', \\\n     '' index 1 using 1:3 with linespoints pt 5 lw 2 title 'fixed "
-     << sig3(area_side) << " m square'\n"
-     << "set xlabel 'resolution 1/h [nodes per metre]'\nset title 'against resolution "
-        "(exponents: fixed area "
-     << fmt("%.2f", area_exponent) << ", fixed nodes " << fmt("%.2f", points_exponent)
-     << ")' font ',10'\n"
-     << "plot 'preprocessing.dat' index 1 using 2:3 with linespoints pt 5 lw 2 title 'fixed area', "
-        "\\\n     '' index 2 using 2:3 with linespoints pt 9 lw 2 title 'fixed "
-     << fixed_n * fixed_n << " nodes'\nunset multiplot\n";
-  const std::filesystem::path script = context.output_dir / "preprocessing.gp";
-  write_text_file(script, std::string_view(gp.str()));
-  run_gnuplot(script);
+  GnuplotFigure figure(context.output_dir, "preprocessing");
+  figure.canvas(1100, 500)
+      << "set multiplot layout 1,2\nset logscale xy\nset grid\nset key top left\n"
+      << "set ylabel 'preprocessing time [s]'\nset xlabel 'terrain nodes'\n";
+  figure.title("against size (exponent: fixed 0.25 m " + fmt("%.2f", size_exponent) + ")", ",10",
+               true)
+          .plot(
+              {"'preprocessing.dat' index 0 using 1:3 with linespoints pt 7 lw 2 title 'fixed 0.25 "
+               "m spacing'",
+               "'' index 1 using 1:3 with linespoints pt 5 lw 2 title 'fixed " + sig3(area_side) +
+                   " m square'"})
+      << "set xlabel 'resolution 1/h [nodes per metre]'\n";
+  figure.title("against resolution (exponents: fixed area " + fmt("%.2f", area_exponent) +
+                   ", fixed nodes " + fmt("%.2f", points_exponent) + ")",
+               ",10", true)
+          .plot({"'preprocessing.dat' index 1 using 2:3 with linespoints pt 5 lw 2 title 'fixed "
+                 "area'",
+                 "'' index 2 using 2:3 with linespoints pt 9 lw 2 title 'fixed " +
+                     std::to_string(fixed_n * fixed_n) + " nodes'"})
+      << "unset multiplot\n";
+  figure.render();
 
-  std::ostringstream md;
-  md << "# hait-preprocessing: preprocessing time (Haït, Siméon, Taïx 2002, §4.3, Fig. 20)\n\n"
-     << "**What is timed.** The preprocessing of `plan_hait` for the articulated chassis "
-        "(`marsokhod_chassis.yaml`): `HaitRobotValidity` (the θ-sliced chassis placement table, "
-        "72 slices × every node, and the collision quadtree) plus one `PotentialBitmap` (cost "
-        "bitmap and wave propagation; `plan_hait` builds two, one per control point). Terrains: "
-        "`hait_rough_terrain` (fractal D = 2.2 plus steep hills, seed 3). Each time is the "
-     << (repeats > 1 ? "fastest of 2 runs" : "single run") << ", one core.\n\n"
-     << (quick ? "**Quick mode**: small terrains; the exponents are not the reproduction.\n\n" : "")
-     << "**Reading the paper's \"resolution\".** The paper times terrains \"for a given "
-        "resolution (25 cm between two consecutive points), and then for a given size of "
-        "terrain (20000 points)\". The preprocessing places an axle at every node for every θ "
-        "slice, so its cost is (nodes) × (slices): linear in the number of nodes whatever the "
-        "spacing. At a fixed number of nodes the spacing alone changes nothing (our sweep (c)); "
-        "the quadratic law appears when the resolution 1/h grows over a fixed area, because the "
-        "node count grows as (1/h)² (sweep (b)). We therefore read \"quadratic in resolution\" "
-        "as at a fixed terrain area; the θ-slice count is a second resolution, and it is "
-        "linear (sweep (d)).\n\n"
-     << "| sweep | variable | fitted exponent (ours) | paper |\n|---|---|---|---|\n"
-     << "| (a) size at 0.25 m spacing | nodes | " << fmt("%.2f", size_exponent)
-     << " | linear (1) |\n"
-     << "| (b) resolution, fixed " << sig3(area_side) << " m × " << sig3(area_side)
-     << " m area | 1/h | " << fmt("%.2f", area_exponent) << " | quadratic (2) |\n"
-     << "| (c) resolution, fixed " << fixed_n * fixed_n << " nodes | 1/h | "
-     << fmt("%.2f", points_exponent) << " | (the paper's wording; see above) |\n"
-     << "| (d) θ slices of the chassis table | n_θ | " << fmt("%.2f", slices_exponent)
-     << " | – |\n\n"
-     << "| sweep | nodes | spacing [m] | table + quadtree [s] | bitmap [s] | total [s] |\n"
-        "|---|---|---|---|---|---|\n";
+  Report report("hait-preprocessing: preprocessing time (Haït, Siméon, Taïx 2002, §4.3, Fig. 20)");
+  report.paragraph(
+      std::string("**What is timed.** The preprocessing of `plan_hait` for the articulated chassis "
+                  "(`marsokhod_chassis.yaml`): `HaitRobotValidity` (the θ-sliced chassis placement "
+                  "table, 72 slices × every node, and the collision quadtree) plus one "
+                  "`PotentialBitmap` (cost bitmap and wave propagation; `plan_hait` builds two, "
+                  "one per control point). Terrains: `hait_rough_terrain` (fractal D = 2.2 plus "
+                  "steep hills, seed 3). Each time is the ") +
+      (repeats > 1 ? "fastest of 2 runs" : "single run") + ", one core.");
+  if (quick)
+    report.paragraph("**Quick mode**: small terrains; the exponents are not the reproduction.");
+  report.paragraph(
+      "**Reading the paper's \"resolution\".** The paper times terrains \"for a given "
+      "resolution (25 cm between two consecutive points), and then for a given size of terrain "
+      "(20000 points)\". The preprocessing places an axle at every node for every θ slice, so its "
+      "cost is (nodes) × (slices): linear in the number of nodes whatever the spacing. At a fixed "
+      "number of nodes the spacing alone changes nothing (our sweep (c)); the quadratic law "
+      "appears when the resolution 1/h grows over a fixed area, because the node count grows as "
+      "(1/h)² (sweep (b)). We therefore read \"quadratic in resolution\" as at a fixed terrain "
+      "area; the θ-slice count is a second resolution, and it is linear (sweep (d)).");
+  const std::string nodes = std::to_string(fixed_n * fixed_n);
+  report.table(
+      Table({"sweep", "variable", "fitted exponent (ours)", "paper"})
+          .row({"(a) size at 0.25 m spacing", "nodes", fmt("%.2f", size_exponent), "linear (1)"})
+          .row({"(b) resolution, fixed " + sig3(area_side) + " m × " + sig3(area_side) + " m area",
+                "1/h", fmt("%.2f", area_exponent), "quadratic (2)"})
+          .row({"(c) resolution, fixed " + nodes + " nodes", "1/h", fmt("%.2f", points_exponent),
+                "(the paper's wording; see above)"})
+          .row({"(d) θ slices of the chassis table", "n_θ", fmt("%.2f", slices_exponent), "–"}));
+  Table timings(
+      {"sweep", "nodes", "spacing [m]", "table + quadtree [s]", "bitmap [s]", "total [s]"});
   for (const Sample& s : samples) {
-    md << "| " << s.sweep << " | " << s.n * s.n << " | " << fmt("%.4g", s.spacing) << " | "
-       << fmt("%.3g", s.validity_seconds) << " | " << fmt("%.3g", s.bitmap_seconds) << " | "
-       << fmt("%.3g", s.total()) << " |\n";
+    timings.row({s.sweep, std::to_string(s.n * s.n), fmt("%.4g", s.spacing),
+                 fmt("%.3g", s.validity_seconds), fmt("%.3g", s.bitmap_seconds),
+                 fmt("%.3g", s.total())});
   }
-  md << "\nθ slices (table alone, " << fixed_n * fixed_n << " nodes):";
-  for (const auto& [k, t] : slices) md << " " << k << " → " << fmt("%.3g", t) << " s;";
-  md << "\n\nThe paper's absolute times (Fig. 20, a 2002 workstation) are not given in the text; "
-        "its 12 s for one terrain without uncertainty (§5.4) compares with our total at about "
-        "20000 nodes above.\n\nFiles: `preprocessing.csv`, `preprocessing.png` "
-        "(`preprocessing.gp`, `preprocessing.dat`).\n\n![preprocessing](preprocessing.png)\n";
-  write_text_file(context.output_dir / "report.md", md.str());
+  std::string slice_times = "θ slices (table alone, " + nodes + " nodes):";
+  for (const auto& [k, t] : slices) {
+    slice_times += ' ';  // not `" " + std::to_string(k)`: GCC 12 warns falsely (-Wrestrict)
+    slice_times += std::to_string(k) + " → " + fmt("%.3g", t) + " s;";
+  }
+  report.table(timings)
+      .paragraph(slice_times)
+      .paragraph(
+          "The paper's absolute times (Fig. 20, a 2002 workstation) are not given in the text; "
+          "its 12 s for one terrain without uncertainty (§5.4) compares with our total at about "
+          "20000 nodes above.")
+      .write(context.output_dir,
+             "`preprocessing.csv`, `preprocessing.png` (`preprocessing.gp`, `preprocessing.dat`).",
+             {{"preprocessing", "preprocessing.png"}});
 }
 
 }  // namespace talus::experiments

@@ -11,6 +11,7 @@
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
@@ -77,9 +78,8 @@ void run_hait_smoothing(const ExperimentContext& context) {
   std::string csv =
       "variant,seed,control_changes_before,control_changes_after,length_before_m,length_after_m,"
       "replacements,placements\n";
-  std::ostringstream table;
-  table << "| variant | after (seed 1) | after, all seeds: min–max (median) | length after, seed 1 "
-           "[m] | placements, seed 1 |\n|---|---|---|---|---|\n";
+  Table table({"variant", "after (seed 1)", "after, all seeds: min–max (median)",
+               "length after, seed 1 [m]", "placements, seed 1"});
   std::vector<PathPoint> default_path, greedy_path;
   std::size_t default_after = 0, greedy_after = 0;
   for (const SmoothingVariant& v : kVariants) {
@@ -119,62 +119,62 @@ void run_hait_smoothing(const ExperimentContext& context) {
     }
     std::vector<std::size_t> sorted = after;
     std::sort(sorted.begin(), sorted.end());
-    table << "| `" << v.name << "`: " << v.description << " | " << first.control_changes_after
-          << " | " << sorted.front() << "–" << sorted.back() << " (" << sorted[sorted.size() / 2]
-          << ") | " << sig3(first.length_after) << " | " << first.placements << " |\n";
+    table.row({std::string("`").append(v.name).append("`: ").append(v.description),
+               std::to_string(first.control_changes_after),
+               std::to_string(sorted.front()) + "–" + std::to_string(sorted.back()) + " (" +
+                   std::to_string(sorted[sorted.size() / 2]) + ")",
+               sig3(first.length_after), std::to_string(first.placements)});
   }
   write_text_file(context.output_dir / "smoothing.csv", csv);
 
-  HaitMapData map;
-  map.grid = &scenario.grid;
-  map.routes.push_back({searched.path,
-                        "searched: " + std::to_string(before) + " control changes, " +
-                            sig3(path_length(searched.path, radius)) + " m",
-                        "#2c7fb8"});
-  map.routes.push_back({default_path,
-                        "random pairs (default, seed 1): " + std::to_string(default_after) +
-                            " control changes, " + sig3(path_length(default_path, radius)) + " m",
-                        "#e6550d"});
-  map.routes.push_back({greedy_path,
-                        "greedy (ours): " + std::to_string(greedy_after) + " control changes, " +
-                            sig3(path_length(greedy_path, radius)) + " m",
-                        "#31a354"});
-  map.start = scenario.start;
-  map.goal = scenario.goal;
-  map.title = "hait-smoothing: the potential-rs path before and after Reeds–Shepp smoothing";
-  render_hait_map(context.output_dir, "smoothing", map);
+  std::vector<HaitRoute> routes;
+  routes.push_back({searched.path,
+                    "searched: " + std::to_string(before) + " control changes, " +
+                        sig3(path_length(searched.path, radius)) + " m",
+                    "#2c7fb8"});
+  routes.push_back({default_path,
+                    "random pairs (default, seed 1): " + std::to_string(default_after) +
+                        " control changes, " + sig3(path_length(default_path, radius)) + " m",
+                    "#e6550d"});
+  routes.push_back({greedy_path,
+                    "greedy (ours): " + std::to_string(greedy_after) + " control changes, " +
+                        sig3(path_length(greedy_path, radius)) + " m",
+                    "#31a354"});
+  render_hait_map(context.output_dir, "smoothing", scenario, routes,
+                  "hait-smoothing: the potential-rs path before and after Reeds–Shepp smoothing");
 
-  std::ostringstream md;
-  md << "# hait-smoothing: Reeds–Shepp smoothing (Haït, Siméon, Taïx 2002, §4.4)\n\n"
-     << "**Problem.** The hait-heuristics problem (" << scenario.description
-     << ") with the potential-rs guidance and the articulated chassis; the found path (" << before
-     << " control changes, " << sig3(path_length(searched.path, radius))
-     << " m) is smoothed by `smooth_path` with each variant below. A Reeds–Shepp replacement "
-        "is kept only if every configuration on it is valid (checked every "
-     << options.check_spacing
-     << " m) and it removes control changes or keeps them and shortens the path; the "
-        "control changes of the replacement's own segments and of its two junctions count. "
-        "The paper (Fig. 21): 40 → 13, ratio "
-     << fmt("%.2f", 13.0 / 40.0) << ".\n\n"
-     << (context.quick ? "**Quick mode**: smaller map, two seeds.\n\n" : "")
-     << "Control changes after smoothing, from " << before << " (ratio to before for the "
-     << "default variant, seed 1: "
-     << fmt("%.2f",
-            static_cast<double>(default_after) / std::max<double>(1.0, static_cast<double>(before)))
-     << "):\n\n"
-     << table.str()
-     << "\n**Reading.** The paper's method is random pairs of *close* configurations; it does "
-        "not say how close. With our 5 m limit the random pairs stall in a local minimum (ten "
-        "times "
-        "more pairs gave the same count in our trials: every short portion is already as good as "
-        "one Reeds–Shepp curve "
-        "makes it), so the span limit, not the number of pairs, sets the result. Longer spans "
-        "come close to the paper's ratio or below it. The greedy shortcut is our addition "
-        "(`HaitSmoothingMethod::kRandomPairsThenGreedy`): from each control switch, the "
-        "farthest later switch reachable by a valid Reeds–Shepp curve; it is deterministic.\n\n"
-     << "Files: `smoothing.csv` (every variant and seed), `smoothing.png` (`smoothing.gp`).\n\n"
-        "![smoothing](smoothing.png)\n";
-  write_text_file(context.output_dir / "report.md", md.str());
+  Report report("hait-smoothing: Reeds–Shepp smoothing (Haït, Siméon, Taïx 2002, §4.4)");
+  report.paragraph(
+      "**Problem.** The hait-heuristics problem (" + scenario.description +
+      ") with the potential-rs guidance and the articulated chassis; the found path (" +
+      std::to_string(before) + " control changes, " + sig3(path_length(searched.path, radius)) +
+      " m) is smoothed by `smooth_path` with each variant below. A Reeds–Shepp replacement is "
+      "kept only if every configuration on it is valid (checked every " +
+      fmt("%g", options.check_spacing) +
+      " m) and it removes control changes or keeps them and shortens the path; the control "
+      "changes of the replacement's own segments and of its two junctions count. The paper "
+      "(Fig. 21): 40 → 13, ratio " +
+      fmt("%.2f", 13.0 / 40.0) + ".");
+  if (context.quick) report.paragraph("**Quick mode**: smaller map, two seeds.");
+  report
+      .paragraph("Control changes after smoothing, from " + std::to_string(before) +
+                 " (ratio to before for the default variant, seed 1: " +
+                 fmt("%.2f", static_cast<double>(default_after) /
+                                 std::max<double>(1.0, static_cast<double>(before))) +
+                 "):")
+      .table(table)
+      .paragraph(
+          "**Reading.** The paper's method is random pairs of *close* configurations; it does not "
+          "say how close. With our 5 m limit the random pairs stall in a local minimum (ten times "
+          "more pairs gave the same count in our trials: every short portion is already as good "
+          "as one Reeds–Shepp curve makes it), so the span limit, not the number of pairs, sets "
+          "the result. Longer spans come close to the paper's ratio or below it. The greedy "
+          "shortcut is our addition (`HaitSmoothingMethod::kRandomPairsThenGreedy`): from each "
+          "control switch, the farthest later switch reachable by a valid Reeds–Shepp curve; it "
+          "is deterministic.")
+      .write(context.output_dir,
+             "`smoothing.csv` (every variant and seed), `smoothing.png` (`smoothing.gp`).",
+             {{"smoothing", "smoothing.png"}});
 }
 
 }  // namespace talus::experiments

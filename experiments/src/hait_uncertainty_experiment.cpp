@@ -12,6 +12,7 @@
 #include "hait_scenarios.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
@@ -77,57 +78,56 @@ void run_hait_uncertainty(const ExperimentContext& context) {
   }
   write_text_file(context.output_dir / "uncertainty.csv", csv);
 
-  HaitMapData map;
-  map.grid = &scenario.grid;
-  map.routes.push_back(
+  std::vector<HaitRoute> routes;
+  routes.push_back(
       {results[0].path, "without uncertainty: " + sig3(results[0].length_m) + " m", "#2c7fb8"});
-  map.routes.push_back({results[1].path,
-                        "with uncertainty (ρ 0.3 m, Δθ 40°, δz " + sig3(kDeltaZ) +
-                            " m): " + sig3(results[1].length_m) + " m",
-                        "#e6550d"});
-  map.start = scenario.start;
-  map.goal = scenario.goal;
-  map.title = "hait-uncertainty: a ridge with a gorge, planned with and without uncertainty";
-  render_hait_map(context.output_dir, "uncertainty", map);
+  routes.push_back({results[1].path,
+                    "with uncertainty (ρ 0.3 m, Δθ 40°, δz " + sig3(kDeltaZ) +
+                        " m): " + sig3(results[1].length_m) + " m",
+                    "#e6550d"});
+  render_hait_map(context.output_dir, "uncertainty", scenario, routes,
+                  "hait-uncertainty: a ridge with a gorge, planned with and without uncertainty");
 
   const auto through = [&](std::size_t k) {
     return std::isfinite(crossings[k]) && crossings[k] < scenario.ridge_end_y;
   };
   const double ratio = results[1].preprocessing_seconds / results[0].preprocessing_seconds;
-  std::ostringstream md;
-  md << "# hait-uncertainty: planning with uncertainty (Haït, Siméon, Taïx 2002, §5.4)\n\n"
-     << "**Problem.** " << scenario.description
-     << " Robot: the articulated chassis (`marsokhod_chassis.yaml`), potential-rs guidance. "
-        "Uncertainty as in the paper's Fig. 27: position ρ = 0.3 m and heading Δθ = 40° (the "
-        "whole §5.2 neighbourhood must be valid), plus a terrain interval δz = "
-     << sig3(kDeltaZ)
-     << " m at every node (the paper gives no value): placement intervals on the envelopes, "
-        "worst-case checks, collision against T_max, cost bitmap grown by ρ.\n\n"
-     << (context.quick ? "**Quick mode**: a smaller map.\n\n" : "")
-     << "| | without (ours) | with (ours) | paper without | paper with |\n|---|---|---|---|---|\n"
-     << "| route | " << (through(0) ? "through the gorge" : "round the ridge") << " | "
-     << (through(1) ? "through the gorge" : "round the ridge")
-     << " | through the gorge | avoids the gorge |\n"
-     << "| preprocessing [s] | " << fmt("%.3g", results[0].preprocessing_seconds) << " | "
-     << fmt("%.3g", results[1].preprocessing_seconds) << " | 12 | 72 |\n"
-     << "| preprocessing ratio | 1 | " << fmt("%.1f", ratio) << " | 1 | 6 |\n"
-     << "| search [s] | " << fmt("%.3g", results[0].search_seconds) << " | "
-     << fmt("%.3g", results[1].search_seconds) << " | a few | a few |\n"
-     << "| nodes created | " << results[0].nodes_created << " | " << results[1].nodes_created
-     << " | – | – |\n"
-     << "| placements | " << results[0].placements << " | " << results[1].placements
-     << " | – | – |\n"
-     << "| length [m] | " << sig3(results[0].length_m) << " | " << sig3(results[1].length_m)
-     << " | – | – |\n\n"
-     << "Our preprocessing under uncertainty builds the chassis placement table on five surface "
-        "sets instead of one (the paper's four extra runs, §5.1.1), the quadtree on T_max and "
-        "the bitmaps with the δz roughness; the paper's ratio of 6 matches 1 + 4 runs plus "
-        "overheads. Unlike the paper, our position uncertainty is checked by sampling the "
-        "neighbourhood at search time (see hait_planner.hpp), so its cost shows in the search "
-        "(placements), not in the preprocessing.\n\n"
-        "Files: `uncertainty.csv`, `uncertainty.png` (`uncertainty.gp`).\n\n"
-        "![uncertainty](uncertainty.png)\n";
-  write_text_file(context.output_dir / "report.md", md.str());
+  const auto route = [&](std::size_t k) {
+    return through(k) ? "through the gorge" : "round the ridge";
+  };
+  Report report("hait-uncertainty: planning with uncertainty (Haït, Siméon, Taïx 2002, §5.4)");
+  report.paragraph(
+      "**Problem.** " + scenario.description +
+      " Robot: the articulated chassis (`marsokhod_chassis.yaml`), potential-rs guidance. "
+      "Uncertainty as in the paper's Fig. 27: position ρ = 0.3 m and heading Δθ = 40° (the whole "
+      "§5.2 neighbourhood must be valid), plus a terrain interval δz = " +
+      sig3(kDeltaZ) +
+      " m at every node (the paper gives no value): placement intervals on the envelopes, "
+      "worst-case checks, collision against T_max, cost bitmap grown by ρ.");
+  if (context.quick) report.paragraph("**Quick mode**: a smaller map.");
+  report
+      .table(
+          Table({"", "without (ours)", "with (ours)", "paper without", "paper with"})
+              .row({"route", route(0), route(1), "through the gorge", "avoids the gorge"})
+              .row({"preprocessing [s]", fmt("%.3g", results[0].preprocessing_seconds),
+                    fmt("%.3g", results[1].preprocessing_seconds), "12", "72"})
+              .row({"preprocessing ratio", "1", fmt("%.1f", ratio), "1", "6"})
+              .row({"search [s]", fmt("%.3g", results[0].search_seconds),
+                    fmt("%.3g", results[1].search_seconds), "a few", "a few"})
+              .row({"nodes created", std::to_string(results[0].nodes_created),
+                    std::to_string(results[1].nodes_created), "–", "–"})
+              .row({"placements", std::to_string(results[0].placements),
+                    std::to_string(results[1].placements), "–", "–"})
+              .row({"length [m]", sig3(results[0].length_m), sig3(results[1].length_m), "–", "–"}))
+      .paragraph(
+          "Our preprocessing under uncertainty builds the chassis placement table on five surface "
+          "sets instead of one (the paper's four extra runs, §5.1.1), the quadtree on T_max and "
+          "the bitmaps with the δz roughness; the paper's ratio of 6 matches 1 + 4 runs plus "
+          "overheads. Unlike the paper, our position uncertainty is checked by sampling the "
+          "neighbourhood at search time (see hait_planner.hpp), so its cost shows in the search "
+          "(placements), not in the preprocessing.")
+      .write(context.output_dir, "`uncertainty.csv`, `uncertainty.png` (`uncertainty.gp`).",
+             {{"uncertainty", "uncertainty.png"}});
 }
 
 }  // namespace talus::experiments

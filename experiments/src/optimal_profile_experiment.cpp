@@ -16,11 +16,13 @@
 
 #include "constraint_style.hpp"
 #include "experiment_terrain.hpp"
+#include "figure.hpp"
 #include "number_format.hpp"
 #include "path_map.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
 #include "relief_raster.hpp"
+#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/surface_path.hpp"
@@ -84,7 +86,6 @@ constexpr double kTouchTolerance = 1e-3;
 constexpr double kAccelTolerance = 1e-6;
 
 constexpr std::size_t kRasterMaxSamples = 400;  // relief raster of the map, longer side
-constexpr double kAmbient = 0.35;               // hillshade floor, as in terrain-gallery
 
 /// Rigid-body half wheelbase. The brief asked for l = 0.6 m "so that l/h < μ",
 /// but with h = 0.5 m that is l/h = 1.2 > μ = 0.7: the friction ellipse then
@@ -655,8 +656,7 @@ std::string acceleration_panel(const ProfileRun& run) {
     if (!occurs) continue;
     for (const ConstraintStyle& s : kStyles)
       if (s.constraint == c)
-        gp << ", \\\n     NaN with lines lw 4 lc rgb '" << s.colour << "' title "
-           << gnuplot_string(std::string("bound set by ") + s.label);
+        gp << ", \\\n     " << key_entry(s.colour, std::string("bound set by ") + s.label);
   }
   gp << "\n";
   return gp.str();
@@ -671,22 +671,21 @@ void draw_profile(const std::vector<ProfileRun>& runs, double length, const std:
   const ProfileRun& pm = runs[0];
   const ProfileRun& rb = runs[1];
   const double max_speed = pm.spec->vehicle.max_speed;
-  std::ostringstream gp;
-  gp << "# Time-optimal velocity profile, from `talus experiment optimal-profile`.\n"
-     << "# Re-render in this folder with: gnuplot " << stem << ".gp\n"
-     << "# Inputs: profile_<vehicle>.csv (1 s, 5 v, 6 a, 8 v_max, 9 binding, 10 a_min, 11 a_max,"
-        " 13/14 a bound bindings), switching_<vehicle>.csv (2 s, 3 v, 7 new control).\n"
-     << png_terminal(1400, 1350) << "set output " << gnuplot_string(stem + ".png") << "\n"
-     << "set datafile separator ','\n"
-     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 3,1 title "
-     << gnuplot_string(title) << "\n"
-     << "set xrange [" << fmt("%.10g", s0) << ":" << fmt("%.10g", std::min(s1, length)) << "]\n"
-     << "set xlabel 'arc length s [m]'\n"
-     << "set grid xtics ytics lc rgb '#d8d8d8'\nset tics out nomirror\n"
-     << "set lmargin at screen 0.07\nset rmargin at screen 0.74\n"
-     << "set key at graph 1.02, graph 1 left top vertical Left reverse samplen 2 spacing 1.05 "
-        "font ',9'\n"
-     << "set xzeroaxis lt 1 lc rgb '#808080'\n";
+  GnuplotFigure gp(out_dir, stem);
+  gp.describe("Time-optimal velocity profile, from `talus experiment optimal-profile`.",
+              "profile_<vehicle>.csv (1 s, 5 v, 6 a, 8 v_max, 9 binding, 10 a_min, 11 a_max, "
+              "13/14 a bound bindings), switching_<vehicle>.csv (2 s, 3 v, 7 new control).")
+          .canvas(1400, 1350)
+      << "set datafile separator ','\n"
+      << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 3,1 title "
+      << gnuplot_string(title) << "\n"
+      << "set xrange [" << fmt("%.10g", s0) << ":" << fmt("%.10g", std::min(s1, length)) << "]\n"
+      << "set xlabel 'arc length s [m]'\n"
+      << "set grid xtics ytics lc rgb '#d8d8d8'\nset tics out nomirror\n"
+      << "set lmargin at screen 0.07\nset rmargin at screen 0.74\n"
+      << "set key at graph 1.02, graph 1 left top vertical Left reverse samplen 2 spacing 1.05 "
+         "font ',9'\n"
+      << "set xzeroaxis lt 1 lc rgb '#808080'\n";
   // Panel 1: speeds.
   gp << "set title 'speed: v_{max}(s) coloured by the constraint that sets it (the same for both "
         "vehicles), and the optimal v(s)'\n"
@@ -697,8 +696,7 @@ void draw_profile(const std::vector<ProfileRun>& runs, double length, const std:
     bool occurs = false;
     for (const Constraint c : pm.profile.binding) occurs |= c == s.constraint;
     if (occurs)
-      gp << ", \\\n     NaN with lines lw 4 lc rgb '" << s.colour << "' title "
-         << gnuplot_string(std::string("v_{max} set by ") + s.label);
+      gp << ", \\\n     " << key_entry(s.colour, std::string("v_{max} set by ") + s.label);
   }
   gp << ", \\\n     " << gnuplot_string(profile_csv_name(pm))
      << " skip 1 using 1:5 with lines lw 2 lc rgb 'black' title 'point mass v(s)', \\\n"
@@ -712,65 +710,54 @@ void draw_profile(const std::vector<ProfileRun>& runs, double length, const std:
                            std::to_string(pm.profile.switching_points.size()) + ")")
      << "\n";
   gp << acceleration_panel(pm) << acceleration_panel(rb) << "unset multiplot\n";
-  const fs::path script = out_dir / (stem + ".gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  gp.render();
 }
 
 /// The path over shaded relief of the smoothing fit, coloured by the point
 /// mass's optimal speed, with the interpolation points.
 void draw_map(const BPatch& patch, const ProfileRun& run, const std::vector<Vec2>& points,
               double zmin, double zmax, const fs::path& out_dir) {
-  const double x0 = patch.x_min(), y0 = patch.y_min();
-  const double width = patch.x_max() - x0, height = patch.y_max() - y0;
-  const ReliefRaster raster = sample_relief(patch, {x0, y0}, width, height, kRasterMaxSamples);
-  const double exaggeration = hillshade_exaggeration(slope_p95(raster));
-  std::ostringstream rgb_header;
-  rgb_header << "# smoothing B-patch (lambda " << kSmoothingLambda
-             << "), hypsometric colour x hillshade (azimuth 315 deg, altitude 45 deg, "
-                "exaggeration "
-             << exaggeration << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
-  write_relief_rgb(raster, {zmin, zmax, {315.0, 45.0}, exaggeration, kAmbient, true},
-                   rgb_header.str(), out_dir / "map_relief.rgb");
+  const MapFrame frame = MapFrame::of(patch);
+  const Vec2& origin = frame.origin();
+  GnuplotFigure figure(out_dir, "map");
+  const double exaggeration =
+      write_relief_image(patch, frame,
+                         "smoothing B-patch (lambda " + fmt("%g", kSmoothingLambda) + ")",
+                         figure.file("_relief.rgb"), kRasterMaxSamples, std::pair{zmin, zmax})
+          .colouring.exaggeration;
 
   // About 300 segments are plenty at map scale; with every station the seams
   // between thousands of tiny segments show as stripes.
-  const fs::path path_file = out_dir / "map_path.dat";
+  const fs::path path_file = figure.file("_path.dat");
   std::ofstream path = open_output_file(path_file);
   path << "# " << run.spec->label << ": x - x_min [m], y - y_min [m], optimal speed v [m/s]\n";
   const std::size_t n = run.profile.s.size();
   const std::size_t stride = std::max<std::size_t>(1, n / 300);
-  for (std::size_t k = 0; k < n; k += stride) {
-    const Vec3& p = run.limits.frame(k).point;
-    path << fmt("%.7g", p.x() - x0) << ' ' << fmt("%.7g", p.y() - y0) << ' '
+  const auto write_station = [&](std::size_t k) {
+    path << offset_row(run.limits.frame(k).point.head<2>(), origin) << ' '
          << csv_number(run.profile.v[k]) << '\n';
-  }
-  const Vec3& last = run.limits.frame(n - 1).point;
-  path << fmt("%.7g", last.x() - x0) << ' ' << fmt("%.7g", last.y() - y0) << ' '
-       << csv_number(run.profile.v[n - 1]) << '\n';
+  };
+  for (std::size_t k = 0; k < n; k += stride) write_station(k);
+  write_station(n - 1);
   close_output_file(path, path_file);
 
   std::vector<Vec2> offsets;
-  for (const Vec2& p : points) offsets.emplace_back(p.x() - x0, p.y() - y0);
+  for (const Vec2& p : points) offsets.push_back(frame.offset(p));
   write_path_points(offsets, "# path interpolation points: x - x_min [m], y - y_min [m], label\n",
-                    out_dir / "map_points.dat");
+                    figure.file("_points.dat"));
 
   std::ostringstream title;
   title << "West Bijou at rover scale (1/25, 1 m cells): path coloured by the point mass's "
            "optimal speed\nover shaded relief of the smoothing fit (λ = "
         << fmt("%g", kSmoothingLambda) << "; elevation " << sig3(zmin) << " to " << sig3(zmax)
         << " m, hillshade × " << fmt("%g", exaggeration) << " vertical exaggeration)";
-  std::ostringstream gp;
-  gp << "# Map of the optimal profile, from `talus experiment optimal-profile`.\n"
-     << "# Re-render in this folder with: gnuplot map.gp\n"
-     << "# Inputs: map_relief.rgb (x y r g b), map_path.dat (x y v), map_points.dat (x y label).\n"
-     << png_terminal(1100, path_map_canvas_height(width, height)) << "set output 'map.png'\n"
-     << path_map_settings(width, height, title.str(), run.spec->vehicle.max_speed, "v [m/s]")
-     << path_map_plot("map_relief.rgb", "map_path.dat", "path, coloured by optimal v", "",
-                      "map_points.dat");
-  const fs::path script = out_dir / "map.gp";
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  figure.describe("Map of the optimal profile, from `talus experiment optimal-profile`.",
+                  "map_relief.rgb (x y r g b), map_path.dat (x y v), map_points.dat (x y label).");
+  figure.canvas(1100, frame.canvas_height(1100))
+      << path_map_settings(frame, title.str(), run.spec->vehicle.max_speed, "v [m/s]")
+      << path_map_plot("map_relief.rgb", "map_path.dat", "path, coloured by optimal v", "",
+                       "map_points.dat");
+  figure.render();
 }
 
 /// The |error| series of the convergence panel: a line per series, filled
@@ -824,66 +811,65 @@ void draw_convergence(const std::vector<Level>& levels, const fs::path& out_dir)
   const double e0 = std::max(std::abs(levels[anchor].error[0]), 1e-12);
   const double t_anchor =
       levels.back().solve_seconds[0] / static_cast<double>(levels.back().stations);
-  std::ostringstream gp;
-  gp << "# Convergence of the travel time in the station count, from `talus experiment "
-        "optimal-profile`.\n# Re-render in this folder with: gnuplot convergence.gp\n"
-     << "# Input: convergence.csv (1 stations, 2 mean spacing, 3/8 travel time, 4/9 relative "
-        "error, 5/10 solve seconds, 7 limits seconds, 11 default-spacing row, 12/13 point mass "
-        "on the interpolating fit; point mass, rigid body).\n"
-     << png_terminal(1800, 650) << "set output 'convergence.png'\n"
-     << "set datafile separator ','\n"
-     << "set multiplot layout 1,3 title "
-     << gnuplot_string(
-            "Convergence of the optimal travel time in the number of stations (same path; "
-            "reference: the finest level, " +
-            std::to_string(levels.back().stations) + " stations)")
-     << "\n"
-     << "set grid lc rgb '#d8d8d8'\nset tics out nomirror\nset key top right font ',10'\n"
-     << "set logscale x\nset format x '10^{%T}'\n"
-     // Panel (a).
-     << "set title '(a) travel time'\nset xlabel 'stations N'\nset ylabel 'travel time [s]'\n"
-     << "plot 'convergence.csv' skip 1 using 1:3 with linespoints pt 7 lw 1.5 lc rgb 'black' "
-        "title 'point mass', \\\n"
-     << "     '' skip 1 using 1:8 with linespoints pt 6 lw 1.5 dt (5,3) lc rgb '#e7298a' "
-        "title 'rigid body', \\\n"
-     << "     '' skip 1 using 1:($11 == 1 ? $3 : NaN) with points pt 4 ps 2.5 lw 2 lc rgb "
-        "'#1f77b4' title "
-     << gnuplot_string("default spacing " + fmt("%g", kDefaultStationSpacing) + " m") << ", \\\n"
-     << "     '' skip 1 using 1:($11 == 1 ? $8 : NaN) with points pt 4 ps 2.5 lw 2 lc rgb "
-        "'#1f77b4' notitle\n"
-     // Panel (b).
-     << "set title '(b) |relative error| (filled: too slow, open: too fast)'\n"
-     << "set logscale y\nset format y '10^{%T}'\n"
-     << "set xlabel 'mean station spacing [m]'\nset ylabel '|T_N / T_{ref} − 1|'\n"
-     << "set key bottom right\n"
-     << "set arrow 1 from " << fmt("%g", kDefaultStationSpacing) << ", graph 0 to "
-     << fmt("%g", kDefaultStationSpacing) << ", graph 1 nohead dt 2 lc rgb '#1f77b4'\n"
-     << "set label 1 'default " << fmt("%g", kDefaultStationSpacing) << " m' at "
-     << fmt("%g", kDefaultStationSpacing) << ", graph 0.96 offset char 0.5,0 tc rgb '#1f77b4'\n"
-     << "set arrow 2 from graph 0, first " << fmt("%g", kTargetError) << " to graph 1, first "
-     << fmt("%g", kTargetError) << " nohead dt 3 lc rgb '#808080'\n"
-     << "h0 = " << fmt("%.10g", h0) << "; e0 = " << fmt("%.10g", e0) << "\n"
-     << "plot " << error_series(levels)
-     << "     e0 * (x / h0) with lines dt 2 lc rgb '#909090' title 'slope 1 (O(h))', \\\n"
-     << "     e0 * (x / h0)**2 with lines dt 4 lc rgb '#909090' title 'slope 2 (O(h^2))'\n"
-     << "unset arrow 1\nunset arrow 2\nunset label 1\n"
-     // Panel (c).
-     << "set title '(c) time per solve (fastest of repeats)'\nset key top left\n"
-     << "set xlabel 'stations N'\nset ylabel 'seconds'\n"
-     << "t1 = " << fmt("%.10g", t_anchor) << "\n"
-     << "# Infeasible levels (travel time nan) are left out: their solve stops early.\n"
-     << "plot 'convergence.csv' skip 1 using 1:($3 == $3 ? $5 : NaN) with linespoints pt 7 lw "
-        "1.5 lc rgb 'black' title 'solver, point mass', \\\n"
-     << "     '' skip 1 using 1:($8 == $8 ? $10 : NaN) with linespoints pt 6 lw 1.5 dt (5,3) lc "
-        "rgb '#e7298a' "
-        "title 'solver, rigid body', \\\n"
-     << "     '' skip 1 using 1:7 with linespoints pt 2 lw 1 lc rgb '#2ca02c' "
-        "title 'VelocityLimits::compute (path + limits)', \\\n"
-     << "     t1 * x with lines dt 2 lc rgb '#909090' title 'O(N)'\n"
-     << "unset multiplot\n";
-  const fs::path script = out_dir / "convergence.gp";
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  GnuplotFigure gp(out_dir, "convergence");
+  gp.describe(
+        "Convergence of the travel time in the station count, from `talus experiment "
+        "optimal-profile`.",
+        "convergence.csv (1 stations, 2 mean spacing, 3/8 travel time, 4/9 relative error, "
+        "5/10 solve seconds, 7 limits seconds, 11 default-spacing row, 12/13 point mass on "
+        "the interpolating fit; point mass, rigid body).")
+          .canvas(1800, 650)
+      << "set datafile separator ','\n"
+      << "set multiplot layout 1,3 title "
+      << gnuplot_string(
+             "Convergence of the optimal travel time in the number of stations (same path; "
+             "reference: the finest level, " +
+             std::to_string(levels.back().stations) + " stations)")
+      << "\n"
+      << "set grid lc rgb '#d8d8d8'\nset tics out nomirror\nset key top right font ',10'\n"
+      << "set logscale x\nset format x '10^{%T}'\n"
+      // Panel (a).
+      << "set title '(a) travel time'\nset xlabel 'stations N'\nset ylabel 'travel time [s]'\n"
+      << "plot 'convergence.csv' skip 1 using 1:3 with linespoints pt 7 lw 1.5 lc rgb 'black' "
+         "title 'point mass', \\\n"
+      << "     '' skip 1 using 1:8 with linespoints pt 6 lw 1.5 dt (5,3) lc rgb '#e7298a' "
+         "title 'rigid body', \\\n"
+      << "     '' skip 1 using 1:($11 == 1 ? $3 : NaN) with points pt 4 ps 2.5 lw 2 lc rgb "
+         "'#1f77b4' title "
+      << gnuplot_string("default spacing " + fmt("%g", kDefaultStationSpacing) + " m") << ", \\\n"
+      << "     '' skip 1 using 1:($11 == 1 ? $8 : NaN) with points pt 4 ps 2.5 lw 2 lc rgb "
+         "'#1f77b4' notitle\n"
+      // Panel (b).
+      << "set title '(b) |relative error| (filled: too slow, open: too fast)'\n"
+      << "set logscale y\nset format y '10^{%T}'\n"
+      << "set xlabel 'mean station spacing [m]'\nset ylabel '|T_N / T_{ref} − 1|'\n"
+      << "set key bottom right\n"
+      << "set arrow 1 from " << fmt("%g", kDefaultStationSpacing) << ", graph 0 to "
+      << fmt("%g", kDefaultStationSpacing) << ", graph 1 nohead dt 2 lc rgb '#1f77b4'\n"
+      << "set label 1 'default " << fmt("%g", kDefaultStationSpacing) << " m' at "
+      << fmt("%g", kDefaultStationSpacing) << ", graph 0.96 offset char 0.5,0 tc rgb '#1f77b4'\n"
+      << "set arrow 2 from graph 0, first " << fmt("%g", kTargetError) << " to graph 1, first "
+      << fmt("%g", kTargetError) << " nohead dt 3 lc rgb '#808080'\n"
+      << "h0 = " << fmt("%.10g", h0) << "; e0 = " << fmt("%.10g", e0) << "\n"
+      << "plot " << error_series(levels)
+      << "     e0 * (x / h0) with lines dt 2 lc rgb '#909090' title 'slope 1 (O(h))', \\\n"
+      << "     e0 * (x / h0)**2 with lines dt 4 lc rgb '#909090' title 'slope 2 (O(h^2))'\n"
+      << "unset arrow 1\nunset arrow 2\nunset label 1\n"
+      // Panel (c).
+      << "set title '(c) time per solve (fastest of repeats)'\nset key top left\n"
+      << "set xlabel 'stations N'\nset ylabel 'seconds'\n"
+      << "t1 = " << fmt("%.10g", t_anchor) << "\n"
+      << "# Infeasible levels (travel time nan) are left out: their solve stops early.\n"
+      << "plot 'convergence.csv' skip 1 using 1:($3 == $3 ? $5 : NaN) with linespoints pt 7 lw "
+         "1.5 lc rgb 'black' title 'solver, point mass', \\\n"
+      << "     '' skip 1 using 1:($8 == $8 ? $10 : NaN) with linespoints pt 6 lw 1.5 dt (5,3) lc "
+         "rgb '#e7298a' "
+         "title 'solver, rigid body', \\\n"
+      << "     '' skip 1 using 1:7 with linespoints pt 2 lw 1 lc rgb '#2ca02c' "
+         "title 'VelocityLimits::compute (path + limits)', \\\n"
+      << "     t1 * x with lines dt 2 lc rgb '#909090' title 'O(N)'\n"
+      << "unset multiplot\n";
+  gp.render();
 }
 
 // ---------------------------------------------------------------------------
@@ -1072,162 +1058,170 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
                   const std::vector<Level>& levels, const Setup& setup,
                   const ExperimentContext& context, double total_seconds) {
   const ElevationGrid& dem = *setup.dem;
-  std::ostringstream md;
-  md << "# Time-optimal velocity profile on a real DEM\n\n"
-     << "The time-optimal velocity profile v(s) under the limit curve v_max(s) along a fixed "
-        "curved path on the West Bijou escarpment at rover scale, with its switching points and "
-        "the tangential acceleration s̈(s) inside the admissible [a_min, a_max]: the analogue "
-        "of the velocity-profile figure (Fig. 8) of Iagnemma, Shimoda and Shiller (IROS 2008). "
-        "Then a convergence study of the travel time in the number of stations, which is the "
-        "evidence for the library's default station spacing.\n\n"
-     << "## What was run\n\n"
-     << "- Terrain: `data/terrain/" << kWestBijouStem
-     << ".asc` (West Bijou Creek escarpment, "
-        "Colorado; NASADEM, "
-     << dem.ncols() << " × " << dem.nrows() << " nodes, cell " << fmt("%g", dem.cellsize())
-     << " m; see `data/terrain/README.md`), scaled to rover size by multiplying x, y **and** z by "
-        "1/25 (README \"Rover-scale use\"): 1 m cells, elevations "
-     << sig3(setup.zmin) << " to " << sig3(setup.zmax)
-     << " m, slopes unchanged, curvatures 25 × larger.\n"
-     << "- Surface: the smoothing B-patch fit (`BPatch::fit_smoothing`, λ = "
-     << fmt("%g", kSmoothingLambda) << ", fitted in " << sig3(1e3 * setup.fit_seconds)
-     << " ms). Not the interpolating fit: the DEM stores whole metres, which at rover scale "
-        "are 4 cm steps per 1 m cell, and the interpolating fit reproduces each step as a "
-        "curvature spike; v_max(s) then has a narrow dip at nearly every cell (see the "
-        "velocity-limits experiment), which is quantisation, not terrain. The interpolating fit "
-        "appears here only as a control series of the convergence study.\n"
-     << "- Path: `Curve2::interpolate` (cubic, chord-length parameters) through "
-     << std::size(kWestBijouPathCells)
-     << " fixed points (the path of the velocity-limits experiment), 3-D length "
-     << sig3(setup.length) << " m:\n\n"
-     << "  | point | cells (u, v) | x, y from the south-west node [m] |\n"
-     << "  |---|---|---|\n";
+  Table points({"point", "cells (u, v)", "x, y from the south-west node [m]"});
   for (std::size_t i = 0; i < std::size(kWestBijouPathCells); ++i) {
-    md << "  | P" << i << " | " << fmt("%g", kWestBijouPathCells[i].u) << ", "
-       << fmt("%g", kWestBijouPathCells[i].v) << " | " << sig3(setup.points[i].x()) << ", "
-       << sig3(setup.points[i].y()) << " |\n";
+    points.row({fmt("P%g", static_cast<double>(i)),
+                fmt("%g", kWestBijouPathCells[i].u) + ", " + fmt("%g", kWestBijouPathCells[i].v),
+                sig3(setup.points[i].x()) + ", " + sig3(setup.points[i].y())});
   }
-  md << "\n  It runs south along the west plateau, turns east down the escarpment face, then "
-        "north-east, east across the lower plains, and south over the knoll to the south-east "
-        "corner.\n"
-     << "- Vehicles (g = 9.81 m/s²; drive and brake limits bound the traction force per unit "
-        "mass f_t = s̈ + g k_t, so downhill a_max exceeds 3 m/s² and uphill it is less):\n";
+  Report report("Time-optimal velocity profile on a real DEM");
+  report
+      .paragraph(
+          "The time-optimal velocity profile v(s) under the limit curve v_max(s) along a fixed "
+          "curved path on the West Bijou escarpment at rover scale, with its switching points "
+          "and the tangential acceleration s̈(s) inside the admissible [a_min, a_max]: the "
+          "analogue of the velocity-profile figure (Fig. 8) of Iagnemma, Shimoda and Shiller "
+          "(IROS 2008). Then a convergence study of the travel time in the number of stations, "
+          "which is the evidence for the library's default station spacing.")
+      .heading("What was run")
+      .bullet("Terrain: " + west_bijou_terrain_text(dem) +
+              ", scaled to rover size by multiplying x, y **and** "
+              "z by 1/25 (README \"Rover-scale use\"): 1 m cells, elevations " +
+              sig3(setup.zmin) + " to " + sig3(setup.zmax) +
+              " m, slopes unchanged, curvatures 25 × larger.")
+      .bullet("Surface: the smoothing B-patch fit (`BPatch::fit_smoothing`, λ = " +
+              fmt("%g", kSmoothingLambda) + ", fitted in " + sig3(1e3 * setup.fit_seconds) +
+              " ms). Not the interpolating fit: the DEM stores whole metres, which at rover scale "
+              "are 4 cm steps per 1 m cell, and the interpolating fit reproduces each step as a "
+              "curvature spike; v_max(s) then has a narrow dip at nearly every cell (see the "
+              "velocity-limits experiment), which is quantisation, not terrain. The "
+              "interpolating fit appears here only as a control series of the convergence study.")
+      .bullet("Path: `Curve2::interpolate` (cubic, chord-length parameters) through " +
+              std::to_string(std::size(kWestBijouPathCells)) +
+              " fixed points (the path of the velocity-limits experiment), 3-D length " +
+              sig3(setup.length) + " m:\n\n" + points.markdown("  ") + "\n  " +
+              kWestBijouPathRoute);
+  std::string vehicles =
+      "Vehicles (g = 9.81 m/s²; drive and brake limits bound the traction force per unit mass "
+      "f_t = s̈ + g k_t, so downhill a_max exceeds 3 m/s² and uphill it is less):\n";
   for (const ProfileRun* run : {&runs[0], &runs[1], &check_run}) {
     const Vehicle& v = run->spec->vehicle;
-    md << "  - `" << run->spec->name
-       << "`: " << (v.model == VehicleModel::kPointMass ? "point-mass model" : "rigid-body model")
-       << ", " << vehicle_parameters(v) << (run == &check_run ? " — table only, see below" : "")
-       << "\n";
+    vehicles +=
+        "  - `" + run->spec->name +
+        "`: " + (v.model == VehicleModel::kPointMass ? "point-mass model" : "rigid-body model") +
+        ", " + vehicle_parameters(v) + (run == &check_run ? " — table only, see below" : "") + "\n";
   }
-  md << "\n  **Deviation from the brief:** the brief asked for the rigid body with l = "
-     << fmt("%g", kBriefHalfWheelbase)
-     << " m \"so that l/h < μ and pitch-over limits braking\", but with h = 0.5 m that is l/h "
-        "= 1.2 > μ = 0.7: the friction ellipse then caps |f_t| ≤ μR < (l/h)R everywhere and "
-        "pitch-over can never bind, so that vehicle is the point mass (its row below shows it). "
-        "The figures therefore use l = "
-     << fmt("%g", kRigidHalfWheelbase)
-     << " m (l/h = 0.6 < μ), which caps braking at 0.6 g ≈ 5.9 m/s² on level ground, just "
-        "below the 6 m/s² brake, and lower where the ground load drops.\n"
-     << "- Profile: `TimeOptimalProfileSolver` (reachability analysis in ṡ², constraints "
-        "enforced at both ends of every step), start and end at rest, "
-     << setup.stations << " stations" << (context.quick ? " (quick mode)" : "")
-     << " equally spaced in the curve parameter (mean spacing "
-     << sig3(setup.length / static_cast<double>(setup.stations - 1))
-     << " m). a_min, a_max are `VelocityLimits::acceleration_bounds` at each station's profile "
-        "speed.\n"
-     << "- Convergence: the same path at " << levels.size() << " station counts from "
-     << levels.front().stations << " to " << levels.back().stations
-     << (context.quick ? " (quick mode: up to " + std::to_string(kQuickMaxLevel) + ")" : "")
-     << ", including the count the default spacing gives (" << default_level(levels).stations
-     << " = ⌈L / " << fmt("%g", kDefaultStationSpacing)
-     << " m⌉ + 1), for both vehicles and, as a control, the point mass on the interpolating fit; "
-        "relative error against the finest level. Times are the fastest of repeated calls (at "
-        "least "
-     << kMinRepeats << ", for at least " << fmt("%g", 1e3 * kTimingBudgetSeconds)
-     << " ms); the solve time excludes `VelocityLimits::compute` (path sampling and limits), "
-        "which is timed separately.\n"
-     << "- Files: `profile_<vehicle>.csv` (s, x, y, z, v, a, t, v_max, binding, a_min, a_max, "
-        "then the solver's control label, what sets a_min and a_max, kappa_n, kappa_g, k_t; a is "
-        "the s̈ of the step starting at the station), `switching_<vehicle>.csv` (the solver's "
-        "`switching_points`), `switching_effective_<vehicle>.csv` (see \"Solver observations\"), "
-        "`convergence.csv` (stations, spacing_m (mean), travel_time_s, relative_error, "
-        "solve_seconds for the point mass, then max spacing, limits time, the rigid body's "
-        "columns, the default-spacing flag and the interpolating-fit control), and every "
-        "figure's gnuplot script beside its PNG.\n"
-     << "- Whole run: " << sig3(total_seconds) << " s.\n\n"
-     << "## Travel times\n\n"
-     << "| vehicle | l/h | travel time [s] | mean speed [m/s] | peak speed [m/s] | on v_max | "
-        "switching points (solver's) | accelerating: drive / friction / pitch [m] | braking: "
-        "brake / friction / pitch [m] | limits + solve [ms] |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|\n";
+  report
+      .bullet(vehicles +
+              "\n  **Deviation from the brief:** the brief asked for the rigid body with l = " +
+              fmt("%g", kBriefHalfWheelbase) +
+              " m \"so that l/h < μ and pitch-over limits braking\", but with h = 0.5 m that is "
+              "l/h = 1.2 > μ = 0.7: the friction ellipse then caps |f_t| ≤ μR < (l/h)R everywhere "
+              "and pitch-over can never bind, so that vehicle is the point mass (its row below "
+              "shows it). The figures therefore use l = " +
+              fmt("%g", kRigidHalfWheelbase) +
+              " m (l/h = 0.6 < μ), which caps braking at 0.6 g ≈ 5.9 m/s² on level ground, just "
+              "below the 6 m/s² brake, and lower where the ground load drops.")
+      .bullet(
+          "Profile: `TimeOptimalProfileSolver` (reachability analysis in ṡ², constraints "
+          "enforced at both ends of every step), start and end at rest, " +
+          std::to_string(setup.stations) + " stations" + (context.quick ? " (quick mode)" : "") +
+          " equally spaced in the curve parameter (mean spacing " +
+          sig3(setup.length / static_cast<double>(setup.stations - 1)) +
+          " m). a_min, a_max are `VelocityLimits::acceleration_bounds` at each station's "
+          "profile speed.")
+      .bullet("Convergence: the same path at " + std::to_string(levels.size()) +
+              " station counts from " + std::to_string(levels.front().stations) + " to " +
+              std::to_string(levels.back().stations) +
+              (context.quick ? fmt(" (quick mode: up to %g)", kQuickMaxLevel) : "") +
+              ", including the count the default spacing gives (" +
+              std::to_string(default_level(levels).stations) + " = ⌈L / " +
+              fmt("%g", kDefaultStationSpacing) +
+              " m⌉ + 1), for both vehicles and, as a control, the point mass on the "
+              "interpolating fit; relative error against the finest level. Times are the fastest "
+              "of repeated calls (at least " +
+              std::to_string(kMinRepeats) + ", for at least " +
+              fmt("%g", 1e3 * kTimingBudgetSeconds) +
+              " ms); the solve time excludes `VelocityLimits::compute` (path sampling and "
+              "limits), which is timed separately.")
+      .bullet(
+          "Files: `profile_<vehicle>.csv` (s, x, y, z, v, a, t, v_max, binding, a_min, a_max, "
+          "then the solver's control label, what sets a_min and a_max, kappa_n, kappa_g, k_t; "
+          "a is the s̈ of the step starting at the station), `switching_<vehicle>.csv` (the "
+          "solver's `switching_points`), `switching_effective_<vehicle>.csv` (see \"Solver "
+          "observations\"), `convergence.csv` (stations, spacing_m (mean), travel_time_s, "
+          "relative_error, solve_seconds for the point mass, then max spacing, limits time, "
+          "the rigid body's columns, the default-spacing flag and the interpolating-fit "
+          "control), and every figure's gnuplot script beside its PNG.")
+      .bullet("Whole run: " + sig3(total_seconds) + " s.")
+      .heading("Travel times");
+  Table times({"vehicle", "l/h", "travel time [s]", "mean speed [m/s]", "peak speed [m/s]",
+               "on v_max", "switching points (solver's)",
+               "accelerating: drive / friction / pitch [m]",
+               "braking: brake / friction / pitch [m]", "limits + solve [ms]"});
   for (const ProfileRun* run : {&runs[0], &runs[1], &check_run}) {
     const Vehicle& v = run->spec->vehicle;
     const Checks& c = run->checks;
     const LimitingLengths& l = c.lengths;
-    md << "| `" << run->spec->name << "` | "
-       << (v.model == VehicleModel::kRigidBody ? fmt("%g", v.half_wheelbase / v.cg_height) : "–")
-       << " | " << fmt("%.3f", run->profile.travel_time) << " | "
-       << sig3(setup.length / run->profile.travel_time) << " | " << sig3(c.max_v) << " | "
-       << share(c.touch_length, setup.length) << " | " << run->switches.size() << " ("
-       << run->profile.switching_points.size() << ") | " << sig3(l.accelerate_drive) << " / "
-       << sig3(l.accelerate_sliding) << " / " << sig3(l.accelerate_pitch) << " | "
-       << sig3(l.decelerate_brake) << " / " << sig3(l.decelerate_sliding) << " / "
-       << sig3(l.decelerate_pitch) << " | " << sig3(1e3 * run->limits_seconds) << " + "
-       << sig3(1e3 * run->solve_seconds) << " |\n";
+    times.row(
+        {"`" + run->spec->name + "`",
+         v.model == VehicleModel::kRigidBody ? fmt("%g", v.half_wheelbase / v.cg_height) : "–",
+         fmt("%.3f", run->profile.travel_time), sig3(setup.length / run->profile.travel_time),
+         sig3(c.max_v), share(c.touch_length, setup.length),
+         std::to_string(run->switches.size()) + " (" +
+             std::to_string(run->profile.switching_points.size()) + ")",
+         sig3(l.accelerate_drive) + " / " + sig3(l.accelerate_sliding) + " / " +
+             sig3(l.accelerate_pitch),
+         sig3(l.decelerate_brake) + " / " + sig3(l.decelerate_sliding) + " / " +
+             sig3(l.decelerate_pitch),
+         sig3(1e3 * run->limits_seconds) + " + " + sig3(1e3 * run->solve_seconds)});
   }
   double max_dv = 0.0;
   for (std::size_t k = 0; k < check_run.profile.v.size(); ++k)
     max_dv = std::max(max_dv, std::abs(check_run.profile.v[k] - runs[0].profile.v[k]));
-  md << "\n\"On v_max\": share of the path length where v ≥ (1 − " << fmt("%g", kTouchTolerance)
-     << ") v_max. Accelerating/braking: path length of the steps whose s̈ sits on a_max "
-        "(a_min) at the tighter of the step's two ends, by the constraint that sets that bound; "
-        "the rest rides v_max(s) or is a switching step. `"
-     << check_run.spec->name << "` differs from the point mass by at most " << fmt("%.3g", max_dv)
-     << " m/s at any station.\n\n"
-     << "## Switching points\n\n"
-     << "Where the control changes between accelerate (s̈ on a_max), decelerate (s̈ on a_min) "
-        "and limit (riding v_max(s)), judged against the bounds at both ends of each step; a "
-        "single step strictly inside the bounds between two arcs is the switch itself. v and "
-        "v_max are at the switching station. The solver's own list is in "
-        "`switching_<vehicle>.csv` (see \"Solver observations\").\n\n";
+  report.table(times)
+      .paragraph("\"On v_max\": share of the path length where v ≥ (1 − " +
+                 fmt("%g", kTouchTolerance) +
+                 ") v_max. Accelerating/braking: path length of the steps whose s̈ sits on a_max "
+                 "(a_min) at the tighter of the step's two ends, by the constraint that sets that "
+                 "bound; the rest rides v_max(s) or is a switching step. `" +
+                 check_run.spec->name + "` differs from the point mass by at most " +
+                 fmt("%.3g", max_dv) + " m/s at any station.")
+      .heading("Switching points")
+      .paragraph(
+          "Where the control changes between accelerate (s̈ on a_max), decelerate (s̈ on a_min) "
+          "and limit (riding v_max(s)), judged against the bounds at both ends of each step; a "
+          "single step strictly inside the bounds between two arcs is the switch itself. v and "
+          "v_max are at the switching station. The solver's own list is in "
+          "`switching_<vehicle>.csv` (see \"Solver observations\").");
   constexpr std::size_t kMaxRows = 60;
   for (const ProfileRun* run : {&runs[0], &runs[1]}) {
     const TimeOptimalProfile& p = run->profile;
-    md << "### `" << run->spec->name << "`: " << run->switches.size() << " switching points\n\n"
-       << "| # | station | s [m] | v [m/s] | v_max [m/s] | v_max set by | from → to |\n"
-       << "|---|---|---|---|---|---|---|\n";
+    Table switches(
+        {"#", "station", "s [m]", "v [m/s]", "v_max [m/s]", "v_max set by", "from → to"});
     for (std::size_t i = 0; i < run->switches.size() && i < kMaxRows; ++i) {
       const SwitchingPoint& sw = run->switches[i];
-      md << "| " << i + 1 << " | " << sw.station << " | " << fmt("%.2f", sw.s) << " | "
-         << fmt("%.3f", p.v[sw.station]) << " | " << fmt("%.3f", p.v_max[sw.station]) << " | "
-         << to_string(p.binding[sw.station]) << " | " << control_name(sw.from) << " → "
-         << control_name(sw.to) << " |\n";
+      switches.row({std::to_string(i + 1), std::to_string(sw.station), fmt("%.2f", sw.s),
+                    fmt("%.3f", p.v[sw.station]), fmt("%.3f", p.v_max[sw.station]),
+                    std::string(to_string(p.binding[sw.station])),
+                    std::string(control_name(sw.from)) + " → " + std::string(control_name(sw.to))});
     }
+    report
+        .heading("`" + run->spec->name + "`: " + std::to_string(run->switches.size()) +
+                     " switching points",
+                 3)
+        .table(switches);
     if (run->switches.size() > kMaxRows) {
-      md << "\n(" << run->switches.size() - kMaxRows << " more in `" << effective_csv_name(*run)
-         << "`.)\n";
+      report.paragraph(fmt("(%g more in `", static_cast<double>(run->switches.size() - kMaxRows)) +
+                       effective_csv_name(*run) + "`.)");
     }
-    md << "\n";
   }
-  md << "## Convergence in the number of stations\n\n"
-     << "| stations | mean / max spacing [m] | point mass T [s] | rel. error | order | rigid "
-        "body T [s] | rel. error | order | interpolating fit: rel. error | solve PM / RB [ms] | "
-        "limits [ms] |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  Table convergence({"stations", "mean / max spacing [m]", "point mass T [s]", "rel. error",
+                     "order", "rigid body T [s]", "rel. error", "order",
+                     "interpolating fit: rel. error", "solve PM / RB [ms]", "limits [ms]"});
   const auto order = [](double p) { return std::isfinite(p) ? fmt("%.2f", p) : "–"; };
   const auto time = [](double t) { return std::isfinite(t) ? fmt("%.5f", t) : "infeasible"; };
   for (const Level& l : levels) {
-    md << "| " << l.stations << (l.is_default ? " (default spacing)" : "") << " | "
-       << sig3(l.mean_spacing) << " / " << sig3(l.max_spacing) << " | " << time(l.travel_time[0])
-       << " | " << percent_error(l.error[0]) << " | " << order(l.order[0]) << " | "
-       << time(l.travel_time[1]) << " | " << percent_error(l.error[1]) << " | " << order(l.order[1])
-       << " | "
-       << (std::isfinite(l.travel_time[kInterpolatingSeries])
-               ? percent_error(l.error[kInterpolatingSeries])
-               : "infeasible")
-       << " | " << fmt("%.3g", 1e3 * l.solve_seconds[0]) << " / "
-       << fmt("%.3g", 1e3 * l.solve_seconds[1]) << " | " << fmt("%.3g", 1e3 * l.limits_seconds)
-       << " |\n";
+    convergence.row(
+        {std::to_string(l.stations) + (l.is_default ? " (default spacing)" : ""),
+         sig3(l.mean_spacing) + " / " + sig3(l.max_spacing), time(l.travel_time[0]),
+         percent_error(l.error[0]), order(l.order[0]), time(l.travel_time[1]),
+         percent_error(l.error[1]), order(l.order[1]),
+         std::isfinite(l.travel_time[kInterpolatingSeries])
+             ? percent_error(l.error[kInterpolatingSeries])
+             : "infeasible",
+         fmt("%.3g", 1e3 * l.solve_seconds[0]) + " / " + fmt("%.3g", 1e3 * l.solve_seconds[1]),
+         fmt("%.3g", 1e3 * l.limits_seconds)});
   }
   const Level& def = default_level(levels);
   const double t_star = richardson(levels, 0), t_star_rb = richardson(levels, 1);
@@ -1239,67 +1233,73 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
       order_range.first = std::min(order_range.first, l.order[0]);
       order_range.second = std::max(order_range.second, l.order[0]);
     }
-  md << "\n\"order\": log(|e_N| / |e_2N|) / log(h_N / h_2N) between this level and the next "
-        "doubling level (not computed against the reference itself). A positive error means the "
-        "coarse profile is slower than the reference. Solve times of infeasible levels are of a "
-        "solve that stopped early.\n\n"
-     << "The observed order (point mass) lies between " << fmt("%.2f", order_range.first) << " and "
-     << fmt("%.2f", order_range.second)
-     << " at the levels at least 16 times coarser than the reference; its rise towards the "
-        "finest levels is the reference's own error, not faster convergence: with e = C h, "
-        "measuring "
-        "against a reference at h_ref gives log₂((4 − 1)/(2 − 1)) = 1.58 at h = 4 h_ref and "
-        "log₂(7/3) = 1.22 at 8 h_ref, which is what the table shows. A first-order Richardson "
-        "estimate of the limit from the two finest levels, T* = T_ref + (T_ref − T_2h) / "
-        "(h_2h / h_ref − 1) ≈ 2 T_ref − T_2h, gives "
-     << fmt("%.5f", t_star) << " s (point mass) and " << fmt("%.5f", t_star_rb)
-     << " s (rigid body), so the reference itself is "
-     << fmt("%+.4f", 100.0 * (levels.back().travel_time[0] / t_star - 1.0))
-     << " % off and the default spacing's error against the limit is "
-     << fmt("%+.3f", 100.0 * (def.travel_time[0] / t_star - 1.0)) << " %.\n\n";
+  report.heading("Convergence in the number of stations")
+      .table(convergence)
+      .paragraph(
+          "\"order\": log(|e_N| / |e_2N|) / log(h_N / h_2N) between this level and the next "
+          "doubling level (not computed against the reference itself). A positive error means "
+          "the coarse profile is slower than the reference. Solve times of infeasible levels are "
+          "of a solve that stopped early.")
+      .paragraph(
+          "The observed order (point mass) lies between " + fmt("%.2f", order_range.first) +
+          " and " + fmt("%.2f", order_range.second) +
+          " at the levels at least 16 times coarser than the reference; its rise towards the "
+          "finest levels is the reference's own error, not faster convergence: with e = C h, "
+          "measuring against a reference at h_ref gives log₂((4 − 1)/(2 − 1)) = 1.58 at h = "
+          "4 h_ref and log₂(7/3) = 1.22 at 8 h_ref, which is what the table shows. A first-order "
+          "Richardson estimate of the limit from the two finest levels, T* = T_ref + (T_ref − "
+          "T_2h) / (h_2h / h_ref − 1) ≈ 2 T_ref − T_2h, gives " +
+          fmt("%.5f", t_star) + " s (point mass) and " + fmt("%.5f", t_star_rb) +
+          " s (rigid body), so the reference itself is " +
+          fmt("%+.4f", 100.0 * (levels.back().travel_time[0] / t_star - 1.0)) +
+          " % off and the default spacing's error against the limit is " +
+          fmt("%+.3f", 100.0 * (def.travel_time[0] / t_star - 1.0)) + " %.");
   if (std::isfinite(def.error[0]) && def.error[0] > 0.0) {
     const double c = def.error[0] / def.mean_spacing;
-    md << "**Default station spacing.** At kDefaultStationSpacing = "
-       << fmt("%g", kDefaultStationSpacing) << " m the travel time is "
-       << percent_error(def.error[0])
-       << " too slow on the smoothing fit; e ≈ C h with C = " << fmt("%.3g", c)
-       << " /m puts 0.1 % at h ≈ " << sig3(kTargetError / c)
-       << " m. On the interpolating fit of the same 1 m-cell terrain the error at 0.5 m is "
-       << percent_error(def.error[kInterpolatingSeries])
-       << " and irregular in h (the spacing is half a cell, so stations alias the cell-scale "
-          "curvature). The solve is cheap at any of these spacings (see the solve-time "
-          "column).\n\n";
+    report.paragraph(
+        "**Default station spacing.** At kDefaultStationSpacing = " +
+        fmt("%g", kDefaultStationSpacing) + " m the travel time is " + percent_error(def.error[0]) +
+        " too slow on the smoothing fit; e ≈ C h with C = " + fmt("%.3g", c) +
+        " /m puts 0.1 % at h ≈ " + sig3(kTargetError / c) +
+        " m. On the interpolating fit of the same 1 m-cell terrain the error at 0.5 m is " +
+        percent_error(def.error[kInterpolatingSeries]) +
+        " and irregular in h (the spacing is half a cell, so stations alias the cell-scale "
+        "curvature). The solve is cheap at any of these spacings (see the solve-time column).");
   }
-  md << "## Sanity checks\n\n";
+  report.heading("Sanity checks");
   for (const ProfileRun* run : {&runs[0], &runs[1]}) {
     const Checks& c = run->checks;
-    md << "- `" << run->spec->name << "`: v > v_max at " << c.over_limit
-       << " stations (largest v − v_max " << fmt("%.3g", c.max_over)
-       << " m/s); s̈ outside [a_min, "
-          "a_max] at "
-       << c.outside << " step ends (largest distance " << fmt("%.3g", c.max_outside)
-       << " m/s², checked at both ends of every step at their profile speeds); stations with no "
-          "admissible s̈ at their profile speed (on the limit curve up to rounding): "
-       << c.bounds_infeasible << "; on v_max in " << c.touch_segments << " stretches ("
-       << c.touching << " stations), including " << c.dips_touched << " of the " << c.dips
-       << " local minima of v_max.\n";
+    report.bullet(
+        "`" + run->spec->name + "`: v > v_max at " + std::to_string(c.over_limit) +
+        " stations (largest v − v_max " + fmt("%.3g", c.max_over) +
+        " m/s); s̈ outside [a_min, a_max] at " + std::to_string(c.outside) +
+        " step ends (largest distance " + fmt("%.3g", c.max_outside) +
+        " m/s², checked at both ends of every step at their profile speeds); stations with no "
+        "admissible s̈ at their profile speed (on the limit curve up to rounding): " +
+        std::to_string(c.bounds_infeasible) + "; on v_max in " + std::to_string(c.touch_segments) +
+        " stretches (" + std::to_string(c.touching) + " stations), including " +
+        std::to_string(c.dips_touched) + " of the " + std::to_string(c.dips) +
+        " local minima of v_max.");
   }
-  md << "\n## What the figures show\n\n"
-     << commentary(runs, check_run, levels, setup) << "\n\n"
-     << "## Solver observations\n\n"
-     << solver_observations(runs, levels) << "\n"
-     << "## Figures\n\n"
-     << "`profile.png`: top, v_max(s) coloured by the constraint that sets it, the two optimal "
-        "profiles and the switching points (filled: point mass, open: rigid body; grey +: the "
-        "solver's own switching_points of the point mass); middle and bottom, each vehicle's "
-        "s̈(s) (black) inside its admissible band at the profile speed, the band's edges "
-        "coloured by what sets them.\n\n"
-     << "![optimal velocity profile](profile.png)\n\n"
-     << "`profile_zoom.png`: the same around the largest speed gap between the two vehicles.\n\n"
-     << "![optimal velocity profile, zoom](profile_zoom.png)\n\n"
-     << "![path coloured by speed](map.png)\n\n"
-     << "![convergence](convergence.png)\n";
-  write_text_file(context.output_dir / "report.md", md.str());
+  report.heading("What the figures show")
+      .paragraph(commentary(runs, check_run, levels, setup))
+      .heading("Solver observations")
+      .paragraph(solver_observations(runs, levels))
+      .heading("Figures")
+      .paragraph(
+          "`profile.png`: top, v_max(s) coloured by the constraint that sets it, the two optimal "
+          "profiles and the switching points (filled: point mass, open: rigid body; grey +: the "
+          "solver's own switching_points of the point mass); middle and bottom, each vehicle's "
+          "s̈(s) (black) inside its admissible band at the profile speed, the band's edges "
+          "coloured by what sets them.")
+      .figure("optimal velocity profile", "profile.png")
+      .paragraph(
+          "`profile_zoom.png`: the same around the largest speed gap between the two "
+          "vehicles.")
+      .figure("optimal velocity profile, zoom", "profile_zoom.png")
+      .figure("path coloured by speed", "map.png")
+      .figure("convergence", "convergence.png")
+      .write(context.output_dir);
 }
 
 /// A window of the path worth a closer look: centred where the rigid body is

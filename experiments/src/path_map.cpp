@@ -1,6 +1,5 @@
 #include "path_map.hpp"
 
-#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -8,11 +7,6 @@
 #include "plot.hpp"
 
 namespace talus::experiments {
-
-int path_map_canvas_height(double width, double height) {
-  const double ratio = height / width;
-  return static_cast<int>(std::clamp(220.0 + 760.0 * ratio, 450.0, 1100.0));
-}
 
 void write_path_points(const std::vector<Vec2>& offsets, const std::string& header,
                        const std::filesystem::path& file) {
@@ -24,15 +18,10 @@ void write_path_points(const std::vector<Vec2>& offsets, const std::string& head
   close_output_file(out, file);
 }
 
-std::string path_map_settings(double width, double height, const std::string& title,
-                              double max_speed, const std::string& speed_label) {
+std::string path_map_settings(const MapFrame& frame, const std::string& title, double max_speed,
+                              const std::string& speed_label) {
   std::ostringstream gp;
-  gp << "set size ratio -1\n"
-     << "set xrange [0:" << fmt("%.10g", width) << "]\nset yrange [0:" << fmt("%.10g", height)
-     << "]\n"
-     << "set xlabel 'x − x_{min} [m]  (east)'\nset ylabel 'y − y_{min} [m]  (north)'\n"
-     << "set tics out nomirror\n"
-     << "set title " << gnuplot_string(title) << " font ',10'\n"
+  gp << frame.axes() << "set title " << gnuplot_string(title) << " font ',10'\n"
      << "# ColorBrewer RdYlBu: red = slow, blue = fast.\n"
      << "set palette defined (0 '#a50026', 0.25 '#f46d43', 0.5 '#fee090', 0.75 '#74add1', "
         "1 '#313695')\n"

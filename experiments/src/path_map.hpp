@@ -4,29 +4,26 @@
 /// (velocity-limits: v_max; optimal-profile: the optimal v): the points file
 /// and the gnuplot lines both experiments share. Positions are offsets [m]
 /// from the surface's south-west corner; the relief image comes from
-/// write_relief_rgb() (relief_raster.hpp).
+/// write_relief_image() (relief_raster.hpp).
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "map_frame.hpp"
 #include "talus/core/types.hpp"
 
 namespace talus::experiments {
-
-/// Canvas height [px] of a 1100 px wide map of a width × height area: the
-/// plot keeps equal aspect, so a fixed height would leave space unused.
-int path_map_canvas_height(double width, double height);
 
 /// Writes the path's interpolation points: `header` (comment lines, each
 /// ending in a newline), then "x y P<i>" per point.
 void write_path_points(const std::vector<Vec2>& offsets, const std::string& header,
                        const std::filesystem::path& file);
 
-/// gnuplot settings of the map: equal-aspect axes from 0 to width and height
-/// [m], `title`, a red (slow) to blue (fast) palette over [0, max_speed]
-/// labelled `speed_label`, the key below the plot.
-std::string path_map_settings(double width, double height, const std::string& title,
-                              double max_speed, const std::string& speed_label);
+/// gnuplot settings of the map: the frame's axes, `title`, a red (slow) to
+/// blue (fast) palette over [0, max_speed] labelled `speed_label`, the key
+/// below the plot.
+std::string path_map_settings(const MapFrame& frame, const std::string& title, double max_speed,
+                              const std::string& speed_label);
 
 /// The map's plot command: the relief image (x y r g b), the path file's
 /// line (x y speed: a black casing under a line in the palette, titled

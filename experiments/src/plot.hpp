@@ -11,7 +11,7 @@
 
 namespace talus::experiments {
 
-/// The terminal line every experiment uses, so all figures share one look.
+/// The terminal line of every figure (GnuplotFigure::canvas), so all share one look.
 /// Includes `set encoding utf8` so labels may use °, λ, ×, − directly.
 std::string png_terminal(int width = 1000, int height = 800);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <ostream>
+#include <tuple>
 
 #include "number_format.hpp"
 #include "plot.hpp"
@@ -29,8 +30,8 @@ void write_raster_file(const ReliefRaster& raster, const std::string& header,
   close_output_file(out, file);
 }
 
-}  // namespace
-
+/// `patch` on the raster over [origin, origin + (width, height)]; the last
+/// row and column are clamped so that rounding never leaves the domain.
 ReliefRaster sample_relief(const BPatch& patch, const Vec2& origin, double width, double height,
                            std::size_t max_samples) {
   ReliefRaster raster;
@@ -51,6 +52,7 @@ ReliefRaster sample_relief(const BPatch& patch, const Vec2& origin, double width
   return raster;
 }
 
+/// Element floor(0.95 n) of the slopes in ascending order.
 double slope_p95(const ReliefRaster& raster) {
   std::vector<double> slopes = raster.slopes;
   const auto p95 = slopes.begin() + static_cast<long>(0.95 * static_cast<double>(slopes.size()));
@@ -77,11 +79,42 @@ void write_relief_rgb(const ReliefRaster& raster, const ReliefColouring& colouri
   });
 }
 
+}  // namespace
+
 void write_elevation_raster(const ReliefRaster& raster, const std::string& header,
                             const std::filesystem::path& file) {
   write_raster_file(raster, header, file, [&](std::ostream& out, std::size_t k) {
     out << fmt("%.7g", raster.samples[k].z);
   });
+}
+
+ReliefImage write_relief_image(const BPatch& surface, const MapFrame& frame,
+                               const std::string& what, const std::filesystem::path& file,
+                               std::size_t max_samples,
+                               std::optional<std::pair<double, double>> z_range, bool washed,
+                               const SunPosition& sun) {
+  ReliefImage image{
+      sample_relief(surface, frame.origin(), frame.width(), frame.height(), max_samples), {}};
+  ReliefColouring& colouring = image.colouring;
+  if (z_range) {
+    std::tie(colouring.zmin, colouring.zmax) = *z_range;
+  } else {
+    const auto [low, high] =
+        std::minmax_element(image.raster.samples.begin(), image.raster.samples.end(),
+                            [](const SurfacePoint& a, const SurfacePoint& b) { return a.z < b.z; });
+    colouring.zmin = low->z;
+    colouring.zmax = high->z;
+  }
+  colouring.sun = sun;
+  colouring.exaggeration = hillshade_exaggeration(slope_p95(image.raster));
+  colouring.washed = washed;
+  const std::string header =
+      "# " + what + ": hypsometric colour x hillshade (azimuth " + fmt("%g", sun.azimuth_deg) +
+      " deg, altitude " + fmt("%g", sun.altitude_deg) + " deg, exaggeration " +
+      fmt("%g", colouring.exaggeration) + ")" + (washed ? ", washed 45 % towards white" : "") +
+      "\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
+  write_relief_rgb(image.raster, colouring, header, file);
+  return image;
 }
 
 }  // namespace talus::experiments

@@ -9,6 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+#include <utility>
+
+#include "map_frame.hpp"
 #include "relief.hpp"
 #include "talus/bspline/bpatch.hpp"
 
@@ -26,16 +30,6 @@ struct ReliefRaster {
   std::vector<double> slopes;         ///< gradient magnitude |∇z| at each sample
 };
 
-/// Samples `patch` on the raster over [origin, origin + (width, height)] whose
-/// longer side has `max_samples` samples. The last row and column are clamped
-/// so that rounding never pushes a sample off the domain.
-ReliefRaster sample_relief(const BPatch& patch, const Vec2& origin, double width, double height,
-                           std::size_t max_samples);
-
-/// The 95th-percentile slope of the samples: element floor(0.95 n) of the
-/// slopes in ascending order.
-double slope_p95(const ReliefRaster& raster);
-
 /// How a sample is coloured: the hypsometric tint of its elevation over
 /// [zmin, zmax] (mid-ramp if that is empty) times a hillshade.
 struct ReliefColouring {
@@ -47,18 +41,27 @@ struct ReliefColouring {
   bool washed = false;
 };
 
-/// The colour of one sample.
-Rgb relief_colour(const SurfacePoint& sample, const ReliefColouring& colouring);
-
-/// Writes `header` (comment lines, each ending in a newline) and then
-/// "x y r g b" per sample (offsets [m], channels 0–255), a blank line after
-/// each raster row: gnuplot's `with rgbimage` input.
-void write_relief_rgb(const ReliefRaster& raster, const ReliefColouring& colouring,
-                      const std::string& header, const std::filesystem::path& file);
-
 /// Writes `header` and then "x y z" per sample (offsets and elevation [m]), a
 /// blank line after each raster row: the input gnuplot traces contours on.
 void write_elevation_raster(const ReliefRaster& raster, const std::string& header,
                             const std::filesystem::path& file);
+
+/// A relief image as written, with what its colouring used.
+struct ReliefImage {
+  ReliefRaster raster;
+  ReliefColouring colouring;
+};
+
+/// Samples `surface` over the frame's rectangle (`max_samples` along the
+/// longer side; the last row and column clamped onto the domain) and writes
+/// the shaded-relief image "x y r g b" (offsets [m], channels 0–255, a blank
+/// line after each raster row: gnuplot's `with rgbimage` input) to `file`, `what` naming the
+/// surface in its header. The tint spans `z_range` (the raster's own range if empty); the
+/// hillshade's exaggeration follows the 95th-percentile slope (hillshade_exaggeration).
+ReliefImage write_relief_image(const BPatch& surface, const MapFrame& frame,
+                               const std::string& what, const std::filesystem::path& file,
+                               std::size_t max_samples = 500,
+                               std::optional<std::pair<double, double>> z_range = {},
+                               bool washed = true, const SunPosition& sun = {});
 
 }  // namespace talus::experiments

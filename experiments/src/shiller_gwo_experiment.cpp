@@ -8,9 +8,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "figure.hpp"
 #include "number_format.hpp"
 #include "plan_command.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/terrain_generators.hpp"
@@ -61,7 +63,9 @@ double number(const nlohmann::json& j, const char* key) {
   return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : NAN;
 }
 
-double finite_or_nan(double value) { return std::isfinite(value) ? value : NAN; }
+double finite_or_nan(double value) {
+  return std::isfinite(value) ? value : NAN;
+}
 
 struct Run {
   std::string case_name, solver;
@@ -118,26 +122,29 @@ double worst_optimality(const Run& run) {
   return value;
 }
 
-void write_solver_figure(const fs::path& dir, const std::vector<std::string>& solvers) {
-  std::ostringstream gp;
-  gp << "# Local solvers compared, from `talus experiment shiller-gwo`.\n"
-     << "# Re-render in this folder with: gnuplot solvers.gp. Input: solvers.csv.\n"
-     << png_terminal(1400, 600) << "set output 'solvers.png'\n"
-     << "set datafile separator ','\nset style data histograms\n"
-     << "set style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
-     << "set grid y lc rgb '#d8d8d8'\nset tics out nomirror\nset key top left\n"
-     << "set yrange [0:*]\n"
-     << "set multiplot layout 1,2 title 'Local stage: Ipopt against NLopt on the same "
-        "candidates'\n"
-     << "set title '(a) improvement over the best global candidate'\n"
-     << "set ylabel 'improvement [%]'\n"
-     << "plot for [c=" << 1 << ":" << solvers.size() << "] 'solvers.csv' using "
-     << "(column(2+3*(c-1))):xtic(1) title columnhead(2+3*(c-1))\n"
-     << "set title '(b) local-stage wall time, all candidates'\nset ylabel 'seconds'\n"
-     << "plot for [c=1:" << solvers.size() << "] 'solvers.csv' using "
-     << "(column(3+3*(c-1))):xtic(1) title columnhead(2+3*(c-1))\n"
-     << "unset multiplot\n";
-  write_text_file(dir / "solvers.gp", gp.str());
+void draw_solver_figure(const fs::path& dir, const std::vector<std::string>& solvers) {
+  const std::string columns =
+      "for [c=1:" + std::to_string(solvers.size()) + "] 'solvers.csv' using ";
+  GnuplotFigure figure(dir, "solvers");
+  figure.describe("Local solvers compared, from `talus experiment shiller-gwo`.", "solvers.csv.")
+          .canvas(1400, 600)
+      << "set datafile separator ','\nset style data histograms\n"
+      << "set style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
+      << "set grid y lc rgb '#d8d8d8'\nset tics out nomirror\nset key top left\n"
+      << "set yrange [0:*]\n"
+      << "set multiplot layout 1,2 title 'Local stage: Ipopt against NLopt on the same "
+         "candidates'\n"
+      << "set title '(a) improvement over the best global candidate'\n"
+      << "set ylabel 'improvement [%]'\n"
+      << "plot " << columns << "(column(2+3*(c-1))):xtic(1) title columnhead(2+3*(c-1))\n"
+      << "set title '(b) local-stage wall time, all candidates'\nset ylabel 'seconds'\n"
+      << "plot " << columns << "(column(3+3*(c-1))):xtic(1) title columnhead(2+3*(c-1))\n"
+      << "unset multiplot\n";
+  if (gnuplot_available()) {
+    figure.render();
+  } else {
+    figure.save();
+  }
 }
 
 }  // namespace
@@ -184,28 +191,26 @@ void run_shiller_gwo(const ExperimentContext& context) {
   solver_csv << "case";
   for (const std::string& s : solvers) solver_csv << "," << s << "," << s << "_s," << s << "_t";
   solver_csv << "\n";
-  std::ostringstream report;
-  report << "# shiller-gwo: the two-stage time-optimal planner\n\n"
-         << "Reproduces the method of Shiller & Gwo (1991), *Dynamic motion planning of "
-            "autonomous vehicles*, IEEE T-RA 7(2): a global search for the minimum-time "
-            "corridors (edge cost = travel time at the speed limit), then a local optimisation "
-            "of the B-spline path's control points for the motion time of the exact "
-            "time-optimal velocity profile. Vehicle: `data/vehicles/rover.yaml` (point mass, "
-            "mu 0.7, b/h 1.2, 15 m/s, drive 3 m/s², brakes 6 m/s²). Smoothing B-patch (lambda "
-            "1), "
-         << candidates << " global candidates, 16-connected lattice at the cell size.\n\n";
+  Report report("shiller-gwo: the two-stage time-optimal planner");
+  report.paragraph(
+      "Reproduces the method of Shiller & Gwo (1991), *Dynamic motion planning of autonomous "
+      "vehicles*, IEEE T-RA 7(2): a global search for the minimum-time corridors (edge cost = "
+      "travel time at the speed limit), then a local optimisation of the B-spline path's control "
+      "points for the motion time of the exact time-optimal velocity profile. Vehicle: "
+      "`data/vehicles/rover.yaml` (point mass, mu 0.7, b/h 1.2, 15 m/s, drive 3 m/s², brakes "
+      "6 m/s²). Smoothing B-patch (lambda 1), " +
+      std::to_string(candidates) + " global candidates, 16-connected lattice at the cell size.");
   const auto add_row = [&](const Run& r) {
     results << r.case_name << "," << r.solver << "," << r.control_points << ","
             << to_string(r.result().status) << "," << csv_number(r.travel_time()) << ","
             << csv_number(r.global_travel_time()) << ","
-            << csv_number(r.result().improvement_percent()) << ","
-            << csv_number(r.seconds("local")) << "," << csv_number(r.seconds("total")) << ","
+            << csv_number(r.result().improvement_percent()) << "," << csv_number(r.seconds("local"))
+            << "," << csv_number(r.seconds("total")) << ","
             << csv_number(total(r, [](const OptimizedPath& o) { return o.evaluations; })) << ","
             << csv_number(total(r, [](const OptimizedPath& o) { return o.iterations; })) << ","
             << csv_number(worst_optimality(r)) << ","
-            << csv_number(total(r, [](const OptimizedPath& o) {
-                 return o.finite_difference_fallbacks;
-               }))
+            << csv_number(
+                   total(r, [](const OptimizedPath& o) { return o.finite_difference_fallbacks; }))
             << "\n";
   };
   for (const Run& r : runs) add_row(r);
@@ -213,75 +218,73 @@ void run_shiller_gwo(const ExperimentContext& context) {
   write_text_file(out / "results.csv", results.str());
 
   for (const Case& c : cases) {
-    report << "## " << c.title << "\n\n"
-           << "Start " << c.start << ", goal " << c.goal << ". Figures of the Ipopt run: "
-           << "[plan](" << c.name
-           << "/ipopt/plan.png) (relief, global candidates, optimised "
-              "paths, best highlighted) and [profile]("
-           << c.name << "/ipopt/profile.png) (best velocity profile under its limit curve).\n\n"
-           << "![plan](" << c.name << "/ipopt/plan.png)\n\n"
-           << "| solver | travel time [s] | best global candidate [s] | improvement | local "
-              "stage [s] | whole plan [s] | evaluations | max optimality [s/m] |\n"
-           << "|---|---|---|---|---|---|---|---|\n";
+    report.heading(c.title)
+        .paragraph("Start " + c.start + ", goal " + c.goal + ". Figures of the Ipopt run: [plan](" +
+                   c.name +
+                   "/ipopt/plan.png) (relief, global candidates, optimised paths, best "
+                   "highlighted) and [profile](" +
+                   c.name + "/ipopt/profile.png) (best velocity profile under its limit curve).")
+        .figure("plan", c.name + "/ipopt/plan.png");
+    Table solver_table({"solver", "travel time [s]", "best global candidate [s]", "improvement",
+                        "local stage [s]", "whole plan [s]", "evaluations",
+                        "max optimality [s/m]"});
     solver_csv << c.name;
     for (const Run& r : runs) {
       if (r.case_name != c.name) continue;
-      report << "| " << r.solver << " | " << fmt("%.2f", r.travel_time()) << " | "
-             << fmt("%.2f", r.global_travel_time()) << " | "
-             << fmt("%.2f %%", r.result().improvement_percent()) << " | "
-             << fmt("%.2f", r.seconds("local")) << " | " << fmt("%.2f", r.seconds("total"))
-             << " | "
-             << fmt("%.0f", total(r, [](const OptimizedPath& o) { return o.evaluations; }))
-             << " | " << scientific(worst_optimality(r)) << " |\n";
+      solver_table.row({r.solver, fmt("%.2f", r.travel_time()), fmt("%.2f", r.global_travel_time()),
+                        fmt("%.2f %%", r.result().improvement_percent()),
+                        fmt("%.2f", r.seconds("local")), fmt("%.2f", r.seconds("total")),
+                        fmt("%.0f", total(r, [](const OptimizedPath& o) { return o.evaluations; })),
+                        scientific(worst_optimality(r))});
       solver_csv << "," << csv_number(r.result().improvement_percent()) << ","
                  << csv_number(r.seconds("local")) << "," << csv_number(r.travel_time());
     }
     solver_csv << "\n";
-    report << "\nLocal optima of the Ipopt run (one per global candidate):\n\n"
-           << "| candidate | initial fit [s] | optimum [s] | solver status | iterations | "
-              "optimality [s/m] |\n|---|---|---|---|---|---|\n";
+    report.table(solver_table)
+        .paragraph("Local optima of the Ipopt run (one per global candidate):");
     for (const Run& r : runs) {
       if (r.case_name != c.name || r.solver != "ipopt") continue;
+      Table optima({"candidate", "initial fit [s]", "optimum [s]", "solver status", "iterations",
+                    "optimality [s/m]"});
       for (const CandidateOutcome& o : r.result().candidates) {
-        report << "| " << o.candidate << " | "
-               << fmt("%.2f", finite_or_nan(o.initial.travel_time())) << " | "
-               << fmt("%.2f", finite_or_nan(o.trajectory.travel_time())) << " | "
-               << (o.optimization ? o.optimization->solver_status : std::string("-")) << " | "
-               << (o.optimization ? o.optimization->iterations : 0) << " | "
-               << scientific(optimality(o)) << " |\n";
+        optima.row({std::to_string(o.candidate),
+                    fmt("%.2f", finite_or_nan(o.initial.travel_time())),
+                    fmt("%.2f", finite_or_nan(o.trajectory.travel_time())),
+                    o.optimization ? o.optimization->solver_status : std::string("-"),
+                    std::to_string(o.optimization ? o.optimization->iterations : 0),
+                    scientific(optimality(o))});
       }
-      report << "\nStage timings [s]: ";
+      std::string timings = "Stage timings [s]: ";
       for (const char* stage : {"fit", "global", "local", "profile", "plots", "total"}) {
-        report << stage << " " << fmt("%.2f", r.seconds(stage)) << "; ";
+        timings += std::string(stage) + " " + fmt("%.2f", r.seconds(stage)) + "; ";
       }
-      report << "\n\n";
+      report.table(optima).paragraph(timings);
     }
-    report
-        << "Control points (Ipopt):\n\n| M | travel time [s] | local stage [s] |\n|---|---|---|\n";
+    Table study_table({"M", "travel time [s]", "local stage [s]"});
     for (const long long m : control_points) {
       for (const std::vector<Run>* set : {&runs, &study}) {
         for (const Run& r : *set) {
           if (r.case_name != c.name || r.solver != "ipopt" || r.control_points != m) continue;
-          report << "| " << m << " | " << fmt("%.2f", r.travel_time()) << " | "
-                 << fmt("%.2f", r.seconds("local")) << " |\n";
+          study_table.row(
+              {std::to_string(m), fmt("%.2f", r.travel_time()), fmt("%.2f", r.seconds("local"))});
         }
       }
     }
-    report << "\n";
+    report.paragraph("Control points (Ipopt):").table(study_table);
   }
   write_text_file(out / "solvers.csv", solver_csv.str());
-  write_solver_figure(out, solvers);
-  if (gnuplot_available()) run_gnuplot(out / "solvers.gp");
-  report << "## Solvers\n\n![solvers](solvers.png)\n\n"
-         << "All three solvers start from the same global candidates and minimise the same "
-            "objective (the travel time at a fixed count of stations, 0.5 m apart, at most 3000); "
-            "Ipopt and LBFGS use its exact adjoint gradient, BOBYQA none. Optimality is the "
-            "largest projected-gradient "
-            "component at the returned path. The travel time is piecewise smooth (it kinks "
-            "where a switching point crosses a station), so gradient methods can stop on a "
-            "kink with a small but non-zero gradient. Every reported path is re-evaluated at "
-            "0.1 m stations; the numbers above are those. Raw data: results.csv.\n";
-  write_text_file(out / "report.md", report.str());
+  draw_solver_figure(out, solvers);
+  report.heading("Solvers")
+      .figure("solvers", "solvers.png")
+      .paragraph(
+          "All three solvers start from the same global candidates and minimise the same "
+          "objective (the travel time at a fixed count of stations, 0.5 m apart, at most 3000); "
+          "Ipopt and LBFGS use its exact adjoint gradient, BOBYQA none. Optimality is the largest "
+          "projected-gradient component at the returned path. The travel time is piecewise smooth "
+          "(it kinks where a switching point crosses a station), so gradient methods can stop on "
+          "a kink with a small but non-zero gradient. Every reported path is re-evaluated at 0.1 m "
+          "stations; the numbers above are those. Raw data: results.csv.")
+      .write(out);
 }
 
 }  // namespace talus::experiments

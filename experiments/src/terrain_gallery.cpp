@@ -15,10 +15,13 @@
 #include <system_error>
 #include <vector>
 
+#include "figure.hpp"
+#include "map_frame.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
 #include "relief_raster.hpp"
+#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
@@ -33,7 +36,6 @@ namespace fs = std::filesystem;
 // Fixed settings of the gallery, named so the report can quote them.
 constexpr double kSmoothingLambda = 1.0;        // "smooths over about one cell" (bpatch.hpp)
 constexpr std::size_t kRasterMaxSamples = 400;  // relief raster, longer side
-constexpr double kAmbient = 0.35;               // hillshade floor, see shade_colour()
 constexpr int kContourTargetLevels = 12;
 constexpr double kCurvatureFraction = 0.10;  // "most curved" nodes for the residual statistic
 constexpr std::size_t kFullFractalSize = 257;
@@ -139,39 +141,10 @@ double quantile(std::vector<double>& values, double q) {
   return values[k];
 }
 
-/// Plot axes in metres, or in kilometres for continental-scale grids.
-struct AxisUnit {
-  double scale;      ///< plotted value = metres × scale
-  const char* name;  ///< "m" or "km"
-};
-
-AxisUnit axis_unit(const ElevationGrid& grid) {
+/// The map frame of a grid: kilometre axes for continental-scale grids.
+MapFrame map_frame(const ElevationGrid& grid) {
   const double extent = std::max(grid.x_max() - grid.x_min(), grid.y_max() - grid.y_min());
-  return extent > kKilometreAxesAbove ? AxisUnit{1e-3, "km"} : AxisUnit{1.0, "m"};
-}
-
-/// Lines shared by both figures: equal aspect, axes from 0 to the extent.
-std::string map_axes(const ElevationGrid& grid, const AxisUnit& unit) {
-  const double width = (grid.x_max() - grid.x_min()) * unit.scale;
-  const double height = (grid.y_max() - grid.y_min()) * unit.scale;
-  std::ostringstream gp;
-  gp << "set size ratio -1\n"
-     << "set xrange [0:" << fmt("%.10g", width) << "]\n"
-     << "set yrange [0:" << fmt("%.10g", height) << "]\n"
-     << "set xlabel " << gnuplot_string(std::string("x − x_{min} [") + unit.name + "]  (east)")
-     << "\n"
-     << "set ylabel " << gnuplot_string(std::string("y − y_{min} [") + unit.name + "]  (north)")
-     << "\n"
-     << "set tics out nomirror\n"
-     << "set format x '%g'\nset format y '%g'\n";
-  return gp.str();
-}
-
-/// Canvas height for a 1000 px wide map figure: the plot keeps equal aspect,
-/// so a fixed 800 px would leave wide grids floating in empty space.
-int canvas_height(const ElevationGrid& grid) {
-  const double ratio = (grid.y_max() - grid.y_min()) / (grid.x_max() - grid.x_min());
-  return static_cast<int>(std::clamp(180.0 + 650.0 * ratio, 450.0, 1000.0));
+  return MapFrame::of(grid, extent > kKilometreAxesAbove ? MapUnit::kKilometre : MapUnit::kMetre);
 }
 
 /// "512 × 512 nodes, cell 30 m" style size text.
@@ -182,41 +155,32 @@ std::string size_text(const ElevationGrid& grid) {
   return text.str();
 }
 
+std::string contours_title(const TerrainResult& result) {
+  return gnuplot_string("contours every " + fmt("%g", result.contour_step) + " m");
+}
+
 /// Evaluates the interpolating patch on the relief raster, writes the
 /// elevation and shaded-colour files, and writes and runs the relief script.
 void draw_relief(const TerrainInput& input, const BPatch& patch, const SunPosition& sun,
                  const fs::path& out_dir, TerrainResult& result) {
   const ElevationGrid& grid = input.grid;
-  const double width = grid.x_max() - grid.x_min();
-  const double height = grid.y_max() - grid.y_min();
-  const ReliefRaster raster =
-      sample_relief(patch, {grid.x_min(), grid.y_min()}, width, height, kRasterMaxSamples);
-  result.raster_nx = raster.size.nx;
-  result.raster_ny = raster.size.ny;
-  std::vector<double> slopes = raster.slopes;
-  result.exaggeration = hillshade_exaggeration(quantile(slopes, 0.95));
-
+  const MapFrame frame = map_frame(grid);
   const std::string name = input.name;
-  std::ostringstream elevation_header, rgb_header;
-  elevation_header << "# " << name << ": interpolating B-patch on a " << raster.size.nx << " x "
-                   << raster.size.ny
+  GnuplotFigure figure(out_dir, name + "_relief");
+  const ReliefImage image =
+      write_relief_image(patch, frame, name + ": interpolating B-patch", figure.file(".rgb"),
+                         kRasterMaxSamples, std::pair{result.zmin, result.zmax}, false, sun);
+  result.raster_nx = image.raster.size.nx;
+  result.raster_ny = image.raster.size.ny;
+  result.exaggeration = image.colouring.exaggeration;
+  std::ostringstream elevation_header;
+  elevation_header << "# " << name << ": interpolating B-patch on a " << image.raster.size.nx
+                   << " x " << image.raster.size.ny
                    << " raster\n# x - x_min [m], y - y_min [m], z [m]; one block per raster row\n";
-  rgb_header << "# " << name << ": hypsometric colour x Lambertian hillshade (azimuth "
-             << sun.azimuth_deg << " deg, altitude " << sun.altitude_deg << " deg, exaggeration "
-             << result.exaggeration
-             << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
-  write_elevation_raster(raster, elevation_header.str(), out_dir / (name + "_elevation.dat"));
-  write_relief_rgb(raster, {result.zmin, result.zmax, sun, result.exaggeration, kAmbient, false},
-                   rgb_header.str(), out_dir / (name + "_relief.rgb"));
+  write_elevation_raster(image.raster, elevation_header.str(), out_dir / (name + "_elevation.dat"));
   const double relief = result.zmax - result.zmin;
-
-  // Contour levels: whole multiples of a {1, 2, 5} × 10^k step inside the data range.
   result.contour_step = contour_interval(relief, kContourTargetLevels);
-  const double first = std::ceil(result.zmin / result.contour_step) * result.contour_step;
-  const double last = std::floor(result.zmax / result.contour_step) * result.contour_step;
 
-  const AxisUnit unit = axis_unit(grid);
-  const std::string s = fmt("%.10g", unit.scale);
   std::ostringstream title;
   title << name << ": " << size_text(grid) << ", relief " << sig3(relief) << " m ("
         << sig3(result.zmin) << " to " << sig3(result.zmax) << " m)\n"
@@ -225,53 +189,39 @@ void draw_relief(const TerrainInput& input, const BPatch& patch, const SunPositi
   if (result.exaggeration != 1.0) {
     title << ", vertical exaggeration × " << fmt("%g", result.exaggeration);
   }
-
-  std::ostringstream gp;
-  gp << "# Shaded relief with contours of " << name
-     << ", from `talus experiment terrain-gallery`.\n"
-     << "# Re-render in this folder with: gnuplot " << name << "_relief.gp\n"
-     << "# Inputs: " << name << "_elevation.dat (x y z on the raster, for the contours) and\n"
-     << "#         " << name << "_relief.rgb (x y r g b: hypsometric tint x hillshade).\n"
-     << "# x, y are metres from the grid's south-west node; plotted × " << s << " (" << unit.name
-     << ").\n"
-     << png_terminal(1000, canvas_height(grid)) << "set output "
-     << gnuplot_string(name + "_relief.png") << "\n"
-     << "\n# 1) Contour lines, traced by gnuplot on the elevation raster into a table.\n"
-     << "set contour base\nunset surface\nset view map\n"
-     << "set cntrparam linear\n"
-     << "set cntrparam levels incremental " << fmt("%.10g", first) << ", "
-     << fmt("%.10g", result.contour_step) << ", " << fmt("%.10g", last) << "\n"
-     << "set table " << gnuplot_string(name + "_contours.dat") << "\n"
-     << "splot " << gnuplot_string(name + "_elevation.dat") << " using 1:2:3 with lines notitle\n"
-     << "unset table\nunset contour\nset surface\n"
-     << "\n# 2) The map: shaded image, contours on top.\n"
-     << map_axes(grid, unit) << "set title " << gnuplot_plain_text(title.str()) << "\n"
-     << "# The colour key shows the unshaded tint (same stops as the image).\n"
-     << "set palette defined (";
+  figure.describe(
+            "Shaded relief with contours of " + name + ", from `talus experiment terrain-gallery`.",
+            name + "_elevation.dat (x y z on the raster, for the contours) and " + name +
+                "_relief.rgb (x y r g b: hypsometric tint x hillshade).")
+          .canvas(1000, frame.canvas_height(1000))
+      << trace_contours(name + "_elevation.dat", 3,
+                        ContourLevels::within(result.zmin, result.zmax, result.contour_step),
+                        name + "_contours.dat")
+      << frame.axes();
+  figure.title(title.str(), "")
+      << "# The colour key shows the unshaded tint (same stops as the image).\n"
+      << "set palette defined (";
   bool comma = false;
   for (const ColourStop& stop : hypsometric_stops()) {
-    gp << (comma ? ", " : "") << fmt("%g", stop.t) << " '#";
     char hex[8];
     std::snprintf(hex, sizeof hex, "%02x%02x%02x", to_byte(stop.colour.r), to_byte(stop.colour.g),
                   to_byte(stop.colour.b));
-    gp << hex << "'";
+    figure << (comma ? ", " : "") << fmt("%g", stop.t) << " '#" << hex << "'";
     comma = true;
   }
-  gp << ")\n"
-     << "set cbrange [" << fmt("%.10g", result.zmin) << ":"
-     << fmt("%.10g", relief > 0.0 ? result.zmax : result.zmin + 1.0) << "]\n"
-     << "set cblabel 'elevation [m]'\nset colorbox\n"
-     << "set key outside bottom center horizontal samplen 2\n"
-     << "plot " << gnuplot_string(name + "_relief.rgb") << " using ($1*" << s << "):($2*" << s
-     << "):3:4:5 with rgbimage notitle, \\\n"
-     << "     " << gnuplot_string(name + "_contours.dat") << " using ($1*" << s << "):($2*" << s
-     << ") with lines lc rgb '#303030' lw 0.6 title "
-     << gnuplot_string("contours every " + fmt("%g", result.contour_step) + " m") << ", \\\n"
-     << "     NaN with lines lc palette cb " << fmt("%.10g", result.zmin)
-     << " notitle  # draws nothing; makes gnuplot show the colour key\n";
-  const fs::path script = out_dir / (name + "_relief.gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  figure << ")\n"
+         << "set cbrange [" << fmt("%.10g", result.zmin) << ":"
+         << fmt("%.10g", relief > 0.0 ? result.zmax : result.zmin + 1.0) << "]\n"
+         << "set cblabel 'elevation [m]'\nset colorbox\n"
+         << "set key outside bottom center horizontal samplen 2\n";
+  figure
+      .plot({gnuplot_string(figure.name(".rgb")) + " using " + frame.xy() +
+                 ":3:4:5 with rgbimage notitle",
+             frame.contour_item(name + "_contours.dat",
+                                "lc rgb '#303030' lw 0.6 title " + contours_title(result)),
+             // Draws nothing; makes gnuplot show the colour key.
+             "NaN with lines lc palette cb " + fmt("%.10g", result.zmin) + " notitle"})
+      .render();
 }
 
 /// Residuals of the smoothing fit at the nodes, the curvature statistic, and
@@ -340,8 +290,7 @@ void draw_residuals(const TerrainInput& input, const BPatch& interpolating, cons
   if (!(limit > 0.0)) limit = max_abs > 0.0 ? max_abs : 1.0;
   const bool clipped = limit < max_abs;
 
-  const AxisUnit unit = axis_unit(grid);
-  const std::string s = fmt("%.10g", unit.scale);
+  const MapFrame frame = map_frame(grid);
   std::ostringstream title;
   title << name << ": smoothing fit (λ = " << fmt("%g", kSmoothingLambda)
         << ") minus data at the nodes, " << size_text(grid) << "\n"
@@ -349,28 +298,26 @@ void draw_residuals(const TerrainInput& input, const BPatch& interpolating, cons
         << " m";
   if (clipped) title << "; colours saturate beyond ±" << sig3(limit) << " m (99th pct.)";
 
-  std::ostringstream gp;
-  gp << "# Residual map of " << name << ", from `talus experiment terrain-gallery`.\n"
-     << "# Re-render in this folder with: gnuplot " << name << "_residual.gp\n"
-     << "# Input: " << name << "_residual.dat (x y residual at every node); the grey lines are\n"
-     << "# the contours traced by " << name << "_relief.gp (run that one first).\n"
-     << png_terminal(1000, canvas_height(grid)) << "set output "
-     << gnuplot_string(name + "_residual.png") << "\n"
-     << map_axes(grid, unit) << "set title " << gnuplot_plain_text(title.str()) << "\n"
-     << "# Diverging palette (ColorBrewer RdBu): blue = fit below the data, red = above.\n"
-     << "set palette defined (-1 '#2166ac', -0.5 '#92c5de', 0 '#f7f7f7', 0.5 '#f4a582', "
-        "1 '#b2182b')\n"
-     << "set cbrange [" << fmt("%.6g", -limit) << ":" << fmt("%.6g", limit) << "]\n"
-     << "set cblabel 'smoothing fit − data [m]'\n"
-     << "set key outside bottom center horizontal samplen 2\n"
-     << "plot " << gnuplot_string(name + "_residual.dat") << " using ($1*" << s << "):($2*" << s
-     << "):3 with image notitle, \\\n"
-     << "     " << gnuplot_string(name + "_contours.dat") << " using ($1*" << s << "):($2*" << s
-     << ") with lines lc rgb '#a0000000' lw 0.5 title "
-     << gnuplot_string("contours every " + fmt("%g", result.contour_step) + " m") << "\n";
-  const fs::path script = out_dir / (name + "_residual.gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  GnuplotFigure figure(out_dir, name + "_residual");
+  figure.describe("Residual map of " + name + ", from `talus experiment terrain-gallery`.",
+                  name +
+                      "_residual.dat (x y residual at every node); the grey lines are the "
+                      "contours traced by " +
+                      name + "_relief.gp (run that one first).")
+          .canvas(1000, frame.canvas_height(1000))
+      << frame.axes();
+  figure.title(title.str(), "")
+      << "# Diverging palette (ColorBrewer RdBu): blue = fit below the data, red = above.\n"
+      << "set palette defined (-1 '#2166ac', -0.5 '#92c5de', 0 '#f7f7f7', 0.5 '#f4a582', "
+         "1 '#b2182b')\n"
+      << "set cbrange [" << fmt("%.6g", -limit) << ":" << fmt("%.6g", limit) << "]\n"
+      << "set cblabel 'smoothing fit − data [m]'\n"
+      << "set key outside bottom center horizontal samplen 2\n";
+  figure
+      .plot({gnuplot_string(figure.name(".dat")) + " using " + frame.xy() + ":3 with image notitle",
+             frame.contour_item(name + "_contours.dat",
+                                "lc rgb '#a0000000' lw 0.5 title " + contours_title(result))})
+      .render();
 }
 
 TerrainResult process_terrain(const TerrainInput& input, const SunPosition& sun,
@@ -488,73 +435,83 @@ std::string commentary(const std::vector<TerrainResult>& results) {
 }
 
 void write_report(const std::vector<TerrainResult>& results, const SunPosition& sun,
-                  const ExperimentContext& context, const fs::path& path) {
-  std::ostringstream md;
-  md << "# Terrain gallery\n\n"
-     << "Every bundled DEM and one fractal terrain, drawn as shaded relief with contours from "
-        "the interpolating B-patch, with the residual map of the smoothing B-patch.\n\n"
-     << "## What was run\n\n"
-     << "- Inputs: " << (context.quick ? "quick mode: the two smallest " : "all ")
-     << "`data/terrain/*.asc` DEMs (provenance in `data/terrain/README.md`), and one fractal "
-        "terrain.\n";
+                  const ExperimentContext& context) {
+  const double ambient = ReliefColouring{}.ambient;
+  Report report("Terrain gallery");
+  report
+      .paragraph(
+          "Every bundled DEM and one fractal terrain, drawn as shaded relief with contours from "
+          "the interpolating B-patch, with the residual map of the smoothing B-patch.")
+      .heading("What was run")
+      .bullet(std::string("Inputs: ") + (context.quick ? "quick mode: the two smallest " : "all ") +
+              "`data/terrain/*.asc` DEMs (provenance in `data/terrain/README.md`), and one fractal "
+              "terrain.");
   for (const TerrainResult& r : results) {
-    md << "  - `" << r.name << "`: "
-       << (r.origin.starts_with("data/") ? describe_dem(r.name) + " (`" + r.origin + "`)"
-                                         : r.origin)
-       << (r.filled_voids ? "; NODATA nodes filled with the nearest valid value for the relief "
-                            "image only"
-                          : "")
-       << "\n";
+    report.bullet(
+        "`" + r.name + "`: " +
+            (r.origin.starts_with("data/") ? describe_dem(r.name) + " (`" + r.origin + "`)"
+                                           : r.origin) +
+            (r.filled_voids ? "; NODATA nodes filled with the nearest valid value for "
+                              "the relief image only"
+                            : ""),
+        1);
   }
-  md << "- Fits: `BPatch::interpolate` (exact at the nodes) and `BPatch::fit_smoothing` with "
-        "λ = "
-     << fmt("%g", kSmoothingLambda)
-     << " (thin-plate weight in grid-index units, about one cell of smoothing), each timed "
-        "once with `std::chrono::steady_clock` on this machine.\n"
-     << "- Relief images: the interpolating patch evaluated on a raster of " << kRasterMaxSamples
-     << " samples along the longer side (square pixels); colour = hypsometric tint of the "
-        "elevation × ("
-     << fmt("%g", kAmbient) << " + " << fmt("%g", 1.0 - kAmbient)
-     << " × hillshade). Hillshade = max(0, n · s), the Lambertian cosine between the surface "
-        "normal n = (−k z_x, −k z_y, 1)/|…| and the unit vector s towards a sun at azimuth "
-     << fmt("%g", sun.azimuth_deg) << "° (clockwise from north) and altitude "
-     << fmt("%g", sun.altitude_deg)
-     << "°; k is a vertical exaggeration, 1 unless the 95th-percentile slope is below 20° "
-        "(then the largest of 1, 2, 5, 10, … not exceeding tan 20° / that slope). Contours are "
-        "traced by gnuplot on the same raster at a {1, 2, 5} × 10^k interval giving 12–30 "
-        "levels. Axes are relative to the grid's south-west node.\n"
-     << "- Residual maps: smoothing fit minus data at every valid node (`BPatch::elevation` at "
-        "the node positions); diverging colours, symmetric about zero, saturating at the 99th "
-        "percentile of |residual|. The curvature share is the fraction of the summed squared "
-        "residual on the "
-     << fmt("%.0f", 100.0 * kCurvatureFraction)
-     << " % of nodes with the largest thin-plate energy z_uu² + 2 z_uv² + z_vv² of the "
-        "interpolating patch.\n"
-     << "- Every figure has its gnuplot script (`<name>_relief.gp`, `<name>_residual.gp`) and "
-        "data files next to it; `gnuplot <script>` in this folder re-renders it.\n\n"
-     << "## Results\n\n"
-     << "Numbers also in `summary.csv`.\n\n"
-     << "| terrain | nodes | cell [m] | z min … max [m] | voids | interpolate [s] | smoothing "
-        "[s] | max residual [m] | RMS residual [m] | RMS / relief | curvature share | VE | "
-        "contour step [m] |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  report
+      .bullet(
+          "Fits: `BPatch::interpolate` (exact at the nodes) and `BPatch::fit_smoothing` with "
+          "λ = " +
+          fmt("%g", kSmoothingLambda) +
+          " (thin-plate weight in grid-index units, about one cell of smoothing), each timed "
+          "once with `std::chrono::steady_clock` on this machine.")
+      .bullet("Relief images: the interpolating patch evaluated on a raster of " +
+              std::to_string(kRasterMaxSamples) +
+              " samples along the longer side (square pixels); colour = hypsometric tint of the "
+              "elevation × (" +
+              fmt("%g", ambient) + " + " + fmt("%g", 1.0 - ambient) +
+              " × hillshade). Hillshade = max(0, n · s), the Lambertian cosine between the "
+              "surface normal n = (−k z_x, −k z_y, 1)/|…| and the unit vector s towards a sun at "
+              "azimuth " +
+              fmt("%g", sun.azimuth_deg) + "° (clockwise from north) and altitude " +
+              fmt("%g", sun.altitude_deg) +
+              "°; k is a vertical exaggeration, 1 unless the 95th-percentile slope is below 20° "
+              "(then the largest of 1, 2, 5, 10, … not exceeding tan 20° / that slope). Contours "
+              "are traced by gnuplot on the same raster at a {1, 2, 5} × 10^k interval giving "
+              "12–30 levels. Axes are relative to the grid's south-west node.")
+      .bullet(
+          "Residual maps: smoothing fit minus data at every valid node (`BPatch::elevation` "
+          "at the node positions); diverging colours, symmetric about zero, saturating at the "
+          "99th percentile of |residual|. The curvature share is the fraction of the summed "
+          "squared residual on the " +
+          fmt("%.0f", 100.0 * kCurvatureFraction) +
+          " % of nodes with the largest thin-plate energy z_uu² + 2 z_uv² + z_vv² of the "
+          "interpolating patch.")
+      .bullet(
+          "Every figure has its gnuplot script (`<name>_relief.gp`, `<name>_residual.gp`) and "
+          "data files next to it; `gnuplot <script>` in this folder re-renders it.")
+      .heading("Results")
+      .paragraph("Numbers also in `summary.csv`.");
+  Table table({"terrain", "nodes", "cell [m]", "z min … max [m]", "voids", "interpolate [s]",
+               "smoothing [s]", "max residual [m]", "RMS residual [m]", "RMS / relief",
+               "curvature share", "VE", "contour step [m]"});
   for (const TerrainResult& r : results) {
     const double relief = r.zmax - r.zmin;
-    md << "| `" << r.name << "` | " << r.ncols << " × " << r.nrows << " | " << fmt("%g", r.cellsize)
-       << " | " << fmt("%.6g", r.zmin) << " … " << fmt("%.6g", r.zmax) << " | " << r.voids << " | "
-       << sig3(r.interpolate_seconds) << " | " << sig3(r.smoothing_seconds) << " | "
-       << sig3(r.max_residual) << " | " << sig3(r.rms_residual) << " | "
-       << (relief > 0.0 ? fmt("%.2g", 100.0 * r.rms_residual / relief) + " %" : "–") << " | "
-       << fmt("%.0f", 100.0 * r.curvature_share) << " % | " << fmt("%g", r.exaggeration) << " | "
-       << fmt("%g", r.contour_step) << " |\n";
+    table.row({"`" + r.name + "`", std::to_string(r.ncols) + " × " + std::to_string(r.nrows),
+               fmt("%g", r.cellsize), fmt("%.6g", r.zmin) + " … " + fmt("%.6g", r.zmax),
+               std::to_string(r.voids), sig3(r.interpolate_seconds), sig3(r.smoothing_seconds),
+               sig3(r.max_residual), sig3(r.rms_residual),
+               relief > 0.0 ? fmt("%.2g", 100.0 * r.rms_residual / relief) + " %" : "–",
+               fmt("%.0f", 100.0 * r.curvature_share) + " %", fmt("%g", r.exaggeration),
+               fmt("%g", r.contour_step)});
   }
-  md << "\n## What the figures show\n\n" << commentary(results) << "\n\n## Figures\n\n";
+  report.table(table)
+      .heading("What the figures show")
+      .paragraph(commentary(results))
+      .heading("Figures");
   for (const TerrainResult& r : results) {
-    md << "### " << r.name << "\n\n"
-       << "![" << r.name << " shaded relief](" << r.name << "_relief.png)\n\n"
-       << "![" << r.name << " smoothing residuals](" << r.name << "_residual.png)\n\n";
+    report.figures(r.name, {{r.name + " shaded relief", r.name + "_relief.png"},
+                            {r.name + " smoothing residuals", r.name + "_residual.png"}});
   }
-  write_text_file(path, md.str());
+  report.write(context.output_dir);
 }
 
 }  // namespace
@@ -575,7 +532,7 @@ void run_terrain_gallery(const ExperimentContext& context) {
               << " m\n";
   }
   write_summary(results, context.output_dir / "summary.csv");
-  write_report(results, sun, context, context.output_dir / "report.md");
+  write_report(results, sun, context);
 }
 
 }  // namespace talus::experiments

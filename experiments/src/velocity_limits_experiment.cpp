@@ -15,11 +15,13 @@
 
 #include "constraint_style.hpp"
 #include "experiment_terrain.hpp"
+#include "figure.hpp"
 #include "number_format.hpp"
 #include "path_map.hpp"
 #include "plot.hpp"
 #include "relief.hpp"
 #include "relief_raster.hpp"
+#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/surface_path.hpp"
@@ -48,7 +50,6 @@ constexpr double kAccelSpeedFraction = 0.8;
 /// crest limit of 300 m/s is as irrelevant as none, and would squash the plot.
 constexpr double kClipFactor = 1.5;
 constexpr std::size_t kRasterMaxSamples = 400;  // relief raster of the maps, longer side
-constexpr double kAmbient = 0.35;               // hillshade floor, as in terrain-gallery
 constexpr double kSmoothingLambda = 1.0;  // control run: "smooths over about one cell" (bpatch.hpp)
 
 // ---------------------------------------------------------------------------
@@ -350,36 +351,34 @@ std::string smoothed_csv_name(const CaseResult& c) {
 void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
   const double max_speed = c.runs.front().spec.vehicle.max_speed;
   const double cap = kClipFactor * max_speed;
-  const std::string png = c.name + "_speed_limits.png";
   const int panel_height = 400;
-  std::ostringstream gp;
-  gp << "# Speed limits along the path, " << c.label << ", from `talus experiment "
-     << "velocity-limits`.\n# Re-render in this folder with: gnuplot " << c.name
-     << "_speed_limits.gp\n# Inputs: " << c.name
-     << "_<vehicle>.csv (columns: 1 s, 5 v_max, 6 v_min, 7 binding, 8 v_sliding, 9 v_tipover, "
-        "10 v_contact).\n"
-     << png_terminal(1250, 90 + panel_height * static_cast<int>(c.runs.size())) << "set output "
-     << gnuplot_string(png) << "\n"
-     << "set datafile separator ','\n"
-     << "CAP = " << fmt("%g", cap) << "\n"
-     << "# Limits above CAP (and ∞) are drawn just above the plot so their lines leave it.\n"
-     << "clip(v) = (v > CAP) ? 1.02 * CAP : v\n"
-     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout "
-     << c.runs.size() << ",1 title "
-     << gnuplot_string(c.label +
-                       ": speed limits along the path [m/s]\nthin: each constraint's own "
-                       "limit, clipped at " +
-                       fmt("%g", cap) + " m/s = " + fmt("%g", kClipFactor) +
-                       " × max speed (∞ where it does not bound the speed); thick: v_{max}(s) "
-                       "coloured by the constraint that sets it")
-     << "\n"
-     << "set xrange [0:" << fmt("%.10g", c.length) << "]\nset yrange [0:CAP]\n"
-     << "set xlabel 'arc length s [m]'\nset ylabel 'speed [m/s]'\n"
-     << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
-     << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
-     << "# The key sits right of each panel, at a fixed place so the panels line up.\n"
-     << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 2 spacing 1.1 "
-        "font ',10'\n";
+  GnuplotFigure gp(out_dir, c.name + "_speed_limits");
+  gp.describe(
+        "Speed limits along the path, " + c.label + ", from `talus experiment velocity-limits`.",
+        c.name +
+            "_<vehicle>.csv (columns: 1 s, 5 v_max, 6 v_min, 7 binding, 8 v_sliding, "
+            "9 v_tipover, 10 v_contact).")
+          .canvas(1250, 90 + panel_height * static_cast<int>(c.runs.size()))
+      << "set datafile separator ','\n"
+      << "CAP = " << fmt("%g", cap) << "\n"
+      << "# Limits above CAP (and ∞) are drawn just above the plot so their lines leave it.\n"
+      << "clip(v) = (v > CAP) ? 1.02 * CAP : v\n"
+      << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout "
+      << c.runs.size() << ",1 title "
+      << gnuplot_string(c.label +
+                        ": speed limits along the path [m/s]\nthin: each constraint's own "
+                        "limit, clipped at " +
+                        fmt("%g", cap) + " m/s = " + fmt("%g", kClipFactor) +
+                        " × max speed (∞ where it does not bound the speed); thick: v_{max}(s) "
+                        "coloured by the constraint that sets it")
+      << "\n"
+      << "set xrange [0:" << fmt("%.10g", c.length) << "]\nset yrange [0:CAP]\n"
+      << "set xlabel 'arc length s [m]'\nset ylabel 'speed [m/s]'\n"
+      << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
+      << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
+      << "# The key sits right of each panel, at a fixed place so the panels line up.\n"
+      << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 2 spacing 1.1 "
+         "font ',10'\n";
   for (const VehicleRun& run : c.runs) {
     const Summary& sum = run.summary;
     const std::string file = gnuplot_string(csv_name(c, run));
@@ -406,9 +405,9 @@ void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
     for (const ConstraintStyle& s : kStyles) {
       const std::size_t count = sum.upper_counts[index_of(s.constraint)];
       if (count == 0) continue;  // legend only for constraints that occur
-      gp << ", \\\n     NaN with lines lw 4 lc rgb '" << s.colour << "' title "
-         << gnuplot_string(std::string("v_{max} set by ") + s.label + " (" +
-                           percent(count, run.stations.size()) + ")");
+      gp << ", \\\n     "
+         << key_entry(s.colour, std::string("v_{max} set by ") + s.label + " (" +
+                                    percent(count, run.stations.size()) + ")");
     }
     if (sum.untraversable > 0) {
       gp << ", \\\n     '' skip 1 using 1:($5 == 0 ? 0 : NaN) with points pt 2 ps 1.2 lc rgb "
@@ -423,39 +422,37 @@ void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
     gp << "\n";
   }
   gp << "unset multiplot\n";
-  const fs::path script = out_dir / (c.name + "_speed_limits.gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  gp.render();
 }
 
 /// Figure 2: tangential-acceleration bounds. Top: point mass vs rigid body.
 /// Bottom: the tall rigid body, segments coloured by what sets the bound.
 void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
-  const std::string png = c.name + "_acceleration.png";
   const std::string data = gnuplot_string(c.name + "_acceleration.csv");
   // Column of vehicle v's quantity q (0 speed, 1 a_min, 2 a_max, 3 lower, 4 upper).
   const auto col = [](std::size_t v, int q) { return std::to_string(2 + 5 * v + q); };
-  std::ostringstream gp;
-  gp << "# Tangential-acceleration bounds along the path, " << c.label
-     << ", from `talus experiment velocity-limits`.\n# Re-render in this folder with: gnuplot "
-     << c.name << "_acceleration.gp\n# Input: " << c.name
-     << "_acceleration.csv (per vehicle: speed, a_min, a_max, lower and upper binding).\n"
-     << png_terminal(1250, 900) << "set output " << gnuplot_string(png) << "\n"
-     << "set datafile separator ','\n"
-     << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 2,1 title "
-     << gnuplot_string(c.label +
-                       ": admissible tangential acceleration s̈ ∈ [a_{min}, a_{max}] [m/s²]\n"
-                       "all vehicles at one common speed per station, " +
-                       fmt("%g", kAccelSpeedFraction) +
-                       " × the smallest v_{max}(s) of the three; no drive or brake limit")
-     << "\n"
-     << "set xrange [0:" << fmt("%.10g", c.length) << "]\n"
-     << "set xlabel 'arc length s [m]'\nset ylabel 'acceleration [m/s²]'\n"
-     << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
-     << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
-     << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 3 spacing 1.1 "
-        "font ',10'\n"
-     << "set xzeroaxis lt 1 lc rgb '#808080'\n";
+  GnuplotFigure gp(out_dir, c.name + "_acceleration");
+  gp.describe("Tangential-acceleration bounds along the path, " + c.label +
+                  ", from `talus experiment velocity-limits`.",
+              c.name +
+                  "_acceleration.csv (per vehicle: speed, a_min, a_max, lower and upper "
+                  "binding).")
+          .canvas(1250, 900)
+      << "set datafile separator ','\n"
+      << gnuplot_colour_function("binding_colour", kStyles) << "set multiplot layout 2,1 title "
+      << gnuplot_string(c.label +
+                        ": admissible tangential acceleration s̈ ∈ [a_{min}, a_{max}] [m/s²]\n"
+                        "all vehicles at one common speed per station, " +
+                        fmt("%g", kAccelSpeedFraction) +
+                        " × the smallest v_{max}(s) of the three; no drive or brake limit")
+      << "\n"
+      << "set xrange [0:" << fmt("%.10g", c.length) << "]\n"
+      << "set xlabel 'arc length s [m]'\nset ylabel 'acceleration [m/s²]'\n"
+      << "set grid ytics lc rgb '#d0d0d0'\nset tics out nomirror\n"
+      << "set lmargin at screen 0.06\nset rmargin at screen 0.72\n"
+      << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 3 spacing 1.1 "
+         "font ',10'\n"
+      << "set xzeroaxis lt 1 lc rgb '#808080'\n";
   // Top panel: vehicles 0 and 1 (point mass, rigid body).
   const Vehicle& rigid = c.runs[1].spec.vehicle;
   const std::size_t rigid_pitch = c.runs[1].summary.pitch_stations;
@@ -494,33 +491,26 @@ void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
         occurs |=
             st.accel.feasible && (st.accel.upper_binding == cst || st.accel.lower_binding == cst);
       if (!occurs) continue;
-      gp << ", \\\n     NaN with lines lw 4 lc rgb '" << style(cst).colour << "' title "
-         << gnuplot_string(std::string("bound set by ") + style(cst).label);
+      gp << ", \\\n     "
+         << key_entry(style(cst).colour, std::string("bound set by ") + style(cst).label);
     }
     gp << "\n";
   }
   gp << "unset multiplot\n";
-  const fs::path script = out_dir / (c.name + "_acceleration.gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  gp.render();
 }
 
 /// Figure 3: the path over shaded relief, coloured by v_max of the point mass
 /// (identical to the rigid body's).
 void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
               double& exaggeration) {
-  const double x0 = patch.x_min(), y0 = patch.y_min();
-  const double width = patch.x_max() - x0, height = patch.y_max() - y0;
-  const ReliefRaster raster = sample_relief(patch, {x0, y0}, width, height, kRasterMaxSamples);
-  exaggeration = hillshade_exaggeration(slope_p95(raster));
-  const ReliefColouring colouring{c.zmin, c.zmax, {315.0, 45.0}, exaggeration, kAmbient, true};
-  std::ostringstream rgb_header;
-  rgb_header << "# " << c.label
-             << ": interpolating B-patch, hypsometric colour x hillshade (azimuth "
-             << colouring.sun.azimuth_deg << " deg, altitude " << colouring.sun.altitude_deg
-             << " deg, exaggeration " << exaggeration
-             << ")\n# x - x_min [m], y - y_min [m], red, green, blue [0-255]\n";
-  write_relief_rgb(raster, colouring, rgb_header.str(), out_dir / (c.name + "_relief.rgb"));
+  const MapFrame frame = MapFrame::of(patch);
+  const Vec2& origin = frame.origin();
+  GnuplotFigure figure(out_dir, c.name + "_map");
+  exaggeration = write_relief_image(patch, frame, c.label + ": interpolating B-patch",
+                                    out_dir / (c.name + "_relief.rgb"), kRasterMaxSamples,
+                                    std::pair{c.zmin, c.zmax})
+                     .colouring.exaggeration;
 
   const VehicleRun& run = c.runs.front();
   const fs::path path_file = out_dir / (c.name + "_path.dat");
@@ -528,8 +518,8 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
   path << "# " << c.label << ": path stations; x - x_min [m], y - y_min [m], v_max of the "
        << run.spec.label << " [m/s], 1 if untraversable\n";
   for (const Station& st : run.stations) {
-    path << fmt("%.7g", st.point.x() - x0) << ' ' << fmt("%.7g", st.point.y() - y0) << ' '
-         << csv_number(st.limits.v_max) << ' ' << (st.limits.traversable ? 0 : 1) << '\n';
+    path << offset_row(st.point.head<2>(), origin) << ' ' << csv_number(st.limits.v_max) << ' '
+         << (st.limits.traversable ? 0 : 1) << '\n';
   }
   close_output_file(path, path_file);
   write_path_points(c.points,
@@ -541,24 +531,20 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
         << "over shaded relief of the interpolating fit (elevation " << sig3(c.zmin) << " to "
         << sig3(c.zmax) << " m, hillshade × " << fmt("%g", exaggeration)
         << " vertical exaggeration)";
-  std::ostringstream gp;
-  gp << "# Map of the path, " << c.label << ", from `talus experiment velocity-limits`.\n"
-     << "# Re-render in this folder with: gnuplot " << c.name << "_map.gp\n"
-     << "# Inputs: " << c.name << "_relief.rgb (x y r g b), " << c.name
-     << "_path.dat (x y v_max untraversable), " << c.name << "_path_points.dat (x y label).\n"
-     << png_terminal(1100, path_map_canvas_height(width, height)) << "set output "
-     << gnuplot_string(c.name + "_map.png") << "\n"
-     << path_map_settings(width, height, title.str(), run.spec.vehicle.max_speed, "v_{max} [m/s]")
-     << path_map_plot(
-            c.name + "_relief.rgb", c.name + "_path.dat", "path, coloured by v_{max}",
-            run.summary.untraversable > 0
-                ? "     '' using 1:($4 > 0 ? $2 : NaN) with points pt 2 ps 1.5 lw 2 lc rgb 'black' "
-                  "title 'untraversable', \\\n"
-                : "",
-            c.name + "_path_points.dat");
-  const fs::path script = out_dir / (c.name + "_map.gp");
-  write_text_file(script, gp.str());
-  run_gnuplot(script);
+  figure.describe("Map of the path, " + c.label + ", from `talus experiment velocity-limits`.",
+                  c.name + "_relief.rgb (x y r g b), " + c.name +
+                      "_path.dat (x y v_max untraversable), " + c.name +
+                      "_path_points.dat (x y label).");
+  figure.canvas(1100, frame.canvas_height(1100))
+      << path_map_settings(frame, title.str(), run.spec.vehicle.max_speed, "v_{max} [m/s]")
+      << path_map_plot(
+             c.name + "_relief.rgb", c.name + "_path.dat", "path, coloured by v_{max}",
+             run.summary.untraversable > 0
+                 ? "     '' using 1:($4 > 0 ? $2 : NaN) with points pt 2 ps 1.5 lw 2 lc rgb "
+                   "'black' title 'untraversable', \\\n"
+                 : "",
+             c.name + "_path_points.dat");
+  figure.render();
 }
 
 CaseResult process_case(const TerrainCase& tc, const std::vector<VehicleSpec>& vehicles,
@@ -728,123 +714,127 @@ std::string commentary(const CaseResult& dem, const CaseResult& rover) {
 }
 
 void write_report(const std::vector<CaseResult>& cases, const std::vector<VehicleSpec>& vehicles,
-                  const ElevationGrid& dem, const ExperimentContext& context,
-                  const fs::path& file) {
-  std::ostringstream md;
-  md << "# Velocity limits along a path on a real DEM\n\n"
-     << "The speed limits v_min(s) ≤ ṡ ≤ v_max(s) of each dynamic constraint (sliding, lateral "
-        "tip-over, loss of contact) and the binding one, and the admissible tangential "
-        "acceleration, along one fixed curved path across the West Bijou escarpment, for three "
-        "vehicles, at the DEM's own scale and at rover scale.\n\n"
-     << "## What was run\n\n"
-     << "- Terrain: `data/terrain/" << kWestBijouStem
-     << ".asc` (West Bijou Creek escarpment, "
-        "Colorado; NASADEM, "
-     << dem.ncols() << " × " << dem.nrows() << " nodes, cell " << fmt("%g", dem.cellsize())
-     << " m, see `data/terrain/README.md`), fitted with the interpolating B-patch "
-        "(`BPatch::interpolate`, exact at every node).\n"
-     << "- Two cases:\n"
-     << "  - `dem`: the DEM as it is (25 m cells, elevations " << sig3(cases[0].zmin) << " to "
-     << sig3(cases[0].zmax) << " m).\n"
-     << "  - `rover`: the same DEM with x, y **and** z multiplied by k = 1/25 (README "
-        "\"Rover-scale use\"), built in code: 1 m cells, elevations "
-     << sig3(cases[1].zmin) << " to " << sig3(cases[1].zmax)
-     << " m, slopes unchanged, curvatures 25 × larger. At 25 m cells the terrain's "
-        "curvatures and the path's turns are too gentle for any limit to bind at vehicle "
-        "speeds; at 1 m they are rover-sized. Note that the DEM stores whole metres, so at "
-        "rover scale its 1 m quantisation steps become 4 cm steps per 1 m cell, which the "
-        "interpolating fit reproduces as small-scale curvature.\n"
-     << "- Path: `Curve2::interpolate` (cubic, chord-length parameters) through "
-     << std::size(kWestBijouPathCells)
-     << " fixed points given in cells from the south-west node (the same for both cases); "
-        "in metres from that node:\n\n"
-     << "  | point | cells (u, v) | `dem` x, y [m] | `rover` x, y [m] |\n"
-     << "  |---|---|---|---|\n";
+                  const ElevationGrid& dem, const ExperimentContext& context) {
+  Table points({"point", "cells (u, v)", "`dem` x, y [m]", "`rover` x, y [m]"});
   for (std::size_t i = 0; i < std::size(kWestBijouPathCells); ++i) {
-    md << "  | P" << i << " | " << fmt("%g", kWestBijouPathCells[i].u) << ", "
-       << fmt("%g", kWestBijouPathCells[i].v) << " | " << sig3(cases[0].points[i].x()) << ", "
-       << sig3(cases[0].points[i].y()) << " | " << sig3(cases[1].points[i].x()) << ", "
-       << sig3(cases[1].points[i].y()) << " |\n";
+    points.row({fmt("P%g", static_cast<double>(i)),
+                fmt("%g", kWestBijouPathCells[i].u) + ", " + fmt("%g", kWestBijouPathCells[i].v),
+                sig3(cases[0].points[i].x()) + ", " + sig3(cases[0].points[i].y()),
+                sig3(cases[1].points[i].x()) + ", " + sig3(cases[1].points[i].y())});
   }
-  md << "\n  It runs south along the west plateau, turns east down the escarpment face, then "
-        "north-east, east across the lower plains, and south over the knoll to the south-east "
-        "corner.\n"
-     << "- Stations: " << cases[0].stations << (context.quick ? " (quick mode)" : "")
-     << ", equally spaced in the curve parameter (`VelocityLimits`, "
-        "`SurfacePath::sample_uniform_parameter`).\n"
-     << "- Vehicles (g = 9.81 m/s², no drive or brake limit):\n";
+  Report report("Velocity limits along a path on a real DEM");
+  report
+      .paragraph(
+          "The speed limits v_min(s) ≤ ṡ ≤ v_max(s) of each dynamic constraint (sliding, lateral "
+          "tip-over, loss of contact) and the binding one, and the admissible tangential "
+          "acceleration, along one fixed curved path across the West Bijou escarpment, for three "
+          "vehicles, at the DEM's own scale and at rover scale.")
+      .heading("What was run")
+      .bullet("Terrain: " + west_bijou_terrain_text(dem) +
+              ", fitted with the interpolating B-patch "
+              "(`BPatch::interpolate`, exact at every node).")
+      .bullet("Two cases:")
+      .bullet("`dem`: the DEM as it is (25 m cells, elevations " + sig3(cases[0].zmin) + " to " +
+                  sig3(cases[0].zmax) + " m).",
+              1)
+      .bullet(
+          "`rover`: the same DEM with x, y **and** z multiplied by k = 1/25 (README "
+          "\"Rover-scale use\"), built in code: 1 m cells, elevations " +
+              sig3(cases[1].zmin) + " to " + sig3(cases[1].zmax) +
+              " m, slopes unchanged, curvatures 25 × larger. At 25 m cells the terrain's "
+              "curvatures and the path's turns are too gentle for any limit to bind at "
+              "vehicle speeds; at 1 m they are rover-sized. Note that the DEM stores whole "
+              "metres, so at rover scale its 1 m quantisation steps become 4 cm steps per 1 m "
+              "cell, which the interpolating fit reproduces as small-scale curvature.",
+          1)
+      .bullet("Path: `Curve2::interpolate` (cubic, chord-length parameters) through " +
+              std::to_string(std::size(kWestBijouPathCells)) +
+              " fixed points given in cells from the south-west node (the same for both cases); "
+              "in metres from that node:\n\n" +
+              points.markdown("  ") + "\n  " + kWestBijouPathRoute)
+      .bullet("Stations: " + std::to_string(cases[0].stations) +
+              (context.quick ? " (quick mode)" : "") +
+              ", equally spaced in the curve parameter (`VelocityLimits`, "
+              "`SurfacePath::sample_uniform_parameter`).")
+      .bullet("Vehicles (g = 9.81 m/s², no drive or brake limit):");
   for (const VehicleSpec& v : vehicles) {
-    md << "  - `" << v.name << "`: "
-       << (v.vehicle.model == VehicleModel::kPointMass ? "point-mass model" : "rigid-body model")
-       << ", friction μ = " << fmt("%g", v.vehicle.friction)
-       << ", cg_height h = " << fmt("%g", v.vehicle.cg_height)
-       << " m, half_track b = " << fmt("%g", v.vehicle.half_track) << " m"
-       << (v.vehicle.model == VehicleModel::kRigidBody
-               ? ", half_wheelbase l = " + fmt("%g", v.vehicle.half_wheelbase) + " m"
-               : std::string())
-       << ", max_speed " << fmt("%g", v.vehicle.max_speed)
-       << " m/s (b/h = " << fmt("%.3g", v.vehicle.half_track / v.vehicle.cg_height) << ")\n";
+    const bool rigid = v.vehicle.model == VehicleModel::kRigidBody;
+    report.bullet(
+        "`" + v.name + "`: " + (rigid ? "rigid-body model" : "point-mass model") +
+            ", friction μ = " + fmt("%g", v.vehicle.friction) +
+            ", cg_height h = " + fmt("%g", v.vehicle.cg_height) +
+            " m, half_track b = " + fmt("%g", v.vehicle.half_track) + " m" +
+            (rigid ? ", half_wheelbase l = " + fmt("%g", v.vehicle.half_wheelbase) + " m" : "") +
+            ", max_speed " + fmt("%g", v.vehicle.max_speed) +
+            " m/s (b/h = " + fmt("%.3g", v.vehicle.half_track / v.vehicle.cg_height) + ")",
+        1);
   }
-  md << "- Per station: `SpeedLimits` (v_max, v_min, the binding constraint) and each "
-        "constraint's own interval of ṡ², plotted as √upper (∞ where unbounded, 0 where no "
-        "speed satisfies it). Acceleration bounds (`acceleration_bounds`) of all three vehicles at "
-        "one common speed per station, "
-     << fmt("%g", kAccelSpeedFraction)
-     << " × the smallest of their v_max(s) (raised to the largest v_min; v_max ≤ max speed, "
-        "so the speed is capped there already): the lateral load is then the same for all "
-        "three, and the curves differ only through the acceleration constraints.\n"
-     << "- Control run: the same path on the smoothing fit (`BPatch::fit_smoothing`, λ = "
-     << fmt("%g", kSmoothingLambda)
-     << ", dimensionless, so the same smoothing at both scales), point mass only (its "
-        "acceleration bounds at 0.8 × its own v_max), to separate the landforms from the "
-        "DEM's vertical quantisation (whole metres).\n"
-     << "- Files: `<case>_<vehicle>.csv` (columns s, x, y, z, v_max, v_min, binding, "
-        "v_sliding, v_tipover, v_contact, a_min, a_max, k_t, k_q, k_r, kappa_n, kappa_g; SI "
-        "units, `inf`/`nan` spelled out), `<case>_smoothed_point_mass.csv` (the control run, same "
-        "columns), `<case>_acceleration.csv` (per vehicle: evaluation "
-        "speed, a_min, a_max and what sets each), `summary.csv`, and every figure's gnuplot "
-        "script (`<case>_*.gp`) beside its PNG.\n\n"
-     << "## Results\n\n";
+  report
+      .bullet(
+          "Per station: `SpeedLimits` (v_max, v_min, the binding constraint) and each "
+          "constraint's own interval of ṡ², plotted as √upper (∞ where unbounded, 0 where no "
+          "speed satisfies it). Acceleration bounds (`acceleration_bounds`) of all three "
+          "vehicles at one common speed per station, " +
+          fmt("%g", kAccelSpeedFraction) +
+          " × the smallest of their v_max(s) (raised to the largest v_min; v_max ≤ max "
+          "speed, so the speed is capped there already): the lateral load is then the same "
+          "for all three, and the curves differ only through the acceleration constraints.")
+      .bullet("Control run: the same path on the smoothing fit (`BPatch::fit_smoothing`, λ = " +
+              fmt("%g", kSmoothingLambda) +
+              ", dimensionless, so the same smoothing at both scales), point mass only (its "
+              "acceleration bounds at 0.8 × its own v_max), to separate the landforms from the "
+              "DEM's vertical quantisation (whole metres).")
+      .bullet(
+          "Files: `<case>_<vehicle>.csv` (columns s, x, y, z, v_max, v_min, binding, "
+          "v_sliding, v_tipover, v_contact, a_min, a_max, k_t, k_q, k_r, kappa_n, kappa_g; SI "
+          "units, `inf`/`nan` spelled out), `<case>_smoothed_point_mass.csv` (the control "
+          "run, same columns), `<case>_acceleration.csv` (per vehicle: evaluation speed, "
+          "a_min, a_max and what sets each), `summary.csv`, and every figure's gnuplot script "
+          "(`<case>_*.gp`) beside its PNG.")
+      .heading("Results");
   for (const CaseResult& c : cases) {
-    md << "### `" << c.name << "`: " << c.label << "\n\n"
-       << "Path length " << sig3(c.length) << " m (3-D), " << c.stations
-       << " stations, limits computed in " << sig3(1e3 * c.compute_seconds)
-       << " ms (interpolating fit, path and all vehicles; the smoothing-fit control run "
-       << sig3(1e3 * c.smoothed_seconds) << " ms).\n\n"
-       << "| vehicle | min v_max [m/s] | median v_max [m/s] | contact | sliding | tip-over | "
-          "max speed | untraversable | stations with v_min > 0 | accel. bound by pitch-over | "
-          "median a_min … a_max [m/s²] |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    Table table({"vehicle", "min v_max [m/s]", "median v_max [m/s]", "contact", "sliding",
+                 "tip-over", "max speed", "untraversable", "stations with v_min > 0",
+                 "accel. bound by pitch-over", "median a_min … a_max [m/s²]"});
     std::vector<const VehicleRun*> rows;
     for (const VehicleRun& run : c.runs) rows.push_back(&run);
     rows.push_back(&c.smoothed.front());
     for (const VehicleRun* row : rows) {
-      const VehicleRun& run = *row;
-      const Summary& s = run.summary;
-      const std::size_t n = run.stations.size();
-      const bool control = row == rows.back();
-      md << "| `" << run.spec.name << "`" << (control ? " on the smoothing fit (control)" : "")
-         << " | " << sig3(s.min_v_max) << " | " << sig3(s.median_v_max) << " | "
-         << percent(s.upper_counts[index_of(Constraint::kContact)], n) << " | "
-         << percent(s.upper_counts[index_of(Constraint::kSliding)], n) << " | "
-         << percent(s.upper_counts[index_of(Constraint::kTipover)], n) << " | "
-         << percent(s.upper_counts[index_of(Constraint::kMaxSpeed)], n) << " | " << s.untraversable
-         << " | " << s.lower_bound_stations
-         << (s.lower_bound_stations > 0 ? " (max " + sig3(s.max_v_min) + " m/s)" : "") << " | "
-         << percent(s.pitch_stations, n) << " | " << sig3(s.median_a_min) << " … "
-         << sig3(s.median_a_max) << " |\n";
+      const Summary& s = row->summary;
+      const std::size_t n = row->stations.size();
+      const auto share = [&](Constraint constraint) {
+        return percent(s.upper_counts[index_of(constraint)], n);
+      };
+      table.row({"`" + row->spec.name + "`" +
+                     (row == rows.back() ? " on the smoothing fit (control)" : ""),
+                 sig3(s.min_v_max), sig3(s.median_v_max), share(Constraint::kContact),
+                 share(Constraint::kSliding), share(Constraint::kTipover),
+                 share(Constraint::kMaxSpeed), std::to_string(s.untraversable),
+                 std::to_string(s.lower_bound_stations) +
+                     (s.lower_bound_stations > 0 ? " (max " + sig3(s.max_v_min) + " m/s)" : ""),
+                 percent(s.pitch_stations, n),
+                 sig3(s.median_a_min) + " … " + sig3(s.median_a_max)});
     }
-    md << "\nShares are of all stations, by the constraint that sets v_max (an untraversable "
-          "station counts under the constraint that fails).\n\n";
+    report.heading("`" + c.name + "`: " + c.label, 3)
+        .paragraph("Path length " + sig3(c.length) + " m (3-D), " + std::to_string(c.stations) +
+                   " stations, limits computed in " + sig3(1e3 * c.compute_seconds) +
+                   " ms (interpolating fit, path and all vehicles; the smoothing-fit control run " +
+                   sig3(1e3 * c.smoothed_seconds) + " ms).")
+        .table(table)
+        .paragraph(
+            "Shares are of all stations, by the constraint that sets v_max (an untraversable "
+            "station counts under the constraint that fails).");
   }
-  md << "## What the figures show\n\n" << commentary(cases[0], cases[1]) << "\n\n## Figures\n\n";
+  report.heading("What the figures show")
+      .paragraph(commentary(cases[0], cases[1]))
+      .heading("Figures");
   for (const CaseResult& c : cases) {
-    md << "### `" << c.name << "`\n\n"
-       << "![" << c.name << " speed limits](" << c.name << "_speed_limits.png)\n\n"
-       << "![" << c.name << " acceleration bounds](" << c.name << "_acceleration.png)\n\n"
-       << "![" << c.name << " map](" << c.name << "_map.png)\n\n";
+    report.figures("`" + c.name + "`",
+                   {{c.name + " speed limits", c.name + "_speed_limits.png"},
+                    {c.name + " acceleration bounds", c.name + "_acceleration.png"},
+                    {c.name + " map", c.name + "_map.png"}});
   }
-  write_text_file(file, md.str());
+  report.write(context.output_dir);
 }
 
 }  // namespace
@@ -870,7 +860,7 @@ void run_velocity_limits(const ExperimentContext& context) {
               << " s; point mass min v_max " << sig3(c.runs.front().summary.min_v_max) << " m/s\n";
   }
   write_summary_csv(cases, context.output_dir / "summary.csv");
-  write_report(cases, vehicles, dem, context, context.output_dir / "report.md");
+  write_report(cases, vehicles, dem, context);
 }
 
 }  // namespace talus::experiments

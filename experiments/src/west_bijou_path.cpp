@@ -7,6 +7,13 @@
 
 namespace talus::experiments {
 
+std::string west_bijou_terrain_text(const ElevationGrid& dem) {
+  return "`data/terrain/" + std::string(kWestBijouStem) +
+         ".asc` (West Bijou Creek escarpment, Colorado; NASADEM, " + std::to_string(dem.ncols()) +
+         " × " + std::to_string(dem.nrows()) + " nodes, cell " + fmt("%g", dem.cellsize()) +
+         " m; see `data/terrain/README.md`)";
+}
+
 std::vector<Vec2> west_bijou_path_points(const ElevationGrid& grid, std::string_view experiment) {
   std::vector<Vec2> points;
   const double h = grid.cellsize();

@@ -3,6 +3,7 @@
 /// The fixed curved path across the West Bijou escarpment that the
 /// velocity-limits and optimal-profile experiments share, so that their
 /// figures can be read together.
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -34,6 +35,16 @@ struct CellPoint {
 inline constexpr CellPoint kWestBijouPathCells[] = {{6.0, 74.0},  {18.0, 54.0}, {28.0, 32.0},
                                                     {46.0, 38.0}, {60.0, 60.0}, {84.0, 62.0},
                                                     {92.0, 46.0}, {114.0, 20.0}};
+
+/// How the path runs, in a sentence, for the reports.
+inline constexpr const char* kWestBijouPathRoute =
+    "It runs south along the west plateau, turns east down the escarpment face, then north-east, "
+    "east across the lower plains, and south over the knoll to the south-east corner.";
+
+/// "`data/terrain/<stem>.asc` (West Bijou Creek escarpment, Colorado;
+/// NASADEM, N × M nodes, cell 25 m; see `data/terrain/README.md`)", for the
+/// reports' terrain line.
+std::string west_bijou_terrain_text(const ElevationGrid& dem);
 
 /// kWestBijouPathCells in `grid`'s coordinates [m]. Throws InputError, naming
 /// the experiment, if a point is not 2 cells inside `grid`.

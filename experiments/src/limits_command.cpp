@@ -49,6 +49,20 @@ std::string describe_point(const std::vector<Vec2>& points, std::size_t k,
          " line " + std::to_string(k + 2) + ")";
 }
 
+/// A way point where the path turns straight back (A, B, A) makes the
+/// interpolating spline stop there, and its frame is undefined: name it.
+void check_no_reversal(const std::vector<Vec2>& points, const std::string& path_file) {
+  for (std::size_t k = 1; k + 1 < points.size(); ++k) {
+    const Vec2 in = (points[k] - points[k - 1]).normalized();
+    const Vec2 out = (points[k + 1] - points[k]).normalized();
+    if (in.dot(out) < -0.9999) {
+      throw InputError(describe_point(points, k, path_file) +
+                       " turns the path straight back on itself: the spline through it would "
+                       "stop there; split the path at this point instead");
+    }
+  }
+}
+
 /// Every way point must lie on the terrain's domain (checked before the fit).
 void check_points_in_domain(const std::vector<Vec2>& points, const ElevationGrid& grid,
                             const std::string& path_file, const std::string& terrain_file) {
@@ -156,6 +170,7 @@ void check_path_options(const std::optional<long long>& stations,
 TerrainPath build_terrain_path(const std::string& terrain_file, const std::string& path_file,
                                const std::optional<double>& smoothing) {
   const std::vector<Vec2> points = read_path_csv(path_file);
+  check_no_reversal(points, path_file);
   const ElevationGrid grid = read_esri_ascii(terrain_file);
   check_points_in_domain(points, grid, path_file, terrain_file);
 

@@ -65,7 +65,10 @@ struct GenerateOptions {
 void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   CLI::App* generate = terrain.add_subcommand(
       "generate", "write a generated terrain as an ESRI ASCII grid (seeded, reproducible)");
-  generate->require_subcommand(1);
+  // Not require_subcommand(1): CLI11 would answer an unknown KIND with "A
+  // subcommand is required"; the callback names the kind and the choices.
+  generate->require_subcommand(0, 1);
+  generate->allow_extras();
   const auto output = [&o](CLI::App* c) {
     c->add_option("-o,--output", o.output, "output .asc file")->required();
   };
@@ -153,7 +156,23 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   output(ey);
 
   generate->callback([generate, &o]() {
+    const std::vector<std::string> extras = generate->remaining();
+    const std::string kinds =
+        "fractal, plane, cylinder, sphere-cap, gaussian-hills, bowl, eldershaw-yim";
+    if (generate->get_subcommands().empty()) {
+      throw InputError(extras.empty() ? "terrain generate needs a KIND: " + kinds
+                                      : "unknown terrain kind '" + talus::printable(extras[0]) +
+                                            "' (choose " + kinds + ")");
+    }
+    if (!extras.empty()) {
+      throw InputError("terrain generate: unexpected argument '" + talus::printable(extras[0]) +
+                       "' (see --help)");
+    }
     CLI::App* kind = generate->get_subcommands().front();
+    if (const std::vector<std::string> unknown = kind->remaining(); !unknown.empty()) {
+      throw InputError("terrain generate " + kind->get_name() + ": unexpected argument '" +
+                       talus::printable(unknown[0]) + "' (see --help)");
+    }
     const std::string name = kind->get_name();
     ElevationGrid grid;
     if (name == "fractal") grid = generate_fractal_terrain(o.fractal);

@@ -123,7 +123,16 @@ ProfileOutcome profile(const ProfileRequest& request) {
   summary["peak_speed"] = or_null(feasible, peak_speed);
   summary["switching_points"] = std::move(switching);
   summary["merged_stations"] = result.merged_stations;
-  summary["message"] = feasible ? nlohmann::json(nullptr) : nlohmann::json(result.message);
+  // Stations far apart make the conservative discretisation infeasible where
+  // the continuous profile is not: say so rather than let "infeasible" stand alone.
+  const double spacing = path.length() / static_cast<double>(limits.size() - 1);
+  const std::string hint =
+      spacing > 10.0 * kDefaultStationSpacing
+          ? " (stations are " + format_number(spacing) +
+                " m apart; the discrete profile is conservative, so try more --stations, e.g. "
+                "the default)"
+          : "";
+  summary["message"] = feasible ? nlohmann::json(nullptr) : nlohmann::json(result.message + hint);
   summary["infeasible_station"] =
       feasible ? nlohmann::json(nullptr) : nlohmann::json(result.infeasible_station);
   summary["infeasible_s"] =

@@ -68,6 +68,17 @@ HaitResult plan_hait(const RuledTerrain& terrain, const Robot& robot, const SE2P
   validate(robot);
   require_on_map(terrain, start, "start");
   require_on_map(terrain, goal, "goal");
+  // A neighbourhood wider than the map leaves it from every configuration,
+  // and its sampling grows as rho^2: refuse it while it is one comparison.
+  const ElevationGrid& grid = terrain.grid();
+  const double extent = std::hypot(grid.x_max() - grid.x_min(), grid.y_max() - grid.y_min());
+  if (options.position_uncertainty > extent) {
+    std::ostringstream msg;
+    msg << "plan_hait: position uncertainty " << options.position_uncertainty
+        << " m is larger than the terrain's diagonal " << extent
+        << " m: no configuration's neighbourhood stays on the map";
+    throw InputError(msg.str());
+  }
   const auto t0 = std::chrono::steady_clock::now();
 
   // Position uncertainty (§5.2): the chassis takes the paper's min/max

@@ -10,6 +10,7 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/graph_search.hpp"
+#include "talus/core/memory_budget.hpp"
 
 namespace talus {
 
@@ -148,7 +149,14 @@ PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
 
   // Growing by rho (§5.3.1): the largest cost within distance rho.
   if (options_.position_uncertainty > 0.0) {
-    const std::vector<Offset> grow = disc_offsets(options_.position_uncertainty, h);
+    // No offset reaches past the map's diagonal: a larger rho grows by the
+    // whole map, and its disc (O(rho^2) offsets) must not be built.
+    const double diagonal = h * std::hypot(static_cast<double>(ncols_), static_cast<double>(nrows_));
+    const double radius = std::min(options_.position_uncertainty, diagonal);
+    require_memory(std::numbers::pi * std::pow(radius / h + 1.0, 2.0) * sizeof(Offset),
+                   "growing the potential bitmap by the position uncertainty",
+                   "use a smaller position uncertainty or a coarser terrain");
+    const std::vector<Offset> grow = disc_offsets(radius, h);
     std::vector<double> grown(n);
     for (std::size_t j = 0; j < nrows_; ++j)
       for (std::size_t i = 0; i < ncols_; ++i) {

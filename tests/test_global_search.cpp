@@ -6,20 +6,14 @@
 #include "talus/core/error.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "terrain_test_support.hpp"
+#include "vehicle_test_support.hpp"
 
 namespace talus {
 namespace {
 
 using terrain_test::grid_from_function;
 
-Vehicle rover(double mu = 0.7) {
-  Vehicle v;
-  v.friction = mu;
-  v.cg_height = 0.5;
-  v.half_track = 0.6;
-  v.max_speed = 10.0;
-  return v;
-}
+using vehicle_test::point_mass_rover;
 
 /// J recomputed independently along a candidate's vertices.
 double recomputed_cost(const BPatch& terrain, const Vehicle& v, const CandidatePath& c,
@@ -38,7 +32,7 @@ TEST(GlobalSearch, FlatTerrainGivesTheStraightLineAtMaxSpeed) {
       grid_from_function([](double, double) { return 1.0; }, 0, 0, 60, 40, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
-  const GlobalSearchResult r = global_search(flat, rover(), {5, 20}, {55, 20}, options);
+  const GlobalSearchResult r = global_search(flat, point_mass_rover(), {5, 20}, {55, 20}, options);
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
   ASSERT_EQ(r.candidates.size(), 1u);
   EXPECT_NEAR(r.candidates[0].cost_seconds, 50.0 / 10.0, 1e-9);
@@ -54,9 +48,9 @@ TEST(GlobalSearch, AStarFindsTheSameCostAsTheFullFields) {
       0, 0, 80, 60, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
-  const GlobalSearchResult full = global_search(terrain, rover(0.6), {5, 5}, {75, 55}, options);
+  const GlobalSearchResult full = global_search(terrain, point_mass_rover(0.6), {5, 5}, {75, 55}, options);
   options.cost_fields = false;
-  const GlobalSearchResult astar = global_search(terrain, rover(0.6), {5, 5}, {75, 55}, options);
+  const GlobalSearchResult astar = global_search(terrain, point_mass_rover(0.6), {5, 5}, {75, 55}, options);
   ASSERT_EQ(full.status, GlobalSearchStatus::kOk);
   ASSERT_EQ(astar.status, GlobalSearchStatus::kOk);
   EXPECT_NEAR(astar.candidates[0].cost_seconds, full.candidates[0].cost_seconds, 1e-9);
@@ -70,11 +64,11 @@ TEST(GlobalSearch, DiagonalOnFlatTerrainUsesKnightMovesWith16Neighbours) {
   options.candidates = 1;
   options.connectivity = 16;
   const GlobalSearchResult r =
-      global_search(flat, rover(), {5, 5}, {45, 25}, options);  // slope 1/2
+      global_search(flat, point_mass_rover(), {5, 5}, {45, 25}, options);  // slope 1/2
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk);
   EXPECT_NEAR(r.candidates[0].cost_seconds, std::hypot(40.0, 20.0) / 10.0, 1e-9);
   options.connectivity = 8;
-  const GlobalSearchResult r8 = global_search(flat, rover(), {5, 5}, {45, 25}, options);
+  const GlobalSearchResult r8 = global_search(flat, point_mass_rover(), {5, 5}, {45, 25}, options);
   EXPECT_GT(r8.candidates[0].cost_seconds, r.candidates[0].cost_seconds * 1.01);
 }
 
@@ -97,16 +91,16 @@ TEST(GlobalSearch, HighFrictionCrossesTheHillLowFrictionGoesAround) {
     for (const Vec2& p : c.vertices) z = std::max(z, terrain.elevation(p));
     return z;
   };
-  const GlobalSearchResult grippy = global_search(terrain, rover(1.5), {5, 30}, {75, 30}, options);
+  const GlobalSearchResult grippy = global_search(terrain, point_mass_rover(1.5), {5, 30}, {75, 30}, options);
   ASSERT_EQ(grippy.status, GlobalSearchStatus::kOk) << grippy.message;
   EXPECT_GT(max_height_on(grippy.candidates[0]), 3.0);  // over the top
   const GlobalSearchResult slippery =
-      global_search(terrain, rover(0.25), {5, 30}, {75, 30}, options);
+      global_search(terrain, point_mass_rover(0.25), {5, 30}, {75, 30}, options);
   ASSERT_EQ(slippery.status, GlobalSearchStatus::kOk) << slippery.message;
   EXPECT_LT(max_height_on(slippery.candidates[0]), 1.0);  // around it
   for (const GlobalSearchResult* r : {&grippy, &slippery}) {
     EXPECT_NEAR(
-        recomputed_cost(terrain, r == &grippy ? rover(1.5) : rover(0.25), r->candidates[0], 1.0),
+        recomputed_cost(terrain, r == &grippy ? point_mass_rover(1.5) : point_mass_rover(0.25), r->candidates[0], 1.0),
         r->candidates[0].cost_seconds, 1e-9 * r->candidates[0].cost_seconds);
   }
 }
@@ -115,7 +109,7 @@ TEST(GlobalSearch, SymmetricTerrainGivesTwoMirrorCandidatesOfEqualCost) {
   const BPatch terrain = hill(20.0, 6.0);  // far too steep to cross
   GlobalSearchOptions options;
   options.candidates = 2;
-  const GlobalSearchResult r = global_search(terrain, rover(0.5), {5, 30}, {75, 30}, options);
+  const GlobalSearchResult r = global_search(terrain, point_mass_rover(0.5), {5, 30}, {75, 30}, options);
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
   ASSERT_EQ(r.candidates.size(), 2u);
   EXPECT_NEAR(r.candidates[0].cost_seconds, r.candidates[1].cost_seconds,
@@ -143,7 +137,7 @@ TEST(GlobalSearch, RidgeWithOneGapIsCrossedThroughTheGap) {
       0, 0, 80, 60, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
-  const GlobalSearchResult r = global_search(terrain, rover(0.6), {10, 15}, {70, 15}, options);
+  const GlobalSearchResult r = global_search(terrain, point_mass_rover(0.6), {10, 15}, {70, 15}, options);
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
   bool through_gap = false;
   for (const Vec2& p : r.candidates[0].vertices)
@@ -157,7 +151,7 @@ TEST(GlobalSearch, UnreachableGoalIsAStatusWithTheReachableRegion) {
       [](double x, double) { return 10.0 * std::exp(-(x - 40) * (x - 40) / 4.0); }, 0, 0, 80, 40,
       1.0));
   GlobalSearchOptions options;
-  const GlobalSearchResult r = global_search(terrain, rover(0.5), {10, 20}, {70, 20}, options);
+  const GlobalSearchResult r = global_search(terrain, point_mass_rover(0.5), {10, 20}, {70, 20}, options);
   EXPECT_EQ(r.status, GlobalSearchStatus::kUnreachable);
   EXPECT_NE(r.message.find("unreachable"), std::string::npos) << r.message;
   EXPECT_GT(r.reachable_nodes, 0u);
@@ -169,18 +163,18 @@ TEST(GlobalSearch, BadInputIsAnInputError) {
   const BPatch flat = BPatch::interpolate(
       grid_from_function([](double, double) { return 0.0; }, 0, 0, 40, 40, 1.0));
   GlobalSearchOptions options;
-  EXPECT_THROW(global_search(flat, rover(), {-1, 5}, {20, 20}, options), InputError);
-  EXPECT_THROW(global_search(flat, rover(), {5, 5}, {20, 41}, options), InputError);
-  Vehicle unlimited = rover();
+  EXPECT_THROW(global_search(flat, point_mass_rover(), {-1, 5}, {20, 20}, options), InputError);
+  EXPECT_THROW(global_search(flat, point_mass_rover(), {5, 5}, {20, 41}, options), InputError);
+  Vehicle unlimited = point_mass_rover();
   unlimited.max_speed = INFINITY;
   EXPECT_THROW(global_search(flat, unlimited, {5, 5}, {20, 20}, options), InputError);
   options.connectivity = 12;
-  EXPECT_THROW(global_search(flat, rover(), {5, 5}, {20, 20}, options), InputError);
+  EXPECT_THROW(global_search(flat, point_mass_rover(), {5, 5}, {20, 20}, options), InputError);
   // Start on a slope steeper than friction.
   const BPatch steep = BPatch::interpolate(grid_from_function(
       [](double x, double y) { return x < 20 ? 2.0 * y : 0.0; }, 0, 0, 40, 40, 1.0));
   GlobalSearchOptions ok;
-  EXPECT_THROW(global_search(steep, rover(0.5), {10, 20}, {35, 20}, ok), InputError);
+  EXPECT_THROW(global_search(steep, point_mass_rover(0.5), {10, 20}, {35, 20}, ok), InputError);
 }
 
 TEST(GlobalSearch, SlopeSteeperThanFrictionCanBeNeitherClimbedNorDescended) {
@@ -188,10 +182,10 @@ TEST(GlobalSearch, SlopeSteeperThanFrictionCanBeNeitherClimbedNorDescended) {
   // line, but the vehicle can neither climb it nor stop descending it.
   const BPatch plane = BPatch::interpolate(
       grid_from_function([](double x, double) { return 0.5 * x; }, 0, 0, 20, 20, 1.0));
-  const EdgeCost c = edge_cost(plane, rover(0.4), {5, 10}, {6, 10}, 5);
+  const EdgeCost c = edge_cost(plane, point_mass_rover(0.4), {5, 10}, {6, 10}, 5);
   EXPECT_EQ(c.forward, INFINITY);
   EXPECT_EQ(c.backward, INFINITY);
-  const EdgeCost gentle = edge_cost(plane, rover(0.7), {5, 10}, {6, 10}, 5);
+  const EdgeCost gentle = edge_cost(plane, point_mass_rover(0.7), {5, 10}, {6, 10}, 5);
   EXPECT_LT(gentle.forward, INFINITY);
   EXPECT_LT(gentle.backward, INFINITY);
 }

@@ -12,18 +12,12 @@
 #include "talus/optimal/path_time_objective.hpp"
 #include "talus/optimal/trajectory.hpp"
 #include "terrain_test_support.hpp"
+#include "vehicle_test_support.hpp"
 
 namespace talus {
 namespace {
 
-Vehicle rover(double mu) {
-  Vehicle v;
-  v.friction = mu;
-  v.cg_height = 0.5;
-  v.half_track = 0.6;
-  v.max_speed = 10.0;
-  return v;
-}
+using vehicle_test::point_mass_rover;
 
 class EverySolver : public ::testing::TestWithParam<PathSolver> {};
 
@@ -35,7 +29,7 @@ TEST_P(EverySolver, StraightensABentPathOnAPlane) {
   options.control_points = 6;
   options.relative_tolerance = 1e-9;  // near the optimum T is flat: 0.15 m of bend cost 2.5e-5
   const std::vector<Vec2> bent = {{5, 20}, {20, 30}, {40, 30}, {55, 20}};
-  const OptimizedPath best = optimize_path(flat, rover(0.5), bent, options);
+  const OptimizedPath best = optimize_path(flat, point_mass_rover(0.5), bent, options);
   // Rest to rest over L = 50 m with a_max = mu g, capped at 10 m/s: the
   // straight line is optimal (accelerate 10.2 m, cruise, brake 10.2 m).
   const double L = 50.0, a = 0.5 * 9.81, v = 10.0;
@@ -55,7 +49,7 @@ TEST_P(EverySolver, StraightensABentPathOnAPlane) {
   // Started on the straight line, it keeps it, at the analytic time.
   PathOptimizerOptions defaults;
   defaults.solver = GetParam();
-  const OptimizedPath kept = optimize_path(flat, rover(0.5), {{5, 20}, {55, 20}}, defaults);
+  const OptimizedPath kept = optimize_path(flat, point_mass_rover(0.5), {{5, 20}, {55, 20}}, defaults);
   for (const Vec2& c : kept.curve.control_points()) EXPECT_NEAR(c.y(), 20.0, 1e-6);
   EXPECT_NEAR(kept.travel_time, straight, 0.01 * straight);
   EXPECT_LE(kept.travel_time, kept.initial_time);
@@ -70,7 +64,7 @@ TEST_P(EverySolver, ImprovesOnTheGlobalCandidateAroundAHill) {
         return 8.0 * std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * 7.0 * 7.0));
       },
       0, 0, 80, 60, 1.0));
-  const Vehicle v = rover(0.4);
+  const Vehicle v = point_mass_rover(0.4);
   GlobalSearchOptions search;
   search.candidates = 1;
   const GlobalSearchResult global = global_search(terrain, v, {5, 30}, {75, 30}, search);
@@ -111,7 +105,7 @@ TEST(PathOptimizer, OptimisedTrajectoryOnFractalTerrainSatisfiesEveryConstraint)
   fractal.height_scale = 12.0;
   fractal.seed = 7;
   const BPatch terrain = BPatch::fit_smoothing(generate_fractal_terrain(fractal), 1.0);
-  Vehicle v = rover(0.6);
+  Vehicle v = point_mass_rover(0.6);
   v.max_accel = 2.0;
   v.max_decel = 3.0;
   const Vec2 start(5, 5), goal(90, 88);
@@ -163,9 +157,9 @@ TEST(PathOptimizer, BadInputIsAnInputError) {
   const BPatch flat = BPatch::interpolate(
       terrain_test::grid_from_function([](double, double) { return 0.0; }, 0, 0, 20, 20, 1.0));
   PathOptimizerOptions options;
-  EXPECT_THROW(optimize_path(flat, rover(0.5), {{1, 1}, {25, 5}}, options), InputError);
+  EXPECT_THROW(optimize_path(flat, point_mass_rover(0.5), {{1, 1}, {25, 5}}, options), InputError);
   options.control_points = 3;
-  EXPECT_THROW(optimize_path(flat, rover(0.5), {{1, 1}, {15, 5}}, options), InputError);
+  EXPECT_THROW(optimize_path(flat, point_mass_rover(0.5), {{1, 1}, {15, 5}}, options), InputError);
   EXPECT_THROW(parse_path_solver("snopt"), InputError);
   EXPECT_EQ(parse_path_solver("nlopt-lbfgs"), PathSolver::kNloptLbfgs);
 }

@@ -15,19 +15,12 @@
 #include "talus/optimal/planner.hpp"
 #include "talus/optimal/trajectory.hpp"
 #include "terrain_test_support.hpp"
+#include "vehicle_test_support.hpp"
 
 namespace talus {
 namespace {
 
-/// A point mass with friction mu, b/h = 1.2, top speed 10 m/s.
-Vehicle point_mass(double mu) {
-  Vehicle v;
-  v.friction = mu;
-  v.cg_height = 0.5;
-  v.half_track = 0.6;
-  v.max_speed = 10.0;
-  return v;
-}
+using vehicle_test::point_mass_rover;
 
 /// 61 x 41 nodes at 1 m, (0, 0) the south-west node, holding f.
 BPatch surface_of(const terrain_test::HeightFunction& f) {
@@ -63,7 +56,7 @@ TEST(Planner, FlatPlaneStraightRunMatchesTheAnalyticRestToRestTime) {
   // 50 m on flat ground, rest to rest: the friction circle bounds |s̈| by
   // mu g and v by 10 m/s; accelerate at mu g, cruise, brake at mu g.
   const BPatch surface = surface_of([](double, double) { return 0.0; });
-  const Vehicle v = point_mass(0.7);
+  const Vehicle v = point_mass_rover(0.7);
   const PlannerResult result = plan(PlanningProblem(surface, v, {5, 20}, {55, 20}),
                                     quick_options(1));
   ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
@@ -78,7 +71,7 @@ TEST(Planner, FlatPlaneStraightRunMatchesTheAnalyticRestToRestTime) {
 TEST(Planner, AroundAHillTheBestIsTheFastestCandidateAndNoneIsSlowerThanItsFit) {
   const BPatch surface = surface_of(hill);
   const PlannerResult result =
-      plan(PlanningProblem(surface, point_mass(0.4), {5, 20}, {55, 20}), quick_options(2));
+      plan(PlanningProblem(surface, point_mass_rover(0.4), {5, 20}, {55, 20}), quick_options(2));
   ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
   ASSERT_EQ(result.candidates.size(), result.global.candidates.size());
   ASSERT_EQ(result.candidates.size(), 2u);
@@ -107,7 +100,7 @@ TEST(Planner, AroundAHillTheBestIsTheFastestCandidateAndNoneIsSlowerThanItsFit) 
   const Trajectory& best = *result.best();
   const Curve2 rebuilt = best.path->curve();
   const Trajectory again =
-      evaluate_trajectory(surface, point_mass(0.4), rebuilt, TrajectoryOptions{});
+      evaluate_trajectory(surface, point_mass_rover(0.4), rebuilt, TrajectoryOptions{});
   EXPECT_NEAR(again.travel_time(), result.travel_time(), 1e-9 * result.travel_time());
   EXPECT_LT((best.limits->frame(0).point.head<2>() - Vec2(5, 20)).norm(), 1e-9);
   EXPECT_LT((best.limits->frame(best.limits->size() - 1).point.head<2>() - Vec2(55, 20)).norm(),
@@ -119,7 +112,7 @@ TEST(Planner, AroundAHillTheBestIsTheFastestCandidateAndNoneIsSlowerThanItsFit) 
 
 TEST(Planner, RerunsAreBitIdentical) {
   const BPatch surface = surface_of(hill);
-  const PlanningProblem problem(surface, point_mass(0.4), {5, 20}, {55, 20});
+  const PlanningProblem problem(surface, point_mass_rover(0.4), {5, 20}, {55, 20});
   const PlannerResult a = plan(problem, quick_options(2)), b = plan(problem, quick_options(2));
   ASSERT_EQ(a.candidates.size(), b.candidates.size());
   for (std::size_t c = 0; c < a.candidates.size(); ++c) {
@@ -138,7 +131,7 @@ TEST(Planner, AWallOfHillsIsUnreachableAsAStatus) {
     return z;
   });
   const PlannerResult result =
-      plan(PlanningProblem(surface, point_mass(0.7), {30, 5}, {30, 35}), quick_options(1));
+      plan(PlanningProblem(surface, point_mass_rover(0.7), {30, 5}, {30, 35}), quick_options(1));
   EXPECT_EQ(result.status, PlannerStatus::kUnreachable);
   EXPECT_FALSE(result.message.empty());
   EXPECT_EQ(result.best(), nullptr);
@@ -151,7 +144,7 @@ TEST(Planner, NoAdmissibleProfileOnAnyCandidateIsInfeasible) {
   // At 10 m/s with 1 m/s² of brakes the vehicle needs 50 m to stop; the goal
   // is 20 m away.
   const BPatch surface = surface_of([](double, double) { return 0.0; });
-  Vehicle v = point_mass(0.7);
+  Vehicle v = point_mass_rover(0.7);
   v.max_decel = 1.0;
   PlanningProblem problem(surface, v, {10, 20}, {30, 20});
   problem.start_speed = 10.0;
@@ -168,7 +161,7 @@ TEST(Planner, NoAdmissibleProfileOnAnyCandidateIsInfeasible) {
 
 TEST(Planner, TheProgressCallbackSeesEveryStageAndCanStop) {
   const BPatch surface = surface_of(hill);
-  const PlanningProblem problem(surface, point_mass(0.4), {5, 20}, {55, 20});
+  const PlanningProblem problem(surface, point_mass_rover(0.4), {5, 20}, {55, 20});
   PlannerOptions options = quick_options(2);
   std::vector<PlannerProgress> seen;
   options.progress = [&](const PlannerProgress& p) {
@@ -197,7 +190,7 @@ TEST(Planner, GlobalStageOnlyReturnsCandidatesWithoutTrajectories) {
   PlannerOptions options = quick_options(2);
   options.optimize = false;
   const PlannerResult result =
-      plan(PlanningProblem(surface, point_mass(0.4), {5, 20}, {55, 20}), options);
+      plan(PlanningProblem(surface, point_mass_rover(0.4), {5, 20}, {55, 20}), options);
   EXPECT_EQ(result.status, PlannerStatus::kOk);
   EXPECT_EQ(result.global.candidates.size(), 2u);
   EXPECT_TRUE(result.candidates.empty());
@@ -206,7 +199,7 @@ TEST(Planner, GlobalStageOnlyReturnsCandidatesWithoutTrajectories) {
 
 TEST(Planner, InvalidInputThrowsInputError) {
   const BPatch surface = surface_of([](double, double) { return 0.0; });
-  const Vehicle v = point_mass(0.7);
+  const Vehicle v = point_mass_rover(0.7);
   EXPECT_THROW(plan(PlanningProblem(surface, v, {-1, 20}, {55, 20}), {}), InputError);
   EXPECT_THROW(plan(PlanningProblem(surface, v, {5, 20}, {55, 41}), {}), InputError);
   Vehicle unlimited = v;

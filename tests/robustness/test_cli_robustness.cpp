@@ -1,8 +1,8 @@
 // The `talus` CLI against careless and hostile input (issue 18's families):
 // every case must exit 1 with one line on stderr that names the problem,
 // print nothing on stdout and leave no output behind, within a memory cap
-// and a time limit. Run with a 768 MiB memory budget (TALUS_MEMORY_LIMIT_MB),
-// under `prlimit --as` (1 GiB, uninstrumented build only: ASan reserves
+// and a time limit. Run with a 384 MiB memory budget (TALUS_MEMORY_LIMIT_MB),
+// under `prlimit --as` (512 MiB, uninstrumented build only: ASan reserves
 // terabytes of address space) and `timeout`, so that a regression to
 // unbounded memory or a hang fails instead of swapping.
 #include <gtest/gtest.h>
@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 /// `talus ARGS` under the memory cap and a 20 s limit (hangs end as exit 124).
 RunResult run_capped(const std::string& args) {
   // The same budget in every build (the sanitizer build has no cap).
-  std::string wrapper = "TALUS_MEMORY_LIMIT_MB=768 timeout 20 ";
+  std::string wrapper = "TALUS_MEMORY_LIMIT_MB=384 timeout 20 ";
 #ifdef TALUS_ROBUSTNESS_MEMORY_CAP
   wrapper += "prlimit --as=" TALUS_ROBUSTNESS_MEMORY_CAP " ";
 #endif

@@ -69,6 +69,19 @@ OutputFolder::OutputFolder(fs::path dir, std::string option)
     throw InputError(shown +
                      " is in use by another talus run; wait for it or choose another folder");
   }
+  // Inside an enclosing run's staging folder: write in place.
+  for (const fs::path& part : dir_) {
+    if (part.string().rfind(kStagingPrefix, 0) == 0) {
+      nested_ = true;
+    } else {
+      final_dir_ /= part;
+    }
+  }
+  if (!nested_) final_dir_ = dir_;
+  if (nested_) {
+    staging_ = dir_;
+    return;
+  }
   // We hold the lock: any staging folder left is from a run that died.
   for (const fs::directory_entry& entry : fs::directory_iterator(dir_, error)) {
     if (entry.path().filename().string().rfind(kStagingPrefix, 0) == 0) {
@@ -82,7 +95,7 @@ OutputFolder::OutputFolder(fs::path dir, std::string option)
 
 OutputFolder::~OutputFolder() {
   std::error_code error;
-  if (!committed_ && !staging_.empty()) fs::remove_all(staging_, error);
+  if (!committed_ && !nested_ && !staging_.empty()) fs::remove_all(staging_, error);
   if (!committed_ && created_) {  // leave no trace of a run that produced nothing
     fs::remove(dir_ / kLockName, error);
     fs::remove(dir_, error);  // only if empty
@@ -91,6 +104,10 @@ OutputFolder::~OutputFolder() {
 }
 
 void OutputFolder::commit() {
+  if (nested_) {  // written in place; the enclosing run commits it
+    committed_ = true;
+    return;
+  }
   std::vector<std::string> staged;
   for (const fs::directory_entry& entry : fs::directory_iterator(staging_)) {
     staged.push_back(entry.path().filename().string());

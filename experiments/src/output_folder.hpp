@@ -9,7 +9,10 @@
 ///   is interrupted (SIGINT, SIGTERM) leaves DIR's previous result as it was;
 /// - DIR/.talus-manifest lists what the last committed run wrote: commit()
 ///   replaces exactly those files, and refuses to overwrite a file of the
-///   same name that talus did not write (a user's plan.png stays).
+///   same name that talus did not write (a user's plan.png stays);
+/// - inside another run's staging folder (an experiment that runs `plan`
+///   into a subfolder) it writes in place, since the enclosing commit is the
+///   atomic step, and final_path() names where the files will be after it.
 #include <filesystem>
 #include <string>
 
@@ -31,7 +34,7 @@ class OutputFolder {
   /// Where the run writes its files.
   const std::filesystem::path& staging() const { return staging_; }
   /// Where `name` will be once committed (for summaries that list files).
-  std::filesystem::path final_path(const std::string& name) const { return dir_ / name; }
+  std::filesystem::path final_path(const std::string& name) const { return final_dir_ / name; }
 
   /// Moves every staged file and folder into the output folder, replacing the
   /// previous run's (the manifest), summary.json last. InputError, before
@@ -41,6 +44,8 @@ class OutputFolder {
 
  private:
   std::filesystem::path dir_, staging_;
+  std::filesystem::path final_dir_;  ///< dir_ as it will be named once every commit is done
+  bool nested_ = false;              ///< dir_ lies in an enclosing run's staging folder
   std::string option_;
   int lock_fd_ = -1;
   bool committed_ = false;

@@ -32,6 +32,11 @@ if [[ ! -x "$talus" ]]; then
   exit 1
 fi
 
+# The demo owns its output folders: start them afresh (talus itself never
+# replaces files it did not write, e.g. those of an older talus without a
+# manifest).
+rm -rf "$out_dir/plan" "$out_dir/optimal-profile" "$out_dir/global-search" \
+       "$out_dir/terrain-gallery"
 mkdir -p "$out_dir"
 terrain=data/terrain/west_bijou_escarpment_nasadem25m.asc
 vehicle=data/vehicles/rover.yaml

@@ -242,10 +242,10 @@ TEST(CliRobustness, AnInterruptedPlanExits130AndLeavesThePreviousResult) {
                            " --start 5,20 --goal 55,20 --stage global --out " + quoted(dir);
   ASSERT_EQ(run_capped(args).exit_code, 0);
   const std::string before = read_text(dir + "/summary.json");
-  // A long plan on the same folder (32-connected, 0.1 m lattice: seconds),
+  // A long plan on the same folder (32-connected, 0.05 m lattice: 10 s or more),
   // interrupted while it runs.
   const std::string command = std::string("'") + TALUS_CLI + "' " + args +
-                              " --connectivity 32 --lattice-spacing 0.1 >/dev/null 2>&1 & "
+                              " --connectivity 32 --lattice-spacing 0.05 >/dev/null 2>&1 & "
                               "pid=$!; sleep 1; kill -INT $pid; wait $pid; echo $?";
   FILE* pipe = popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);

@@ -139,8 +139,8 @@ Header read_header(Tokenizer& tokens, const std::string& source,
     Tokenizer peek = tokens;
     if (const auto extra = peek.next(); extra && peek.line() == line) {
       fail(source, line,
-           "header key '" + key + "' has more than one value ('" +
-               printable(std::string(*extra)) + "' follows)");
+           "header key '" + key + "' has more than one value ('" + printable(std::string(*extra)) +
+               "' follows)");
     }
   }
 }

@@ -1,10 +1,10 @@
 #include "talus/core/input_file.hpp"
 
+#include <sys/stat.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sys/stat.h>
 
 #include "talus/core/error.hpp"
 

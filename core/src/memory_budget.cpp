@@ -1,11 +1,11 @@
 #include "talus/core/memory_budget.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include "talus/core/error.hpp"
 

@@ -11,7 +11,9 @@
 namespace talus::detail {
 namespace {
 
-std::string line_of(const YAML::Node& node) { return std::to_string(node.Mark().line + 1); }
+std::string line_of(const YAML::Node& node) {
+  return std::to_string(node.Mark().line + 1);
+}
 
 void reject_duplicate_keys(const YAML::Node& node, const std::string& source) {
   if (node.IsMap()) {

@@ -59,9 +59,10 @@ void check_output_is_not_an_input(const std::string& option, const std::string& 
   namespace fs = std::filesystem;
   std::error_code error;
   for (const auto& [input_option, input] : inputs) {
-    const bool same = fs::exists(output, error) && fs::exists(input, error)
-                          ? fs::equivalent(output, input, error)
-                          : fs::weakly_canonical(output, error) == fs::weakly_canonical(input, error);
+    const bool same =
+        fs::exists(output, error) && fs::exists(input, error)
+            ? fs::equivalent(output, input, error)
+            : fs::weakly_canonical(output, error) == fs::weakly_canonical(input, error);
     if (same && !error) {
       throw InputError(option + " " + printable(output, 200) + " is the " + input_option +
                        " input: writing it would destroy that file; choose another output");

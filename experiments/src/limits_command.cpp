@@ -200,10 +200,9 @@ std::size_t default_station_count(double planar_length) {
 nlohmann::json limits(const LimitsRequest& request) {
   const auto start = std::chrono::steady_clock::now();
   check_path_options(request.stations, request.smoothing, request.output);
-  check_output_is_not_an_input("-o", request.output,
-                               {{"--terrain", request.terrain},
-                                {"--path", request.path},
-                                {"--vehicle", request.vehicle}});
+  check_output_is_not_an_input(
+      "-o", request.output,
+      {{"--terrain", request.terrain}, {"--path", request.path}, {"--vehicle", request.vehicle}});
 
   const Vehicle vehicle = load_vehicle(request.vehicle);
   const TerrainPath terrain_path =

@@ -413,9 +413,6 @@ struct Level {
   std::array<Failure, kSeries> failure;                 ///< message empty if feasible
 };
 
-/// The station count the library's callers use for this path (station_count).
-std::size_t default_station_count(double length) { return station_count(length); }
-
 bool is_doubling_level(const Level& level) {
   return std::find(std::begin(kLevels), std::end(kLevels), level.stations) != std::end(kLevels);
 }
@@ -455,7 +452,7 @@ std::vector<Level> run_convergence(const std::vector<VehicleSpec>& vehicles,
     levels.push_back({});
     levels.back().stations = n;
   }
-  const std::size_t n_default = default_station_count(path.length());
+  const std::size_t n_default = station_count(path.length());  // the library's rule
   const auto same = std::find_if(levels.begin(), levels.end(),
                                  [&](const Level& l) { return l.stations == n_default; });
   if (same != levels.end()) {

@@ -13,7 +13,7 @@ namespace talus {
 /// Size limits per kind of input [bytes]. A 10 000 x 10 000 grid at 12
 /// characters a value is about 1.2 GB of text, the largest DEM the default
 /// memory budget (memory_budget.hpp) could hold anyway.
-inline constexpr std::size_t kMaxGridFileBytes = std::size_t{2} << 30;  ///< 2 GiB
+inline constexpr std::size_t kMaxGridFileBytes = std::size_t{2} << 30;    ///< 2 GiB
 inline constexpr std::size_t kMaxPathFileBytes = std::size_t{256} << 20;  ///< 256 MiB
 inline constexpr std::size_t kMaxConfigFileBytes = std::size_t{1} << 20;  ///< 1 MiB (YAML)
 

@@ -17,18 +17,40 @@ using terrain_test::grid_around_origin;
 constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
 
-Vehicle point_mass(double mu, double h, double b) {
+Vehicle point_mass(double mu, double h, double b, double gravity = kG) {
   Vehicle v;
   v.friction = mu;
   v.cg_height = h;
   v.half_track = b;
+  v.gravity = gravity;
   return v;
 }
 
-/// Relative error check at the 0.5 % tolerance.
-void expect_within_half_percent(double actual, double expected, const std::string& what = "") {
-  EXPECT_NEAR(actual, expected, 0.005 * std::abs(expected)) << what;
+/// Closed forms evaluated on exact station geometry: equal to rounding. A 1e-3 error in g or mu
+/// (the third digit) is 1e9 times this tolerance.
+void expect_exact(double actual, double expected, const std::string& what = "") {
+  EXPECT_NEAR(actual, expected, 1e-12 * std::abs(expected)) << what;
 }
+
+/// Limits sampled along an interpolated cubic-spline circle through 256 points: its curvature is
+/// second-order accurate in the point spacing (2e-4 relative at r = 30 m; the test
+/// SplineCircleLimitConvergesAtSecondOrder checks the order), so 1e-3 relative here — still half
+/// the 0.5 % that a 1 % error in mu or g moves sqrt(mu g r).
+void expect_on_spline(double actual, double expected, const std::string& what = "") {
+  EXPECT_NEAR(actual, expected, 1e-3 * std::abs(expected)) << what;
+}
+
+/// The closed-form cases run on Earth and on Mars (g = 3.71 m/s^2): a hard-coded 9.81 anywhere in
+/// the limits fails the second instance.
+class ClosedForm : public ::testing::TestWithParam<double> {
+ protected:
+  double g() const { return GetParam(); }
+};
+
+INSTANTIATE_TEST_SUITE_P(Gravity, ClosedForm, ::testing::Values(9.81, 3.71),
+                         [](const ::testing::TestParamInfo<double>& info) {
+                           return info.param > 5.0 ? std::string("Earth") : std::string("Mars");
+                         });
 
 Curve2 circle(double r, int points = 256) {
   std::vector<Vec2> pts;
@@ -39,23 +61,23 @@ Curve2 circle(double r, int points = 256) {
   return Curve2::interpolate(pts);
 }
 
-TEST(SpeedLimits, FlatCircleSlidingLimitIsSqrtMuGR) {
+TEST_P(ClosedForm, SpeedLimits_FlatCircleSlidingLimitIsSqrtMuGR) {
   const double r = 25.0, mu = 0.6;
-  const SpeedLimits l = speed_limits(point_mass(mu, 0.5, 2.0), {0.0, 1.0 / r, 0.0, 0.0, 1.0});
+  const SpeedLimits l = speed_limits(point_mass(mu, 0.5, 2.0, g()), {0.0, 1.0 / r, 0.0, 0.0, 1.0});
   EXPECT_TRUE(l.traversable);
-  expect_within_half_percent(l.v_max, std::sqrt(mu * kG * r));
+  expect_exact(l.v_max, std::sqrt(mu * g() * r));
   EXPECT_EQ(l.upper_binding, Constraint::kSliding);
   EXPECT_EQ(l.v_min, 0.0);
   EXPECT_EQ(l.lower_binding, Constraint::kNone);
   // Turning right is symmetric.
-  EXPECT_DOUBLE_EQ(speed_limits(point_mass(mu, 0.5, 2.0), {0.0, -1.0 / r, 0.0, 0.0, 1.0}).v_max,
+  EXPECT_DOUBLE_EQ(speed_limits(point_mass(mu, 0.5, 2.0, g()), {0.0, -1.0 / r, 0.0, 0.0, 1.0}).v_max,
                    l.v_max);
 }
 
-TEST(SpeedLimits, FlatCircleTipoverLimitWhenTrackIsNarrow) {
+TEST_P(ClosedForm, SpeedLimits_FlatCircleTipoverLimitWhenTrackIsNarrow) {
   const double r = 25.0, mu = 0.9, h = 1.0, b = 0.5;  // b/h = 0.5 < mu
-  const SpeedLimits l = speed_limits(point_mass(mu, h, b), {0.0, 1.0 / r, 0.0, 0.0, 1.0});
-  expect_within_half_percent(l.v_max, std::sqrt(kG * r * b / h));
+  const SpeedLimits l = speed_limits(point_mass(mu, h, b, g()), {0.0, 1.0 / r, 0.0, 0.0, 1.0});
+  expect_exact(l.v_max, std::sqrt(g() * r * b / h));
   EXPECT_EQ(l.upper_binding, Constraint::kTipover);
 }
 
@@ -77,27 +99,27 @@ StationGeometry banked_circle(double r, double theta) {
   return {std::sin(theta) / r, std::cos(theta) / r, 0.0, -std::sin(theta), std::cos(theta)};
 }
 
-TEST(SpeedLimits, BankedTrackMatchesTheTextbookFormula) {
+TEST_P(ClosedForm, SpeedLimits_BankedTrackMatchesTheTextbookFormula) {
   const double r = 40.0, mu = 0.5;
   for (double theta_deg : {5.0, 15.0, 25.0}) {
     const double th = theta_deg * kPi / 180.0;
-    const SpeedLimits l = speed_limits(point_mass(mu, 0.3, 5.0), banked_circle(r, th));
+    const SpeedLimits l = speed_limits(point_mass(mu, 0.3, 5.0, g()), banked_circle(r, th));
     const double v2 =
-        r * kG * (std::sin(th) + mu * std::cos(th)) / (std::cos(th) - mu * std::sin(th));
-    expect_within_half_percent(l.v_max, std::sqrt(v2), "bank " + std::to_string(theta_deg));
+        r * g() * (std::sin(th) + mu * std::cos(th)) / (std::cos(th) - mu * std::sin(th));
+    expect_exact(l.v_max, std::sqrt(v2), "bank " + std::to_string(theta_deg));
     EXPECT_EQ(l.upper_binding, Constraint::kSliding);
     EXPECT_EQ(l.v_min, 0.0);  // tan(theta) < mu: it can stand still on the bank
   }
 }
 
-TEST(SpeedLimits, SteepBankHasALowerSpeedBound) {
+TEST_P(ClosedForm, SpeedLimits_SteepBankHasALowerSpeedBound) {
   // tan(35°) = 0.70 > mu = 0.5: too slow and the vehicle slides into the bowl.
   const double r = 40.0, mu = 0.5, th = 35.0 * kPi / 180.0;
-  const SpeedLimits l = speed_limits(point_mass(mu, 0.3, 5.0), banked_circle(r, th));
+  const SpeedLimits l = speed_limits(point_mass(mu, 0.3, 5.0, g()), banked_circle(r, th));
   ASSERT_TRUE(l.traversable);
   const double v2_min =
-      r * kG * (std::sin(th) - mu * std::cos(th)) / (std::cos(th) + mu * std::sin(th));
-  expect_within_half_percent(l.v_min, std::sqrt(v2_min));
+      r * g() * (std::sin(th) - mu * std::cos(th)) / (std::cos(th) + mu * std::sin(th));
+  expect_exact(l.v_min, std::sqrt(v2_min));
   EXPECT_EQ(l.lower_binding, Constraint::kSliding);
   EXPECT_GT(l.v_max, l.v_min);
 }
@@ -110,15 +132,15 @@ TEST(SpeedLimits, BankSteeperThanTheCrossoverIsUnlimitedAbove) {
   EXPECT_GT(l.v_min, 0.0);
 }
 
-TEST(SpeedLimits, CrestContactLimit) {
+TEST_P(ClosedForm, SpeedLimits_CrestContactLimit) {
   const double R = 30.0;
-  const Vehicle v = point_mass(1.5, 0.2, 1.0);
+  const Vehicle v = point_mass(1.5, 0.2, 1.0, g());
   const SpeedLimits top = speed_limits(v, {-1.0 / R, 0.0, 0.0, 0.0, 1.0});
-  expect_within_half_percent(top.v_max, std::sqrt(kG * R));
+  expect_exact(top.v_max, std::sqrt(g() * R));
   EXPECT_EQ(top.upper_binding, Constraint::kContact);
   const double alpha = 0.3;
   const SpeedLimits side = speed_limits(v, {-1.0 / R, 0.0, std::sin(alpha), 0.0, std::cos(alpha)});
-  expect_within_half_percent(side.v_max, std::sqrt(kG * R * std::cos(alpha)));
+  expect_exact(side.v_max, std::sqrt(g() * R * std::cos(alpha)));
   EXPECT_EQ(side.upper_binding, Constraint::kContact);
 }
 
@@ -140,38 +162,39 @@ TEST(SpeedLimits, SideSlopeSteeperThanFrictionIsNotTraversable) {
   EXPECT_FALSE(almost.traversable);
 }
 
-TEST(AccelerationBounds, InclinedPlaneUpAndDown) {
+TEST_P(ClosedForm, AccelerationBounds_InclinedPlaneUpAndDown) {
   const double mu = 0.7, alpha = 0.2;
-  const Vehicle v = point_mass(mu, 0.5, 0.6);
+  const Vehicle v = point_mass(mu, 0.5, 0.6, g());
   const StationGeometry up{0.0, 0.0, std::sin(alpha), 0.0, std::cos(alpha)};
   const StationGeometry down{0.0, 0.0, -std::sin(alpha), 0.0, std::cos(alpha)};
   for (double speed : {0.0, 5.0, 30.0}) {
     const AccelerationBounds a = acceleration_bounds(v, up, speed);
     ASSERT_TRUE(a.feasible);
-    expect_within_half_percent(a.a_max, kG * (mu * std::cos(alpha) - std::sin(alpha)));
-    expect_within_half_percent(a.a_min, -kG * (mu * std::cos(alpha) + std::sin(alpha)));
+    expect_exact(a.a_max, g() * (mu * std::cos(alpha) - std::sin(alpha)));
+    expect_exact(a.a_min, -g() * (mu * std::cos(alpha) + std::sin(alpha)));
     const AccelerationBounds d = acceleration_bounds(v, down, speed);
-    expect_within_half_percent(d.a_max, kG * (mu * std::cos(alpha) + std::sin(alpha)));
-    expect_within_half_percent(d.a_min, -kG * (mu * std::cos(alpha) - std::sin(alpha)));
+    expect_exact(d.a_max, g() * (mu * std::cos(alpha) + std::sin(alpha)));
+    expect_exact(d.a_min, -g() * (mu * std::cos(alpha) - std::sin(alpha)));
     EXPECT_EQ(a.upper_binding, Constraint::kSliding);
   }
 }
 
-TEST(AccelerationBounds, DriveAndBrakeLimitTheTractionForce) {
+TEST_P(ClosedForm, AccelerationBounds_DriveAndBrakeLimitTheTractionForce) {
   const double mu = 0.9, alpha = 0.1;
-  Vehicle v = point_mass(mu, 0.5, 0.6);
-  v.max_accel = 2.0;
-  v.max_decel = 4.0;
+  Vehicle v = point_mass(mu, 0.5, 0.6, g());
+  const double drive = 0.2 * g(), brake = 0.4 * g();  // both below mu g: the motors bind
+  v.max_accel = drive;
+  v.max_decel = brake;
   const AccelerationBounds flat = acceleration_bounds(v, {}, 3.0);
-  EXPECT_DOUBLE_EQ(flat.a_max, 2.0);
-  EXPECT_DOUBLE_EQ(flat.a_min, -4.0);
+  expect_exact(flat.a_max, drive);
+  expect_exact(flat.a_min, -brake);
   EXPECT_EQ(flat.upper_binding, Constraint::kDrive);
   EXPECT_EQ(flat.lower_binding, Constraint::kBrake);
   // Uphill the same drive force leaves g sin(alpha) less for acceleration.
   const AccelerationBounds up =
       acceleration_bounds(v, {0.0, 0.0, std::sin(alpha), 0.0, std::cos(alpha)}, 3.0);
-  expect_within_half_percent(up.a_max, 2.0 - kG * std::sin(alpha));
-  expect_within_half_percent(up.a_min, -4.0 - kG * std::sin(alpha));
+  expect_exact(up.a_max, drive - g() * std::sin(alpha));
+  expect_exact(up.a_min, -brake - g() * std::sin(alpha));
 }
 
 TEST(AccelerationBounds, SlopeSteeperThanFrictionCannotBeClimbedOrDescendedToAStop) {
@@ -187,9 +210,9 @@ TEST(AccelerationBounds, SlopeSteeperThanFrictionCannotBeClimbedOrDescendedToASt
   }
 }
 
-TEST(AccelerationBounds, InfeasibleSpeedNamesTheConstraint) {
+TEST_P(ClosedForm, AccelerationBounds_InfeasibleSpeedNamesTheConstraint) {
   const double r = 25.0;
-  const Vehicle v = point_mass(0.6, 0.5, 2.0);
+  const Vehicle v = point_mass(0.6, 0.5, 2.0, g());
   const StationGeometry g{0.0, 1.0 / r, 0.0, 0.0, 1.0};
   const double v_max = speed_limits(v, g).v_max;
   EXPECT_TRUE(acceleration_bounds(v, g, 0.999 * v_max).feasible);
@@ -227,17 +250,17 @@ TEST(RigidBody, LongVehicleAgreesWithThePointMassLaterally) {
   }
 }
 
-TEST(RigidBody, PitchesOverUnderBrakingWhenTallAndShort) {
-  Vehicle rb = point_mass(0.9, 1.0, 0.8);
+TEST_P(ClosedForm, RigidBody_PitchesOverUnderBrakingWhenTallAndShort) {
+  Vehicle rb = point_mass(0.9, 1.0, 0.8, g());
   rb.model = VehicleModel::kRigidBody;
   rb.half_wheelbase = 0.4;  // l/h = 0.4 < mu = 0.9
   const AccelerationBounds a = acceleration_bounds(rb, {}, 10.0);
-  expect_within_half_percent(a.a_min, -kG * 0.4);
-  expect_within_half_percent(a.a_max, kG * 0.4);
+  expect_exact(a.a_min, -g() * 0.4);
+  expect_exact(a.a_max, g() * 0.4);
   EXPECT_EQ(a.lower_binding, Constraint::kPitchover);
   // The point mass ignores pitch and brakes at mu g.
-  const AccelerationBounds pm = acceleration_bounds(point_mass(0.9, 1.0, 0.8), {}, 10.0);
-  expect_within_half_percent(pm.a_min, -kG * 0.9);
+  const AccelerationBounds pm = acceleration_bounds(point_mass(0.9, 1.0, 0.8, g()), {}, 10.0);
+  expect_exact(pm.a_min, -g() * 0.9);
 }
 
 TEST(VelocityLimits, FlatCirclePathAtEveryStation) {
@@ -249,10 +272,35 @@ TEST(VelocityLimits, FlatCirclePathAtEveryStation) {
   ASSERT_EQ(limits.size(), 500u);
   EXPECT_EQ(limits.first_untraversable(), limits.size());
   for (std::size_t k = 0; k < limits.size(); ++k) {
-    expect_within_half_percent(limits.limits(k).v_max, std::sqrt(mu * kG * r),
+    expect_on_spline(limits.limits(k).v_max, std::sqrt(mu * kG * r),
                                "station " + std::to_string(k));
   }
   EXPECT_NEAR(limits.frame(limits.size() - 1).s, 2 * kPi * r, 1e-6);
+}
+
+double max_relative_error_on_circle(int points) {
+  const BPatch flat =
+      BPatch::interpolate(grid_around_origin([](double, double) { return 100.0; }, 40, 2.0));
+  const double r = 30.0, mu = 0.7, exact = std::sqrt(mu * kG * r);
+  const VelocityLimits limits(point_mass(mu, 0.5, 1.0), SurfacePath(flat, circle(r, points)), 400);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < limits.size(); ++k) {
+    worst = std::max(worst, std::abs(limits.limits(k).v_max - exact) / exact);
+  }
+  return worst;
+}
+
+TEST(VelocityLimits, SplineCircleLimitConvergesAtSecondOrder) {
+  // The only error is the spline's curvature, O(h^2) in the point spacing h: halving h divides
+  // the error by about 4. A discretisation error of any other origin would not shrink.
+  double previous = max_relative_error_on_circle(32);
+  for (int points : {64, 128, 256}) {
+    const double error = max_relative_error_on_circle(points);
+    const double order = std::log2(previous / error);
+    EXPECT_GT(order, 1.8) << points << " points: error " << error;
+    previous = error;
+  }
+  EXPECT_LT(previous, 5e-4);
 }
 
 TEST(VelocityLimits, BankedBowlPathAgreesWithTheFormula) {
@@ -264,7 +312,7 @@ TEST(VelocityLimits, BankedBowlPathAgreesWithTheFormula) {
   const double v2 =
       r * kG * (std::sin(theta) + mu * std::cos(theta)) / (std::cos(theta) - mu * std::sin(theta));
   for (std::size_t k = 0; k < limits.size(); k += 17) {
-    expect_within_half_percent(limits.limits(k).v_max, std::sqrt(v2));
+    expect_on_spline(limits.limits(k).v_max, std::sqrt(v2));
   }
 }
 

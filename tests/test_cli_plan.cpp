@@ -259,7 +259,9 @@ TEST(CliPlan, FullStageOnFlatPlaneMatchesRestToRestStraightLine) {
   const double a = 0.7 * 9.81, v = 10.0, length = 50.0;
   const double expected = 2.0 * v / a + (length - v * v / a) / v;
   EXPECT_EQ(j.value("stage", ""), "full");  // the default
-  EXPECT_NEAR(j.value("travel_time", 0.0), expected, 0.01 * expected) << j.dump();
+  // The straight line is optimal; the optimiser keeps it to within 1e-5 (a 1e-3 error in g moves
+  // the time by 5e-4).
+  EXPECT_NEAR(j.value("travel_time", 0.0), expected, 1e-5 * expected) << j.dump();
   EXPECT_LE(j.value("travel_time", 0.0), j.value("global_travel_time", 0.0) * (1.0 + 1e-12));
 }
 

@@ -52,6 +52,9 @@ TEST(VerifyProfile, SolverProfilesVerifyOnRandomTerrainsForEveryModel) {
             continue;  // a random spline may overshoot the map: not this test's subject
           }
           const VelocityLimits limits(v, *path, 300);
+          // Rest to rest is an input error where an end station needs a minimum speed (a steep
+          // side slope the vehicle tips on at rest): not this test's subject either.
+          if (limits.limits(0).v_min > 0.0 || limits.limits(limits.size() - 1).v_min > 0.0) continue;
           const TimeOptimalProfile p = solver.solve(limits, {});
           if (p.status != ProfileStatus::kOk) continue;
           const ProfileVerification check = verify_profile(limits, p);

@@ -26,7 +26,7 @@ namespace {
 const std::string kPlanShape = "--ncols 61 --nrows 41 --cellsize 1";
 
 std::string plan_flat_terrain() {
-  return generate_terrain("flat.asc", "plane --slope 0 " + kPlanShape);
+  return generate_terrain("plan_flat.asc", "plane --slope 0 " + kPlanShape);
 }
 
 /// A point mass with friction 0.7, b/h = 1.2 and the given top speed (none if 0).

@@ -17,15 +17,15 @@
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 #include "talus/kinematic/hait/robot.hpp"
 #include "talus/kinematic/hait/robot_validity.hpp"
+#include "random_test_support.hpp"
+#include "terrain_test_support.hpp"
 
 namespace talus {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using random_test::uniform;
 
-double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
+constexpr double kPi = std::numbers::pi;
 
 ArticulatedChassis marsokhod() {
   return std::get<ArticulatedChassis>(
@@ -48,18 +48,12 @@ RuledTerrain terrain_of(F f, double width = 12.0, double depth = 8.0) {
 
 /// A steep Gaussian hill of peak `height` at (6, 4), sigma 0.9 m (flat when 0), on 12 m x 8 m.
 RuledTerrain hill(double height) {
-  return terrain_of([height](double x, double y) {
-    return height * std::exp(-((x - 6) * (x - 6) + (y - 4) * (y - 4)) / (2 * 0.9 * 0.9));
-  });
+  return terrain_of(terrain_test::gaussian_hill(Vec2(6, 4), height, 0.9));
 }
 
 /// The same hill at (8, 7) on 16 m x 14 m, room for the wider corridor of the uncertain robot.
 RuledTerrain wide_hill(double height) {
-  return terrain_of(
-      [height](double x, double y) {
-        return height * std::exp(-((x - 8) * (x - 8) + (y - 7) * (y - 7)) / (2 * 0.9 * 0.9));
-      },
-      16.0, 14.0);
+  return terrain_of(terrain_test::gaussian_hill(Vec2(8, 7), height, 0.9), 16.0, 14.0);
 }
 
 /// Rolling ground: a sum of seeded random bumps, gentle enough for most placements to be valid.

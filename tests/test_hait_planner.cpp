@@ -11,16 +11,16 @@
 #include "talus/core/graph_search.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "random_test_support.hpp"
+#include "terrain_test_support.hpp"
 
 namespace talus {
 namespace {
 
+using random_test::uniform;
+
 constexpr double kPi = std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
 
 /// A synthetic world for the search: a box, forbidden discs, and a robot that
 /// is a segment of half-length `half_length` along its heading. A
@@ -478,14 +478,9 @@ WheeledRobot small_rover() {
 
 /// 12 m x 8 m at 0.25 m; an optional steep Gaussian hill (peak `height` at (6, 4), sigma 0.9 m).
 RuledTerrain hill_terrain(double height) {
-  ElevationGrid g(49, 33, 0.25, 0.0, 0.0, 0.0);
-  for (std::size_t j = 0; j < g.nrows(); ++j) {
-    for (std::size_t i = 0; i < g.ncols(); ++i) {
-      const Vec2 p = g.node_position(i, j);
-      g.at(i, j) = height * std::exp(-(p - Vec2(6, 4)).squaredNorm() / (2 * 0.9 * 0.9));
-    }
-  }
-  return RuledTerrain(g);
+  return RuledTerrain(
+      terrain_test::grid_of_nodes(terrain_test::gaussian_hill(Vec2(6, 4), height, 0.9), 49, 33,
+                                  0.25, 0.0, 0.0));
 }
 
 TEST(HaitPlan, StraightPathOnFlatGround) {

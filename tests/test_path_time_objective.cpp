@@ -9,16 +9,14 @@
 #include "talus/core/error.hpp"
 #include "talus/optimal/path_time_objective.hpp"
 #include "terrain_test_support.hpp"
+#include "vehicle_test_support.hpp"
 
 namespace talus {
 namespace {
 
+/// The shared point-mass rover with drive and brake limits, so that both bind somewhere.
 Vehicle rover(double mu) {
-  Vehicle v;
-  v.friction = mu;
-  v.cg_height = 0.5;
-  v.half_track = 0.6;
-  v.max_speed = 10.0;
+  Vehicle v = vehicle_test::point_mass_rover(mu);
   v.max_accel = 2.5;
   v.max_decel = 4.0;
   return v;
@@ -26,10 +24,7 @@ Vehicle rover(double mu) {
 
 BPatch hill() {
   return BPatch::interpolate(terrain_test::grid_from_function(
-      [](double x, double y) {
-        return 8.0 * std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * 7.0 * 7.0));
-      },
-      0, 0, 80, 60, 1.0));
+      terrain_test::gaussian_hill(Vec2(40, 30), 8.0, 7.0), 0, 0, 80, 60, 1.0));
 }
 
 /// Central differences with a step small enough not to cross an active-set

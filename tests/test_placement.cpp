@@ -11,10 +11,13 @@
 #include "talus/kinematic/hait/chassis_placement.hpp"
 #include "talus/kinematic/hait/placement.hpp"
 #include "talus/kinematic/hait/robot_validity.hpp"
+#include "random_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
 namespace {
+
+using random_test::uniform;
 
 using terrain_test::grid_around_origin;
 constexpr double kPi = std::numbers::pi;
@@ -46,10 +49,6 @@ ArticulatedChassis chassis() {
 RuledTerrain plane(double gx, double gy, double half = 6.0, double cell = 0.25) {
   return RuledTerrain(
       grid_around_origin([=](double x, double y) { return 1.0 + gx * x + gy * y; }, half, cell));
-}
-
-double uniform(std::mt19937_64& rng) {
-  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
 
 /// Smooth rough terrain: a sum of six plane waves with seeded random directions and phases.

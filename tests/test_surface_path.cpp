@@ -6,6 +6,7 @@
 
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
+#include "path_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -14,16 +15,6 @@ namespace {
 using terrain_test::grid_around_origin;
 
 constexpr double kPi = std::numbers::pi;
-
-Curve2 circle(const Vec2& centre, double a, double b, int points = 400) {
-  // Closed ellipse (semi-axes a along x, b along y), counter-clockwise.
-  std::vector<Vec2> pts;
-  for (int k = 0; k <= points; ++k) {
-    const double th = 2 * kPi * k / points;
-    pts.push_back(centre + Vec2(a * std::cos(th), b * std::sin(th)));
-  }
-  return Curve2::interpolate(pts);
-}
 
 Curve2 segment(const Vec2& a, const Vec2& b) {
   return Curve2::interpolate({a, b});
@@ -84,7 +75,7 @@ TEST(SurfacePath, FlatCircleHasGeodesicCurvatureOneOverRadiusAndLengthTwoPiR) {
   const BPatch flat =
       BPatch::interpolate(grid_around_origin([](double, double) { return 5.0; }, 10, 1.0));
   const double r = 4.0;
-  const SurfacePath path(flat, circle(Vec2(0.5, -0.5), r, r));
+  const SurfacePath path(flat, path_test::ellipse(Vec2(0.5, -0.5), r, r, 400));
   EXPECT_NEAR(path.length(), 2 * kPi * r, 1e-6);
   for (const PathFrame& f : path.sample(37)) {
     EXPECT_NEAR(f.kappa_g, 1.0 / r, 1e-4);
@@ -100,7 +91,7 @@ TEST(SurfacePath, CircleInATiltedPlaneOnAFittedPatch) {
   const double alpha = 0.35, rho = 5.0;
   const BPatch plane = BPatch::interpolate(
       grid_around_origin([&](double x, double) { return std::tan(alpha) * x; }, 10, 0.5));
-  const SurfacePath path(plane, circle(Vec2::Zero(), rho * std::cos(alpha), rho));
+  const SurfacePath path(plane, path_test::ellipse(Vec2::Zero(), rho * std::cos(alpha), rho, 400));
   EXPECT_NEAR(path.length(), 2 * kPi * rho, 1e-5);
   for (const PathFrame& f : path.sample(25)) {
     EXPECT_NEAR(f.kappa_g, 1.0 / rho, 1e-4);
@@ -133,7 +124,7 @@ TEST(SurfacePath, SphereCapOnAFittedPatch) {
   const BPatch cap = BPatch::interpolate(grid_around_origin(
       [&](double x, double y) { return std::sqrt(R * R - x * x - y * y); }, 12, 0.25));
   const double a = 6.0;  // planar radius of a circle of latitude
-  const SurfacePath path(cap, circle(Vec2::Zero(), a, a));
+  const SurfacePath path(cap, path_test::ellipse(Vec2::Zero(), a, a, 400));
   EXPECT_NEAR(path.length(), 2 * kPi * a, 1e-4);
   for (const PathFrame& f : path.sample(20)) {
     EXPECT_NEAR(f.kappa_n, -1.0 / R, 1e-3 / R);

@@ -7,6 +7,7 @@
 
 #include "talus/core/error.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
+#include "path_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -51,15 +52,6 @@ INSTANTIATE_TEST_SUITE_P(Gravity, ClosedForm, ::testing::Values(9.81, 3.71),
                          [](const ::testing::TestParamInfo<double>& info) {
                            return info.param > 5.0 ? std::string("Earth") : std::string("Mars");
                          });
-
-Curve2 circle(double r, int points = 256) {
-  std::vector<Vec2> pts;
-  for (int k = 0; k <= points; ++k) {
-    const double th = 2 * kPi * k / points;
-    pts.emplace_back(r * std::cos(th), r * std::sin(th));
-  }
-  return Curve2::interpolate(pts);
-}
 
 TEST_P(ClosedForm, SpeedLimits_FlatCircleSlidingLimitIsSqrtMuGR) {
   const double r = 25.0, mu = 0.6;
@@ -267,7 +259,7 @@ TEST(VelocityLimits, FlatCirclePathAtEveryStation) {
   const BPatch flat =
       BPatch::interpolate(grid_around_origin([](double, double) { return 100.0; }, 40, 2.0));
   const double r = 30.0, mu = 0.7;
-  const SurfacePath path(flat, circle(r));
+  const SurfacePath path(flat, path_test::circle(r, 256));
   const VelocityLimits limits(point_mass(mu, 0.5, 1.0), path, 500);
   ASSERT_EQ(limits.size(), 500u);
   EXPECT_EQ(limits.first_untraversable(), limits.size());
@@ -282,7 +274,7 @@ double max_relative_error_on_circle(int points) {
   const BPatch flat =
       BPatch::interpolate(grid_around_origin([](double, double) { return 100.0; }, 40, 2.0));
   const double r = 30.0, mu = 0.7, exact = std::sqrt(mu * kG * r);
-  const VelocityLimits limits(point_mass(mu, 0.5, 1.0), SurfacePath(flat, circle(r, points)), 400);
+  const VelocityLimits limits(point_mass(mu, 0.5, 1.0), SurfacePath(flat, path_test::circle(r, points)), 400);
   double worst = 0.0;
   for (std::size_t k = 0; k < limits.size(); ++k) {
     worst = std::max(worst, std::abs(limits.limits(k).v_max - exact) / exact);
@@ -307,7 +299,7 @@ TEST(VelocityLimits, BankedBowlPathAgreesWithTheFormula) {
   const double theta = 15.0 * kPi / 180.0, r = 20.0, mu = 0.5;
   const BPatch cone = BPatch::interpolate(grid_around_origin(
       [&](double x, double y) { return std::tan(theta) * std::hypot(x, y); }, 30, 0.5));
-  const SurfacePath path(cone, circle(r));
+  const SurfacePath path(cone, path_test::circle(r, 256));
   const VelocityLimits limits(point_mass(mu, 0.3, 5.0), path, 200);
   const double v2 =
       r * kG * (std::sin(theta) + mu * std::cos(theta)) / (std::cos(theta) - mu * std::sin(theta));

@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "../cli_test_support.hpp"
+#include "cli_test_support.hpp"
 
 namespace talus::cli_test {
 namespace {

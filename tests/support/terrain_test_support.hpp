@@ -39,4 +39,11 @@ inline ElevationGrid grid_around_origin(const HeightFunction& f, double half_wid
   return grid_from_function(f, -half_width, -half_width, half_width, half_width, cell);
 }
 
+/// A Gaussian hill z = height exp(-|p - centre|^2 / (2 sigma^2)) [m] on flat ground at z = 0.
+inline HeightFunction gaussian_hill(const Vec2& centre, double height, double sigma) {
+  return [centre, height, sigma](double x, double y) {
+    return height * std::exp(-(Vec2(x, y) - centre).squaredNorm() / (2 * sigma * sigma));
+  };
+}
+
 }  // namespace talus::terrain_test

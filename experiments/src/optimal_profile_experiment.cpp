@@ -984,9 +984,10 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
         fmt("%g", kDefaultStationSpacing) + " m the travel time is " + percent_error(def.error) +
         " too slow on the smoothing fit; e ≈ C h with C = " + fmt("%.3g", c) +
         " /m puts 0.1 % at h ≈ " + sig3(kTargetError / c) +
-        " m. On the interpolating fit of the same 1 m-cell terrain the error at 0.5 m is " +
+        " m. On the interpolating fit of the same 1 m-cell terrain the error at " +
+        fmt("%g", kDefaultStationSpacing) + " m is " +
         percent_error(convergence.default_level(kInterpolatingSeries).error) +
-        " and irregular in h (the spacing is half a cell, so stations alias the cell-scale "
+        " and irregular in h (stations a fraction of a cell apart alias the cell-scale "
         "curvature). The solve is cheap at any of these spacings (see the solve-time column).");
   }
   report.heading("Sanity checks");

@@ -119,20 +119,17 @@ struct VehicleSpec {
   Vehicle vehicle;
 };
 
-std::vector<VehicleSpec> make_vehicles() {
-  Vehicle point;
-  point.model = VehicleModel::kPointMass;
-  point.friction = 0.7;
-  point.cg_height = 0.5;
-  point.half_track = 0.6;
-  point.max_speed = 15.0;
-  // Drive and brake bound the traction force per unit mass f_t = s̈ + g k_t
-  // (vehicle.hpp): 3 m/s² is below μg = 6.9 m/s², so on level ground the
-  // motor, not friction, limits acceleration; the 6 m/s² brake is just below
-  // μg, so friction limits braking only where the ground load drops (crests)
-  // or the turn uses up friction.
-  point.max_accel = 3.0;
-  point.max_decel = 6.0;
+/// The point mass is the bundled rover (data/vehicles/rover.yaml: μ = 0.7,
+/// h = 0.5 m, b = 0.6 m, 15 m/s). Its drive and brake bound the traction
+/// force per unit mass f_t = s̈ + g k_t (vehicle.hpp): 3 m/s² is below
+/// μg = 6.9 m/s², so on level ground the motor, not friction, limits
+/// acceleration; the 6 m/s² brake is just below μg, so friction limits braking
+/// only where the ground load drops (crests) or the turn uses up friction.
+std::vector<VehicleSpec> make_vehicles(const fs::path& data_dir) {
+  const Vehicle point = load_vehicle((data_dir / "vehicles" / "rover.yaml").string());
+  if (point.model != VehicleModel::kPointMass) {
+    throw InputError("optimal-profile: data/vehicles/rover.yaml is not a point mass");
+  }
 
   Vehicle rigid = point;
   rigid.model = VehicleModel::kRigidBody;
@@ -1063,7 +1060,7 @@ void run_optimal_profile(const ExperimentContext& context) {
   setup.length = path.length();
   setup.stations = context.quick ? kQuickProfileStations : kProfileStations;
 
-  const std::vector<VehicleSpec> vehicles = make_vehicles();
+  const std::vector<VehicleSpec> vehicles = make_vehicles(context.data_dir);
   std::vector<ProfileRun> runs;
   for (std::size_t v = 0; v < kStudied; ++v)
     runs.push_back(solve_profile(vehicles[v], path, setup.stations));

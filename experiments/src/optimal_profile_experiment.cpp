@@ -31,6 +31,8 @@
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
+#include "talus/optimal/profile_analysis.hpp"
+#include "talus/optimal/profile_convergence.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
 #include "talus/optimal/trajectory.hpp"
 #include "talus/optimal/verify_profile.hpp"
@@ -78,12 +80,9 @@ constexpr int kMinRepeats = 3;
 /// Relative error the recommendation of a station spacing aims at (0.1 %).
 constexpr double kTargetError = 1e-3;
 
-/// A station counts as "on the limit curve" if v >= (1 − this) v_max.
+/// A station counts as "on the limit curve" if v >= (1 − this) v_max
+/// (ProfileAnalysisOptions::touch_tolerance).
 constexpr double kTouchTolerance = 1e-3;
-/// Tolerance of the a ∈ [a_min, a_max] check [m/s², relative to 1 + |a|]:
-/// the solver widens its bounds by ~1e-12 so that states exactly on the limit
-/// curve stay admissible in floating point.
-constexpr double kAccelTolerance = 1e-6;
 
 constexpr std::size_t kRasterMaxSamples = 400;  // relief raster of the map, longer side
 
@@ -120,20 +119,17 @@ struct VehicleSpec {
   Vehicle vehicle;
 };
 
-std::vector<VehicleSpec> make_vehicles() {
-  Vehicle point;
-  point.model = VehicleModel::kPointMass;
-  point.friction = 0.7;
-  point.cg_height = 0.5;
-  point.half_track = 0.6;
-  point.max_speed = 15.0;
-  // Drive and brake bound the traction force per unit mass f_t = s̈ + g k_t
-  // (vehicle.hpp): 3 m/s² is below μg = 6.9 m/s², so on level ground the
-  // motor, not friction, limits acceleration; the 6 m/s² brake is just below
-  // μg, so friction limits braking only where the ground load drops (crests)
-  // or the turn uses up friction.
-  point.max_accel = 3.0;
-  point.max_decel = 6.0;
+/// The point mass is the bundled rover (data/vehicles/rover.yaml: μ = 0.7,
+/// h = 0.5 m, b = 0.6 m, 15 m/s). Its drive and brake bound the traction
+/// force per unit mass f_t = s̈ + g k_t (vehicle.hpp): 3 m/s² is below
+/// μg = 6.9 m/s², so on level ground the motor, not friction, limits
+/// acceleration; the 6 m/s² brake is just below μg, so friction limits braking
+/// only where the ground load drops (crests) or the turn uses up friction.
+std::vector<VehicleSpec> make_vehicles(const fs::path& data_dir) {
+  const Vehicle point = load_vehicle((data_dir / "vehicles" / "rover.yaml").string());
+  if (point.model != VehicleModel::kPointMass) {
+    throw InputError("optimal-profile: data/vehicles/rover.yaml is not a point mass");
+  }
 
   Vehicle rigid = point;
   rigid.model = VehicleModel::kRigidBody;
@@ -181,184 +177,20 @@ constexpr ConstraintStyle kStyles[] = {
 // ---------------------------------------------------------------------------
 // One profile and its checks.
 
-/// Path length [m] over which each control is limited by each constraint.
-struct LimitingLengths {
-  double accelerate_drive = 0.0, accelerate_sliding = 0.0, accelerate_pitch = 0.0;
-  double decelerate_brake = 0.0, decelerate_sliding = 0.0, decelerate_pitch = 0.0;
-  double limit = 0.0;  ///< steps in between (riding v_max or a controllable-set boundary)
-  double other = 0.0;  ///< any other binding (should stay 0)
-};
-
-struct Checks {
-  std::size_t over_limit = 0;  ///< stations with v > v_max (beyond rounding)
-  double max_over = 0.0;       ///< largest v − v_max [m/s]
-  std::size_t outside = 0;     ///< step ends with s̈ outside [a_min, a_max] (beyond tolerance)
-  double max_outside = 0.0;    ///< largest distance of s̈ outside [a_min, a_max] [m/s²]
-  std::size_t bounds_infeasible = 0;  ///< stations where no s̈ is admissible at v (rounding)
-  std::size_t touching = 0, touch_segments = 0;
-  double touch_length = 0.0;               ///< path length on the limit curve [m]
-  std::size_t dips = 0, dips_touched = 0;  ///< interior local minima of v_max < max speed
-  double min_v_max = kInf, s_min_v_max = 0.0, v_at_min = 0.0;
-  std::size_t min_index = 0;
-  double max_v = 0.0;
-  double max_gap = 0.0;  ///< largest v_point_mass − v at any station [m/s] (rigid body only)
-  LimitingLengths lengths;
-};
-
-/// What one step of the profile does, judged against the bounds at **both**
-/// of its ends (where the solver holds it), not only at its start.
-struct StepClass {
-  ControlKind kind = ControlKind::kLimit;
-  Constraint binding = Constraint::kNone;  ///< the bound s̈ sits on, or what sets v_max
-  bool inside = false;  ///< kLimit off the limit curve: s̈ strictly inside both bounds
-};
-
+/// One vehicle's profile along the path, verified (verify_profile) and
+/// analysed (analyze_profile: step classes, switching points, limiting lengths).
 struct ProfileRun {
   explicit ProfileRun(const VehicleSpec& s) : spec(&s), limits(s.vehicle) {}
   const VehicleSpec* spec;
   VelocityLimits limits;
   TimeOptimalProfile profile;
-  std::vector<AccelerationBounds> bounds;  ///< at each station's profile speed
-  std::vector<StepClass> steps;            ///< one per step (stations − 1)
-  /// Switching points from `steps` (see effective_switches()); the solver's
+  ProfileVerification verification;
+  /// Its switches are those of the both-ends classification; the solver's
   /// own are in profile.switching_points.
-  std::vector<SwitchingPoint> switches;
+  ProfileAnalysis analysis;
   double limits_seconds = 0.0, solve_seconds = 0.0;
-  Checks checks;
+  double max_gap = 0.0;  ///< largest v_point_mass − v at any station [m/s] (rigid body only)
 };
-
-bool on_limit(double v, double v_max) {
-  return std::isfinite(v_max) && v >= (1.0 - kTouchTolerance) * v_max;
-}
-
-/// Classifies every step against the bounds at both of its ends. The solver
-/// holds s̈ of a step admissible at both ends, so a step at full drive whose
-/// end station has the tighter a_max is still "accelerate"; the solver's own
-/// ControlKind compares with the start station's bounds only and calls such a
-/// step "limit" (see the report). A step with both ends on v_max rides the
-/// limit curve.
-void classify_steps(ProfileRun& run) {
-  const TimeOptimalProfile& p = run.profile;
-  const std::size_t n = p.s.size();
-  run.steps.assign(n - 1, StepClass{});
-  for (std::size_t k = 0; k + 1 < n; ++k) {
-    StepClass& step = run.steps[k];
-    const bool on0 = on_limit(p.v[k], p.v_max[k]), on1 = on_limit(p.v[k + 1], p.v_max[k + 1]);
-    if (on0 && on1) {
-      step.binding = p.binding[k + 1];
-      continue;
-    }
-    // The tighter end of each bound; an end with no admissible s̈ (the speed
-    // exactly on a sliding limit, up to rounding) does not count.
-    double a_max = kInf, a_min = -kInf;
-    Constraint upper = Constraint::kNone, lower = Constraint::kNone;
-    for (const std::size_t end : {k, k + 1}) {
-      const AccelerationBounds& b = run.bounds[end];
-      if (!b.feasible) continue;
-      if (b.a_max < a_max) {
-        a_max = b.a_max;
-        upper = b.upper_binding;
-      }
-      if (b.a_min > a_min) {
-        a_min = b.a_min;
-        lower = b.lower_binding;
-      }
-    }
-    const double a = p.a[k], tolerance = kAccelTolerance * (1.0 + std::abs(a));
-    if (a >= a_max - tolerance) {
-      step.kind = ControlKind::kAccelerate;
-      step.binding = upper;
-    } else if (a <= a_min + tolerance) {
-      step.kind = ControlKind::kDecelerate;
-      step.binding = lower;
-    } else {
-      step.inside = true;
-    }
-  }
-  // Switching points: where the kind changes. A single "inside" step between
-  // two arcs is where a bang-bang switch falls inside one step (its s̈ is the
-  // mix that lands on the next arc): it marks the switch, it is not an arc of
-  // its own, and between two arcs of the same kind it is no switch at all.
-  run.switches.clear();
-  ControlKind current = run.steps[0].kind;
-  for (std::size_t k = 1; k < run.steps.size(); ++k) {
-    const StepClass& step = run.steps[k];
-    if (step.kind == current) continue;
-    if (step.inside && k + 1 < run.steps.size() && !run.steps[k + 1].inside) {
-      const ControlKind next = run.steps[k + 1].kind;
-      if (next != current) run.switches.push_back({k, p.s[k], current, next});
-      current = next;
-      ++k;
-      continue;
-    }
-    run.switches.push_back({k, p.s[k], current, step.kind});
-    current = step.kind;
-  }
-}
-
-void check_profile(ProfileRun& run) {
-  const TimeOptimalProfile& p = run.profile;
-  const std::size_t n = p.s.size();
-  Checks& c = run.checks;
-  run.bounds.resize(n);
-  const double max_speed = run.spec->vehicle.max_speed;
-  // v <= v_max, some s̈ admissible at every station and s̈ admissible at both
-  // ends of every step (TOPP-RA's interpolation discretisation): the library's verifier.
-  const ProfileVerification verification = verify_profile(run.limits, p);
-  c.over_limit = verification.speed_violations;
-  c.max_over = verification.worst_speed.amount;
-  c.bounds_infeasible = verification.inadmissible_states;
-  c.outside = verification.acceleration_violations;
-  c.max_outside = verification.worst_acceleration.amount;
-  bool previous_touch = false;
-  for (std::size_t k = 0; k < n; ++k) {
-    run.bounds[k] = run.limits.acceleration_bounds(k, p.v[k]);
-    c.max_v = std::max(c.max_v, p.v[k]);
-    const bool touch = on_limit(p.v[k], p.v_max[k]);
-    if (touch) {
-      ++c.touching;
-      if (!previous_touch) ++c.touch_segments;
-      if (previous_touch) c.touch_length += p.s[k] - p.s[k - 1];
-    }
-    previous_touch = touch;
-    if (p.v_max[k] < c.min_v_max) {
-      c.min_v_max = p.v_max[k];
-      c.min_index = k;
-    }
-    // Strict on the left, weak on the right: a flat-bottomed dip counts once.
-    if (k > 0 && k + 1 < n && p.v_max[k] < (1.0 - 1e-9) * max_speed &&
-        p.v_max[k] < p.v_max[k - 1] && p.v_max[k] <= p.v_max[k + 1]) {
-      ++c.dips;
-      if (touch) ++c.dips_touched;
-    }
-  }
-  c.s_min_v_max = p.s[c.min_index];
-  c.v_at_min = p.v[c.min_index];
-
-  classify_steps(run);
-  for (std::size_t k = 0; k + 1 < n; ++k) {
-    const double ds = p.s[k + 1] - p.s[k];
-    const StepClass& step = run.steps[k];
-    LimitingLengths& l = c.lengths;
-    switch (step.kind) {
-      case ControlKind::kAccelerate:
-        (step.binding == Constraint::kDrive       ? l.accelerate_drive
-         : step.binding == Constraint::kSliding   ? l.accelerate_sliding
-         : step.binding == Constraint::kPitchover ? l.accelerate_pitch
-                                                  : l.other) += ds;
-        break;
-      case ControlKind::kDecelerate:
-        (step.binding == Constraint::kBrake       ? l.decelerate_brake
-         : step.binding == Constraint::kSliding   ? l.decelerate_sliding
-         : step.binding == Constraint::kPitchover ? l.decelerate_pitch
-                                                  : l.other) += ds;
-        break;
-      case ControlKind::kLimit:
-        l.limit += ds;
-        break;
-    }
-  }
-}
 
 ProfileRun solve_profile(const VehicleSpec& spec, const SurfacePath& path, std::size_t stations) {
   ProfileRun run(spec);
@@ -376,7 +208,12 @@ ProfileRun solve_profile(const VehicleSpec& spec, const SurfacePath& path, std::
                           " along the path with " + std::to_string(stations) +
                           " stations: " + run.profile.message);
   }
-  check_profile(run);
+  // v <= v_max, some s̈ admissible at every station and s̈ admissible at both
+  // ends of every step (TOPP-RA's interpolation discretisation).
+  run.verification = verify_profile(run.limits, run.profile);
+  ProfileAnalysisOptions analysis;
+  analysis.touch_tolerance = kTouchTolerance;
+  run.analysis = analyze_profile(run.limits, run.profile, analysis);
   return run;
 }
 
@@ -390,148 +227,52 @@ constexpr std::size_t kStudied = 2;  // the point mass and the rigid body
 constexpr std::size_t kSeries = 3;
 constexpr std::size_t kInterpolatingSeries = 2;
 
-/// Why a level failed, and whether that verdict is provably wrong: with the
-/// end at rest, if standing still is admissible at every station from the
-/// failing one to the end (v_min = 0 and 0 ∈ [a_min, a_max] at v = 0), then
-/// x = 0 with s̈ = 0 reaches the end and the path is feasible from there.
-struct Failure {
-  std::string message;
-  std::size_t station = 0;
-  double s = 0.0;
-  bool rest_admissible = false;
+/// The library's study (profile_convergence) for each series, over the same
+/// station counts, so level i is the same station count in every series.
+/// Spacings and the limits time are reported from series 0 (the point mass).
+struct Convergence {
+  std::array<ProfileConvergence, kSeries> series;
+  std::size_t default_index = 0;  ///< the level of the count kDefaultStationSpacing gives
+
+  std::size_t size() const { return series[0].levels.size(); }
+  const ConvergenceLevel& at(std::size_t level, std::size_t v = 0) const {
+    return series[v].levels[level];
+  }
+  const ConvergenceLevel& finest(std::size_t v = 0) const { return series[v].reference(); }
+  const ConvergenceLevel& default_level(std::size_t v = 0) const { return at(default_index, v); }
+  bool is_default(std::size_t level) const { return level == default_index; }
 };
 
-struct Level {
-  std::size_t stations = 0;
-  bool is_default = false;                       ///< the count that kDefaultStationSpacing gives
-  double mean_spacing = 0.0, max_spacing = 0.0;  ///< [m]
-  double limits_seconds = 0.0;  ///< VelocityLimits::compute, point mass (fastest of repeats)
-  std::array<double, kSeries> travel_time{kNaN, kNaN, kNaN};
-  std::array<double, kSeries> error{kNaN, kNaN, kNaN};  ///< relative to the finest level
-  std::array<double, kSeries> solve_seconds{kNaN, kNaN, kNaN};
-  std::array<double, kSeries> order{kNaN, kNaN, kNaN};  ///< observed order from the next level
-  std::array<Failure, kSeries> failure;                 ///< message empty if feasible
-};
-
-bool is_doubling_level(const Level& level) {
-  return std::find(std::begin(kLevels), std::end(kLevels), level.stations) != std::end(kLevels);
-}
-
-/// Fastest of repeated calls of `f` (at least kMinRepeats, for at least
-/// kTimingBudgetSeconds): a single sub-millisecond call is dominated by timer,
-/// cache and first-allocation noise.
-template <typename F>
-double fastest_seconds(F&& f) {
-  double best = kInf, spent = 0.0;
-  for (int repeat = 0; repeat < kMinRepeats || spent < kTimingBudgetSeconds; ++repeat) {
-    const auto t0 = Clock::now();
-    f();
-    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    best = std::min(best, seconds);
-    spent += seconds;
-  }
-  return best;
-}
-
-Failure describe_failure(const VelocityLimits& limits, const TimeOptimalProfile& out) {
-  Failure f{out.message, out.infeasible_station, limits.frame(out.infeasible_station).s, true};
-  for (std::size_t k = out.infeasible_station; k < limits.size(); ++k) {
-    const AccelerationBounds b = limits.acceleration_bounds(k, 0.0);
-    f.rest_admissible &=
-        limits.limits(k).v_min == 0.0 && b.feasible && b.a_min <= 0.0 && b.a_max >= 0.0;
-  }
-  return f;
-}
-
-std::vector<Level> run_convergence(const std::vector<VehicleSpec>& vehicles,
-                                   const SurfacePath& path, const SurfacePath& interpolating_path,
-                                   bool quick) {
-  std::vector<Level> levels;
+Convergence run_convergence(const std::vector<VehicleSpec>& vehicles, const SurfacePath& path,
+                            const SurfacePath& interpolating_path, bool quick) {
+  ProfileConvergenceOptions options;  // start and end at rest
+  options.station_counts.clear();
   for (const std::size_t n : kLevels) {
     if (quick && n > kQuickMaxLevel) break;
-    levels.push_back({});
-    levels.back().stations = n;
+    options.station_counts.push_back(n);
   }
   const std::size_t n_default = station_count(path.length());  // the library's rule
-  const auto same = std::find_if(levels.begin(), levels.end(),
-                                 [&](const Level& l) { return l.stations == n_default; });
-  if (same != levels.end()) {
-    same->is_default = true;
-  } else {
-    Level extra;
-    extra.stations = n_default;
-    extra.is_default = true;
-    levels.insert(
-        std::upper_bound(levels.begin(), levels.end(), extra,
-                         [](const Level& a, const Level& b) { return a.stations < b.stations; }),
-        extra);
-  }
-
+  options.extra_station_counts = {n_default};
+  options.richardson_order = 1.0;  // e = C h, which the observed orders support
+  options.timing_repeats = kMinRepeats;
+  options.timing_budget_seconds = kTimingBudgetSeconds;
   const std::array<const VehicleSpec*, kSeries> series_vehicle = {&vehicles[0], &vehicles[1],
                                                                   &vehicles[0]};
   const std::array<const SurfacePath*, kSeries> series_path = {&path, &path, &interpolating_path};
-  std::vector<VelocityLimits> limits;
-  for (std::size_t v = 0; v < kSeries; ++v) limits.emplace_back(series_vehicle[v]->vehicle);
-  TimeOptimalProfileSolver solver;
-  TimeOptimalProfile out;
-  const ProfileOptions options;
-  for (Level& level : levels) {
-    for (std::size_t v = 0; v < kSeries; ++v) {
-      const double limits_seconds =
-          fastest_seconds([&] { limits[v].compute(*series_path[v], level.stations); });
-      if (v == 0) level.limits_seconds = limits_seconds;
-      level.solve_seconds[v] = fastest_seconds([&] { solver.solve(limits[v], options, out); });
-      if (out.status == ProfileStatus::kOk) {
-        level.travel_time[v] = out.travel_time;
-      } else {
-        level.failure[v] = describe_failure(limits[v], out);
-      }
-    }
-    const std::vector<PathFrame>& frames = limits[0].frames();
-    level.mean_spacing = frames.back().s / static_cast<double>(frames.size() - 1);
-    for (std::size_t k = 1; k < frames.size(); ++k)
-      level.max_spacing = std::max(level.max_spacing, frames[k].s - frames[k - 1].s);
-  }
-
-  // Errors against the finest level; observed orders between consecutive
-  // doubling levels (the extra default-spacing level is left out of those,
-  // and so is the reference, whose error is 0 by definition).
-  const Level& finest = levels.back();
-  for (Level& level : levels)
-    for (std::size_t v = 0; v < kSeries; ++v)
-      level.error[v] = level.travel_time[v] / finest.travel_time[v] - 1.0;
-  std::vector<std::size_t> doubling;
-  for (std::size_t i = 0; i < levels.size(); ++i)
-    if (is_doubling_level(levels[i])) doubling.push_back(i);
-  for (std::size_t d = 0; d + 2 < doubling.size(); ++d) {
-    Level& coarse = levels[doubling[d]];
-    const Level& fine = levels[doubling[d + 1]];
-    for (std::size_t v = 0; v < kSeries; ++v) {
-      const double e0 = std::abs(coarse.error[v]), e1 = std::abs(fine.error[v]);
-      if (e0 > 0.0 && e1 > 0.0)
-        coarse.order[v] = std::log(e0 / e1) / std::log(coarse.mean_spacing / fine.mean_spacing);
-    }
-  }
-  return levels;
+  Convergence c;
+  for (std::size_t v = 0; v < kSeries; ++v)
+    c.series[v] = profile_convergence(series_vehicle[v]->vehicle, *series_path[v], options);
+  c.default_index = c.series[0].find(n_default);
+  return c;
 }
 
-/// The coarsest doubling level from which on every finer level (reference
+/// The coarsest sequence level from which on every finer level (reference
 /// excluded) is within kTargetError for both vehicles; nullptr if none.
-const Level* coarsest_within_target(const std::vector<Level>& levels) {
-  const Level* found = nullptr;
-  for (std::size_t i = levels.size() - 1; i-- > 0;) {  // finest non-reference first
-    bool ok = true;
-    for (std::size_t v = 0; v < kStudied; ++v) ok &= std::abs(levels[i].error[v]) <= kTargetError;
-    if (!ok) break;
-    if (is_doubling_level(levels[i])) found = &levels[i];
-  }
-  return found;
-}
-
-const Level& default_level(const std::vector<Level>& levels) {
-  for (const Level& l : levels)
-    if (l.is_default) return l;
-  return levels.front();  // unreachable: run_convergence always adds it
+const ConvergenceLevel* coarsest_within_target(const Convergence& c) {
+  std::size_t found = 0;
+  for (std::size_t v = 0; v < kStudied; ++v)
+    found = std::max(found, c.series[v].coarsest_within(kTargetError));
+  return found < c.size() ? &c.at(found) : nullptr;
 }
 
 // ---------------------------------------------------------------------------
@@ -557,7 +298,7 @@ void write_profile_csv(const ProfileRun& run, const fs::path& file) {
   const TimeOptimalProfile& p = run.profile;
   for (std::size_t k = 0; k < p.s.size(); ++k) {
     const PathFrame& f = run.limits.frame(k);
-    const AccelerationBounds& b = run.bounds[k];
+    const AccelerationBounds& b = run.analysis.bounds[k];
     out << csv_number(p.s[k], 9) << ',' << csv_number(f.point.x(), 9) << ','
         << csv_number(f.point.y(), 9) << ',' << csv_number(f.point.z(), 9) << ','
         << csv_number(p.v[k], 9) << ',' << csv_number(p.a[k], 9) << ',' << csv_number(p.t[k], 9)
@@ -586,21 +327,22 @@ void write_switching_csv(const ProfileRun& run, const std::vector<SwitchingPoint
   close_output_file(out, file);
 }
 
-void write_convergence_csv(const std::vector<Level>& levels, const fs::path& file) {
+void write_convergence_csv(const Convergence& c, const fs::path& file) {
   std::ofstream out = open_output_file(file);
   // The first five columns (point mass) are the documented ones.
   out << "stations,spacing_m,travel_time_s,relative_error,solve_seconds,max_spacing_m,"
          "limits_seconds,rigid_body_travel_time_s,rigid_body_relative_error,"
          "rigid_body_solve_seconds,default_spacing,interpolating_travel_time_s,"
          "interpolating_relative_error\n";
-  for (const Level& l : levels) {
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const ConvergenceLevel &l = c.at(i), &rb = c.at(i, 1), &ip = c.at(i, kInterpolatingSeries);
     out << l.stations << ',' << csv_number(l.mean_spacing, 9) << ','
-        << csv_number(l.travel_time[0], 12) << ',' << csv_number(l.error[0], 6) << ','
-        << csv_number(l.solve_seconds[0], 4) << ',' << csv_number(l.max_spacing, 9) << ','
-        << csv_number(l.limits_seconds, 4) << ',' << csv_number(l.travel_time[1], 12) << ','
-        << csv_number(l.error[1], 6) << ',' << csv_number(l.solve_seconds[1], 4) << ','
-        << (l.is_default ? 1 : 0) << ',' << csv_number(l.travel_time[kInterpolatingSeries], 12)
-        << ',' << csv_number(l.error[kInterpolatingSeries], 6) << '\n';
+        << csv_number(l.travel_time, 12) << ',' << csv_number(l.error, 6) << ','
+        << csv_number(l.solve_seconds, 4) << ',' << csv_number(l.max_spacing, 9) << ','
+        << csv_number(l.limits_seconds, 4) << ',' << csv_number(rb.travel_time, 12) << ','
+        << csv_number(rb.error, 6) << ',' << csv_number(rb.solve_seconds, 4) << ','
+        << (c.is_default(i) ? 1 : 0) << ',' << csv_number(ip.travel_time, 12) << ','
+        << csv_number(ip.error, 6) << '\n';
   }
   close_output_file(out, file);
 }
@@ -648,7 +390,7 @@ std::string acceleration_panel(const ProfileRun& run) {
   for (const Constraint c :
        {Constraint::kDrive, Constraint::kBrake, Constraint::kSliding, Constraint::kPitchover}) {
     bool occurs = false;  // legend only for bindings that occur
-    for (const AccelerationBounds& b : run.bounds)
+    for (const AccelerationBounds& b : run.analysis.bounds)
       occurs |= b.feasible && (b.lower_binding == c || b.upper_binding == c);
     if (!occurs) continue;
     for (const ConstraintStyle& s : kStyles)
@@ -760,7 +502,7 @@ void draw_map(const BPatch& patch, const ProfileRun& run, const std::vector<Vec2
 /// The |error| series of the convergence panel: a line per series, filled
 /// points where the coarse profile is too slow, open where too fast. Point
 /// sets with no data are left out (gnuplot warns about empty sets).
-std::string error_series(const std::vector<Level>& levels) {
+std::string error_series(const Convergence& c) {
   struct Style {
     int column;
     const char* title;
@@ -778,36 +520,35 @@ std::string error_series(const std::vector<Level>& levels) {
   for (std::size_t v = 0; v < kSeries; ++v) {
     const Style& st = styles[v];
     bool positive = false, negative = false;
-    for (const Level& l : levels) {
-      positive |= l.error[v] > 0.0;
-      negative |= l.error[v] < 0.0;
+    for (const ConvergenceLevel& l : c.series[v].levels) {
+      positive |= l.error > 0.0;
+      negative |= l.error < 0.0;
     }
-    std::string c =
+    std::string col =
         "$";  // (not "$" + to_string(): GCC 12 warns -Wrestrict, a known false positive)
-    c += std::to_string(st.column);
-    gp << "'convergence.csv' skip 1 using 2:(" << c << " != 0 ? abs(" << c
+    col += std::to_string(st.column);
+    gp << "'convergence.csv' skip 1 using 2:(" << col << " != 0 ? abs(" << col
        << ") : NaN) with lines lw 1.5 dt " << st.dash << " lc rgb '" << st.colour << "' title "
        << gnuplot_string(st.title) << ", \\\n     ";
     if (positive)
-      gp << "'' skip 1 using 2:(" << c << " > 0 ? " << c << " : NaN) with points pt "
+      gp << "'' skip 1 using 2:(" << col << " > 0 ? " << col << " : NaN) with points pt "
          << st.filled_pt << " ps " << st.size << " lc rgb '" << st.colour << "' notitle, \\\n     ";
     if (negative)
-      gp << "'' skip 1 using 2:(" << c << " < 0 ? -" << c << " : NaN) with points pt " << st.open_pt
-         << " ps " << st.size << " lc rgb '" << st.colour << "' notitle, \\\n     ";
+      gp << "'' skip 1 using 2:(" << col << " < 0 ? -" << col << " : NaN) with points pt "
+         << st.open_pt << " ps " << st.size << " lc rgb '" << st.colour << "' notitle, \\\n     ";
   }
   return gp.str();
 }
 
 /// Travel time vs station count, |relative error| vs spacing (log-log, with
 /// slope-1 and slope-2 guides), and solve time vs station count.
-void draw_convergence(const std::vector<Level>& levels, const fs::path& out_dir) {
+void draw_convergence(const Convergence& c, const fs::path& out_dir) {
   // Guides anchored at the middle non-reference level of the point mass.
-  std::size_t anchor = (levels.size() - 1) / 2;
-  while (anchor > 0 && !(std::abs(levels[anchor].error[0]) > 0.0)) --anchor;
-  const double h0 = levels[anchor].mean_spacing;
-  const double e0 = std::max(std::abs(levels[anchor].error[0]), 1e-12);
-  const double t_anchor =
-      levels.back().solve_seconds[0] / static_cast<double>(levels.back().stations);
+  std::size_t anchor = (c.size() - 1) / 2;
+  while (anchor > 0 && !(std::abs(c.at(anchor).error) > 0.0)) --anchor;
+  const double h0 = c.at(anchor).mean_spacing;
+  const double e0 = std::max(std::abs(c.at(anchor).error), 1e-12);
+  const double t_anchor = c.finest().solve_seconds / static_cast<double>(c.finest().stations);
   GnuplotFigure gp(out_dir, "convergence");
   gp.describe(
         "Convergence of the travel time in the station count, from `talus experiment "
@@ -821,7 +562,7 @@ void draw_convergence(const std::vector<Level>& levels, const fs::path& out_dir)
       << gnuplot_string(
              "Convergence of the optimal travel time in the number of stations (same path; "
              "reference: the finest level, " +
-             std::to_string(levels.back().stations) + " stations)")
+             std::to_string(c.finest().stations) + " stations)")
       << "\n"
       << "set grid lc rgb '#d8d8d8'\nset tics out nomirror\nset key top right font ',10'\n"
       << "set logscale x\nset format x '10^{%T}'\n"
@@ -848,7 +589,7 @@ void draw_convergence(const std::vector<Level>& levels, const fs::path& out_dir)
       << "set arrow 2 from graph 0, first " << fmt("%g", kTargetError) << " to graph 1, first "
       << fmt("%g", kTargetError) << " nohead dt 3 lc rgb '#808080'\n"
       << "h0 = " << fmt("%.10g", h0) << "; e0 = " << fmt("%.10g", e0) << "\n"
-      << "plot " << error_series(levels)
+      << "plot " << error_series(c)
       << "     e0 * (x / h0) with lines dt 2 lc rgb '#909090' title 'slope 1 (O(h))', \\\n"
       << "     e0 * (x / h0)**2 with lines dt 4 lc rgb '#909090' title 'slope 2 (O(h^2))'\n"
       << "unset arrow 1\nunset arrow 2\nunset label 1\n"
@@ -883,39 +624,20 @@ std::string control_name(ControlKind k) {
   return std::string(to_string(k));
 }
 
-/// The doubling level just coarser than the reference (for Richardson).
-const Level* second_finest(const std::vector<Level>& levels) {
-  for (std::size_t i = levels.size() - 1; i-- > 0;)
-    if (is_doubling_level(levels[i])) return &levels[i];
-  return nullptr;
-}
-
-/// Richardson estimate of the limit, assuming first order (e = C h, which
-/// the observed orders support): T* = 2 T_ref − T_ref/2 when the spacing halves.
-double richardson(const std::vector<Level>& levels, std::size_t series) {
-  const Level* coarse = second_finest(levels);
-  if (coarse == nullptr) return kNaN;
-  const Level& fine = levels.back();
-  const double ratio = coarse->mean_spacing / fine.mean_spacing;
-  return fine.travel_time[series] +
-         (fine.travel_time[series] - coarse->travel_time[series]) / (ratio - 1.0);
-}
-
 std::string commentary(const std::vector<ProfileRun>& runs, const ProfileRun& check_run,
-                       const std::vector<Level>& levels, const Setup& setup) {
+                       const Convergence& convergence, const Setup& setup) {
   const ProfileRun& pm = runs[0];
   const ProfileRun& rb = runs[1];
   const double t_pm = pm.profile.travel_time, t_rb = rb.profile.travel_time;
-  const Checks& c = pm.checks;
-  const LimitingLengths& lp = pm.checks.lengths;
-  const LimitingLengths& lr = rb.checks.lengths;
-  const double brake_pm = lp.decelerate_brake + lp.decelerate_sliding + lp.decelerate_pitch;
-  const double brake_rb = lr.decelerate_brake + lr.decelerate_sliding + lr.decelerate_pitch;
-  const double accel_pm = lp.accelerate_drive + lp.accelerate_sliding + lp.accelerate_pitch;
+  const ProfileAnalysis& c = pm.analysis;
+  const LimitingLengths& lp = pm.analysis.lengths;
+  const LimitingLengths& lr = rb.analysis.lengths;
+  const double brake_pm = lp.decelerating(), brake_rb = lr.decelerating();
+  const double accel_pm = lp.accelerating();
   std::ostringstream text;
   // 1. The shape of the profile.
   text << "The point mass covers the " << sig3(setup.length) << " m path in " << fmt("%.2f", t_pm)
-       << " s (mean " << sig3(setup.length / t_pm) << " m/s, peak " << sig3(c.max_v)
+       << " s (mean " << sig3(setup.length / t_pm) << " m/s, peak " << sig3(c.max_speed)
        << " m/s) and rides v_max(s) over only " << share(c.touch_length, setup.length)
        << " of it: with a 3 m/s² drive the sliding dips of v_max (turns on the escarpment and "
           "the knoll) come faster than it can regain speed, so the profile is almost all "
@@ -924,9 +646,8 @@ std::string commentary(const std::vector<ProfileRun>& runs, const ProfileRun& ch
        << sig3(lp.accelerate_sliding) << " m on friction) and braking over " << sig3(brake_pm)
        << " m (" << sig3(lp.decelerate_brake) << " m brake, " << sig3(lp.decelerate_sliding)
        << " m friction), and touching v_max at " << c.dips_touched << " of its " << c.dips
-       << " local minima, among them the slowest, " << sig3(c.min_v_max)
-       << " m/s at s = " << sig3(c.s_min_v_max) << " m (passed at " << sig3(c.v_at_min)
-       << " m/s). ";
+       << " local minima, among them the slowest, " << sig3(c.slowest_v_max)
+       << " m/s at s = " << sig3(c.slowest_s) << " m (passed at " << sig3(c.slowest_v) << " m/s). ";
   // 2. Rigid body.
   text << "The rigid body (l/h = "
        << fmt("%g", rb.spec->vehicle.half_wheelbase / rb.spec->vehicle.cg_height)
@@ -935,7 +656,7 @@ std::string commentary(const std::vector<ProfileRun>& runs, const ProfileRun& ch
        << " m of braking, but 0.6 g R ≈ 5.9 m/s² is barely below the 6 m/s² brake, so it "
           "loses only "
        << fmt("%.3f", t_rb - t_pm) << " s (" << fmt("%+.2f", 100.0 * (t_rb / t_pm - 1.0))
-       << " %, at most " << sig3(rb.checks.max_gap)
+       << " %, at most " << sig3(rb.max_gap)
        << " m/s slower at any station); with the l = " << fmt("%g", kBriefHalfWheelbase)
        << " m of the brief (l/h = "
        << fmt("%g", kBriefHalfWheelbase / check_run.spec->vehicle.cg_height)
@@ -945,21 +666,21 @@ std::string commentary(const std::vector<ProfileRun>& runs, const ProfileRun& ch
                : "NOT identical to the point mass's")
        << ". ";
   // 3. Convergence.
-  const Level& def = default_level(levels);
-  const Level* good = coarsest_within_target(levels);
+  const ConvergenceLevel &def = convergence.default_level(), &def_rb = convergence.default_level(1);
+  const ConvergenceLevel* good = coarsest_within_target(convergence);
   text << "The travel time converges at first order and from above (coarse profiles are slower, "
           "because each step's constant s̈ must be admissible at both of its ends): at the "
           "default spacing "
        << fmt("%g", kDefaultStationSpacing) << " m (" << def.stations << " stations) it is "
-       << percent_error(def.error[0]) << " (point mass) and " << percent_error(def.error[1])
-       << " (rigid body) off the " << levels.back().stations << "-station reference";
+       << percent_error(def.error) << " (point mass) and " << percent_error(def_rb.error)
+       << " (rigid body) off the " << convergence.finest().stations << "-station reference";
   if (good != nullptr) {
     text << ", and " << fmt("%g", 100.0 * kTargetError) << " % is first met for both at "
          << sig3(good->mean_spacing) << " m (" << good->stations << " stations)";
   }
   text << ". ";
   text << "On the interpolating fit (control) the error changes sign and is no longer monotone ("
-       << percent_error(def.error[kInterpolatingSeries])
+       << percent_error(convergence.default_level(kInterpolatingSeries).error)
        << " at the default spacing): coarse "
           "stations step over the cell-scale curvature spikes, miss the dips of v_max between "
           "them and come out too fast.";
@@ -967,15 +688,15 @@ std::string commentary(const std::vector<ProfileRun>& runs, const ProfileRun& ch
 }
 
 std::string solver_observations(const std::vector<ProfileRun>& runs,
-                                const std::vector<Level>& levels) {
+                                const Convergence& convergence) {
   std::ostringstream md;
   // 1. Spurious infeasibility.
   std::size_t failures = 0, spurious = 0;
-  for (const Level& l : levels)
+  for (std::size_t i = 0; i < convergence.size(); ++i)
     for (std::size_t v = 0; v < kSeries; ++v)
-      if (!l.failure[v].message.empty()) {
+      if (!convergence.at(i, v).feasible) {
         ++failures;
-        if (l.failure[v].rest_admissible) ++spurious;
+        if (convergence.at(i, v).failure.rest_admissible) ++spurious;
       }
   md << "1. **Infeasible verdicts.** ";
   if (failures == 0) {
@@ -986,10 +707,11 @@ std::string solver_observations(const std::vector<ProfileRun>& runs,
        << " of them the verdict is provably wrong, because standing still is admissible at every "
           "station from the failing one to the end (v_min = 0 and 0 ∈ [a_min, a_max] at v = 0), "
           "so x = 0 with s̈ = 0 reaches the end at rest:\n\n";
-    for (const Level& l : levels)
+    for (std::size_t i = 0; i < convergence.size(); ++i)
       for (std::size_t v = 0; v < kSeries; ++v) {
-        const Failure& f = l.failure[v];
-        if (f.message.empty()) continue;
+        const ConvergenceLevel& l = convergence.at(i, v);
+        const InfeasibilityDiagnosis& f = l.failure;
+        if (l.feasible) continue;
         md << "   - "
            << (v == kInterpolatingSeries ? "point mass, interpolating fit" : runs[v].spec->label)
            << ", " << l.stations << " stations: station " << f.station << " (s = " << sig3(f.s)
@@ -1009,10 +731,10 @@ std::string solver_observations(const std::vector<ProfileRun>& runs,
   // 2. Switching-point classification.
   const ProfileRun& pm = runs[0];
   std::size_t mislabelled = 0, limit_steps = 0;
-  for (std::size_t k = 0; k < pm.steps.size(); ++k) {
+  for (std::size_t k = 0; k < pm.analysis.steps.size(); ++k) {
     if (pm.profile.control[k] != ControlKind::kLimit) continue;
     ++limit_steps;
-    if (pm.steps[k].kind != ControlKind::kLimit) ++mislabelled;
+    if (pm.analysis.steps[k].kind != ControlKind::kLimit) ++mislabelled;
   }
   md << "2. **Switching points.** The solver's `switching_points` ("
      << pm.profile.switching_points.size() << " for the point mass, "
@@ -1026,14 +748,16 @@ std::string solver_observations(const std::vector<ProfileRun>& runs,
         "alternates between `accelerate` (or `decelerate`) and `limit` every few stations. "
         "Classifying against both ends (this experiment's `switching_effective_<vehicle>.csv`, "
         "the markers of the profile figure and the tables above) leaves "
-     << pm.switches.size() << " and " << runs[1].switches.size() << " switching points.\n";
+     << pm.analysis.switches.size() << " and " << runs[1].analysis.switches.size()
+     << " switching points.\n";
   // 3. Limits timing (not the solver, but it sets the cost of a station).
-  const Level* slow = &levels.front();
-  const Level* fast = &levels.front();
-  const auto per_station = [](const Level& l) {
+  const std::vector<ConvergenceLevel>& levels = convergence.series[0].levels;
+  const ConvergenceLevel* slow = &levels.front();
+  const ConvergenceLevel* fast = &levels.front();
+  const auto per_station = [](const ConvergenceLevel& l) {
     return l.limits_seconds / static_cast<double>(l.stations);
   };
-  for (const Level& l : levels) {
+  for (const ConvergenceLevel& l : levels) {
     if (per_station(l) > per_station(*slow)) slow = &l;
     if (per_station(l) < per_station(*fast)) fast = &l;
   }
@@ -1044,15 +768,15 @@ std::string solver_observations(const std::vector<ProfileRun>& runs,
        << ": below the arc-length table's piece count `SurfacePath::sample_uniform_parameter` "
           "takes s from table look-ups instead of the Hermite-corrected trapezoid rule, by "
           "design (accuracy), so on this path the default spacing's "
-       << default_level(levels).stations << " stations ("
-       << fmt("%.3g", 1e3 * default_level(levels).limits_seconds)
+       << convergence.default_level().stations << " stations ("
+       << fmt("%.3g", 1e3 * convergence.default_level().limits_seconds)
        << " ms) cost more than 400 stations would. Harmless in absolute terms.\n";
   }
   return md.str();
 }
 
 void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_run,
-                  const std::vector<Level>& levels, const Setup& setup,
+                  const Convergence& convergence, const Setup& setup,
                   const ExperimentContext& context, double total_seconds) {
   const ElevationGrid& dem = *setup.dem;
   Table points({"point", "cells (u, v)", "x, y from the south-west node [m]"});
@@ -1117,12 +841,12 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
           sig3(setup.length / static_cast<double>(setup.stations - 1)) +
           " m). a_min, a_max are `VelocityLimits::acceleration_bounds` at each station's "
           "profile speed.")
-      .bullet("Convergence: the same path at " + std::to_string(levels.size()) +
-              " station counts from " + std::to_string(levels.front().stations) + " to " +
-              std::to_string(levels.back().stations) +
+      .bullet("Convergence: the same path at " + std::to_string(convergence.size()) +
+              " station counts from " + std::to_string(convergence.at(0).stations) + " to " +
+              std::to_string(convergence.finest().stations) +
               (context.quick ? fmt(" (quick mode: up to %g)", kQuickMaxLevel) : "") +
               ", including the count the default spacing gives (" +
-              std::to_string(default_level(levels).stations) + " = ⌈L / " +
+              std::to_string(convergence.default_level().stations) + " = ⌈L / " +
               fmt("%g", kDefaultStationSpacing) +
               " m⌉ + 1), for both vehicles and, as a control, the point mass on the "
               "interpolating fit; relative error against the finest level. Times are the fastest "
@@ -1148,14 +872,14 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
                "braking: brake / friction / pitch [m]", "limits + solve [ms]"});
   for (const ProfileRun* run : {&runs[0], &runs[1], &check_run}) {
     const Vehicle& v = run->spec->vehicle;
-    const Checks& c = run->checks;
+    const ProfileAnalysis& c = run->analysis;
     const LimitingLengths& l = c.lengths;
     times.row(
         {"`" + run->spec->name + "`",
          v.model == VehicleModel::kRigidBody ? fmt("%g", v.half_wheelbase / v.cg_height) : "–",
          fmt("%.3f", run->profile.travel_time), sig3(setup.length / run->profile.travel_time),
-         sig3(c.max_v), share(c.touch_length, setup.length),
-         std::to_string(run->switches.size()) + " (" +
+         sig3(c.max_speed), share(c.touch_length, setup.length),
+         std::to_string(c.switches.size()) + " (" +
              std::to_string(run->profile.switching_points.size()) + ")",
          sig3(l.accelerate_drive) + " / " + sig3(l.accelerate_sliding) + " / " +
              sig3(l.accelerate_pitch),
@@ -1163,9 +887,7 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
              sig3(l.decelerate_pitch),
          sig3(1e3 * run->limits_seconds) + " + " + sig3(1e3 * run->solve_seconds)});
   }
-  double max_dv = 0.0;
-  for (std::size_t k = 0; k < check_run.profile.v.size(); ++k)
-    max_dv = std::max(max_dv, std::abs(check_run.profile.v[k] - runs[0].profile.v[k]));
+  const double max_dv = profile_difference(check_run.profile, runs[0].profile).largest_difference;
   report.table(times)
       .paragraph("\"On v_max\": share of the path length where v ≥ (1 − " +
                  fmt("%g", kTouchTolerance) +
@@ -1184,54 +906,55 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
   constexpr std::size_t kMaxRows = 60;
   for (const ProfileRun* run : {&runs[0], &runs[1]}) {
     const TimeOptimalProfile& p = run->profile;
+    const std::vector<SwitchingPoint>& effective = run->analysis.switches;
     Table switches(
         {"#", "station", "s [m]", "v [m/s]", "v_max [m/s]", "v_max set by", "from → to"});
-    for (std::size_t i = 0; i < run->switches.size() && i < kMaxRows; ++i) {
-      const SwitchingPoint& sw = run->switches[i];
+    for (std::size_t i = 0; i < effective.size() && i < kMaxRows; ++i) {
+      const SwitchingPoint& sw = effective[i];
       switches.row({std::to_string(i + 1), std::to_string(sw.station), fmt("%.2f", sw.s),
                     fmt("%.3f", p.v[sw.station]), fmt("%.3f", p.v_max[sw.station]),
                     std::string(to_string(p.binding[sw.station])),
                     std::string(control_name(sw.from)) + " → " + std::string(control_name(sw.to))});
     }
     report
-        .heading("`" + run->spec->name + "`: " + std::to_string(run->switches.size()) +
-                     " switching points",
-                 3)
+        .heading(
+            "`" + run->spec->name + "`: " + std::to_string(effective.size()) + " switching points",
+            3)
         .table(switches);
-    if (run->switches.size() > kMaxRows) {
-      report.paragraph(fmt("(%g more in `", static_cast<double>(run->switches.size() - kMaxRows)) +
+    if (effective.size() > kMaxRows) {
+      report.paragraph(fmt("(%g more in `", static_cast<double>(effective.size() - kMaxRows)) +
                        effective_csv_name(*run) + "`.)");
     }
   }
-  Table convergence({"stations", "mean / max spacing [m]", "point mass T [s]", "rel. error",
-                     "order", "rigid body T [s]", "rel. error", "order",
-                     "interpolating fit: rel. error", "solve PM / RB [ms]", "limits [ms]"});
+  Table table({"stations", "mean / max spacing [m]", "point mass T [s]", "rel. error", "order",
+               "rigid body T [s]", "rel. error", "order", "interpolating fit: rel. error",
+               "solve PM / RB [ms]", "limits [ms]"});
   const auto order = [](double p) { return std::isfinite(p) ? fmt("%.2f", p) : "–"; };
   const auto time = [](double t) { return std::isfinite(t) ? fmt("%.5f", t) : "infeasible"; };
-  for (const Level& l : levels) {
-    convergence.row(
-        {std::to_string(l.stations) + (l.is_default ? " (default spacing)" : ""),
-         sig3(l.mean_spacing) + " / " + sig3(l.max_spacing), time(l.travel_time[0]),
-         percent_error(l.error[0]), order(l.order[0]), time(l.travel_time[1]),
-         percent_error(l.error[1]), order(l.order[1]),
-         std::isfinite(l.travel_time[kInterpolatingSeries])
-             ? percent_error(l.error[kInterpolatingSeries])
-             : "infeasible",
-         fmt("%.3g", 1e3 * l.solve_seconds[0]) + " / " + fmt("%.3g", 1e3 * l.solve_seconds[1]),
-         fmt("%.3g", 1e3 * l.limits_seconds)});
+  for (std::size_t i = 0; i < convergence.size(); ++i) {
+    const ConvergenceLevel &l = convergence.at(i), &rb = convergence.at(i, 1),
+                           &ip = convergence.at(i, kInterpolatingSeries);
+    table.row({std::to_string(l.stations) + (convergence.is_default(i) ? " (default spacing)" : ""),
+               sig3(l.mean_spacing) + " / " + sig3(l.max_spacing), time(l.travel_time),
+               percent_error(l.error), order(l.order), time(rb.travel_time),
+               percent_error(rb.error), order(rb.order),
+               std::isfinite(ip.travel_time) ? percent_error(ip.error) : "infeasible",
+               fmt("%.3g", 1e3 * l.solve_seconds) + " / " + fmt("%.3g", 1e3 * rb.solve_seconds),
+               fmt("%.3g", 1e3 * l.limits_seconds)});
   }
-  const Level& def = default_level(levels);
-  const double t_star = richardson(levels, 0), t_star_rb = richardson(levels, 1);
+  const ConvergenceLevel& def = convergence.default_level();
+  const double t_star = convergence.series[0].extrapolated_time;
+  const double t_star_rb = convergence.series[1].extrapolated_time;
   // Orders where the reference's own error (about h_ref/h of the measured
   // one for first order) is small enough not to bias them.
   std::pair<double, double> order_range{kInf, -kInf};
-  for (const Level& l : levels)
-    if (std::isfinite(l.order[0]) && l.mean_spacing >= 16.0 * levels.back().mean_spacing) {
-      order_range.first = std::min(order_range.first, l.order[0]);
-      order_range.second = std::max(order_range.second, l.order[0]);
+  for (const ConvergenceLevel& l : convergence.series[0].levels)
+    if (std::isfinite(l.order) && l.mean_spacing >= 16.0 * convergence.finest().mean_spacing) {
+      order_range.first = std::min(order_range.first, l.order);
+      order_range.second = std::max(order_range.second, l.order);
     }
   report.heading("Convergence in the number of stations")
-      .table(convergence)
+      .table(table)
       .paragraph(
           "\"order\": log(|e_N| / |e_2N|) / log(h_N / h_2N) between this level and the next "
           "doubling level (not computed against the reference itself). A positive error means "
@@ -1248,40 +971,42 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
           "T_2h) / (h_2h / h_ref − 1) ≈ 2 T_ref − T_2h, gives " +
           fmt("%.5f", t_star) + " s (point mass) and " + fmt("%.5f", t_star_rb) +
           " s (rigid body), so the reference itself is " +
-          fmt("%+.4f", 100.0 * (levels.back().travel_time[0] / t_star - 1.0)) +
+          fmt("%+.4f", 100.0 * (convergence.finest().travel_time / t_star - 1.0)) +
           " % off and the default spacing's error against the limit is " +
-          fmt("%+.3f", 100.0 * (def.travel_time[0] / t_star - 1.0)) + " %.");
-  if (std::isfinite(def.error[0]) && def.error[0] > 0.0) {
-    const double c = def.error[0] / def.mean_spacing;
+          fmt("%+.3f", 100.0 * (def.travel_time / t_star - 1.0)) + " %.");
+  if (std::isfinite(def.error) && def.error > 0.0) {
+    const double c = def.error / def.mean_spacing;
     report.paragraph(
         "**Default station spacing.** At kDefaultStationSpacing = " +
-        fmt("%g", kDefaultStationSpacing) + " m the travel time is " + percent_error(def.error[0]) +
+        fmt("%g", kDefaultStationSpacing) + " m the travel time is " + percent_error(def.error) +
         " too slow on the smoothing fit; e ≈ C h with C = " + fmt("%.3g", c) +
         " /m puts 0.1 % at h ≈ " + sig3(kTargetError / c) +
-        " m. On the interpolating fit of the same 1 m-cell terrain the error at 0.5 m is " +
-        percent_error(def.error[kInterpolatingSeries]) +
-        " and irregular in h (the spacing is half a cell, so stations alias the cell-scale "
+        " m. On the interpolating fit of the same 1 m-cell terrain the error at " +
+        fmt("%g", kDefaultStationSpacing) + " m is " +
+        percent_error(convergence.default_level(kInterpolatingSeries).error) +
+        " and irregular in h (stations a fraction of a cell apart alias the cell-scale "
         "curvature). The solve is cheap at any of these spacings (see the solve-time column).");
   }
   report.heading("Sanity checks");
   for (const ProfileRun* run : {&runs[0], &runs[1]}) {
-    const Checks& c = run->checks;
+    const ProfileVerification& check = run->verification;
+    const ProfileAnalysis& c = run->analysis;
     report.bullet(
-        "`" + run->spec->name + "`: v > v_max at " + std::to_string(c.over_limit) +
-        " stations (largest v − v_max " + fmt("%.3g", c.max_over) +
-        " m/s); s̈ outside [a_min, a_max] at " + std::to_string(c.outside) +
-        " step ends (largest distance " + fmt("%.3g", c.max_outside) +
+        "`" + run->spec->name + "`: v > v_max at " + std::to_string(check.speed_violations) +
+        " stations (largest v − v_max " + fmt("%.3g", check.worst_speed.amount) +
+        " m/s); s̈ outside [a_min, a_max] at " + std::to_string(check.acceleration_violations) +
+        " step ends (largest distance " + fmt("%.3g", check.worst_acceleration.amount) +
         " m/s², checked at both ends of every step at their profile speeds); stations with no "
         "admissible s̈ at their profile speed (on the limit curve up to rounding): " +
-        std::to_string(c.bounds_infeasible) + "; on v_max in " + std::to_string(c.touch_segments) +
-        " stretches (" + std::to_string(c.touching) + " stations), including " +
-        std::to_string(c.dips_touched) + " of the " + std::to_string(c.dips) +
-        " local minima of v_max.");
+        std::to_string(check.inadmissible_states) + "; on v_max in " +
+        std::to_string(c.touch_segments) + " stretches (" + std::to_string(c.touching) +
+        " stations), including " + std::to_string(c.dips_touched) + " of the " +
+        std::to_string(c.dips) + " local minima of v_max.");
   }
   report.heading("What the figures show")
-      .paragraph(commentary(runs, check_run, levels, setup))
+      .paragraph(commentary(runs, check_run, convergence, setup))
       .heading("Solver observations")
-      .paragraph(solver_observations(runs, levels))
+      .paragraph(solver_observations(runs, convergence))
       .heading("Figures")
       .paragraph(
           "`profile.png`: top, v_max(s) coloured by the constraint that sets it, the two optimal "
@@ -1304,14 +1029,7 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
 std::pair<double, double> zoom_window(const std::vector<ProfileRun>& runs, double length,
                                       double half) {
   const TimeOptimalProfile& a = runs[0].profile;
-  const TimeOptimalProfile& b = runs[1].profile;
-  std::size_t worst = 0;
-  double gap = -kInf;
-  for (std::size_t k = 0; k < a.v.size(); ++k)
-    if (a.v[k] - b.v[k] > gap) {
-      gap = a.v[k] - b.v[k];
-      worst = k;
-    }
+  const std::size_t worst = profile_difference(a, runs[1].profile).largest_gap_station;
   const double centre = std::clamp(a.s[worst], half, std::max(half, length - half));
   return {std::max(0.0, centre - half), std::min(length, centre + half)};
 }
@@ -1342,35 +1060,33 @@ void run_optimal_profile(const ExperimentContext& context) {
   setup.length = path.length();
   setup.stations = context.quick ? kQuickProfileStations : kProfileStations;
 
-  const std::vector<VehicleSpec> vehicles = make_vehicles();
+  const std::vector<VehicleSpec> vehicles = make_vehicles(context.data_dir);
   std::vector<ProfileRun> runs;
   for (std::size_t v = 0; v < kStudied; ++v)
     runs.push_back(solve_profile(vehicles[v], path, setup.stations));
   const ProfileRun check_run = solve_profile(vehicles[2], path, setup.stations);
-  for (std::size_t k = 0; k < runs[0].profile.v.size(); ++k)
-    runs[1].checks.max_gap =
-        std::max(runs[1].checks.max_gap, runs[0].profile.v[k] - runs[1].profile.v[k]);
+  runs[1].max_gap = std::max(0.0, profile_difference(runs[0].profile, runs[1].profile).largest_gap);
   for (const ProfileRun& run : runs) {
     write_profile_csv(run, context.output_dir / profile_csv_name(run));
     write_switching_csv(run, run.profile.switching_points,
                         context.output_dir / switching_csv_name(run));
-    write_switching_csv(run, run.switches, context.output_dir / effective_csv_name(run));
+    write_switching_csv(run, run.analysis.switches, context.output_dir / effective_csv_name(run));
     std::cout << "optimal-profile: " << run.spec->name << ": travel time "
               << fmt("%.4f", run.profile.travel_time) << " s over " << sig3(setup.length) << " m, "
-              << run.switches.size()
+              << run.analysis.switches.size()
               << " switching points (solver: " << run.profile.switching_points.size() << ")\n";
   }
 
   // The control series: the same path on the interpolating fit.
   const BPatch interpolating_patch = BPatch::interpolate(rover);
   const SurfacePath interpolating_path(interpolating_patch, Curve2::interpolate(points));
-  const std::vector<Level> levels =
+  const Convergence convergence =
       run_convergence(vehicles, path, interpolating_path, context.quick);
-  write_convergence_csv(levels, context.output_dir / "convergence.csv");
-  const Level& def = default_level(levels);
-  std::cout << "optimal-profile: convergence over " << levels.size() << " levels; default spacing ("
-            << def.stations << " stations): error " << percent_error(def.error[0])
-            << " (point mass)\n";
+  write_convergence_csv(convergence, context.output_dir / "convergence.csv");
+  const ConvergenceLevel& def = convergence.default_level();
+  std::cout << "optimal-profile: convergence over " << convergence.size()
+            << " levels; default spacing (" << def.stations << " stations): error "
+            << percent_error(def.error) << " (point mass)\n";
 
   draw_profile(runs, setup.length, "profile",
                "Time-optimal velocity profile, West Bijou at rover scale (1/25), smoothing fit "
@@ -1385,9 +1101,9 @@ void run_optimal_profile(const ExperimentContext& context) {
                    "pitch-limited rigid body",
                z0, z1, context.output_dir);
   draw_map(patch, runs[0], points, setup.zmin, setup.zmax, context.output_dir);
-  draw_convergence(levels, context.output_dir);
+  draw_convergence(convergence, context.output_dir);
   const double total = std::chrono::duration<double>(Clock::now() - start).count();
-  write_report(runs, check_run, levels, setup, context, total);
+  write_report(runs, check_run, convergence, setup, context, total);
 }
 
 }  // namespace talus::experiments

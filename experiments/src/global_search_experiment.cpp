@@ -145,15 +145,14 @@ struct Setup {
 // ---------------------------------------------------------------------------
 // One search and what the figures and the report need from it.
 
-/// Measurements along one candidate (measure_candidate), where it passes the
-/// summit, and its relation to the best candidate.
-struct CandidateInfo : CandidateMetrics {
-  std::string side;               ///< compass side of the summit where it passes it
-  double summit_distance = kNaN;  ///< planar distance from the summit there [m]
-  /// Relation to the best candidate: symmetric Hausdorff distance [m] and the
+/// What the figures and the report use of one candidate.
+struct CandidateInfo {
+  CandidateMetrics metrics;  ///< along the route (measure_candidate)
+  LandmarkPassage passage;   ///< where it passes the summit
+  /// Relation to the best candidate: symmetric Hausdorff distance and the
   /// share of this route's vertices within kSharedFraction × the separation
-  /// of it (the same corridor).
-  double hausdorff_to_best = 0.0, shared_with_best = 1.0;
+  /// of it (the same corridor); the defaults for the best one itself.
+  CorridorOverlap vs_best;
 };
 
 struct FrictionRun {
@@ -176,17 +175,6 @@ Vehicle make_vehicle(double friction) {
   return v;
 }
 
-CandidateInfo measure(const Setup& setup, const Vehicle& vehicle, const CandidatePath& c,
-                      double spacing) {
-  CandidateInfo info;
-  static_cast<CandidateMetrics&>(info) = measure_candidate(setup.patch, vehicle, c, spacing);
-  const LandmarkPassage passage =
-      landmark_passage(c.vertices, setup.start, setup.goal, setup.summit);
-  info.side = passage.side;
-  info.summit_distance = passage.distance;
-  return info;
-}
-
 FrictionRun run_search(const Setup& setup, double friction, const GlobalSearchOptions& options) {
   FrictionRun run;
   run.friction = friction;
@@ -201,18 +189,19 @@ FrictionRun run_search(const Setup& setup, double friction, const GlobalSearchOp
   const LatticeCensus census = lattice_census(setup.patch, r, friction);
   run.steep_nodes = census.steep_nodes;
   run.unreachable = census.unreachable_nodes;
-  for (const CandidatePath& c : r.candidates)
-    run.info.push_back(measure(setup, run.vehicle, c, r.spacing));
+  for (const CandidatePath& c : r.candidates) {
+    run.info.push_back({measure_candidate(setup.patch, run.vehicle, c, r.spacing),
+                        landmark_passage(c.vertices, setup.start, setup.goal, setup.summit),
+                        {}});
+  }
   // How distinct the candidates really are: the search's Hausdorff rule is
   // met by one far-off vertex, so also count how much of each route runs in
   // the best one's corridor.
   const std::vector<Vec2>& best = r.candidates.front().vertices;
   const double separation = default_separation(r);
   for (std::size_t c = 1; c < r.candidates.size(); ++c) {
-    const CorridorOverlap overlap =
+    run.info[c].vs_best =
         corridor_overlap(r.candidates[c].vertices, best, kSharedFraction * separation);
-    run.info[c].hausdorff_to_best = overlap.hausdorff;
-    run.info[c].shared_with_best = overlap.shared;
   }
   return run;
 }
@@ -305,9 +294,10 @@ void write_route_blocks(const Setup& setup, const FrictionRun& run, const fs::pa
     out << "# candidate " << c + 1 << "\n";
     for (std::size_t k = 0; k < path.vertices.size(); ++k) {
       const Vec2 p = path.vertices[k] - setup.origin();
-      out << fmt("%.7g", p.x()) << ' ' << fmt("%.7g", p.y()) << ' ' << fmt("%.7g", info.s[k]) << ' '
-          << fmt("%.7g", info.z[k]) << ' ' << fmt("%.4g", info.slope[k]) << ' '
-          << (k == 0 ? "NaN" : fmt("%.5g", info.edge_speed[k - 1])) << '\n';
+      out << fmt("%.7g", p.x()) << ' ' << fmt("%.7g", p.y()) << ' '
+          << fmt("%.7g", info.metrics.s[k]) << ' ' << fmt("%.7g", info.metrics.z[k]) << ' '
+          << fmt("%.4g", info.metrics.slope[k]) << ' '
+          << (k == 0 ? "NaN" : fmt("%.5g", info.metrics.edge_speed[k - 1])) << '\n';
     }
     out << "\n\n";
   }
@@ -557,7 +547,8 @@ void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs,
   // Slowest edge of either best route: when it is the top speed, J is just
   // length / v_max and panel (b) says so instead of plotting a flat line.
   double slowest = kInf;
-  for (const FrictionRun& run : runs) slowest = std::min(slowest, run.info.front().min_edge_speed);
+  for (const FrictionRun& run : runs)
+    slowest = std::min(slowest, run.info.front().metrics.min_edge_speed);
   const double top = high.vehicle.max_speed;
   figure << "unset label\nset size noratio\nset autoscale\n"
          << "set xlabel 'distance along the route s [km]'\nset grid lc rgb '#d0d0d0'\n"
@@ -619,8 +610,8 @@ void write_summary(const std::vector<FrictionRun>& runs, const fs::path& file) {
       csv << fmt("%g", run.friction) << ',' << c + 1 << ',' << fmt("%.6f", p.cost_seconds) << ','
           << fmt("%.3f", p.length_m) << ',' << fmt("%.4f", p.length_m / p.cost_seconds) << ','
           << r.nodes << ',' << r.edges_evaluated << ',' << fmt("%.4f", r.search_seconds) << ','
-          << fmt("%.2f", info.max_slope) << ',' << fmt("%.1f", info.max_z) << ','
-          << fmt("%.1f", info.climb) << '\n';
+          << fmt("%.2f", info.metrics.max_slope) << ',' << fmt("%.1f", info.metrics.max_z) << ','
+          << fmt("%.1f", info.metrics.climb) << '\n';
     }
   }
   write_text_file(file, csv.str());
@@ -650,11 +641,11 @@ std::string commentary(const Setup& setup, const std::vector<FrictionRun>& runs)
        << fmt("%.0f", 100.0 * (bl.length_m / bh.length_m - 1.0)) << " % longer ("
        << fmt("%.2f", bh.length_m * 1e-3) << " → " << fmt("%.2f", bl.length_m * 1e-3)
        << " km): at μ = " << fmt("%g", high.friction) << " it crosses the cone "
-       << fmt("%.1f", ih.summit_distance * 1e-3) << " km " << ih.side << " of the "
-       << fmt("%.0f", setup.summit_z) << " m summit and climbs to " << fmt("%.0f", ih.max_z)
+       << fmt("%.1f", ih.passage.distance * 1e-3) << " km " << ih.passage.side << " of the "
+       << fmt("%.0f", setup.summit_z) << " m summit and climbs to " << fmt("%.0f", ih.metrics.max_z)
        << " m, at μ = " << fmt("%g", low.friction) << " it swings round the mountain "
-       << fmt("%.1f", il.summit_distance * 1e-3) << " km " << il.side
-       << " of the summit and never rises above " << fmt("%.0f", il.max_z) << " m. ";
+       << fmt("%.1f", il.passage.distance * 1e-3) << " km " << il.passage.side
+       << " of the summit and never rises above " << fmt("%.0f", il.metrics.max_z) << " m. ";
   text << "The reason is the friction cone: on ground that is planar at the scale of an edge "
           "the three rules of the search coincide, and a slope θ is passable (in any direction, "
           "then at any speed) exactly when tan θ ≤ μ — heading across the slope, the sliding "
@@ -672,7 +663,8 @@ std::string commentary(const Setup& setup, const std::vector<FrictionRun>& runs)
        << "the pockets cut off behind them " << percent(high.unreachable, nodes) << " and "
        << percent(low.unreachable, nodes) << " of the nodes are unreachable from the start. ";
   double slowest = kInf;
-  for (const FrictionRun& run : runs) slowest = std::min(slowest, run.info.front().min_edge_speed);
+  for (const FrictionRun& run : runs)
+    slowest = std::min(slowest, run.info.front().metrics.min_edge_speed);
   if (slowest >= top * (1.0 - 1e-9)) {
     text << "Speed itself does not change: every edge of both best routes is driven at the "
          << fmt("%g", top) << " m/s top speed (the 30 m DEM's curvatures are far too gentle for "
@@ -686,10 +678,10 @@ std::string commentary(const Setup& setup, const std::vector<FrictionRun>& runs)
   }
   text << "The steepest terrain under the best routes, sampled at the search's own edge "
           "stations, is "
-       << fmt("%.1f", ih.max_slope) << "° at μ = " << fmt("%g", high.friction) << " and "
-       << fmt("%.1f", il.max_slope) << "° at μ = " << fmt("%g", low.friction);
-  if (ih.speed_only_stations + il.speed_only_stations > 0) {
-    text << " (" << ih.speed_only_stations << " and " << il.speed_only_stations
+       << fmt("%.1f", ih.metrics.max_slope) << "° at μ = " << fmt("%g", high.friction) << " and "
+       << fmt("%.1f", il.metrics.max_slope) << "° at μ = " << fmt("%g", low.friction);
+  if (ih.metrics.speed_only_stations + il.metrics.speed_only_stations > 0) {
+    text << " (" << ih.metrics.speed_only_stations << " and " << il.metrics.speed_only_stations
          << " stations steeper than atan μ, where the extra normal load κ_n v² of a concave "
             "stretch at speed lets the vehicle climb or brake although it could not stand "
             "there at rest; see the observations below).";
@@ -802,10 +794,11 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
       const CandidateInfo& info = run.info[c];
       candidates.row({fmt("%g", run.friction), std::to_string(c + 1), fmt("%.1f", p.cost_seconds),
                       fmt("%.2f", p.length_m * 1e-3), fmt("%.2f", p.length_m / p.cost_seconds),
-                      fmt("%.1f", info.max_slope), fmt("%.0f", info.max_z), fmt("%.0f", info.climb),
-                      fmt("%.1f", info.summit_distance * 1e-3) + " km " + info.side,
-                      c == 0 ? "–" : fmt("%.0f", info.hausdorff_to_best),
-                      c == 0 ? "–" : fmt("%.0f", 100.0 * info.shared_with_best) + " %"});
+                      fmt("%.1f", info.metrics.max_slope), fmt("%.0f", info.metrics.max_z),
+                      fmt("%.0f", info.metrics.climb),
+                      fmt("%.1f", info.passage.distance * 1e-3) + " km " + info.passage.side,
+                      c == 0 ? "–" : fmt("%.0f", info.vs_best.hausdorff),
+                      c == 0 ? "–" : fmt("%.0f", 100.0 * info.vs_best.shared) + " %"});
     }
     lattice.row(
         {fmt("%g", run.friction), std::to_string(r.nodes), std::to_string(r.edges_evaluated),
@@ -839,10 +832,10 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
     double worst_check = 0.0;
     bool any_reversal = false;
     for (std::size_t c = 0; c < r.candidates.size(); ++c) {
-      worst_check = std::max(worst_check,
-                             std::abs(run.info[c].recomputed_cost - r.candidates[c].cost_seconds) /
-                                 r.candidates[c].cost_seconds);
-      any_reversal = any_reversal || run.info[c].revisits;
+      worst_check = std::max(worst_check, std::abs(run.info[c].metrics.recomputed_cost -
+                                                   r.candidates[c].cost_seconds) /
+                                              r.candidates[c].cost_seconds);
+      any_reversal = any_reversal || run.info[c].metrics.revisits;
     }
     std::string text =
         "μ = " + mu + ": J recomputed edge by edge with the public `edge_cost` agrees with " +
@@ -852,10 +845,10 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
         ".";
     for (std::size_t c = 1; c < r.candidates.size(); ++c) {
       const CandidateInfo& info = run.info[c];
-      if (info.shared_with_best >= 0.5) {
+      if (info.vs_best.shared >= 0.5) {
         text += " Candidate " + std::to_string(c + 1) + " passes the Hausdorff rule (" +
-                fmt("%.0f", info.hausdorff_to_best) + " m against " + fmt("%.0f", separation) +
-                " m) but " + fmt("%.0f", 100.0 * info.shared_with_best) +
+                fmt("%.0f", info.vs_best.hausdorff) + " m against " + fmt("%.0f", separation) +
+                " m) but " + fmt("%.0f", 100.0 * info.vs_best.shared) +
                 " % of its vertices lie within " + fmt("%.0f", kSharedFraction * separation) +
                 " m of candidate 1: a variant of the same corridor with one bulge, not a "
                 "different way round.";
@@ -863,9 +856,9 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
     }
     std::size_t steep = 0, speed_only = 0, concave = 0;
     for (const CandidateInfo& info : run.info) {
-      steep += info.steep_stations;
-      speed_only += info.speed_only_stations;
-      concave += info.concave_speed_only;
+      steep += info.metrics.steep_stations;
+      speed_only += info.metrics.speed_only_stations;
+      concave += info.metrics.concave_speed_only;
     }
     if (steep > 0) {
       text += " Of the candidates' edge stations, " + std::to_string(steep) +

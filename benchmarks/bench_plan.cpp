@@ -17,6 +17,7 @@
 #include <string>
 
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/grid_window.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "talus/optimal/planner.hpp"
@@ -29,12 +30,8 @@ const talus::ElevationGrid& dem() {
   static const talus::ElevationGrid grid = [] {
     const talus::ElevationGrid full = talus::read_esri_ascii(
         std::string(TALUS_DATA_DIR) + "/terrain/mount_st_helens_usgs30m.asc");
-    constexpr std::size_t row0 = 100, col0 = 30;  // south-west node of the crop
-    talus::ElevationGrid crop(kSize, kSize, full.cellsize(), full.x_min() + col0 * full.cellsize(),
-                              full.y_min() + row0 * full.cellsize());
-    for (std::size_t j = 0; j < kSize; ++j)
-      for (std::size_t i = 0; i < kSize; ++i) crop.set(i, j, full.at(i + col0, j + row0));
-    return crop;
+    // South-west node of the crop: column 30, row 100.
+    return talus::crop_grid(full, talus::GridWindow{30, 100, kSize, kSize});
   }();
   return grid;
 }

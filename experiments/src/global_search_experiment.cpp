@@ -12,7 +12,6 @@
 #include <numbers>
 #include <sstream>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -25,12 +24,13 @@
 #include "relief_raster.hpp"
 #include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
-#include "talus/bspline/surface_path.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/grid_window.hpp"
+#include "talus/core/terrain_statistics.hpp"
 #include "talus/dynamics/vehicle.hpp"
-#include "talus/dynamics/velocity_limits.hpp"
+#include "talus/optimal/candidate_metrics.hpp"
 #include "talus/optimal/global_search.hpp"
 
 namespace talus::experiments {
@@ -54,10 +54,7 @@ constexpr const char* kDemStem = "mount_st_helens_usgs30m";
 /// plain beyond row 389 plays no part and is left out). True 30 m posting:
 /// the slopes (crater walls up to ~69°, flanks 20–35°) are what a car-like
 /// vehicle feels, so no rescaling.
-struct Crop {
-  std::size_t col, row, ncols, nrows;
-};
-constexpr Crop kCrop{0, 60, 317, 330};
+constexpr GridWindow kCrop{0, 60, 317, 330};
 
 /// Start and goal in DEM node indices: west and east of the cone, on gentle
 /// ground (slope < 12° around both), so that the straight line crosses the
@@ -66,11 +63,8 @@ constexpr Crop kCrop{0, 60, 317, 330};
 /// (the apron south of the cone, which reaches up its west and east sides);
 /// the northern plain and the crater floor are cut off from it at that
 /// friction, so a start there would make the μ = 0.35 run unreachable.
-struct NodeIndex {
-  double i, j;
-};
-constexpr NodeIndex kStart{14.0, 275.0};
-constexpr NodeIndex kGoal{289.0, 303.0};
+constexpr GridIndex kStart{14.0, 275.0};
+constexpr GridIndex kGoal{289.0, 303.0};
 
 /// The search runs on the smoothing fit. The 1980 USGS DEM carries an
 /// east–west striping artefact: going north along a column on the flanks,
@@ -124,65 +118,8 @@ double degrees(double radians) {
   return radians * 180.0 / std::numbers::pi;
 }
 
-/// Slope angle [deg] of the terrain at a surface point (steepest descent).
-double slope_degrees(const SurfacePoint& p) {
-  return degrees(std::atan(p.gradient.norm()));
-}
-
-/// Compass name (8 sectors) of a planar direction, x east, y north.
-std::string compass(const Vec2& d) {
-  static constexpr const char* kNames[] = {"east", "north-east", "north", "north-west",
-                                           "west", "south-west", "south", "south-east"};
-  const double angle = std::atan2(d.y(), d.x());  // from east, counter-clockwise
-  const int sector = static_cast<int>(std::lround(angle / (std::numbers::pi / 4.0)) + 8) % 8;
-  return kNames[sector];
-}
-
 // ---------------------------------------------------------------------------
 // Terrain.
-
-/// The rectangle `c` of `dem` as a grid of its own (same cell size and CRS).
-ElevationGrid crop_grid(const ElevationGrid& dem, const Crop& c) {
-  if (c.ncols < 2 || c.nrows < 2 || c.col + c.ncols > dem.ncols() ||
-      c.row + c.nrows > dem.nrows()) {
-    throw InputError("global-search: crop of " + std::to_string(c.ncols) + " × " +
-                     std::to_string(c.nrows) + " nodes at column " + std::to_string(c.col) +
-                     ", row " + std::to_string(c.row) + " does not fit the " +
-                     std::to_string(dem.ncols()) + " × " + std::to_string(dem.nrows()) +
-                     "-node DEM");
-  }
-  const double h = dem.cellsize();
-  ElevationGrid out(c.ncols, c.nrows, h, dem.x_min() + static_cast<double>(c.col) * h,
-                    dem.y_min() + static_cast<double>(c.row) * h);
-  for (std::size_t j = 0; j < c.nrows; ++j)
-    for (std::size_t i = 0; i < c.ncols; ++i) {
-      if (dem.valid(c.col + i, c.row + j)) {
-        out.set(i, j, dem.at(c.col + i, c.row + j));
-      } else {
-        out.set_void(i, j);  // BPatch::interpolate names it
-      }
-    }
-  return out;
-}
-
-/// Mean |z(i+1) − 2 z(i) + z(i−1)| over the interior nodes, along x and along y.
-std::pair<double, double> second_differences(const ElevationGrid& g) {
-  double sx = 0.0, sy = 0.0;
-  std::size_t n = 0;
-  for (std::size_t j = 1; j + 1 < g.nrows(); ++j)
-    for (std::size_t i = 1; i + 1 < g.ncols(); ++i) {
-      sx += std::abs(g.at(i + 1, j) - 2.0 * g.at(i, j) + g.at(i - 1, j));
-      sy += std::abs(g.at(i, j + 1) - 2.0 * g.at(i, j) + g.at(i, j - 1));
-      ++n;
-    }
-  return n > 0 ? std::pair{sx / static_cast<double>(n), sy / static_cast<double>(n)}
-               : std::pair{0.0, 0.0};
-}
-
-/// A DEM node index as a position [m].
-Vec2 dem_position(const ElevationGrid& dem, const NodeIndex& n) {
-  return {dem.x_min() + n.i * dem.cellsize(), dem.y_min() + n.j * dem.cellsize()};
-}
 
 struct Setup {
   Setup(ElevationGrid grid, BPatch surface, BPatch control)
@@ -208,30 +145,14 @@ struct Setup {
 // ---------------------------------------------------------------------------
 // One search and what the figures and the report need from it.
 
-/// Measurements along one candidate.
+/// What the figures and the report use of one candidate.
 struct CandidateInfo {
-  std::vector<double> s;              ///< 3-D distance along the route at each vertex [m]
-  std::vector<double> z;              ///< elevation at each vertex [m]
-  std::vector<double> slope;          ///< terrain slope at each vertex [deg]
-  std::vector<double> edge_speed;     ///< per edge: length / J, the mean speed at the limit [m/s]
-  double max_slope = 0.0;             ///< steepest terrain slope at any station of any edge [deg]
-  double max_z = -kInf, climb = 0.0;  ///< highest point [m]; sum of the rises [m]
-  std::string side;                   ///< compass side of the summit where it passes it
-  double summit_distance = kNaN;      ///< planar distance from the summit there [m]
-  double recomputed_cost = 0.0;       ///< Σ edge_cost forward, as a check of cost_seconds
-  bool reversals = false;             ///< the vertex list revisits a node
-  double min_edge_speed = kInf;       ///< slowest edge, length / J [m/s]
-  /// Stations (of the search's own edge sampling) steeper than atan μ, and
-  /// among them those where the vehicle could not hold itself at rest — no
-  /// s̈ at all, or it could neither climb (a_max < 0) nor stop (a_min > 0) at
-  /// v = 0 — so the edge passed rules (b)/(c) only thanks to the extra normal
-  /// load κ_n v² of a concave surface at a higher admissible speed.
-  std::size_t steep_stations = 0, speed_only_stations = 0;
-  std::size_t concave_speed_only = 0;  ///< of the latter, those with κ_n > 0 along the edge
-  /// Relation to the best candidate: symmetric Hausdorff distance [m] and the
+  CandidateMetrics metrics;  ///< along the route (measure_candidate)
+  LandmarkPassage passage;   ///< where it passes the summit
+  /// Relation to the best candidate: symmetric Hausdorff distance and the
   /// share of this route's vertices within kSharedFraction × the separation
-  /// of it (the same corridor).
-  double hausdorff_to_best = 0.0, shared_with_best = 1.0;
+  /// of it (the same corridor); the defaults for the best one itself.
+  CorridorOverlap vs_best;
 };
 
 struct FrictionRun {
@@ -254,91 +175,6 @@ Vehicle make_vehicle(double friction) {
   return v;
 }
 
-/// The point of `line` where its projection on the start→goal axis first
-/// reaches that of `target`, or the nearest vertex if it never does.
-Vec2 crossing_point(const std::vector<Vec2>& line, const Vec2& start, const Vec2& axis,
-                    const Vec2& target) {
-  const double t_target = (target - start).dot(axis);
-  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-    const double t0 = (line[k] - start).dot(axis), t1 = (line[k + 1] - start).dot(axis);
-    if ((t0 - t_target) * (t1 - t_target) <= 0.0 && t0 != t1) {
-      const double f = (t_target - t0) / (t1 - t0);
-      return line[k] + f * (line[k + 1] - line[k]);
-    }
-  }
-  Vec2 best = line.front();
-  for (const Vec2& p : line)
-    if ((p - target).norm() < (best - target).norm()) best = p;
-  return best;
-}
-
-double point_to_polyline(const Vec2& p, const std::vector<Vec2>& line) {
-  double best = (p - line.front()).norm();
-  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-    const Vec2 d = line[k + 1] - line[k];
-    const double t = std::clamp((p - line[k]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-    best = std::min(best, (p - (line[k] + t * d)).norm());
-  }
-  return best;
-}
-
-/// The default separation of global_search.hpp: 10 % of the start–goal
-/// distance (between the snapped nodes), at least 3 lattice spacings.
-double default_separation(const GlobalSearchResult& r) {
-  return std::max(0.1 * (r.goal_node - r.start_node).norm(), 3.0 * r.spacing);
-}
-
-CandidateInfo measure(const Setup& setup, const Vehicle& vehicle, const CandidatePath& c,
-                      double spacing) {
-  CandidateInfo info;
-  const std::vector<Vec2>& v = c.vertices;
-  double s = 0.0;
-  for (std::size_t k = 0; k < v.size(); ++k) {
-    const SurfacePoint p = setup.patch.evaluate(v[k]);
-    if (k > 0) {
-      const Vec2 a = v[k - 1], b = v[k];
-      const int stations = edge_stations((b - a).norm(), spacing);
-      const EdgeCost e = edge_cost(setup.patch, vehicle, a, b, stations);
-      s += e.length;
-      info.recomputed_cost += e.forward;
-      info.edge_speed.push_back(e.length / e.forward);
-      info.min_edge_speed = std::min(info.min_edge_speed, info.edge_speed.back());
-      // The steepest slope anywhere on the edge, at the search's own stations,
-      // and whether the vehicle could stand still where it exceeds atan μ.
-      const double steep = degrees(std::atan(vehicle.friction));
-      for (int q = 0; q < stations; ++q) {
-        const double tau = static_cast<double>(q) / (stations - 1);
-        const Vec2 x = a + tau * (b - a);
-        const SurfacePoint sp = setup.patch.evaluate(x);
-        const double slope = slope_degrees(sp);
-        info.max_slope = std::max(info.max_slope, slope);
-        if (slope <= steep) continue;
-        ++info.steep_stations;
-        const StationGeometry g =
-            StationGeometry::from(lift_to_surface(x, sp, b - a, Vec2::Zero()));
-        const AccelerationBounds rest = acceleration_bounds(vehicle, g, 0.0);
-        if (!rest.feasible || rest.a_max < 0.0 || rest.a_min > 0.0) {
-          ++info.speed_only_stations;
-          if (g.kappa_n > 0.0) ++info.concave_speed_only;
-        }
-      }
-      info.climb += std::max(0.0, p.z - info.z.back());
-    }
-    info.s.push_back(s);
-    info.z.push_back(p.z);
-    info.slope.push_back(slope_degrees(p));
-    info.max_z = std::max(info.max_z, p.z);
-  }
-  for (std::size_t a = 0; a < v.size() && !info.reversals; ++a)
-    for (std::size_t b = a + 1; b < v.size() && !info.reversals; ++b)
-      info.reversals = (v[a] - v[b]).norm() < 1e-6 * spacing;
-  const Vec2 axis = (setup.goal - setup.start).normalized();
-  const Vec2 p = crossing_point(v, setup.start, axis, setup.summit);
-  info.side = compass(p - setup.summit);
-  info.summit_distance = (p - setup.summit).norm();
-  return info;
-}
-
 FrictionRun run_search(const Setup& setup, double friction, const GlobalSearchOptions& options) {
   FrictionRun run;
   run.friction = friction;
@@ -350,32 +186,22 @@ FrictionRun run_search(const Setup& setup, double friction, const GlobalSearchOp
     // or the limits changed, which the figures could not show meaningfully.
     throw InfeasibleError("global-search: μ = " + fmt("%g", friction) + ": " + r.message);
   }
-  const double steep = degrees(std::atan(friction));
-  for (std::size_t n = 0; n < r.nx * r.ny; ++n) {
-    const Vec2 p =
-        r.origin + r.spacing * Vec2(static_cast<double>(n % r.nx), static_cast<double>(n / r.nx));
-    if (slope_degrees(setup.patch.evaluate(p)) > steep) ++run.steep_nodes;
-    if (!(r.cost_from_start[n] < kInf)) ++run.unreachable;
+  const LatticeCensus census = lattice_census(setup.patch, r, friction);
+  run.steep_nodes = census.steep_nodes;
+  run.unreachable = census.unreachable_nodes;
+  for (const CandidatePath& c : r.candidates) {
+    run.info.push_back({measure_candidate(setup.patch, run.vehicle, c, r.spacing),
+                        landmark_passage(c.vertices, setup.start, setup.goal, setup.summit),
+                        {}});
   }
-  for (const CandidatePath& c : r.candidates)
-    run.info.push_back(measure(setup, run.vehicle, c, r.spacing));
   // How distinct the candidates really are: the search's Hausdorff rule is
   // met by one far-off vertex, so also count how much of each route runs in
   // the best one's corridor.
   const std::vector<Vec2>& best = r.candidates.front().vertices;
   const double separation = default_separation(r);
   for (std::size_t c = 1; c < r.candidates.size(); ++c) {
-    const std::vector<Vec2>& v = r.candidates[c].vertices;
-    double h = 0.0;
-    std::size_t near = 0;
-    for (const Vec2& p : v) {
-      const double d = point_to_polyline(p, best);
-      h = std::max(h, d);
-      if (d < kSharedFraction * separation) ++near;
-    }
-    for (const Vec2& p : best) h = std::max(h, point_to_polyline(p, v));
-    run.info[c].hausdorff_to_best = h;
-    run.info[c].shared_with_best = static_cast<double>(near) / static_cast<double>(v.size());
+    run.info[c].vs_best =
+        corridor_overlap(r.candidates[c].vertices, best, kSharedFraction * separation);
   }
   return run;
 }
@@ -400,13 +226,9 @@ ControlRun run_control(const Setup& setup, double friction, GlobalSearchOptions 
     control.length = r.candidates.front().length_m;
   }
   control.nodes = r.nodes;
-  const double steep = degrees(std::atan(friction));
-  for (std::size_t n = 0; n < r.nx * r.ny; ++n) {
-    const Vec2 p =
-        r.origin + r.spacing * Vec2(static_cast<double>(n % r.nx), static_cast<double>(n / r.nx));
-    if (slope_degrees(setup.interpolating.evaluate(p)) > steep) ++control.steep_nodes;
-    if (!(r.cost_from_start[n] < kInf)) ++control.unreachable;
-  }
+  const LatticeCensus census = lattice_census(setup.interpolating, r, friction);
+  control.steep_nodes = census.steep_nodes;
+  control.unreachable = census.unreachable_nodes;
   return control;
 }
 
@@ -472,9 +294,10 @@ void write_route_blocks(const Setup& setup, const FrictionRun& run, const fs::pa
     out << "# candidate " << c + 1 << "\n";
     for (std::size_t k = 0; k < path.vertices.size(); ++k) {
       const Vec2 p = path.vertices[k] - setup.origin();
-      out << fmt("%.7g", p.x()) << ' ' << fmt("%.7g", p.y()) << ' ' << fmt("%.7g", info.s[k]) << ' '
-          << fmt("%.7g", info.z[k]) << ' ' << fmt("%.4g", info.slope[k]) << ' '
-          << (k == 0 ? "NaN" : fmt("%.5g", info.edge_speed[k - 1])) << '\n';
+      out << fmt("%.7g", p.x()) << ' ' << fmt("%.7g", p.y()) << ' '
+          << fmt("%.7g", info.metrics.s[k]) << ' ' << fmt("%.7g", info.metrics.z[k]) << ' '
+          << fmt("%.4g", info.metrics.slope[k]) << ' '
+          << (k == 0 ? "NaN" : fmt("%.5g", info.metrics.edge_speed[k - 1])) << '\n';
     }
     out << "\n\n";
   }
@@ -724,7 +547,8 @@ void draw_comparison(const Setup& setup, const std::vector<FrictionRun>& runs,
   // Slowest edge of either best route: when it is the top speed, J is just
   // length / v_max and panel (b) says so instead of plotting a flat line.
   double slowest = kInf;
-  for (const FrictionRun& run : runs) slowest = std::min(slowest, run.info.front().min_edge_speed);
+  for (const FrictionRun& run : runs)
+    slowest = std::min(slowest, run.info.front().metrics.min_edge_speed);
   const double top = high.vehicle.max_speed;
   figure << "unset label\nset size noratio\nset autoscale\n"
          << "set xlabel 'distance along the route s [km]'\nset grid lc rgb '#d0d0d0'\n"
@@ -786,8 +610,8 @@ void write_summary(const std::vector<FrictionRun>& runs, const fs::path& file) {
       csv << fmt("%g", run.friction) << ',' << c + 1 << ',' << fmt("%.6f", p.cost_seconds) << ','
           << fmt("%.3f", p.length_m) << ',' << fmt("%.4f", p.length_m / p.cost_seconds) << ','
           << r.nodes << ',' << r.edges_evaluated << ',' << fmt("%.4f", r.search_seconds) << ','
-          << fmt("%.2f", info.max_slope) << ',' << fmt("%.1f", info.max_z) << ','
-          << fmt("%.1f", info.climb) << '\n';
+          << fmt("%.2f", info.metrics.max_slope) << ',' << fmt("%.1f", info.metrics.max_z) << ','
+          << fmt("%.1f", info.metrics.climb) << '\n';
     }
   }
   write_text_file(file, csv.str());
@@ -817,11 +641,11 @@ std::string commentary(const Setup& setup, const std::vector<FrictionRun>& runs)
        << fmt("%.0f", 100.0 * (bl.length_m / bh.length_m - 1.0)) << " % longer ("
        << fmt("%.2f", bh.length_m * 1e-3) << " → " << fmt("%.2f", bl.length_m * 1e-3)
        << " km): at μ = " << fmt("%g", high.friction) << " it crosses the cone "
-       << fmt("%.1f", ih.summit_distance * 1e-3) << " km " << ih.side << " of the "
-       << fmt("%.0f", setup.summit_z) << " m summit and climbs to " << fmt("%.0f", ih.max_z)
+       << fmt("%.1f", ih.passage.distance * 1e-3) << " km " << ih.passage.side << " of the "
+       << fmt("%.0f", setup.summit_z) << " m summit and climbs to " << fmt("%.0f", ih.metrics.max_z)
        << " m, at μ = " << fmt("%g", low.friction) << " it swings round the mountain "
-       << fmt("%.1f", il.summit_distance * 1e-3) << " km " << il.side
-       << " of the summit and never rises above " << fmt("%.0f", il.max_z) << " m. ";
+       << fmt("%.1f", il.passage.distance * 1e-3) << " km " << il.passage.side
+       << " of the summit and never rises above " << fmt("%.0f", il.metrics.max_z) << " m. ";
   text << "The reason is the friction cone: on ground that is planar at the scale of an edge "
           "the three rules of the search coincide, and a slope θ is passable (in any direction, "
           "then at any speed) exactly when tan θ ≤ μ — heading across the slope, the sliding "
@@ -839,7 +663,8 @@ std::string commentary(const Setup& setup, const std::vector<FrictionRun>& runs)
        << "the pockets cut off behind them " << percent(high.unreachable, nodes) << " and "
        << percent(low.unreachable, nodes) << " of the nodes are unreachable from the start. ";
   double slowest = kInf;
-  for (const FrictionRun& run : runs) slowest = std::min(slowest, run.info.front().min_edge_speed);
+  for (const FrictionRun& run : runs)
+    slowest = std::min(slowest, run.info.front().metrics.min_edge_speed);
   if (slowest >= top * (1.0 - 1e-9)) {
     text << "Speed itself does not change: every edge of both best routes is driven at the "
          << fmt("%g", top) << " m/s top speed (the 30 m DEM's curvatures are far too gentle for "
@@ -853,10 +678,10 @@ std::string commentary(const Setup& setup, const std::vector<FrictionRun>& runs)
   }
   text << "The steepest terrain under the best routes, sampled at the search's own edge "
           "stations, is "
-       << fmt("%.1f", ih.max_slope) << "° at μ = " << fmt("%g", high.friction) << " and "
-       << fmt("%.1f", il.max_slope) << "° at μ = " << fmt("%g", low.friction);
-  if (ih.speed_only_stations + il.speed_only_stations > 0) {
-    text << " (" << ih.speed_only_stations << " and " << il.speed_only_stations
+       << fmt("%.1f", ih.metrics.max_slope) << "° at μ = " << fmt("%g", high.friction) << " and "
+       << fmt("%.1f", il.metrics.max_slope) << "° at μ = " << fmt("%g", low.friction);
+  if (ih.metrics.speed_only_stations + il.metrics.speed_only_stations > 0) {
+    text << " (" << ih.metrics.speed_only_stations << " and " << il.metrics.speed_only_stations
          << " stations steeper than atan μ, where the extra normal load κ_n v² of a concave "
             "stretch at speed lets the vehicle climb or brake although it could not stand "
             "there at rest; see the observations below).";
@@ -969,10 +794,11 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
       const CandidateInfo& info = run.info[c];
       candidates.row({fmt("%g", run.friction), std::to_string(c + 1), fmt("%.1f", p.cost_seconds),
                       fmt("%.2f", p.length_m * 1e-3), fmt("%.2f", p.length_m / p.cost_seconds),
-                      fmt("%.1f", info.max_slope), fmt("%.0f", info.max_z), fmt("%.0f", info.climb),
-                      fmt("%.1f", info.summit_distance * 1e-3) + " km " + info.side,
-                      c == 0 ? "–" : fmt("%.0f", info.hausdorff_to_best),
-                      c == 0 ? "–" : fmt("%.0f", 100.0 * info.shared_with_best) + " %"});
+                      fmt("%.1f", info.metrics.max_slope), fmt("%.0f", info.metrics.max_z),
+                      fmt("%.0f", info.metrics.climb),
+                      fmt("%.1f", info.passage.distance * 1e-3) + " km " + info.passage.side,
+                      c == 0 ? "–" : fmt("%.0f", info.vs_best.hausdorff),
+                      c == 0 ? "–" : fmt("%.0f", 100.0 * info.vs_best.shared) + " %"});
     }
     lattice.row(
         {fmt("%g", run.friction), std::to_string(r.nodes), std::to_string(r.edges_evaluated),
@@ -1006,10 +832,10 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
     double worst_check = 0.0;
     bool any_reversal = false;
     for (std::size_t c = 0; c < r.candidates.size(); ++c) {
-      worst_check = std::max(worst_check,
-                             std::abs(run.info[c].recomputed_cost - r.candidates[c].cost_seconds) /
-                                 r.candidates[c].cost_seconds);
-      any_reversal = any_reversal || run.info[c].reversals;
+      worst_check = std::max(worst_check, std::abs(run.info[c].metrics.recomputed_cost -
+                                                   r.candidates[c].cost_seconds) /
+                                              r.candidates[c].cost_seconds);
+      any_reversal = any_reversal || run.info[c].metrics.revisits;
     }
     std::string text =
         "μ = " + mu + ": J recomputed edge by edge with the public `edge_cost` agrees with " +
@@ -1019,10 +845,10 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
         ".";
     for (std::size_t c = 1; c < r.candidates.size(); ++c) {
       const CandidateInfo& info = run.info[c];
-      if (info.shared_with_best >= 0.5) {
+      if (info.vs_best.shared >= 0.5) {
         text += " Candidate " + std::to_string(c + 1) + " passes the Hausdorff rule (" +
-                fmt("%.0f", info.hausdorff_to_best) + " m against " + fmt("%.0f", separation) +
-                " m) but " + fmt("%.0f", 100.0 * info.shared_with_best) +
+                fmt("%.0f", info.vs_best.hausdorff) + " m against " + fmt("%.0f", separation) +
+                " m) but " + fmt("%.0f", 100.0 * info.vs_best.shared) +
                 " % of its vertices lie within " + fmt("%.0f", kSharedFraction * separation) +
                 " m of candidate 1: a variant of the same corridor with one bulge, not a "
                 "different way round.";
@@ -1030,9 +856,9 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
     }
     std::size_t steep = 0, speed_only = 0, concave = 0;
     for (const CandidateInfo& info : run.info) {
-      steep += info.steep_stations;
-      speed_only += info.speed_only_stations;
-      concave += info.concave_speed_only;
+      steep += info.metrics.steep_stations;
+      speed_only += info.metrics.speed_only_stations;
+      concave += info.metrics.concave_speed_only;
     }
     if (steep > 0) {
       text += " Of the candidates' edge stations, " + std::to_string(steep) +
@@ -1080,15 +906,14 @@ void run_global_search_experiment(const ExperimentContext& context) {
   if (!range) throw InputError("global-search: the crop of " + dem_file.string() + " is empty");
   setup.zmin = range->first;
   setup.zmax = range->second;
-  std::tie(setup.roughness_x, setup.roughness_y) = second_differences(setup.dem_crop);
-  setup.start = dem_position(dem, kStart);
-  setup.goal = dem_position(dem, kGoal);
-  for (std::size_t j = 0; j < setup.dem_crop.nrows(); ++j)
-    for (std::size_t i = 0; i < setup.dem_crop.ncols(); ++i)
-      if (setup.dem_crop.at(i, j) > setup.summit_z || (i == 0 && j == 0)) {
-        setup.summit_z = setup.dem_crop.at(i, j);
-        setup.summit = setup.dem_crop.node_position(i, j);
-      }
+  const SecondDifferences roughness = second_differences(setup.dem_crop);
+  setup.roughness_x = roughness.mean_abs_x;
+  setup.roughness_y = roughness.mean_abs_y;
+  setup.start = grid_position(dem, kStart);
+  setup.goal = grid_position(dem, kGoal);
+  const GridNode summit = *highest_node(setup.dem_crop);  // the range above has a valid node
+  setup.summit_z = summit.z;
+  setup.summit = summit.position;
   setup.spacing = dem.cellsize() * (context.quick ? kQuickLatticeCells : 1.0);
 
   GlobalSearchOptions options;

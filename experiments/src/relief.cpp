@@ -32,25 +32,6 @@ double clamp01(double value) {
 
 }  // namespace
 
-double hillshade(double z_x, double z_y, const SunPosition& sun, double exaggeration) {
-  if (!(exaggeration > 0.0) || !std::isfinite(exaggeration)) {
-    throw InputError("hillshade: vertical exaggeration must be positive and finite, got " +
-                     std::to_string(exaggeration));
-  }
-  const double azimuth = sun.azimuth_deg * kDegree;
-  const double altitude = sun.altitude_deg * kDegree;
-  // Compass azimuth A (clockwise from north) in an x-east, y-north frame:
-  // the horizontal direction towards the sun is (sin A, cos A).
-  const double s_x = std::cos(altitude) * std::sin(azimuth);
-  const double s_y = std::cos(altitude) * std::cos(azimuth);
-  const double s_z = std::sin(altitude);
-  const double g_x = exaggeration * z_x;
-  const double g_y = exaggeration * z_y;
-  // The upward normal of z = f(x, y) is (-f_x, -f_y, 1), normalised.
-  const double dot = (-g_x * s_x - g_y * s_y + s_z) / std::sqrt(1.0 + g_x * g_x + g_y * g_y);
-  return std::max(0.0, dot);
-}
-
 std::span<const ColourStop> hypsometric_stops() {
   return kHypsometricStops;
 }
@@ -102,24 +83,6 @@ double hillshade_exaggeration(double p95_gradient) {
   const double target = std::tan(20.0 * kDegree);
   if (!(p95_gradient > 0.0) || !std::isfinite(p95_gradient) || p95_gradient >= target) return 1.0;
   return std::max(1.0, nice_floor(target / p95_gradient));
-}
-
-RasterSize raster_for_extent(double width, double height, std::size_t max_samples) {
-  if (!(width > 0.0) || !std::isfinite(width) || !(height > 0.0) || !std::isfinite(height)) {
-    throw InputError("raster_for_extent: width and height must be positive and finite");
-  }
-  if (max_samples < 2) throw InputError("raster_for_extent: max_samples must be >= 2");
-  RasterSize size;
-  size.spacing = std::max(width, height) / static_cast<double>(max_samples - 1);
-  // The slack absorbs rounding when a side is an exact multiple of the
-  // spacing (always the case for the longer side).
-  const auto count = [&](double side) {
-    const auto n = static_cast<std::size_t>(std::floor(side / size.spacing * (1.0 + 1e-12))) + 1;
-    return std::clamp<std::size_t>(n, 2, max_samples);
-  };
-  size.nx = count(width);
-  size.ny = count(height);
-  return size;
 }
 
 }  // namespace talus::experiments

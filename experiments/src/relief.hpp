@@ -1,36 +1,24 @@
 #pragma once
 /// @file
-/// The small pure functions behind shaded-relief figures: Lambertian
-/// hillshade, a hypsometric colour ramp, and the "nice number" choices for
-/// contour intervals, vertical exaggeration and raster sizes. Kept free of I/O
-/// so they can be unit-tested and reused by every experiment that draws a map.
-#include <cstddef>
+/// The small pure functions behind shaded-relief figures: a hypsometric
+/// colour ramp and the "nice number" choices for contour intervals and
+/// vertical exaggeration. The hillshade (talus/bspline/hillshade.hpp) and the
+/// raster geometry (talus/bspline/surface_raster.hpp) live in the library.
+/// Kept free of I/O so they can be unit-tested and reused by every experiment
+/// that draws a map.
 #include <span>
+
+#include "talus/bspline/hillshade.hpp"
+#include "talus/bspline/surface_raster.hpp"
 
 namespace talus::experiments {
 
-/// Direction of the light for a hillshade. The cartographic default (light
-/// from the north-west, 45° above the horizon) makes slopes facing the reader
-/// look lit and avoids the "relief inversion" illusion of light from the south.
-struct SunPosition {
-  double azimuth_deg = 315.0;  ///< compass bearing the light comes from, clockwise from north
-  double altitude_deg = 45.0;  ///< angle above the horizon, in (0, 90]
-};
-
-/// Lambertian hillshade of a surface with gradient (z_x, z_y) (x east, y
-/// north, dimensionless slopes), in [0, 1]:
-///
-///   shade = max(0, n · s),
-///   n = (-k z_x, -k z_y, 1) / sqrt(1 + k² (z_x² + z_y²))   (unit surface normal)
-///   s = (cos α sin A, cos α cos A, sin α)                  (unit vector towards the sun)
-///
-/// with A the sun's azimuth (clockwise from north), α its altitude and k the
-/// vertical exaggeration. This equals the usual GIS formula
-/// cos(zenith) cos(slope) + sin(zenith) sin(slope) cos(azimuth - aspect);
-/// flat ground gets sin α (0.707 for α = 45°), and faces turned away from the
-/// sun by more than 90° get 0 (self-shadow; cast shadows are not traced).
-/// Throws InputError if the exaggeration is not positive and finite.
-double hillshade(double z_x, double z_y, const SunPosition& sun = {}, double exaggeration = 1.0);
+// The hillshade itself and the raster geometry are library computations;
+// named here too so that every map-drawing file finds them in one place.
+using talus::hillshade;
+using talus::raster_for_extent;
+using talus::RasterSize;
+using talus::SunPosition;
 
 /// A colour with channels in [0, 1].
 struct Rgb {
@@ -75,15 +63,5 @@ double contour_interval(double range, int target_levels = 12);
 /// posting) still show their forms. Rounded down so slopes are never
 /// exaggerated beyond that target. A non-positive p95 (flat) gives 1.
 double hillshade_exaggeration(double p95_gradient);
-
-/// Sample counts of a raster with square pixels over a width × height
-/// rectangle, the longer side getting `max_samples` samples (both ends
-/// included), the shorter one as many as fit at the same spacing (at least 2).
-struct RasterSize {
-  std::size_t nx = 2, ny = 2;  ///< samples along x and y
-  double spacing = 1.0;        ///< distance between neighbouring samples [same unit as width]
-};
-/// Throws InputError if a side is not positive and finite or max_samples < 2.
-RasterSize raster_for_extent(double width, double height, std::size_t max_samples);
 
 }  // namespace talus::experiments

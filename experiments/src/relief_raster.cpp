@@ -30,28 +30,6 @@ void write_raster_file(const ReliefRaster& raster, const std::string& header,
   close_output_file(out, file);
 }
 
-/// `patch` on the raster over [origin, origin + (width, height)]; the last
-/// row and column are clamped so that rounding never leaves the domain.
-ReliefRaster sample_relief(const BPatch& patch, const Vec2& origin, double width, double height,
-                           std::size_t max_samples) {
-  ReliefRaster raster;
-  raster.size = raster_for_extent(width, height, max_samples);
-  const RasterSize& size = raster.size;
-  raster.offsets.resize(size.nx * size.ny);
-  raster.samples.resize(size.nx * size.ny);
-  raster.slopes.resize(size.nx * size.ny);
-  for (std::size_t b = 0; b < size.ny; ++b)
-    for (std::size_t a = 0; a < size.nx; ++a) {
-      const double dx = std::min(static_cast<double>(a) * size.spacing, width);
-      const double dy = std::min(static_cast<double>(b) * size.spacing, height);
-      const std::size_t k = b * size.nx + a;
-      raster.offsets[k] = Vec2(dx, dy);
-      raster.samples[k] = patch.evaluate(origin + raster.offsets[k]);
-      raster.slopes[k] = raster.samples[k].gradient.norm();
-    }
-  return raster;
-}
-
 /// Element floor(0.95 n) of the slopes in ascending order.
 double slope_p95(const ReliefRaster& raster) {
   std::vector<double> slopes = raster.slopes;
@@ -63,10 +41,9 @@ double slope_p95(const ReliefRaster& raster) {
 Rgb relief_colour(const SurfacePoint& sample, const ReliefColouring& colouring) {
   const double relief = colouring.zmax - colouring.zmin;
   const double t = relief > 0.0 ? (sample.z - colouring.zmin) / relief : 0.5;
-  const Rgb colour = shade_colour(
-      hypsometric_colour(t),
-      hillshade(sample.gradient.x(), sample.gradient.y(), colouring.sun, colouring.exaggeration),
-      colouring.ambient);
+  const Rgb colour =
+      shade_colour(hypsometric_colour(t), hillshade(sample, colouring.sun, colouring.exaggeration),
+                   colouring.ambient);
   if (!colouring.washed) return colour;
   return {0.55 * colour.r + 0.45, 0.55 * colour.g + 0.45, 0.55 * colour.b + 0.45};
 }
@@ -94,7 +71,8 @@ ReliefImage write_relief_image(const BPatch& surface, const MapFrame& frame,
                                std::optional<std::pair<double, double>> z_range, bool washed,
                                const SunPosition& sun) {
   ReliefImage image{
-      sample_relief(surface, frame.origin(), frame.width(), frame.height(), max_samples), {}};
+      sample_surface_raster(surface, frame.origin(), frame.width(), frame.height(), max_samples),
+      {}};
   ReliefColouring& colouring = image.colouring;
   if (z_range) {
     std::tie(colouring.zmin, colouring.zmax) = *z_range;

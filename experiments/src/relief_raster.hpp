@@ -15,20 +15,15 @@
 #include "map_frame.hpp"
 #include "relief.hpp"
 #include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/surface_raster.hpp"
 
 namespace talus::experiments {
 
-/// A B-patch sampled once on a raster of square pixels over the rectangle
-/// [origin, origin + (width, height)] (raster_for_extent), row by row from
-/// the south. The elevation and the gradient are kept because a hillshade's
-/// exaggeration depends on the slope distribution, which must be known before
-/// any colour is computed.
-struct ReliefRaster {
-  RasterSize size;
-  std::vector<Vec2> offsets;          ///< sample position − origin [m], clamped to the rectangle
-  std::vector<SurfacePoint> samples;  ///< the patch at each sample
-  std::vector<double> slopes;         ///< gradient magnitude |∇z| at each sample
-};
+/// A B-patch sampled once on the relief raster (sample_surface_raster). The
+/// elevation and the gradient are kept because a hillshade's exaggeration
+/// depends on the slope distribution, which must be known before any colour
+/// is computed.
+using ReliefRaster = SurfaceRaster;
 
 /// How a sample is coloured: the hypsometric tint of its elevation over
 /// [zmin, zmax] (mid-ramp if that is empty) times a hillshade.

@@ -23,6 +23,7 @@
 #include "relief_raster.hpp"
 #include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/fit_residuals.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
@@ -37,7 +38,8 @@ namespace fs = std::filesystem;
 constexpr double kSmoothingLambda = 1.0;        // "smooths over about one cell" (bpatch.hpp)
 constexpr std::size_t kRasterMaxSamples = 400;  // relief raster, longer side
 constexpr int kContourTargetLevels = 12;
-constexpr double kCurvatureFraction = 0.10;  // "most curved" nodes for the residual statistic
+constexpr double kCurvatureFraction = 0.10;       // "most curved" nodes for the residual statistic
+constexpr double kResidualColourQuantile = 0.99;  // residual colours saturate beyond it
 constexpr std::size_t kFullFractalSize = 257;
 constexpr std::size_t kQuickFractalSize = 65;
 constexpr std::size_t kQuickDemCount = 2;
@@ -133,14 +135,6 @@ std::vector<TerrainInput> gather_inputs(const ExperimentContext& context) {
   return inputs;
 }
 
-/// Value at fraction q of the sorted order (nearest rank); `values` is reordered.
-double quantile(std::vector<double>& values, double q) {
-  if (values.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5);
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(k), values.end());
-  return values[k];
-}
-
 /// The map frame of a grid: kilometre axes for continental-scale grids.
 MapFrame map_frame(const ElevationGrid& grid) {
   const double extent = std::max(grid.x_max() - grid.x_min(), grid.y_max() - grid.y_min());
@@ -224,8 +218,8 @@ void draw_relief(const TerrainInput& input, const BPatch& patch, const SunPositi
       .render();
 }
 
-/// Residuals of the smoothing fit at the nodes, the curvature statistic, and
-/// the residual map (data file, script, PNG).
+/// Residuals of the smoothing fit at the nodes and the curvature statistic
+/// (fit_residuals), and the residual map (data file, script, PNG).
 void draw_residuals(const TerrainInput& input, const BPatch& interpolating, const BPatch& smoothing,
                     const fs::path& out_dir, TerrainResult& result) {
   const ElevationGrid& grid = input.grid;
@@ -236,13 +230,10 @@ void draw_residuals(const TerrainInput& input, const BPatch& interpolating, cons
        << ") minus data at the nodes\n# x - x_min [m], y - y_min [m], residual [m] (NaN at "
           "NODATA nodes)\n";
 
-  struct NodeResidual {
-    double residual, curvature;
-  };
-  std::vector<NodeResidual> nodes;
-  nodes.reserve(grid.ncols() * grid.nrows());
-  double sum_sq = 0.0, max_abs = 0.0;
-  const double h2 = grid.cellsize() * grid.cellsize();
+  FitResidualOptions options;
+  options.curvature_fraction = kCurvatureFraction;
+  options.abs_quantile = kResidualColourQuantile;
+  const FitResiduals residuals = fit_residuals(grid, smoothing, interpolating, options);
   for (std::size_t j = 0; j < grid.nrows(); ++j) {
     for (std::size_t i = 0; i < grid.ncols(); ++i) {
       const Vec2 p = grid.node_position(i, j);
@@ -252,43 +243,20 @@ void draw_residuals(const TerrainInput& input, const BPatch& interpolating, cons
         data << xy << "NaN\n";
         continue;
       }
-      const double r = smoothing.elevation(p) - grid.at(i, j);
-      data << xy << fmt("%.6g", r) << '\n';
-      // Thin-plate energy density in grid-index units (the quantity the
-      // smoothing term penalises), from the interpolating fit, which follows
-      // the data's own curvature.
-      const Mat2 hess = interpolating.evaluate(p).hessian * h2;
-      const double curvature =
-          hess(0, 0) * hess(0, 0) + 2.0 * hess(0, 1) * hess(0, 1) + hess(1, 1) * hess(1, 1);
-      nodes.push_back({r, curvature});
-      sum_sq += r * r;
-      max_abs = std::max(max_abs, std::abs(r));
+      data << xy << fmt("%.6g", residuals.residual[j * grid.ncols() + i]) << '\n';
     }
     data << '\n';
   }
   close_output_file(data, data_file);
-  result.max_residual = max_abs;
-  result.rms_residual = nodes.empty() ? 0.0 : std::sqrt(sum_sq / static_cast<double>(nodes.size()));
-
-  // Share of the squared residual on the most curved nodes: 0.1 if residuals
-  // ignored curvature, up to 1 if they lived only there.
-  std::sort(nodes.begin(), nodes.end(),
-            [](const auto& a, const auto& b) { return a.curvature > b.curvature; });
-  const auto top =
-      static_cast<std::size_t>(std::ceil(kCurvatureFraction * static_cast<double>(nodes.size())));
-  double top_sq = 0.0;
-  for (std::size_t k = 0; k < top && k < nodes.size(); ++k)
-    top_sq += nodes[k].residual * nodes[k].residual;
-  result.curvature_share = sum_sq > 0.0 ? top_sq / sum_sq : 0.0;
+  result.max_residual = residuals.max_abs;
+  result.rms_residual = residuals.rms;
+  result.curvature_share = residuals.curvature_share;
 
   // Colour scale: symmetric so white is exactly zero; clipped at the 99th
   // percentile of |r| so a handful of extreme nodes do not wash out the rest.
-  std::vector<double> magnitudes;
-  magnitudes.reserve(nodes.size());
-  for (const NodeResidual& node : nodes) magnitudes.push_back(std::abs(node.residual));
-  double limit = quantile(magnitudes, 0.99);
-  if (!(limit > 0.0)) limit = max_abs > 0.0 ? max_abs : 1.0;
-  const bool clipped = limit < max_abs;
+  double limit = residuals.abs_quantile;
+  if (!(limit > 0.0)) limit = residuals.max_abs > 0.0 ? residuals.max_abs : 1.0;
+  const bool clipped = limit < residuals.max_abs;
 
   const MapFrame frame = map_frame(grid);
   std::ostringstream title;

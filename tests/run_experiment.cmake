@@ -1,6 +1,9 @@
 # Runs `talus experiment NAME --quick` into a fresh folder and checks that it
-# rendered: a report.md and at least one PNG figure.
-# Usage: cmake -DTALUS=... -DNAME=... -DOUT=... -P run_experiment.cmake
+# rendered (a report.md and at least one PNG figure) and that its summary.json
+# holds the numbers the test expects.
+# Usage: cmake -DTALUS=... -DNAME=... -DOUT=... [-DEXPECT=KEY:LOW:HIGH,...] -P run_experiment.cmake
+# EXPECT lists numbers of summary.json's "numbers" object and the closed
+# interval each must lie in; tests/CMakeLists.txt says where each bound comes from.
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND "${TALUS}" experiment "${NAME}" --quick --out "${OUT}"
                 RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE error)
@@ -15,4 +18,34 @@ list(LENGTH figures count)
 if(count EQUAL 0)
   message(FATAL_ERROR "talus experiment ${NAME} rendered no PNG figure")
 endif()
-message(STATUS "${NAME}: report.md and ${count} figures")
+if(NOT EXISTS "${OUT}/${NAME}/summary.json")
+  message(FATAL_ERROR "talus experiment ${NAME} wrote no summary.json")
+endif()
+file(READ "${OUT}/${NAME}/summary.json" summary)
+string(JSON name GET "${summary}" experiment)
+if(NOT name STREQUAL NAME)
+  message(FATAL_ERROR "${NAME}: summary.json names experiment '${name}'")
+endif()
+string(JSON numbers LENGTH "${summary}" numbers)
+if(numbers EQUAL 0)
+  message(FATAL_ERROR "${NAME}: summary.json has no numbers")
+endif()
+if(NOT EXPECT)
+  message(FATAL_ERROR "${NAME}: the test checks no number of summary.json (pass -DEXPECT)")
+endif()
+string(REPLACE "," ";" expectations "${EXPECT}")
+foreach(expectation IN LISTS expectations)
+  string(REPLACE ":" ";" parts "${expectation}")
+  list(GET parts 0 key)
+  list(GET parts 1 low)
+  list(GET parts 2 high)
+  string(JSON value ERROR_VARIABLE missing GET "${summary}" numbers ${key})
+  if(missing)
+    message(FATAL_ERROR "${NAME}: summary.json has no number '${key}'")
+  endif()
+  if(value STREQUAL "null" OR value LESS low OR value GREATER high)
+    message(FATAL_ERROR "${NAME}: ${key} = ${value}, expected in [${low}, ${high}]")
+  endif()
+  message(STATUS "${NAME}: ${key} = ${value} in [${low}, ${high}]")
+endforeach()
+message(STATUS "${NAME}: report.md, ${count} figures and summary.json")

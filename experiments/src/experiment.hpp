@@ -1,11 +1,15 @@
 #pragma once
 /// @file
 /// The experiment framework: each experiment reproduces a figure or table,
-/// writing `<out>/<name>/` with CSV data, PNG figures and a `report.md`.
+/// writing `<out>/<name>/` with CSV data, PNG figures, a `report.md` and a `summary.json` of its
+/// headline numbers (ExperimentSummary).
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "experiment_summary.hpp"
 
 namespace talus::experiments {
 
@@ -14,6 +18,9 @@ struct ExperimentContext {
   std::filesystem::path output_dir;  ///< `<out>/<name>/`, created before run() is called
   std::filesystem::path data_dir;    ///< folder holding `terrain/*.asc` (the bundled DEMs)
   bool quick = false;                ///< smaller problem sizes, for tests and smoke runs
+  /// The headline numbers, written as `summary.json` after run() returns (shared so that the
+  /// const context can carry it).
+  std::shared_ptr<ExperimentSummary> summary = std::make_shared<ExperimentSummary>();
 };
 
 /// One registered experiment.

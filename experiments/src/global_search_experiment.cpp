@@ -888,6 +888,25 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
 
 }  // namespace
 
+/// The headline numbers of summary.json: each friction's best cost, against two bounds that
+/// hold whatever the terrain: no route is faster than the straight line at the top speed, and
+/// less friction never makes the best route faster.
+void summarise(const Setup& setup, const std::vector<FrictionRun>& runs, ExperimentSummary& summary) {
+  const double straight = (setup.goal - setup.start).norm();
+  for (const FrictionRun& run : runs) {
+    const std::string tag = friction_tag(run.friction);
+    const double best = run.result.candidates.front().cost_seconds;
+    summary.set("best_cost_" + tag + "_s", best, "s");
+    summary.set("candidates_" + tag, static_cast<double>(run.result.candidates.size()), "count");
+    summary.set("best_cost_over_straight_line_" + tag, best / (straight / run.vehicle.max_speed),
+                "1", ">= 1: the straight line at the top speed is a lower bound");
+  }
+  summary.set("best_cost_low_over_high_friction",
+              runs.back().result.candidates.front().cost_seconds /
+                  runs.front().result.candidates.front().cost_seconds,
+              "1", ">= 1: less friction only removes edges");
+}
+
 void run_global_search_experiment(const ExperimentContext& context) {
   const auto t_start = Clock::now();
   require_gnuplot();
@@ -947,6 +966,7 @@ void run_global_search_experiment(const ExperimentContext& context) {
   }
   draw_comparison(setup, runs, contours, out_dir);
   write_summary(runs, out_dir / "summary.csv");
+  summarise(setup, runs, *context.summary);
   const double total = std::chrono::duration<double>(Clock::now() - t_start).count();
   write_report(setup, runs, controls, context, total, contours.step);
   std::cout << "global-search: wrote " << out_dir.string() << " in " << fmt("%.1f", total)

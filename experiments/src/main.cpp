@@ -453,6 +453,7 @@ int main(int argc, char** argv) {
       ex::OutputFolder out(folder);
       context.output_dir = out.staging();
       e.run(context);
+      context.summary->write(context.output_dir / "summary.json", e.name, quick);
       out.commit();
       std::cout << "wrote " << (folder / "report.md").string() << "\n";
       return;

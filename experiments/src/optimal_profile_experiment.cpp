@@ -775,6 +775,36 @@ std::string solver_observations(const std::vector<ProfileRun>& runs,
   return md.str();
 }
 
+/// The smallest and largest observed order of the point mass's series, over the levels where the
+/// reference's own error (about h_ref/h of the measured one for first order) is small enough not
+/// to bias them.
+std::pair<double, double> observed_order_range(const Convergence& convergence) {
+  std::pair<double, double> range{kInf, -kInf};
+  for (const ConvergenceLevel& l : convergence.series[0].levels)
+    if (std::isfinite(l.order) && l.mean_spacing >= 16.0 * convergence.finest().mean_spacing) {
+      range.first = std::min(range.first, l.order);
+      range.second = std::max(range.second, l.order);
+    }
+  return range;
+}
+
+/// The headline numbers of summary.json.
+void summarise(const std::vector<ProfileRun>& runs, const ProfileRun& check_run,
+               const Convergence& convergence, ExperimentSummary& summary) {
+  summary.set("travel_time_point_mass_s", runs[0].profile.travel_time, "s");
+  summary.set("travel_time_rigid_body_s", runs[1].profile.travel_time, "s");
+  summary.set("rigid_body_over_point_mass", runs[1].profile.travel_time / runs[0].profile.travel_time,
+              "1", ">= 1: pitch-over only removes admissible states");
+  summary.set("rigid_body_long_minus_point_mass_s",
+              check_run.profile.travel_time - runs[0].profile.travel_time, "s",
+              "0: with l/h > mu pitch-over never binds, so the rigid body is the point mass");
+  summary.set("default_spacing_error", convergence.default_level().error, "1");
+  const auto [low, high] = observed_order_range(convergence);
+  summary.set("observed_order_min", low, "1",
+              "1: first order, the forward-backward scheme's step admissible at both ends");
+  summary.set("observed_order_max", high, "1", "1 (as observed_order_min)");
+}
+
 void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_run,
                   const Convergence& convergence, const Setup& setup,
                   const ExperimentContext& context, double total_seconds) {
@@ -945,14 +975,7 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
   const ConvergenceLevel& def = convergence.default_level();
   const double t_star = convergence.series[0].extrapolated_time;
   const double t_star_rb = convergence.series[1].extrapolated_time;
-  // Orders where the reference's own error (about h_ref/h of the measured
-  // one for first order) is small enough not to bias them.
-  std::pair<double, double> order_range{kInf, -kInf};
-  for (const ConvergenceLevel& l : convergence.series[0].levels)
-    if (std::isfinite(l.order) && l.mean_spacing >= 16.0 * convergence.finest().mean_spacing) {
-      order_range.first = std::min(order_range.first, l.order);
-      order_range.second = std::max(order_range.second, l.order);
-    }
+  const std::pair<double, double> order_range = observed_order_range(convergence);
   report.heading("Convergence in the number of stations")
       .table(table)
       .paragraph(
@@ -1103,6 +1126,7 @@ void run_optimal_profile(const ExperimentContext& context) {
   draw_map(patch, runs[0], points, setup.zmin, setup.zmax, context.output_dir);
   draw_convergence(convergence, context.output_dir);
   const double total = std::chrono::duration<double>(Clock::now() - start).count();
+  summarise(runs, check_run, convergence, *context.summary);
   write_report(runs, check_run, convergence, setup, context, total);
 }
 

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "talus/core/error.hpp"
+#include "talus/core/sample_statistics.hpp"
 
 namespace talus {
 
@@ -67,13 +68,6 @@ void evaluate_common_accelerations(const std::vector<LimitProfile*>& group, doub
       st.accel = acceleration_bounds(profile->vehicle, st.geometry, speed);
     }
   }
-}
-
-double upper_median(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto mid = values.begin() + static_cast<long>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
 }
 
 double LimitSummary::upper_share(Constraint constraint) const {

@@ -74,16 +74,12 @@ LimitProfile limit_profile(const Vehicle& vehicle, const SurfacePath& path, std:
 /// [0, 1] or the profiles' station counts differ; an empty group is a no-op.
 void evaluate_common_accelerations(const std::vector<LimitProfile*>& group, double speed_fraction);
 
-/// The element of rank ⌊n/2⌋ of `values` (the upper median for even n; NaN
-/// for none). NaN values are not allowed.
-double upper_median(std::vector<double> values);
-
 /// A summary of one profile.
 struct LimitSummary {
   std::size_t stations = 0;
   double min_v_max = 0.0;     ///< ∞ for no station [m/s]
   std::size_t min_index = 0;  ///< first station where v_max is smallest
-  double median_v_max = 0.0;  ///< upper_median of v_max [m/s]
+  double median_v_max = 0.0;  ///< upper_median (sample_statistics.hpp) of v_max [m/s]
   /// Stations by the constraint that sets v_max (an untraversable station
   /// counts under the constraint that fails), indexed by constraint_index.
   std::array<std::size_t, kConstraintCount> upper_counts{};

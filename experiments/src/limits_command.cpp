@@ -4,7 +4,6 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -13,7 +12,6 @@
 #include "cli_values.hpp"
 #include "plot.hpp"
 #include "talus/bspline/bpatch.hpp"
-#include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/bspline/surface_path_from_points.hpp"
 #include "talus/core/error.hpp"
@@ -22,7 +20,6 @@
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
-#include "talus/optimal/trajectory.hpp"
 
 namespace talus::experiments {
 

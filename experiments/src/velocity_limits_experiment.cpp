@@ -1,7 +1,6 @@
 #include "velocity_limits_experiment.hpp"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstddef>

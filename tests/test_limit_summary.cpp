@@ -202,6 +202,36 @@ TEST(LimitSummary, RigidBodyWithLongWheelbaseHasThePointMassLimits) {
   EXPECT_FALSE(same_speed_limits(a, limit_profile(point, path, 61)));
 }
 
+TEST(LimitSummary, SummaryOfVelocityLimitsMatchesTheProfileSummary) {
+  // Hills and a winding path: every binding and dips occur somewhere.
+  static const BPatch hills = BPatch::interpolate(terrain_test::grid_around_origin(
+      [](double x, double y) { return 3.0 * std::sin(x / 6.0) * std::cos(y / 7.0); }, 40.0, 1.0));
+  const SurfacePath path(
+      hills, Curve2::interpolate({Vec2(-35, -30), Vec2(-10, 5), Vec2(12, -8), Vec2(33, 30)}));
+  Vehicle v = vehicle_test::point_mass_rover(0.6);
+  v.max_speed = 8.0;
+  const VelocityLimits limits(v, path, 400);
+  const LimitSummary direct = summarise_limits(limits);
+  const LimitSummary copied = summarise_limits(limit_profile(limits).stations);
+  EXPECT_EQ(direct.stations, 400u);
+  EXPECT_EQ(direct.upper_counts, copied.upper_counts);
+  EXPECT_EQ(direct.min_v_max, copied.min_v_max);
+  EXPECT_EQ(direct.min_index, copied.min_index);
+  EXPECT_EQ(direct.median_v_max, copied.median_v_max);
+  EXPECT_EQ(direct.dips, copied.dips);
+  EXPECT_EQ(direct.sliding_on_crest, copied.sliding_on_crest);
+  EXPECT_EQ(direct.min_v_sliding, copied.min_v_sliding);
+  EXPECT_EQ(direct.min_v_contact, copied.min_v_contact);
+  EXPECT_EQ(direct.accel_infeasible, 400u);
+  EXPECT_GT(direct.dips, 0u);
+  EXPECT_GT(direct.upper_count(Constraint::kSliding), 0u);
+  EXPECT_GT(direct.upper_count(Constraint::kMaxSpeed), 0u);
+  // Independent re-evaluation of the minimum.
+  double lowest = kInf;
+  for (std::size_t k = 0; k < limits.size(); ++k) lowest = std::min(lowest, limits.limits(k).v_max);
+  EXPECT_EQ(direct.min_v_max, lowest);
+}
+
 TEST(LimitSummary, CommonAccelerationsRejectBadInput) {
   const SurfacePath path(flat_ground(), straight_line());
   const Vehicle v = vehicle_test::point_mass_rover();

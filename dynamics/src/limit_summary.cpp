@@ -76,46 +76,81 @@ double LimitSummary::upper_share(Constraint constraint) const {
              : static_cast<double>(upper_count(constraint)) / static_cast<double>(stations);
 }
 
-LimitSummary summarise_limits(const std::vector<LimitStation>& stations) {
+namespace {
+
+/// What the summary reads of one station.
+struct StationView {
+  const SpeedLimits& limits;
+  double kappa_n;
+  double v_sliding, v_tipover, v_contact;
+  const AccelerationBounds* accel;  ///< null: not evaluated
+};
+
+/// The summary of `n` stations; view(k) is station k.
+template <typename View>
+LimitSummary summarise(std::size_t n, const View& view) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   LimitSummary sum;
-  sum.stations = stations.size();
+  sum.stations = n;
   std::vector<double> v_max, a_max, a_min;
+  v_max.reserve(n);
   sum.min_v_max = kInf;
   sum.min_v_sliding = sum.min_v_tipover = sum.min_v_contact = kInf;
-  for (std::size_t k = 0; k < stations.size(); ++k) {
-    const LimitStation& st = stations[k];
-    v_max.push_back(st.limits.v_max);
-    if (st.limits.v_max < sum.min_v_max) {
-      sum.min_v_max = st.limits.v_max;
+  for (std::size_t k = 0; k < n; ++k) {
+    const StationView st = view(k);
+    const SpeedLimits& l = st.limits;
+    v_max.push_back(l.v_max);
+    if (l.v_max < sum.min_v_max) {
+      sum.min_v_max = l.v_max;
       sum.min_index = k;
     }
-    if (k > 0 && k + 1 < stations.size() && st.limits.v_max < stations[k - 1].limits.v_max &&
-        st.limits.v_max < stations[k + 1].limits.v_max)
+    if (k > 0 && k + 1 < n && l.v_max < view(k - 1).limits.v_max &&
+        l.v_max < view(k + 1).limits.v_max)
       ++sum.dips;
-    ++sum.upper_counts[constraint_index(st.limits.upper_binding)];
-    if (!st.limits.traversable) ++sum.untraversable;
-    if (st.limits.v_min > 0.0) ++sum.lower_bound_stations;
-    if (st.limits.upper_binding == Constraint::kSliding && st.geometry.kappa_n < 0.0)
-      ++sum.sliding_on_crest;
-    sum.max_v_min = std::max(sum.max_v_min, st.limits.v_min);
+    ++sum.upper_counts[constraint_index(l.upper_binding)];
+    if (!l.traversable) ++sum.untraversable;
+    if (l.v_min > 0.0) ++sum.lower_bound_stations;
+    if (l.upper_binding == Constraint::kSliding && st.kappa_n < 0.0) ++sum.sliding_on_crest;
+    sum.max_v_min = std::max(sum.max_v_min, l.v_min);
     sum.min_v_sliding = std::min(sum.min_v_sliding, st.v_sliding);
     sum.min_v_tipover = std::min(sum.min_v_tipover, st.v_tipover);
     sum.min_v_contact = std::min(sum.min_v_contact, st.v_contact);
-    if (!st.accel.feasible) {
+    if (st.accel == nullptr || !st.accel->feasible) {
       ++sum.accel_infeasible;
       continue;
     }
-    ++sum.accel_bound_counts[constraint_index(st.accel.upper_binding)];
-    if (st.accel.lower_binding != st.accel.upper_binding)
-      ++sum.accel_bound_counts[constraint_index(st.accel.lower_binding)];
-    a_max.push_back(st.accel.a_max);
-    a_min.push_back(st.accel.a_min);
+    ++sum.accel_bound_counts[constraint_index(st.accel->upper_binding)];
+    if (st.accel->lower_binding != st.accel->upper_binding)
+      ++sum.accel_bound_counts[constraint_index(st.accel->lower_binding)];
+    a_max.push_back(st.accel->a_max);
+    a_min.push_back(st.accel->a_min);
   }
   sum.median_v_max = upper_median(std::move(v_max));
   sum.median_a_max = upper_median(std::move(a_max));
   sum.median_a_min = upper_median(std::move(a_min));
   return sum;
+}
+
+}  // namespace
+
+LimitSummary summarise_limits(const std::vector<LimitStation>& stations) {
+  return summarise(stations.size(), [&](std::size_t k) {
+    const LimitStation& st = stations[k];
+    return StationView{st.limits,    st.geometry.kappa_n, st.v_sliding,
+                       st.v_tipover, st.v_contact,        &st.accel};
+  });
+}
+
+LimitSummary summarise_limits(const VelocityLimits& limits) {
+  return summarise(limits.size(), [&](std::size_t k) {
+    const SpeedLimits& l = limits.limits(k);
+    return StationView{l,
+                       limits.geometry(k).kappa_n,
+                       upper_speed(l.sliding),
+                       upper_speed(l.tipover),
+                       upper_speed(l.contact),
+                       nullptr};
+  });
 }
 
 bool same_speed_limits(const LimitProfile& a, const LimitProfile& b) {

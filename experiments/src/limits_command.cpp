@@ -17,6 +17,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/path_csv.hpp"
+#include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
@@ -77,34 +78,16 @@ nlohmann::json limits(const LimitsRequest& request) {
                                                 : default_station_count(terrain_path.planar_length);
   const VelocityLimits limits(vehicle, path, stations);
 
-  // The CSV, and the summary on the way.
   std::string csv = kLimitsCsvHeader;
   csv += '\n';
-  std::map<std::string, std::size_t> binding_counts;
-  for (const Constraint c : {Constraint::kSliding, Constraint::kTipover, Constraint::kContact,
-                             Constraint::kMaxSpeed, Constraint::kNone}) {
-    binding_counts[std::string(to_string(c))] = 0;
-  }
-  double min_v_max = std::numeric_limits<double>::infinity();
-  double min_v_max_s = 0.0;
-  std::size_t untraversable = 0;
   for (std::size_t k = 0; k < limits.size(); ++k) {
     const PathFrame& f = limits.frame(k);
     const SpeedLimits& l = limits.limits(k);
-    const double v_max = l.traversable ? l.v_max : 0.0;
-    const double v_min = l.traversable ? l.v_min : 0.0;
-    const std::string binding(to_string(l.upper_binding));
-    ++binding_counts[binding];
-    if (!l.traversable) ++untraversable;
-    if (v_max < min_v_max) {
-      min_v_max = v_max;
-      min_v_max_s = f.s;
-    }
-    for (const double value : {f.s, f.point.x(), f.point.y(), f.point.z(), v_min, v_max}) {
+    for (const double value : {f.s, f.point.x(), f.point.y(), f.point.z(), l.v_min, l.v_max}) {
       append_csv_number(csv, value);
       csv += ',';
     }
-    csv += binding;
+    csv += to_string(l.upper_binding);
     for (const double value : {f.k_t, f.k_q, f.k_r, f.kappa_n, f.kappa_g}) {
       csv += ',';
       append_csv_number(csv, value);
@@ -114,14 +97,25 @@ nlohmann::json limits(const LimitsRequest& request) {
 
   write_text_file(request.output, csv);
 
+  // An untraversable station has v_min = v_max = 0 (SpeedLimits).
+  const LimitSummary sum = summarise_limits(limits);
+  std::map<std::string, std::size_t> binding_counts;
+  for (std::size_t c = 0; c < kConstraintCount; ++c) {
+    const auto constraint = static_cast<Constraint>(c);
+    const bool always = constraint == Constraint::kSliding || constraint == Constraint::kTipover ||
+                        constraint == Constraint::kContact || constraint == Constraint::kMaxSpeed ||
+                        constraint == Constraint::kNone;
+    if (always || sum.upper_count(constraint) > 0)
+      binding_counts[std::string(to_string(constraint))] = sum.upper_count(constraint);
+  }
+  const bool bounded = !std::isinf(sum.min_v_max);
   nlohmann::json summary;
   summary["stations"] = limits.size();
   summary["length_m"] = path.length();
-  summary["min_v_max"] =
-      std::isinf(min_v_max) ? nlohmann::json(nullptr) : nlohmann::json(min_v_max);
+  summary["min_v_max"] = bounded ? nlohmann::json(sum.min_v_max) : nlohmann::json(nullptr);
   summary["min_v_max_s"] =
-      std::isinf(min_v_max) ? nlohmann::json(nullptr) : nlohmann::json(min_v_max_s);
-  summary["untraversable_stations"] = untraversable;
+      bounded ? nlohmann::json(limits.frame(sum.min_index).s) : nlohmann::json(nullptr);
+  summary["untraversable_stations"] = sum.untraversable;
   summary["binding_counts"] = binding_counts;
   summary["fit"] = request.smoothing ? "smoothing" : "interpolating";
   summary["smoothing"] =

@@ -115,6 +115,10 @@ struct LimitSummary {
 
 /// Summary of `stations` (in order along the path).
 LimitSummary summarise_limits(const std::vector<LimitStation>& stations);
+/// Summary of the stations of `limits` without copying them (no
+/// acceleration bounds: every station counts in accel_infeasible); the same
+/// speed-limit figures as summarise_limits(limit_profile(limits).stations).
+LimitSummary summarise_limits(const VelocityLimits& limits);
 
 /// Whether two profiles of the same stations have exactly equal v_max and
 /// v_min at every station (false if the station counts differ).

@@ -19,8 +19,8 @@ namespace {
 
 namespace ex = talus::experiments;
 
-const ex::HaitScenario& scenario() {
-  static const ex::HaitScenario s = ex::hait_heuristics_scenario(false);
+const talus::HaitScenario& scenario() {
+  static const talus::HaitScenario s = talus::hait_heuristics_scenario(false);
   return s;
 }
 const talus::RuledTerrain& terrain() {
@@ -53,7 +53,7 @@ const std::vector<talus::SE2Pose>& configurations() {
 
 /// Manual time = the planner's own search_seconds (preprocessing excluded).
 void BM_HaitSearchPotentialRs(benchmark::State& state) {
-  const ex::HaitScenario& s = scenario();
+  const talus::HaitScenario& s = scenario();
   talus::HaitOptions options;
   options.heuristic = talus::HaitHeuristic::kPotentialRs;
   talus::HaitResult r;

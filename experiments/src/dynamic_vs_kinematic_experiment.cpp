@@ -16,12 +16,13 @@
 #include "report.hpp"
 #include "stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
-#include "talus/bspline/curve_fit.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
+#include "talus/kinematic/driving_pieces.hpp"
 #include "talus/optimal/planner.hpp"
+#include "talus/optimal/polyline_travel_time.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -40,20 +41,6 @@ Vehicle matched_vehicle() {
   v.max_accel = 1.0;
   v.max_decel = 1.0;
   return v;
-}
-
-/// Rest-to-rest time-optimal travel time along a clamped cubic fitted to
-/// `polyline` (kInf if infeasible or degenerate).
-double piece_time(const BPatch& surface, const Vehicle& vehicle, const std::vector<Vec2>& polyline,
-                  TimeOptimalProfileSolver& solver) {
-  double length = 0.0;
-  for (std::size_t k = 1; k < polyline.size(); ++k)
-    length += (polyline[k] - polyline[k - 1]).norm();
-  if (length < 1e-6) return 0.0;
-  const auto m = static_cast<std::size_t>(std::clamp(std::ceil(length), 4.0, 48.0));
-  const Curve2 curve = fit_clamped_cubic(
-      resample_polyline(polyline, std::max<std::size_t>(10 * m, polyline.size())), m);
-  return evaluate_trajectory(surface, vehicle, curve, TrajectoryOptions{}, &solver).travel_time();
 }
 
 struct Row {
@@ -81,25 +68,10 @@ Row compare(const std::string& name, const HaitScenario& s, const BaselinePlanne
   for (const SE2Pose& q : kr.path) row.kinematic_path.push_back({q, {}});
   row.kinematic_length = kr.length_m;
   row.kinematic_time = 0.0;
-  std::vector<Vec2> piece{kr.path.front().position()};
-  int direction = 0;
-  const auto flush = [&] {
-    row.kinematic_time += piece_time(surface, vehicle, piece, solver);
+  for (const DrivingPiece& piece : split_at_cusps(kr.path)) {
+    row.kinematic_time += polyline_travel_time(surface, vehicle, piece.points, {}, &solver);
     ++row.pieces;
-  };
-  for (std::size_t k = 1; k < kr.path.size(); ++k) {
-    const SE2Pose& q = kr.path[k];
-    const double along =
-        (q.position() - kr.path[k - 1].position()).dot(Vec2(std::cos(q.theta), std::sin(q.theta)));
-    const int v = along > 0.0 ? 1 : (along < 0.0 ? -1 : direction);
-    if (direction != 0 && v != direction) {  // a cusp: stop, then drive the other way
-      flush();
-      piece = {piece.back()};
-    }
-    direction = v;
-    piece.push_back(q.position());
   }
-  flush();
 
   // Talus: global minimum-time search, then the local optimiser (Ipopt).
   PlannerOptions options;

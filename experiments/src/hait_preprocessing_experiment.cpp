@@ -18,6 +18,7 @@
 #include "report.hpp"
 #include "stopwatch.hpp"
 #include "talus/core/ruled_terrain.hpp"
+#include "talus/core/sample_statistics.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 #include "talus/kinematic/hait/potential_bitmap.hpp"
@@ -36,23 +37,6 @@ struct Sample {
   double total() const { return validity_seconds + bitmap_seconds; }
   double nodes() const { return static_cast<double>(n * n); }
 };
-
-/// Least-squares slope of log y against log x.
-double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  double mx = 0, my = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    mx += std::log(x[k]);
-    my += std::log(y[k]);
-  }
-  mx /= static_cast<double>(x.size());
-  my /= static_cast<double>(x.size());
-  double sxy = 0, sxx = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    sxy += (std::log(x[k]) - mx) * (std::log(y[k]) - my);
-    sxx += (std::log(x[k]) - mx) * (std::log(x[k]) - mx);
-  }
-  return sxy / sxx;
-}
 
 Sample measure(const std::string& sweep, const Robot& robot, std::size_t n, double spacing,
                int repeats) {
@@ -149,7 +133,7 @@ void run_hait_preprocessing(const ExperimentContext& context) {
       x.push_back(against_resolution ? 1.0 / s.spacing : s.nodes());
       y.push_back(s.total());
     }
-    return loglog_slope(x, y);
+    return power_law_exponent(x, y);
   };
   std::vector<double> sx, sy;
   for (const auto& [k, t] : slices) {
@@ -159,7 +143,7 @@ void run_hait_preprocessing(const ExperimentContext& context) {
   const double size_exponent = slope("size", false);
   const double area_exponent = slope("area", true);
   const double points_exponent = slope("points", true);
-  const double slices_exponent = loglog_slope(sx, sy);
+  const double slices_exponent = power_law_exponent(sx, sy);
 
   const std::filesystem::path dat = context.output_dir / "preprocessing.dat";
   std::ofstream out = open_output_file(dat);

@@ -25,19 +25,6 @@ constexpr double kRho = 0.3;                                     // [m], the pap
 constexpr double kDeltaTheta = 40.0 * std::numbers::pi / 180.0;  // the paper's Δθ
 constexpr double kDeltaZ = 0.02;                                 // [m], our δz
 
-/// Where the path crosses the ridge line x = gorge.x: the y of its first
-/// crossing, or NaN if it never crosses.
-double crossing_y(const std::vector<PathPoint>& path, double x) {
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    const double a = path[k - 1].pose.x - x, b = path[k].pose.x - x;
-    if ((a <= 0.0) != (b <= 0.0)) {
-      const double t = a / (a - b);
-      return path[k - 1].pose.y + t * (path[k].pose.y - path[k - 1].pose.y);
-    }
-  }
-  return std::nan("");
-}
-
 }  // namespace
 
 void run_hait_uncertainty(const ExperimentContext& context) {
@@ -58,7 +45,7 @@ void run_hait_uncertainty(const ExperimentContext& context) {
                                                                {"uncertain", uncertain}};
 
   std::vector<HaitResult> results;
-  std::vector<double> crossings;
+  std::vector<bool> through;
   std::string csv =
       "case,status,preprocessing_seconds,search_seconds,nodes_created,nodes_developed,"
       "placements,length_m,crosses_ridge_at_y,through_gorge\n";
@@ -68,9 +55,9 @@ void run_hait_uncertainty(const ExperimentContext& context) {
     if (r.status != HaitStatus::kFound) {
       throw SolverError("hait-uncertainty: the " + name + " planner found no path: " + r.message);
     }
-    const double y = crossing_y(r.path, scenario.gorge.x());
-    crossings.push_back(y);
-    const bool gorge = std::isfinite(y) && y < scenario.ridge_end_y;
+    const double y = first_crossing_y(r.path, scenario.gorge.x());
+    const bool gorge = passes_through_gorge(r.path, scenario);
+    through.push_back(gorge);
     csv += name + "," + status_name(r.status) + "," + csv_number(r.preprocessing_seconds) + "," +
            csv_number(r.search_seconds) + "," + std::to_string(r.nodes_created) + "," +
            std::to_string(r.nodes_developed) + "," + std::to_string(r.placements) + "," +
@@ -88,12 +75,9 @@ void run_hait_uncertainty(const ExperimentContext& context) {
   render_hait_map(context.output_dir, "uncertainty", scenario, routes,
                   "hait-uncertainty: a ridge with a gorge, planned with and without uncertainty");
 
-  const auto through = [&](std::size_t k) {
-    return std::isfinite(crossings[k]) && crossings[k] < scenario.ridge_end_y;
-  };
   const double ratio = results[1].preprocessing_seconds / results[0].preprocessing_seconds;
   const auto route = [&](std::size_t k) {
-    return through(k) ? "through the gorge" : "round the ridge";
+    return through[k] ? "through the gorge" : "round the ridge";
   };
   Report report("hait-uncertainty: planning with uncertainty (Haït, Siméon, Taïx 2002, §5.4)");
   report.paragraph(

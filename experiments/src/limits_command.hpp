@@ -11,6 +11,7 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
+#include "talus/bspline/surface_path_from_points.hpp"
 
 namespace talus::experiments {
 
@@ -44,22 +45,11 @@ std::size_t default_station_count(double planar_length);
 void check_path_options(const std::optional<long long>& stations,
                         const std::optional<double>& smoothing, const std::string& output);
 
-/// A path on a terrain as `talus limits` and `talus profile` build it. Both
-/// objects live on the heap: the path refers to the surface, and a
-/// SurfacePath must not be moved or copied (its arc-length table refers to
-/// its own curve).
-struct TerrainPath {
-  std::unique_ptr<const BPatch> surface;
-  std::unique_ptr<const SurfacePath> path;  ///< lifted onto *surface
-  double planar_length = 0.0;               ///< the way points' polyline (straight segments) [m]
-};
-
 /// Reads the way points of `path_file` (read_path_csv) and the terrain grid,
 /// fits the B-patch (interpolating, or the smoothing fit with lambda
 /// `smoothing`), and lifts the interpolating cubic B-spline through the way
-/// points (chord-length parameters) onto it. Way points off the domain or on
-/// NODATA, and a spline that leaves the domain, are InputErrors naming the
-/// point, file and line.
+/// points (chord-length parameters) onto it: surface_path_from_points, whose
+/// InputErrors name the point, file and line.
 TerrainPath build_terrain_path(const std::string& terrain_file, const std::string& path_file,
                                const std::optional<double>& smoothing);
 

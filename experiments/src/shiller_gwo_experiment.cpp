@@ -16,6 +16,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/terrain_generators.hpp"
+#include "talus/optimal/local_stage_summary.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -76,6 +77,7 @@ struct Run {
   double seconds(const char* stage) const { return number(outcome.summary.at("seconds"), stage); }
   double travel_time() const { return finite_or_nan(result().travel_time()); }
   double global_travel_time() const { return finite_or_nan(result().global_travel_time()); }
+  LocalStageSummary local() const { return summarise_local_stage(result()); }
 };
 
 Run run_plan(const Case& c, const std::string& vehicle, const std::string& solver,
@@ -93,16 +95,6 @@ Run run_plan(const Case& c, const std::string& vehicle, const std::string& solve
   return {c.name, solver, control_points, plan(request)};
 }
 
-/// Sum over the optimised candidates of a solver diagnostic.
-template <typename Field>
-double total(const Run& run, Field field) {
-  double sum = 0.0;
-  for (const CandidateOutcome& c : run.result().candidates) {
-    if (c.optimization) sum += static_cast<double>(field(*c.optimization));
-  }
-  return sum;
-}
-
 double optimality(const CandidateOutcome& c) {
   return c.optimization ? c.optimization->optimality : NAN;
 }
@@ -110,16 +102,6 @@ double optimality(const CandidateOutcome& c) {
 /// Two significant digits, or "-" for a missing value.
 std::string scientific(double value) {
   return std::isfinite(value) ? fmt("%.1e", value) : "-";
-}
-
-/// Largest per-candidate optimality [s/m]; NaN when no candidate has one.
-double worst_optimality(const Run& run) {
-  double value = NAN;
-  for (const CandidateOutcome& c : run.result().candidates) {
-    const double v = optimality(c);
-    if (std::isfinite(v) && !(v <= value)) value = v;
-  }
-  return value;
 }
 
 void draw_solver_figure(const fs::path& dir, const std::vector<std::string>& solvers) {
@@ -206,12 +188,10 @@ void run_shiller_gwo(const ExperimentContext& context) {
             << csv_number(r.global_travel_time()) << ","
             << csv_number(r.result().improvement_percent()) << "," << csv_number(r.seconds("local"))
             << "," << csv_number(r.seconds("total")) << ","
-            << csv_number(total(r, [](const OptimizedPath& o) { return o.evaluations; })) << ","
-            << csv_number(total(r, [](const OptimizedPath& o) { return o.iterations; })) << ","
-            << csv_number(worst_optimality(r)) << ","
-            << csv_number(
-                   total(r, [](const OptimizedPath& o) { return o.finite_difference_fallbacks; }))
-            << "\n";
+            << csv_number(static_cast<double>(r.local().evaluations)) << ","
+            << csv_number(static_cast<double>(r.local().iterations)) << ","
+            << csv_number(r.local().worst_optimality) << ","
+            << csv_number(static_cast<double>(r.local().finite_difference_fallbacks)) << "\n";
   };
   for (const Run& r : runs) add_row(r);
   for (const Run& r : study) add_row(r);
@@ -234,8 +214,8 @@ void run_shiller_gwo(const ExperimentContext& context) {
       solver_table.row({r.solver, fmt("%.2f", r.travel_time()), fmt("%.2f", r.global_travel_time()),
                         fmt("%.2f %%", r.result().improvement_percent()),
                         fmt("%.2f", r.seconds("local")), fmt("%.2f", r.seconds("total")),
-                        fmt("%.0f", total(r, [](const OptimizedPath& o) { return o.evaluations; })),
-                        scientific(worst_optimality(r))});
+                        fmt("%.0f", static_cast<double>(r.local().evaluations)),
+                        scientific(r.local().worst_optimality)});
       solver_csv << "," << csv_number(r.result().improvement_percent()) << ","
                  << csv_number(r.seconds("local")) << "," << csv_number(r.travel_time());
     }

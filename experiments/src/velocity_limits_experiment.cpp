@@ -1,7 +1,6 @@
 #include "velocity_limits_experiment.hpp"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -27,6 +26,7 @@
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
+#include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
@@ -125,147 +125,26 @@ const ConstraintStyle& style(Constraint c) {
   return kStyles[std::size(kStyles) - 1];
 }
 
-constexpr std::size_t kConstraintCount = 8;  // enumerators of talus::Constraint
-std::size_t index_of(Constraint c) {
-  return static_cast<std::size_t>(c);
-}
-
 // ---------------------------------------------------------------------------
-// Per-station results.
-
-struct Station {
-  double s = 0.0;
-  Vec3 point = Vec3::Zero();
-  StationGeometry g;
-  SpeedLimits limits;
-  /// Each constraint's own speed limits [m/s]: upper ∞ where unbounded, 0
-  /// where the constraint's interval is empty (no speed satisfies it).
-  double v_sliding = 0.0, v_tipover = 0.0, v_contact = 0.0;
-  double v_sliding_min = 0.0, v_tipover_min = 0.0;
-  double accel_speed = 0.0;  ///< where the acceleration bounds were evaluated [m/s]
-  AccelerationBounds accel;
-};
-
-double upper_speed(const SquaredSpeedInterval& interval) {
-  return interval.empty() ? 0.0 : std::sqrt(interval.upper);  // sqrt(∞) = ∞
-}
-double lower_speed(const SquaredSpeedInterval& interval) {
-  return interval.empty() ? 0.0 : std::sqrt(interval.lower);
-}
-
-struct Summary {
-  double min_v_max = 0.0, median_v_max = 0.0;
-  std::size_t min_index = 0;
-  std::array<std::size_t, kConstraintCount> upper_counts{};  ///< by upper_binding
-  std::size_t untraversable = 0;
-  std::size_t lower_bound_stations = 0;  ///< v_min > 0
-  double max_v_min = 0.0;
-  std::size_t pitch_stations = 0;    ///< an acceleration bound set by pitch-over
-  std::size_t dips = 0;              ///< strict local minima of v_max(s)
-  std::size_t sliding_on_crest = 0;  ///< v_max set by sliding where κ_n < 0
-  std::size_t accel_infeasible = 0;
-  double median_a_max = 0.0, median_a_min = 0.0;
-  /// Smallest value of each constraint's own limit (for the "above the clip" note).
-  double min_v_sliding = 0.0, min_v_tipover = 0.0, min_v_contact = 0.0;
-};
+// Per-vehicle results.
 
 struct VehicleRun {
   VehicleSpec spec;
-  std::vector<Station> stations;
-  Summary summary;
+  LimitProfile profile;  ///< of spec.vehicle
+  LimitSummary summary;
 };
-
-double median(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto mid = values.begin() + static_cast<long>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
-}
 
 /// Speed limits of one vehicle along the path, and each constraint's own limits.
 VehicleRun run_vehicle(const VehicleSpec& spec, const SurfacePath& path, std::size_t stations) {
-  const VelocityLimits limits(spec.vehicle, path, stations);
-  VehicleRun run{spec, std::vector<Station>(limits.size()), {}};
-  for (std::size_t k = 0; k < limits.size(); ++k) {
-    Station& st = run.stations[k];
-    st.s = limits.frame(k).s;
-    st.point = limits.frame(k).point;
-    st.g = limits.geometry(k);
-    st.limits = limits.limits(k);
-    st.v_sliding = upper_speed(st.limits.sliding);
-    st.v_tipover = upper_speed(st.limits.tipover);
-    st.v_contact = upper_speed(st.limits.contact);
-    st.v_sliding_min = lower_speed(st.limits.sliding);
-    st.v_tipover_min = lower_speed(st.limits.tipover);
-  }
-  return run;
+  return {spec, limit_profile(spec.vehicle, path, stations), {}};
 }
 
 /// Acceleration bounds of every vehicle in `runs` (same path, same stations)
-/// at one common speed per station: kAccelSpeedFraction × the smallest v_max
-/// of the group there, raised to the largest v_min. A common speed makes the
-/// curves comparable: the lateral load, and with it the friction left for
-/// s̈, is then the same for all vehicles, so what differs is only the
-/// acceleration constraints themselves (pitch-over). v_max <= max_speed, so
-/// the speed is capped at the max speed already. Stations where some vehicle
-/// cannot pass are evaluated at standstill.
+/// at one common speed per station (evaluate_common_accelerations).
 void evaluate_accelerations(std::vector<VehicleRun>& runs) {
-  if (runs.empty()) return;
-  for (std::size_t k = 0; k < runs.front().stations.size(); ++k) {
-    double v_max = std::numeric_limits<double>::infinity(), v_min = 0.0;
-    for (const VehicleRun& run : runs) {
-      v_max = std::min(v_max, run.stations[k].limits.v_max);
-      v_min = std::max(v_min, run.stations[k].limits.v_min);
-    }
-    const double speed = std::max(kAccelSpeedFraction * v_max, std::min(v_min, v_max));
-    for (VehicleRun& run : runs) {
-      Station& st = run.stations[k];
-      st.accel_speed = speed;
-      st.accel = acceleration_bounds(run.spec.vehicle, st.g, speed);
-    }
-  }
-}
-
-void summarise(VehicleRun& run) {
-  Summary& sum = run.summary;
-  std::vector<double> v_max, a_max, a_min;
-  sum.min_v_max = std::numeric_limits<double>::infinity();
-  sum.min_v_sliding = sum.min_v_tipover = sum.min_v_contact =
-      std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < run.stations.size(); ++k) {
-    const Station& st = run.stations[k];
-    v_max.push_back(st.limits.v_max);
-    if (st.limits.v_max < sum.min_v_max) {
-      sum.min_v_max = st.limits.v_max;
-      sum.min_index = k;
-    }
-    // Strict local minima below the max speed: the "dips" of v_max(s).
-    if (k > 0 && k + 1 < run.stations.size() &&
-        st.limits.v_max < run.stations[k - 1].limits.v_max &&
-        st.limits.v_max < run.stations[k + 1].limits.v_max)
-      ++sum.dips;
-    ++sum.upper_counts[index_of(st.limits.upper_binding)];
-    if (!st.limits.traversable) ++sum.untraversable;
-    if (st.limits.v_min > 0.0) ++sum.lower_bound_stations;
-    if (st.limits.upper_binding == Constraint::kSliding && st.g.kappa_n < 0.0)
-      ++sum.sliding_on_crest;
-    sum.max_v_min = std::max(sum.max_v_min, st.limits.v_min);
-    sum.min_v_sliding = std::min(sum.min_v_sliding, st.v_sliding);
-    sum.min_v_tipover = std::min(sum.min_v_tipover, st.v_tipover);
-    sum.min_v_contact = std::min(sum.min_v_contact, st.v_contact);
-    if (!st.accel.feasible) {
-      ++sum.accel_infeasible;
-      continue;
-    }
-    if (st.accel.upper_binding == Constraint::kPitchover ||
-        st.accel.lower_binding == Constraint::kPitchover)
-      ++sum.pitch_stations;
-    a_max.push_back(st.accel.a_max);
-    a_min.push_back(st.accel.a_min);
-  }
-  sum.median_v_max = median(v_max);
-  sum.median_a_max = median(a_max);
-  sum.median_a_min = median(a_min);
+  std::vector<LimitProfile*> group;
+  for (VehicleRun& run : runs) group.push_back(&run.profile);
+  evaluate_common_accelerations(group, kAccelSpeedFraction);
 }
 
 // ---------------------------------------------------------------------------
@@ -297,7 +176,7 @@ void write_vehicle_csv(const VehicleRun& run, const fs::path& file) {
   out << "s,x,y,z,v_max,v_min,binding,v_sliding,v_tipover,v_contact,a_min,a_max,k_t,k_q,k_r,"
          "kappa_n,kappa_g\n";
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (const Station& st : run.stations) {
+  for (const LimitStation& st : run.profile.stations) {
     const bool a_ok = st.accel.feasible;
     out << csv_number(st.s, 9) << ',' << csv_number(st.point.x(), 10) << ','
         << csv_number(st.point.y(), 10) << ',' << csv_number(st.point.z(), 9) << ','
@@ -305,8 +184,9 @@ void write_vehicle_csv(const VehicleRun& run, const fs::path& file) {
         << to_string(st.limits.upper_binding) << ',' << csv_number(st.v_sliding) << ','
         << csv_number(st.v_tipover) << ',' << csv_number(st.v_contact) << ','
         << csv_number(a_ok ? st.accel.a_min : nan) << ',' << csv_number(a_ok ? st.accel.a_max : nan)
-        << ',' << csv_number(st.g.k_t) << ',' << csv_number(st.g.k_q) << ',' << csv_number(st.g.k_r)
-        << ',' << csv_number(st.g.kappa_n) << ',' << csv_number(st.g.kappa_g) << '\n';
+        << ',' << csv_number(st.geometry.k_t) << ',' << csv_number(st.geometry.k_q) << ','
+        << csv_number(st.geometry.k_r) << ',' << csv_number(st.geometry.kappa_n) << ','
+        << csv_number(st.geometry.kappa_g) << '\n';
   }
   close_output_file(out, file);
 }
@@ -325,9 +205,9 @@ void write_acceleration_csv(const CaseResult& c, const fs::path& file) {
   out << '\n';
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t k = 0; k < c.stations; ++k) {
-    out << csv_number(c.runs.front().stations[k].s, 9);
+    out << csv_number(c.runs.front().profile.stations[k].s, 9);
     for (const VehicleRun& run : c.runs) {
-      const Station& st = run.stations[k];
+      const LimitStation& st = run.profile.stations[k];
       const bool ok = st.accel.feasible;
       out << ',' << csv_number(st.accel_speed) << ',' << csv_number(ok ? st.accel.a_min : nan)
           << ',' << csv_number(ok ? st.accel.a_max : nan) << ','
@@ -380,7 +260,7 @@ void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
       << "set key at graph 1.03, graph 1 left top vertical Left reverse samplen 2 spacing 1.1 "
          "font ',10'\n";
   for (const VehicleRun& run : c.runs) {
-    const Summary& sum = run.summary;
+    const LimitSummary& sum = run.summary;
     const std::string file = gnuplot_string(csv_name(c, run));
     const auto limit_title = [&](const char* name, double min_v) {
       std::string t = std::string(name) + " limit";
@@ -403,11 +283,11 @@ void draw_speed_limits(const CaseResult& c, const fs::path& out_dir) {
     gp << "     '' skip 1 using 1:5:(binding_colour(strcol(7))) with lines lw 2.5 lc rgb "
           "variable notitle";
     for (const ConstraintStyle& s : kStyles) {
-      const std::size_t count = sum.upper_counts[index_of(s.constraint)];
+      const std::size_t count = sum.upper_count(s.constraint);
       if (count == 0) continue;  // legend only for constraints that occur
       gp << ", \\\n     "
          << key_entry(s.colour, std::string("v_{max} set by ") + s.label + " (" +
-                                    percent(count, run.stations.size()) + ")");
+                                    percent(count, run.profile.stations.size()) + ")");
     }
     if (sum.untraversable > 0) {
       gp << ", \\\n     '' skip 1 using 1:($5 == 0 ? 0 : NaN) with points pt 2 ps 1.2 lc rgb "
@@ -455,7 +335,7 @@ void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
       << "set xzeroaxis lt 1 lc rgb '#808080'\n";
   // Top panel: vehicles 0 and 1 (point mass, rigid body).
   const Vehicle& rigid = c.runs[1].spec.vehicle;
-  const std::size_t rigid_pitch = c.runs[1].summary.pitch_stations;
+  const std::size_t rigid_pitch = c.runs[1].summary.accel_bound_stations(Constraint::kPitchover);
   gp << "set title "
      << gnuplot_string(
             "point mass vs rigid body (l/h = " + fmt("%g", rigid.half_wheelbase / rigid.cg_height) +
@@ -486,11 +366,7 @@ void draw_acceleration(const CaseResult& c, const fs::path& out_dir) {
        << "     '' skip 1 using 1:" << col(2, 1) << ":(binding_colour(strcol(" << col(2, 3)
        << "))) with lines lw 2.5 lc rgb variable notitle";
     for (const Constraint cst : {Constraint::kSliding, Constraint::kPitchover}) {
-      bool occurs = false;  // legend only for bindings that occur
-      for (const Station& st : tall.stations)
-        occurs |=
-            st.accel.feasible && (st.accel.upper_binding == cst || st.accel.lower_binding == cst);
-      if (!occurs) continue;
+      if (tall.summary.accel_bound_stations(cst) == 0) continue;  // legend only if it occurs
       gp << ", \\\n     "
          << key_entry(style(cst).colour, std::string("bound set by ") + style(cst).label);
     }
@@ -517,7 +393,7 @@ void draw_map(const CaseResult& c, const BPatch& patch, const fs::path& out_dir,
   std::ofstream path = open_output_file(path_file);
   path << "# " << c.label << ": path stations; x - x_min [m], y - y_min [m], v_max of the "
        << run.spec.label << " [m/s], 1 if untraversable\n";
-  for (const Station& st : run.stations) {
+  for (const LimitStation& st : run.profile.stations) {
     path << offset_row(st.point.head<2>(), origin) << ' ' << csv_number(st.limits.v_max) << ' '
          << (st.limits.traversable ? 0 : 1) << '\n';
   }
@@ -570,7 +446,7 @@ CaseResult process_case(const TerrainCase& tc, const std::vector<VehicleSpec>& v
   c.length = path.length();
   for (const VehicleSpec& spec : vehicles) c.runs.push_back(run_vehicle(spec, path, stations));
   evaluate_accelerations(c.runs);
-  for (VehicleRun& run : c.runs) summarise(run);
+  for (VehicleRun& run : c.runs) run.summary = summarise_limits(run.profile.stations);
   c.compute_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
   // Control run: the same path on the smoothing fit, point mass only. The DEM
@@ -583,7 +459,7 @@ CaseResult process_case(const TerrainCase& tc, const std::vector<VehicleSpec>& v
   const SurfacePath smooth_path(smooth_patch, curve);
   c.smoothed.push_back(run_vehicle(vehicles.front(), smooth_path, stations));
   evaluate_accelerations(c.smoothed);
-  summarise(c.smoothed.front());
+  c.smoothed.front().summary = summarise_limits(c.smoothed.front().profile.stations);
   c.smoothed_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
 
   for (const VehicleRun& run : c.runs) write_vehicle_csv(run, out_dir / csv_name(c, run));
@@ -605,18 +481,16 @@ void write_summary_csv(const std::vector<CaseResult>& cases, const fs::path& fil
          "pitchover_accel_stations,median_a_min,median_a_max\n";
   for (const CaseResult& c : cases)
     for (const VehicleRun& run : c.runs) {
-      const Summary& s = run.summary;
-      const double n = static_cast<double>(run.stations.size());
-      const auto share = [&](Constraint cst) {
-        return csv_number(static_cast<double>(s.upper_counts[index_of(cst)]) / n, 5);
-      };
-      csv << c.name << ',' << run.spec.name << ',' << run.stations.size() << ','
+      const LimitSummary& s = run.summary;
+      const auto share = [&](Constraint cst) { return csv_number(s.upper_share(cst), 5); };
+      csv << c.name << ',' << run.spec.name << ',' << run.profile.stations.size() << ','
           << csv_number(c.length, 8) << ',' << csv_number(s.min_v_max, 5) << ','
           << csv_number(s.median_v_max, 5) << ',' << share(Constraint::kContact) << ','
           << share(Constraint::kSliding) << ',' << share(Constraint::kTipover) << ','
           << share(Constraint::kMaxSpeed) << ',' << s.untraversable << ',' << s.lower_bound_stations
-          << ',' << csv_number(s.max_v_min, 5) << ',' << s.pitch_stations << ','
-          << csv_number(s.median_a_min, 5) << ',' << csv_number(s.median_a_max, 5) << '\n';
+          << ',' << csv_number(s.max_v_min, 5) << ','
+          << s.accel_bound_stations(Constraint::kPitchover) << ',' << csv_number(s.median_a_min, 5)
+          << ',' << csv_number(s.median_a_max, 5) << '\n';
     }
   write_text_file(file, csv.str());
 }
@@ -628,11 +502,9 @@ std::string commentary(const CaseResult& dem, const CaseResult& rover) {
   const VehicleRun& tall = rover.runs[2];
   const VehicleRun& smooth = rover.smoothed.front();
   const Vehicle& v = pm.spec.vehicle;
-  const auto count = [](const VehicleRun& run, Constraint c) {
-    return run.summary.upper_counts[index_of(c)];
-  };
+  const auto count = [](const VehicleRun& run, Constraint c) { return run.summary.upper_count(c); };
   const auto share = [&](const VehicleRun& run, Constraint c) {
-    return percent(count(run, c), run.stations.size());
+    return percent(count(run, c), run.profile.stations.size());
   };
   std::ostringstream text;
 
@@ -646,11 +518,13 @@ std::string commentary(const CaseResult& dem, const CaseResult& rover) {
           "of metres. ";
 
   // 2. Rover scale: what binds, and why contact never shows.
-  const Station& worst = pm.stations[pm.summary.min_index];
+  const LimitStation& worst = pm.profile.stations[pm.summary.min_index];
   const double g = v.gravity;
-  const double crest_only = worst.g.kappa_n < 0.0 ? std::sqrt(g * worst.g.k_r / -worst.g.kappa_n)
-                                                  : std::numeric_limits<double>::infinity();
-  const double turn_only = std::sqrt(v.friction * g / std::max(std::abs(worst.g.kappa_g), 1e-300));
+  const double crest_only = worst.geometry.kappa_n < 0.0
+                                ? std::sqrt(g * worst.geometry.k_r / -worst.geometry.kappa_n)
+                                : std::numeric_limits<double>::infinity();
+  const double turn_only =
+      std::sqrt(v.friction * g / std::max(std::abs(worst.geometry.kappa_g), 1e-300));
   text << "At rover scale (1 m cells, curvatures × 25) the point mass's v_max is set by sliding at "
        << share(pm, Constraint::kSliding) << " of the stations and by the max speed at "
        << share(pm, Constraint::kMaxSpeed) << ", and by contact at only "
@@ -661,8 +535,8 @@ std::string commentary(const CaseResult& dem, const CaseResult& rover) {
        << percent(pm.summary.sliding_on_crest, count(pm, Constraint::kSliding))
        << " of the sliding-bound stations have κ_n < 0); the slowest station, "
        << sig3(pm.summary.min_v_max) << " m/s at s = " << sig3(worst.s)
-       << " m, is a crest (κ_n = " << sig3(worst.g.kappa_n) << " 1/m, contact alone "
-       << sig3(crest_only) << " m/s) in a turn (κ_g = " << sig3(worst.g.kappa_g)
+       << " m, is a crest (κ_n = " << sig3(worst.geometry.kappa_n) << " 1/m, contact alone "
+       << sig3(crest_only) << " m/s) in a turn (κ_g = " << sig3(worst.geometry.kappa_g)
        << " 1/m, √(μg/|κ_g|) = " << sig3(turn_only)
        << " m/s on flat ground), and the two together give the lower value. ";
 
@@ -682,13 +556,8 @@ std::string commentary(const CaseResult& dem, const CaseResult& rover) {
        << share(pm, Constraint::kSliding) << "). ";
 
   // 4. Rigid body vs point mass, and the tall vehicle.
-  bool same_limits = true, same_accel = true;
-  for (std::size_t k = 0; k < pm.stations.size(); ++k) {
-    same_limits &= pm.stations[k].limits.v_max == rb.stations[k].limits.v_max &&
-                   pm.stations[k].limits.v_min == rb.stations[k].limits.v_min;
-    same_accel &= pm.stations[k].accel.a_max == rb.stations[k].accel.a_max &&
-                  pm.stations[k].accel.a_min == rb.stations[k].accel.a_min;
-  }
+  const bool same_limits = same_speed_limits(pm.profile, rb.profile);
+  const bool same_accel = same_acceleration_bounds(pm.profile, rb.profile);
   const Vehicle& rv = rb.spec.vehicle;
   text << "The rigid body's speed limits are "
        << (same_limits ? "identical to the point mass's at every station" : "NOT identical")
@@ -697,7 +566,7 @@ std::string commentary(const CaseResult& dem, const CaseResult& rover) {
        << fmt("%g", rv.half_wheelbase / rv.cg_height) << " exceeds μ = " << fmt("%g", rv.friction)
        << " the friction ellipse is always the tighter bound, so its acceleration bounds are "
        << (same_accel ? "identical" : "NOT identical") << " too (pitch-over binds at "
-       << rb.summary.pitch_stations << " stations). ";
+       << rb.summary.accel_bound_stations(Constraint::kPitchover) << " stations). ";
   const Vehicle& tv = tall.spec.vehicle;
   text << "The tall narrow rigid body (b/h = " << fmt("%g", tv.half_track / tv.cg_height)
        << ", l/h = " << fmt("%g", tv.half_wheelbase / tv.cg_height)
@@ -707,7 +576,8 @@ std::string commentary(const CaseResult& dem, const CaseResult& rover) {
        << " sliding; median v_max " << sig3(tall.summary.median_v_max) << " vs "
        << sig3(pm.summary.median_v_max)
        << " m/s), and at the common evaluation speed pitch-over sets its acceleration bound at "
-       << percent(tall.summary.pitch_stations, tall.stations.size())
+       << percent(tall.summary.accel_bound_stations(Constraint::kPitchover),
+                  tall.profile.stations.size())
        << " of the stations (median a_max " << sig3(tall.summary.median_a_max) << " vs "
        << sig3(pm.summary.median_a_max) << " m/s² for the point mass).";
   return text.str();
@@ -800,10 +670,10 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
     for (const VehicleRun& run : c.runs) rows.push_back(&run);
     rows.push_back(&c.smoothed.front());
     for (const VehicleRun* row : rows) {
-      const Summary& s = row->summary;
-      const std::size_t n = row->stations.size();
+      const LimitSummary& s = row->summary;
+      const std::size_t n = row->profile.stations.size();
       const auto share = [&](Constraint constraint) {
-        return percent(s.upper_counts[index_of(constraint)], n);
+        return percent(s.upper_count(constraint), n);
       };
       table.row({"`" + row->spec.name + "`" +
                      (row == rows.back() ? " on the smoothing fit (control)" : ""),
@@ -812,7 +682,7 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
                  share(Constraint::kMaxSpeed), std::to_string(s.untraversable),
                  std::to_string(s.lower_bound_stations) +
                      (s.lower_bound_stations > 0 ? " (max " + sig3(s.max_v_min) + " m/s)" : ""),
-                 percent(s.pitch_stations, n),
+                 percent(s.accel_bound_stations(Constraint::kPitchover), n),
                  sig3(s.median_a_min) + " … " + sig3(s.median_a_max)});
     }
     report.heading("`" + c.name + "`: " + c.label, 3)

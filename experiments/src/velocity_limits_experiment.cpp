@@ -709,6 +709,36 @@ void write_report(const std::vector<CaseResult>& cases, const std::vector<Vehicl
 
 }  // namespace
 
+/// The headline numbers of summary.json, with a similarity check: the rover case is the DEM case
+/// with every length divided by 25, and the limits depend on the vehicle only through mu, b/h
+/// and l/h, so at every station each constraint's own limit (uncapped by the top speed) on the DEM
+/// is exactly sqrt(25) = 5 times the rover's (the interpolating fit is scale-free).
+void summarise(const std::vector<CaseResult>& cases, ExperimentSummary& summary) {
+  const CaseResult &dem = cases[0], &rover = cases[1];
+  summary.set("path_length_dem_m", dem.length, "m");
+  summary.set("path_length_rover_m", rover.length, "m");
+  for (const CaseResult* c : {&dem, &rover}) {
+    summary.set("min_v_max_point_mass_" + c->name + "_m_per_s",
+                c->runs.front().summary.min_v_max, "m/s");
+  }
+  double low = INFINITY, high = -INFINITY;
+  const auto& a = dem.runs.front().profile.stations;
+  const auto& b = rover.runs.front().profile.stations;
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+    for (const auto& [va, vb] : {std::pair(a[k].v_sliding, b[k].v_sliding),
+                                 std::pair(a[k].v_tipover, b[k].v_tipover),
+                                 std::pair(a[k].v_contact, b[k].v_contact)}) {
+      if (!std::isfinite(va) || !std::isfinite(vb) || !(vb > 0.0)) continue;
+      low = std::min(low, va / vb);
+      high = std::max(high, va / vb);
+    }
+  }
+  const std::string why = "5 = sqrt(25): lengths scale by 25, speed limits by its square root";
+  summary.set("dem_over_rover_v_max_min", low, "1", why);
+  summary.set("dem_over_rover_v_max_max", high, "1", why);
+  summary.set("dem_over_rover_length", dem.length / rover.length, "1", "25");
+}
+
 void run_velocity_limits(const ExperimentContext& context) {
   // Fail in a second, not after the computation, if the figures cannot be drawn.
   require_gnuplot();
@@ -730,6 +760,7 @@ void run_velocity_limits(const ExperimentContext& context) {
               << " s; point mass min v_max " << sig3(c.runs.front().summary.min_v_max) << " m/s\n";
   }
   write_summary_csv(cases, context.output_dir / "summary.csv");
+  summarise(cases, *context.summary);
   write_report(cases, vehicles, dem, context);
 }
 

@@ -68,6 +68,80 @@ TEST(BPatch, InterpolationReproducesBicubicPolynomialsWithDerivatives) {
   }
 }
 
+/// ∂^(p+q) bicubic / ∂x^p ∂y^q, term by term: x^a -> a!/(a-p)! x^(a-p).
+double bicubic_derivative(double x, double y, int p, int q) {
+  const double c[4][4] = {{1.0, -0.5, 0.2, 0.01},
+                          {0.3, 0.07, -0.02, 0.003},
+                          {-0.04, 0.01, 0.005, -0.001},
+                          {0.002, -0.0007, 0.0003, 0.0001}};
+  const auto falling = [](int a, int k) {
+    double f = 1.0;
+    for (int i = 0; i < k; ++i) f *= a - i;
+    return f;
+  };
+  double z = 0.0;
+  for (int a = p; a < 4; ++a)
+    for (int b = q; b < 4; ++b)
+      z += c[a][b] * falling(a, p) * falling(b, q) * std::pow(x, a - p) * std::pow(y, b - q);
+  return z;
+}
+
+TEST(BPatch, ThirdDerivativesOfAnInterpolatedBicubicAreTheAnalyticOnes) {
+  // Not-a-knot interpolation reproduces a bicubic polynomial exactly on the
+  // whole domain (file comment of bpatch.hpp), boundary cells included, so its
+  // third derivatives are the polynomial's. The 1e-11 allows the round-off of
+  // the interpolation solve amplified by the third differences of the control
+  // values and 1/h^3 = 8 (measured: 1.2e-13).
+  const ElevationGrid grid = sample(bicubic, 12, 9, 0.5);
+  const BPatch patch = BPatch::interpolate(grid);
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> ux(patch.x_min(), patch.x_max()),
+      uy(patch.y_min(), patch.y_max());
+  double scale = 0.0;
+  for (int k = 0; k < 300; ++k) {
+    const double x = ux(rng), y = uy(rng);
+    const Eigen::Vector4d d3 = patch.third_derivatives({x, y});
+    const double expected[4] = {bicubic_derivative(x, y, 3, 0), bicubic_derivative(x, y, 2, 1),
+                                bicubic_derivative(x, y, 1, 2), bicubic_derivative(x, y, 0, 3)};
+    for (int m = 0; m < 4; ++m) {
+      EXPECT_NEAR(d3[m], expected[m], 1e-11) << m << " at " << x << ", " << y;
+      scale = std::max(scale, std::abs(expected[m]));
+    }
+  }
+  EXPECT_GT(scale, 0.01);  // all four are exercised, not all ~0
+  EXPECT_THROW(patch.third_derivatives({patch.x_max() + 0.1, 0.0}), InputError);
+}
+
+TEST(BPatch, ThirdDerivativesAreExactDifferencesOfTheHessianWithinACell) {
+  // Inside one cell the surface is a bicubic polynomial, so z_xx is linear in
+  // x, z_xy quadratic in x and in y, z_yy linear in y: the central difference
+  // of the Hessian with a step that stays in the cell is exact for each third
+  // derivative (exact for polynomials of degree <= 2), on any surface. What is
+  // left is round-off, ~eps |H| / e with e = 1e-3 (measured: 5.6e-12).
+  const ElevationGrid grid = sample(
+      [](double x, double y) { return std::sin(1.3 * x) * std::cos(0.9 * y) + 0.05 * x * y * y; },
+      21, 17, 0.4);
+  const BPatch patch = BPatch::interpolate(grid);
+  std::mt19937_64 rng(29);
+  std::uniform_int_distribution<int> ci(0, 19), cj(0, 15);
+  std::uniform_real_distribution<double> frac(0.1, 0.9);
+  const double h = patch.cellsize(), e = 1e-3;
+  double scale = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    const Vec2 p(patch.x_min() + (ci(rng) + frac(rng)) * h,
+                 patch.y_min() + (cj(rng) + frac(rng)) * h);
+    const Eigen::Vector4d d3 = patch.third_derivatives(p);
+    const SurfacePoint px = patch.evaluate(p + Vec2(e, 0)), mx = patch.evaluate(p - Vec2(e, 0));
+    const SurfacePoint py = patch.evaluate(p + Vec2(0, e)), my = patch.evaluate(p - Vec2(0, e));
+    EXPECT_NEAR(d3[0], (px.hessian(0, 0) - mx.hessian(0, 0)) / (2 * e), 1e-10);
+    EXPECT_NEAR(d3[1], (px.hessian(0, 1) - mx.hessian(0, 1)) / (2 * e), 1e-10);
+    EXPECT_NEAR(d3[2], (py.hessian(0, 1) - my.hessian(0, 1)) / (2 * e), 1e-10);
+    EXPECT_NEAR(d3[3], (py.hessian(1, 1) - my.hessian(1, 1)) / (2 * e), 1e-10);
+    scale = std::max(scale, d3.cwiseAbs().maxCoeff());
+  }
+  EXPECT_GT(scale, 0.5);  // the surface has real third derivatives (~1.3^3)
+}
+
 TEST(BPatch, DerivativesMatchFiniteDifferencesOnARealDem) {
   const ElevationGrid grid = read_esri_ascii(std::string(TALUS_DATA_DIR) +
                                              "/terrain/west_bijou_escarpment_nasadem25m.asc");

@@ -48,9 +48,11 @@ TEST(GlobalSearch, AStarFindsTheSameCostAsTheFullFields) {
       0, 0, 80, 60, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
-  const GlobalSearchResult full = global_search(terrain, point_mass_rover(0.6), {5, 5}, {75, 55}, options);
+  const GlobalSearchResult full =
+      global_search(terrain, point_mass_rover(0.6), {5, 5}, {75, 55}, options);
   options.cost_fields = false;
-  const GlobalSearchResult astar = global_search(terrain, point_mass_rover(0.6), {5, 5}, {75, 55}, options);
+  const GlobalSearchResult astar =
+      global_search(terrain, point_mass_rover(0.6), {5, 5}, {75, 55}, options);
   ASSERT_EQ(full.status, GlobalSearchStatus::kOk);
   ASSERT_EQ(astar.status, GlobalSearchStatus::kOk);
   EXPECT_NEAR(astar.candidates[0].cost_seconds, full.candidates[0].cost_seconds, 1e-9);
@@ -91,7 +93,8 @@ TEST(GlobalSearch, HighFrictionCrossesTheHillLowFrictionGoesAround) {
     for (const Vec2& p : c.vertices) z = std::max(z, terrain.elevation(p));
     return z;
   };
-  const GlobalSearchResult grippy = global_search(terrain, point_mass_rover(1.5), {5, 30}, {75, 30}, options);
+  const GlobalSearchResult grippy =
+      global_search(terrain, point_mass_rover(1.5), {5, 30}, {75, 30}, options);
   ASSERT_EQ(grippy.status, GlobalSearchStatus::kOk) << grippy.message;
   EXPECT_GT(max_height_on(grippy.candidates[0]), 3.0);  // over the top
   const GlobalSearchResult slippery =
@@ -100,7 +103,8 @@ TEST(GlobalSearch, HighFrictionCrossesTheHillLowFrictionGoesAround) {
   EXPECT_LT(max_height_on(slippery.candidates[0]), 1.0);  // around it
   for (const GlobalSearchResult* r : {&grippy, &slippery}) {
     EXPECT_NEAR(
-        recomputed_cost(terrain, r == &grippy ? point_mass_rover(1.5) : point_mass_rover(0.25), r->candidates[0], 1.0),
+        recomputed_cost(terrain, r == &grippy ? point_mass_rover(1.5) : point_mass_rover(0.25),
+                        r->candidates[0], 1.0),
         r->candidates[0].cost_seconds, 1e-9 * r->candidates[0].cost_seconds);
   }
 }
@@ -109,7 +113,8 @@ TEST(GlobalSearch, SymmetricTerrainGivesTwoMirrorCandidatesOfEqualCost) {
   const BPatch terrain = hill(20.0, 6.0);  // far too steep to cross
   GlobalSearchOptions options;
   options.candidates = 2;
-  const GlobalSearchResult r = global_search(terrain, point_mass_rover(0.5), {5, 30}, {75, 30}, options);
+  const GlobalSearchResult r =
+      global_search(terrain, point_mass_rover(0.5), {5, 30}, {75, 30}, options);
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
   ASSERT_EQ(r.candidates.size(), 2u);
   EXPECT_NEAR(r.candidates[0].cost_seconds, r.candidates[1].cost_seconds,
@@ -137,7 +142,8 @@ TEST(GlobalSearch, RidgeWithOneGapIsCrossedThroughTheGap) {
       0, 0, 80, 60, 1.0));
   GlobalSearchOptions options;
   options.candidates = 1;
-  const GlobalSearchResult r = global_search(terrain, point_mass_rover(0.6), {10, 15}, {70, 15}, options);
+  const GlobalSearchResult r =
+      global_search(terrain, point_mass_rover(0.6), {10, 15}, {70, 15}, options);
   ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
   bool through_gap = false;
   for (const Vec2& p : r.candidates[0].vertices)
@@ -151,7 +157,8 @@ TEST(GlobalSearch, UnreachableGoalIsAStatusWithTheReachableRegion) {
       [](double x, double) { return 10.0 * std::exp(-(x - 40) * (x - 40) / 4.0); }, 0, 0, 80, 40,
       1.0));
   GlobalSearchOptions options;
-  const GlobalSearchResult r = global_search(terrain, point_mass_rover(0.5), {10, 20}, {70, 20}, options);
+  const GlobalSearchResult r =
+      global_search(terrain, point_mass_rover(0.5), {10, 20}, {70, 20}, options);
   EXPECT_EQ(r.status, GlobalSearchStatus::kUnreachable);
   EXPECT_NE(r.message.find("unreachable"), std::string::npos) << r.message;
   EXPECT_GT(r.reachable_nodes, 0u);
@@ -175,6 +182,220 @@ TEST(GlobalSearch, BadInputIsAnInputError) {
       [](double x, double y) { return x < 20 ? 2.0 * y : 0.0; }, 0, 0, 40, 40, 1.0));
   GlobalSearchOptions ok;
   EXPECT_THROW(global_search(steep, point_mass_rover(0.5), {10, 20}, {35, 20}, ok), InputError);
+}
+
+// ---- Edge costs against closed forms -------------------------------------
+// On a plane z = p . (x, y) a straight edge is a straight 3-D segment of
+// length l sqrt(1 + (p . d)^2) (l its planar length, d its unit direction),
+// with no curvature, so the speed limits are speed-independent: v_max is the
+// max_speed cap wherever the point mass can stand at all, and
+// J = l sqrt(1 + (p . d)^2) / v_cap. Simpson's rule is exact on a constant
+// integrand, and not-a-knot interpolation reproduces a plane exactly, so
+// only round-off separates the two: 1e-12 relative.
+
+TEST(GlobalSearchEdgeCost, InclinedPlaneCostsItsSurfaceLengthAtTopSpeed) {
+  const double px = 0.3, py = -0.2;  // steepest slope 0.36 < mu = 0.7 < b/h = 1.2
+  const BPatch plane = BPatch::interpolate(grid_from_function(
+      [&](double x, double y) { return 2.0 + px * x + py * y; }, 0, 0, 30, 30, 1.0));
+  const Vehicle rover = point_mass_rover(0.7);
+  const Vec2 a(12.0, 14.0);
+  for (const Vec2& offset : {Vec2(1, 0), Vec2(0, 1), Vec2(1, 1), Vec2(-1, 2), Vec2(3, -1),
+                             Vec2(-2.5, -4.0), Vec2(7.3, 1.9)}) {
+    const Vec2 b = a + offset;
+    const double l = offset.norm(), slope = (px * offset.x() + py * offset.y()) / l;
+    const double length = l * std::sqrt(1.0 + slope * slope);
+    for (int stations : {3, 5, 9}) {
+      const EdgeCost c = edge_cost(plane, rover, a, b, stations);
+      EXPECT_NEAR(c.length, length, 1e-12 * length);
+      EXPECT_NEAR(c.forward, length / rover.max_speed, 1e-12 * length / rover.max_speed);
+      EXPECT_NEAR(c.backward, length / rover.max_speed, 1e-12 * length / rover.max_speed);
+    }
+  }
+}
+
+TEST(GlobalSearchEdgeCost, SideSlopeIsFreeBelowTheSlidingAndTipOverLimitsAndClosedAbove) {
+  // An edge along x across the side slope z = s y: level along the edge, a
+  // lateral slope angle atan s. The point mass stands still (a = 0) iff
+  // friction holds the lateral gravity component, s <= mu, and the normal
+  // force stays inside the track, s <= b/h (= 0.6 / 0.5 = 1.2). Below both,
+  // J = l / v_cap; above either, the edge is closed both ways.
+  struct Case {
+    double s, mu;
+    bool open;
+  };
+  for (const Case k : {Case{0.69, 0.7, true}, Case{0.71, 0.7, false},     // sliding binds at 0.7
+                       Case{1.19, 1.5, true}, Case{1.21, 1.5, false}}) {  // tip-over binds at 1.2
+    const BPatch slope = BPatch::interpolate(
+        grid_from_function([&](double, double y) { return k.s * y; }, 0, 0, 20, 20, 1.0));
+    const EdgeCost c = edge_cost(slope, point_mass_rover(k.mu), {5, 10}, {9, 10}, 5);
+    if (k.open) {
+      EXPECT_NEAR(c.length, 4.0, 1e-12 * 4.0) << k.s;
+      EXPECT_NEAR(c.forward, 0.4, 1e-12 * 0.4) << k.s << " " << k.mu;
+      EXPECT_NEAR(c.backward, 0.4, 1e-12 * 0.4) << k.s << " " << k.mu;
+    } else {
+      EXPECT_EQ(c.forward, INFINITY) << k.s << " " << k.mu;
+      EXPECT_EQ(c.backward, INFINITY) << k.s << " " << k.mu;
+    }
+  }
+}
+
+TEST(GlobalSearch, InclinedPlaneSearchCostIsTheStraightSurfaceLengthAtTopSpeed) {
+  // The 3-D length on a plane is a strictly convex norm of the planar
+  // displacement, so the straight lattice line is the unique best path when
+  // the lattice has its direction: here (2, 1), a knight move.
+  const double px = 0.3, py = -0.2;
+  const BPatch plane = BPatch::interpolate(
+      grid_from_function([&](double x, double y) { return px * x + py * y; }, 0, 0, 60, 40, 1.0));
+  GlobalSearchOptions options;
+  options.candidates = 1;
+  const Vec2 start(5, 5), goal(45, 25);
+  const GlobalSearchResult r = global_search(plane, point_mass_rover(), start, goal, options);
+  ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
+  const Vec2 d = goal - start;
+  const double slope = (px * d.x() + py * d.y()) / d.norm();
+  const double length = d.norm() * std::sqrt(1.0 + slope * slope);
+  EXPECT_NEAR(r.candidates[0].cost_seconds, length / 10.0, 1e-12 * length / 10.0);
+  EXPECT_NEAR(r.candidates[0].length_m, length, 1e-12 * length);
+}
+
+// ---- Options --------------------------------------------------------------
+
+TEST(GlobalSearch, ThirtyTwoNeighboursTakeTheOneThreeAndTwoThreeDirectionsStraight) {
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, 0, 0, 40, 50, 1.0));
+  GlobalSearchOptions options;
+  options.candidates = 1;
+  for (const Vec2& d : {Vec2(10, 30), Vec2(20, 30), Vec2(-30, 10), Vec2(30, -20)}) {
+    const Vec2 start = d.x() > 0 ? Vec2(3, d.y() > 0 ? 5 : 45) : Vec2(35, 5);
+    const Vec2 goal = start + d;
+    options.connectivity = 32;
+    const GlobalSearchResult r32 = global_search(flat, point_mass_rover(), start, goal, options);
+    ASSERT_EQ(r32.status, GlobalSearchStatus::kOk) << r32.message;
+    // Straight at 10 m/s: exact up to round-off.
+    EXPECT_NEAR(r32.candidates[0].cost_seconds, d.norm() / 10.0, 1e-12 * d.norm() / 10.0);
+    for (const Vec2& p : r32.candidates[0].vertices) {
+      const Vec2 q = p - start;  // every vertex on the line start -> goal
+      EXPECT_NEAR(q.x() * d.y() - q.y() * d.x(), 0.0, 1e-9);
+    }
+    // 16 neighbours have no (1, 3) or (2, 3) move: the best path bends, and the
+    // best lattice approximation of these directions costs >= 1 % more.
+    options.connectivity = 16;
+    const GlobalSearchResult r16 = global_search(flat, point_mass_rover(), start, goal, options);
+    EXPECT_GT(r16.candidates[0].cost_seconds, 1.01 * r32.candidates[0].cost_seconds);
+  }
+}
+
+TEST(GlobalSearch, FinerLatticeKeepsTheStraightLineCost) {
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 1.0; }, 0, 0, 60, 40, 1.0));
+  GlobalSearchOptions options;
+  options.candidates = 1;
+  std::size_t previous_nodes = 0;
+  for (double spacing : {2.0, 1.0, 0.5, 0.25}) {
+    options.lattice_spacing = spacing;
+    const GlobalSearchResult r =
+        global_search(flat, point_mass_rover(), {6, 20}, {54, 20}, options);
+    ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
+    EXPECT_EQ(r.spacing, spacing);
+    EXPECT_NEAR(r.candidates[0].cost_seconds, 48.0 / 10.0, 1e-12 * 4.8) << spacing;
+    // One vertex per lattice step along the line.
+    EXPECT_EQ(r.candidates[0].vertices.size(), static_cast<std::size_t>(48.0 / spacing) + 1);
+    if (previous_nodes > 0) {
+      EXPECT_GT(r.nodes, 3 * previous_nodes);  // about 4x per halving
+    }
+    previous_nodes = r.nodes;
+  }
+  // A (2, 1) diagonal on the half-spacing lattice is a knight move there too.
+  options.lattice_spacing = 0.5;
+  const GlobalSearchResult r = global_search(flat, point_mass_rover(), {6, 5}, {46, 25}, options);
+  EXPECT_NEAR(r.candidates[0].cost_seconds, std::hypot(40.0, 20.0) / 10.0,
+              1e-12 * std::hypot(40.0, 20.0) / 10.0);
+}
+
+/// Bumpy terrain with many near-equal routes, for the candidate options.
+BPatch bumps() {
+  return BPatch::interpolate(grid_from_function(
+      [](double x, double y) {
+        double z = 0.0;
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const double cx = 18.0 + 14.0 * i + 3.0 * (j % 2), cy = 12.0 + 16.0 * j;
+            z += 6.0 * std::exp(-((x - cx) * (x - cx) + (y - cy) * (y - cy)) / 18.0);
+          }
+        return z;
+      },
+      0, 0, 80, 60, 1.0));
+}
+
+/// Euclidean distance from p to the nearest vertex of c.
+double to_vertices(const Vec2& p, const CandidatePath& c) {
+  double d = INFINITY;
+  for (const Vec2& q : c.vertices) d = std::min(d, (p - q).norm());
+  return d;
+}
+
+TEST(GlobalSearch, CandidatesAreAtLeastTheSeparationApart) {
+  // The rule (options header): a candidate has a vertex >= d from every
+  // accepted one, and at most half its vertices within d / 2 of it, in
+  // chamfer distance. Chamfer (steps h, h sqrt 2) overestimates the Euclidean
+  // distance by at most sqrt(4 - 2 sqrt 2) = 1.0824 and never under-
+  // estimates it, so in Euclidean terms: farthest >= d / 1.0824, and at most
+  // half the vertices within d / (2 * 1.0824).
+  const BPatch terrain = bumps();
+  const Vehicle rover = point_mass_rover(0.3);
+  const double chamfer = std::sqrt(4.0 - 2.0 * std::sqrt(2.0));
+  GlobalSearchOptions options;
+  options.candidates = 5;
+  options.max_cost_ratio = 3.0;
+  for (double d : {6.0, 12.0}) {
+    options.distinctness = d;
+    const GlobalSearchResult r = global_search(terrain, rover, {3, 30}, {77, 30}, options);
+    ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
+    ASSERT_GE(r.candidates.size(), 3u) << d;  // the rule is exercised
+    for (std::size_t j = 1; j < r.candidates.size(); ++j) {
+      EXPECT_GE(r.candidates[j].cost_seconds, r.candidates[j - 1].cost_seconds);  // best first
+      EXPECT_NEAR(recomputed_cost(terrain, rover, r.candidates[j], 1.0),
+                  r.candidates[j].cost_seconds, 1e-9 * r.candidates[j].cost_seconds);
+      for (std::size_t i = 0; i < j; ++i) {
+        double farthest = 0.0;
+        std::size_t near = 0;
+        for (const Vec2& p : r.candidates[j].vertices) {
+          const double e = to_vertices(p, r.candidates[i]);
+          farthest = std::max(farthest, e);
+          near += e < d / (2.0 * chamfer);
+        }
+        EXPECT_GE(farthest, d / chamfer - 1e-6) << d << ": " << j << " vs " << i;
+        EXPECT_LE(2 * near, r.candidates[j].vertices.size()) << d << ": " << j << " vs " << i;
+      }
+    }
+  }
+}
+
+TEST(GlobalSearch, NoCandidateCostsMoreThanTheRatioTimesTheBest) {
+  const BPatch terrain = bumps();
+  const Vehicle rover = point_mass_rover(0.3);
+  GlobalSearchOptions options;
+  options.candidates = 6;
+  options.distinctness = 5.0;
+  options.max_cost_ratio = 3.0;
+  const GlobalSearchResult loose = global_search(terrain, rover, {3, 30}, {77, 30}, options);
+  ASSERT_EQ(loose.status, GlobalSearchStatus::kOk) << loose.message;
+  const double best = loose.candidates[0].cost_seconds;
+  // Non-vacuous: without a tight ratio some candidate costs over 1.02 x best.
+  ASSERT_GT(loose.candidates.back().cost_seconds, 1.02 * best);
+  for (double ratio : {1.02, 1.1}) {
+    options.max_cost_ratio = ratio;
+    const GlobalSearchResult r = global_search(terrain, rover, {3, 30}, {77, 30}, options);
+    ASSERT_EQ(r.status, GlobalSearchStatus::kOk);
+    ASSERT_FALSE(r.candidates.empty());
+    EXPECT_EQ(r.candidates[0].cost_seconds, best);  // the best does not depend on the ratio
+    for (const CandidatePath& c : r.candidates)
+      EXPECT_LE(c.cost_seconds, ratio * best * (1 + 1e-12)) << ratio;
+  }
+  // Ratio 1: only paths as good as the best.
+  options.max_cost_ratio = 1.0;
+  const GlobalSearchResult tight = global_search(terrain, rover, {3, 30}, {77, 30}, options);
+  for (const CandidatePath& c : tight.candidates) EXPECT_LE(c.cost_seconds, best * (1 + 1e-12));
 }
 
 TEST(GlobalSearch, SlopeSteeperThanFrictionCanBeNeitherClimbedNorDescended) {

@@ -75,6 +75,127 @@ TEST(ReedsShepp, QuarterTurnIsOneArc) {
   EXPECT_EQ(segs[0].control, (Control{1, 1}));
 }
 
+// Lower bounds used below to prove that a hand-built path is the shortest, for
+// any path with curvature |κ| <= 1/r, forwards or backwards (unit speed in
+// arc length s):
+// (H) the heading changes at rate <= 1/r, so length >= r |wrap(θ_b - θ_a)|.
+// (Y) |dy/ds| = |sin θ|. Let ψ(s) = distance of θ(s) to the nearest multiple
+//     of π, so |sin θ| = sin ψ, |ψ'| <= 1/r. If θ_a and θ_b are multiples of π,
+//     ψ starts and ends at 0, and ∫ sin ψ ds is largest for ψ rising at the
+//     maximum rate to π/2, held, and falling again: ∫ |sin θ| ds <= 2r + (L - rπ)
+//     for L >= rπ, and <= 2r (1 - cos(L / 2r)) < 2r for L < rπ. So a lateral
+//     displacement |Δy| = 2r + d (d > 0) needs L >= rπ + d.
+
+TEST(ReedsShepp, CscWordsHaveTheirHandDerivedLength) {
+  const double r = 1.3, d = 2.1;
+  const ReedsShepp rs(r);
+  // L+ 90°, S d, L+ 90° from the origin facing east: the first arc (centre
+  // (0, r)) ends at (r, r) facing north; the straight at (r, r + d); the
+  // second arc (centre (0, r + d)) at (0, 2r + d) facing west. Length rπ + d,
+  // and by (Y) (Δy = 2r + d, θ_b = π) nothing is shorter.
+  const SE2Pose u_turn{0.0, 2 * r + d, kPi};
+  EXPECT_NEAR(rs.distance({0, 0, 0}, u_turn), r * kPi + d, 1e-9);
+  // The mirror word R- S- R- (backing round the other way) is as short, so
+  // only the shape is fixed: two quarter arcs and the straight d.
+  const auto lsl = rs.segments({0, 0, 0}, u_turn);
+  ASSERT_EQ(lsl.size(), 3u);
+  EXPECT_NE(lsl[0].control.omega, 0);
+  EXPECT_EQ(lsl[1].control.omega, 0);
+  EXPECT_NE(lsl[2].control.omega, 0);
+  EXPECT_NEAR(lsl[0].length, r * kPi / 2, 1e-9);
+  EXPECT_NEAR(lsl[1].length, d, 1e-9);
+  // L+ 90°, S d, R+ 90°: the right arc (centre (2r, r + d)) ends at
+  // (2r, 2r + d) facing east again. Same length, same bound (Y).
+  const SE2Pose lane_change{2 * r, 2 * r + d, 0.0};
+  EXPECT_NEAR(rs.distance({0, 0, 0}, lane_change), r * kPi + d, 1e-9);
+  const auto lsr = rs.segments({0, 0, 0}, lane_change);
+  ASSERT_EQ(lsr.size(), 3u);
+  EXPECT_EQ(lsr[2].control, (Control{1, -1}));
+  // The metric is invariant under a rigid motion of both poses.
+  const double c = std::cos(0.9), s = std::sin(0.9);
+  const SE2Pose a{4.0, -1.0, 0.9};
+  const SE2Pose b{4.0 - s * (2 * r + d), -1.0 + c * (2 * r + d), 0.9 + kPi};
+  EXPECT_NEAR(rs.distance(a, b), r * kPi + d, 1e-9);
+}
+
+TEST(ReedsShepp, CccWordThatOnlyTurnsOneWayIsShortestByTheHeadingBound) {
+  // L+ α, R- β, L+ γ: forward-left and reverse-right both turn the heading
+  // counter-clockwise at 1/r, so the heading ends at α + β + γ (lengths in
+  // radians times r). By (H) no path is shorter than r (α + β + γ) when that
+  // is <= π, so this word is a shortest path, whatever the end position.
+  // End position by circle centres: on a left arc the vehicle is at
+  // C + r (sin θ, -cos θ), on a right arc at C + r (-sin θ, cos θ); at a switch
+  // the next centre is the reflection of the current one through the vehicle:
+  //   C1 = (0, r),  C2 = C1 + 2r (sin α, -cos α),
+  //   C3 = C2 + 2r (-sin θ2, cos θ2),  end = C3 + r (sin θ3, -cos θ3),
+  // with θ2 = α + β, θ3 = α + β + γ.
+  const double r = 1.3, alpha = 0.5, beta = 0.7, gamma = 0.4;
+  const double t2 = alpha + beta, t3 = alpha + beta + gamma;
+  const double x = 2 * r * (std::sin(alpha) - std::sin(t2)) + r * std::sin(t3);
+  const double y = r + 2 * r * (std::cos(t2) - std::cos(alpha)) - r * std::cos(t3);
+  const SE2Pose goal{x, y, t3};
+  // Cross-check the hand formula against the exact arc integrator.
+  SE2Pose q = apply_control({0, 0, 0}, {1, 1}, r * alpha, r);
+  q = apply_control(q, {-1, 1}, r * beta, r);
+  q = apply_control(q, {1, 1}, r * gamma, r);
+  EXPECT_NEAR(q.x, goal.x, 1e-12);
+  EXPECT_NEAR(q.y, goal.y, 1e-12);
+  EXPECT_NEAR(q.theta, goal.theta, 1e-12);
+  const ReedsShepp rs(r);
+  EXPECT_NEAR(rs.distance({0, 0, 0}, goal), r * t3, 1e-9);
+  const auto segs = rs.segments({0, 0, 0}, goal);
+  ASSERT_EQ(segs.size(), 3u);
+  EXPECT_EQ(segs[0].control, (Control{1, 1}));
+  EXPECT_EQ(segs[1].control, (Control{-1, 1}));
+  EXPECT_EQ(segs[2].control, (Control{1, 1}));
+  EXPECT_NEAR(segs[0].length, r * alpha, 1e-9);
+  EXPECT_NEAR(segs[1].length, r * beta, 1e-9);
+  EXPECT_NEAR(segs[2].length, r * gamma, 1e-9);
+}
+
+TEST(ReedsShepp, PureReverseTranslationCostsItsLength) {
+  // Backing straight up by d at any heading: length d, and nothing is shorter
+  // than the straight-line distance d.
+  const ReedsShepp rs(0.7);
+  for (double heading : {0.0, 0.4, 2.5, -1.9}) {
+    const SE2Pose a{1.0, 2.0, heading};
+    for (double d : {0.05, 1.0, 6.5}) {
+      const SE2Pose b{a.x - d * std::cos(heading), a.y - d * std::sin(heading), heading};
+      EXPECT_NEAR(rs.distance(a, b), d, 1e-9) << heading << " " << d;
+      const auto segs = rs.segments(a, b);
+      ASSERT_EQ(segs.size(), 1u);
+      EXPECT_EQ(segs[0].control, (Control{-1, 0}));
+    }
+  }
+}
+
+TEST(ReedsShepp, NoRandomAdmissiblePathIsShorterThanTheMetric) {
+  // Every sequence of exact arcs and straights is an admissible path, so the
+  // shortest-path length from its start to its end is at most its length.
+  // Short words keep the ends close, where the shortest word is often the
+  // driven one itself (equality), so an overestimating metric would show.
+  const double r = 0.9;
+  const ReedsShepp rs(r);
+  std::mt19937_64 rng(23);
+  const Control controls[6] = {{1, 0}, {1, 1}, {1, -1}, {-1, 0}, {-1, 1}, {-1, -1}};
+  int equal = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const SE2Pose start = random_pose(rng);
+    SE2Pose q = start;
+    double driven = 0.0;
+    const int pieces = 1 + static_cast<int>(rng() % 5);
+    for (int p = 0; p < pieces; ++p) {
+      const double length = uniform(rng, 0.0, 1.5);
+      q = apply_control(q, controls[rng() % 6], length, r);
+      driven += length;
+    }
+    const double metric = rs.distance(start, q);
+    EXPECT_LE(metric, driven + 1e-9) << k;
+    equal += metric > driven - 1e-9;
+  }
+  EXPECT_GT(equal, 200);  // many short words are themselves shortest
+}
+
 TEST(ReedsShepp, DistanceIsASymmetricMetric) {
   const ReedsShepp rs(0.8);
   std::mt19937_64 rng(7);

@@ -9,6 +9,10 @@
 /// (Debian's libompl-dev 1.5), which enumerates the 48 candidate words and
 /// keeps the shortest. This wrapper keeps OMPL out of Talus's headers, turns
 /// OMPL's word into Talus controls and samples it with exact arcs.
+/// OMPL drops a word whose length comes out a round-off below zero, which
+/// loses the straight and straight-then-arc connections about as often as
+/// not; the wrapper re-solves the CSC words with a 1e-9-radius tolerance and
+/// keeps them where shorter.
 #include <memory>
 #include <vector>
 

@@ -6,15 +6,12 @@
 #include <cmath>
 #include <string>
 
+#include "ipopt_status.hpp"
 #include "local_solvers.hpp"
 
 namespace talus::detail {
-namespace {
 
-using Ipopt::Index;
-using Ipopt::Number;
-
-std::string return_text(Ipopt::SolverReturn status) {
+std::string ipopt_status_text(Ipopt::SolverReturn status) {
   switch (status) {
     case Ipopt::SUCCESS:
       return "success";
@@ -50,6 +47,11 @@ std::string return_text(Ipopt::SolverReturn status) {
       return "unassigned";
   }
 }
+
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
 
 class PathNlp : public Ipopt::TNLP {
  public:
@@ -145,7 +147,7 @@ SolverRun run_ipopt(TrackedObjective& objective, const BoxProblem& problem) {
     return run;
   }
   app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
-  run.status = return_text(nlp->status());
+  run.status = ipopt_status_text(nlp->status());
   // The only user stop is the evaluation budget (intermediate_callback).
   if (nlp->status() == Ipopt::USER_REQUESTED_STOP) run.status = "maxeval_reached";
   run.iterations = nlp->iterations();

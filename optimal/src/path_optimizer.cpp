@@ -8,6 +8,7 @@
 #include <string>
 
 #include "local_solvers.hpp"
+#include "simultaneous_path_solver.hpp"
 #include "talus/bspline/curve_fit.hpp"
 #include "talus/core/error.hpp"
 #include "talus/optimal/path_time_objective.hpp"
@@ -29,7 +30,145 @@ double projected_gradient_norm(const Eigen::VectorXd& z, const Eigen::VectorXd& 
   return worst;
 }
 
+/// Every station of `curve` (N equally spaced in σ) lies on the measured data.
+bool stays_on_data(const BPatch& terrain, const Curve2& curve, std::size_t stations) {
+  for (std::size_t k = 0; k < stations; ++k) {
+    const double sigma =
+        (k + 1 == stations) ? 1.0 : static_cast<double>(k) / static_cast<double>(stations - 1);
+    const Vec2 p = curve.evaluate(sigma);
+    if (!terrain.contains(p) || !terrain.on_data(p)) return false;
+  }
+  return true;
+}
+
+/// The solver's own statement that it converged (not a stop on a limit).
+bool converged_status(const std::string& status) {
+  return status == "success" || status == "stop_at_acceptable_point" || status == "ftol_reached" ||
+         status == "xtol_reached";
+}
+
+/// The simultaneous formulation from the box problem's start (the initial
+/// fit clamped into the box); `objective` (the nested one, same stations)
+/// re-evaluates the initial fit and the NLP's result exactly.
+OptimizedPath optimize_simultaneous(const BPatch& terrain, const Vehicle& vehicle,
+                                    PathTimeObjective& objective, const detail::BoxProblem& box,
+                                    std::size_t control_points, std::size_t stations,
+                                    const PathOptimizerOptions& options,
+                                    std::chrono::steady_clock::time_point started) {
+  const Curve2 initial_curve = objective.curve(box.start);
+  detail::SimultaneousProblem nlp;
+  nlp.terrain = &terrain;
+  nlp.vehicle = vehicle;
+  nlp.initial = &initial_curve;
+  nlp.stations = stations;
+  nlp.speeds = options.speeds;
+  nlp.lower = box.lower;
+  nlp.upper = box.upper;
+  nlp.tolerance = options.simultaneous_tolerance;
+  nlp.limited_memory_hessian = options.simultaneous_limited_memory;
+  // Warm start from the initial fit's exact profile when it has one.
+  const double initial_time = objective.evaluate(box.start);
+  if (std::isfinite(initial_time)) {
+    for (double v : objective.profile().v) nlp.initial_squared_speeds.push_back(v * v);
+  }
+  // Phase 1: lateral offsets of the control points (no tangential freedom:
+  // it converges from far, through restoration when the fit is infeasible).
+  nlp.lateral_offsets = true;
+  nlp.max_iterations = options.simultaneous_lateral_iterations;
+  const auto usable = [&](const detail::SimultaneousRun& r) {
+    return r.variables.size() == box.start.size() && r.variables.allFinite();
+  };
+  detail::SimultaneousRun run = detail::run_simultaneous(nlp);
+  std::size_t iterations = run.iterations, evaluations = run.evaluations,
+              gradient_evaluations = run.gradient_evaluations;
+  // Phase 2: every coordinate free (the nested formulation's search space)
+  // from phase 1's point and speeds.
+  std::optional<Curve2> lateral_curve;
+  int phase = 1;
+  if (usable(run)) {
+    const double lateral_time = objective.evaluate(run.variables);
+    lateral_curve.emplace(objective.curve(run.variables));
+    nlp.initial = &*lateral_curve;
+    nlp.initial_squared_speeds = run.squared_speeds;
+    nlp.lateral_offsets = false;
+    nlp.max_iterations = options.simultaneous_max_iterations;
+    detail::SimultaneousRun free = detail::run_simultaneous(nlp);
+    iterations += free.iterations;
+    evaluations += free.evaluations;
+    gradient_evaluations += free.gradient_evaluations;
+    const double free_time =
+        usable(free) ? objective.evaluate(free.variables) : std::numeric_limits<double>::infinity();
+    // Keep phase 1's point only where phase 2 made it worse.
+    if (std::isfinite(free_time) || !std::isfinite(lateral_time)) {
+      if (!(free_time > lateral_time) || !std::isfinite(lateral_time)) {
+        run = std::move(free);
+        phase = 2;
+      }
+    }
+  }
+  // The exact profile of the NLP's path at the same stations.
+  double result_time = std::numeric_limits<double>::infinity();
+  if (run.variables.size() == box.start.size() && run.variables.allFinite()) {
+    result_time = objective.evaluate(run.variables);
+  }
+  Eigen::VectorXd best;
+  double best_time = std::numeric_limits<double>::infinity();
+  if (std::isfinite(result_time) && !(result_time > initial_time)) {
+    best = run.variables;
+    best_time = result_time;
+  } else if (std::isfinite(initial_time)) {
+    best = box.start;
+    best_time = initial_time;
+  } else {
+    throw InputError("the simultaneous stage (Ipopt: " + run.status +
+                     ") found no path with an admissible profile from an initial fit (" +
+                     std::to_string(control_points) + " control points) without one");
+  }
+  OptimizedPath out(objective.curve(best));
+  out.initial_curve = initial_curve;
+  out.control_points = control_points;
+  out.travel_time = best_time;
+  out.initial_time = initial_time;
+  out.formulation = to_string(PathFormulation::kSimultaneous);
+  out.solver = to_string(PathSolver::kIpopt);
+  out.solver_status = run.status;
+  out.solver_failed = run.failed;
+  out.converged = run.converged;
+  out.nlp_travel_time = run.nlp_time;
+  out.phase = phase;
+  out.iterations = iterations;
+  out.evaluations = evaluations;
+  out.gradient_evaluations = gradient_evaluations;
+  out.stations = stations;
+  Eigen::VectorXd gradient;
+  const double check = objective.evaluate(best, &gradient);
+  out.optimality = std::isfinite(check)
+                       ? projected_gradient_norm(best, gradient, box.lower, box.upper)
+                       : std::numeric_limits<double>::quiet_NaN();
+  out.finite_difference_fallbacks = objective.finite_difference_fallbacks();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return out;
+}
+
 }  // namespace
+
+std::string_view to_string(PathFormulation formulation) {
+  switch (formulation) {
+    case PathFormulation::kNested:
+      return "nested";
+    case PathFormulation::kSimultaneous:
+      return "simultaneous";
+  }
+  return "unknown";
+}
+
+PathFormulation parse_path_formulation(std::string_view name) {
+  for (PathFormulation f : {PathFormulation::kNested, PathFormulation::kSimultaneous}) {
+    if (name == to_string(f)) return f;
+  }
+  throw InputError("unknown formulation '" + std::string(name) +
+                   "': choose nested or simultaneous");
+}
 
 std::string_view to_string(PathSolver solver) {
   switch (solver) {
@@ -64,6 +203,12 @@ void PathOptimizerOptions::validate() const {
   if (max_evaluations < 10) throw InputError("PathOptimizerOptions.max_evaluations must be >= 10");
   if (!(relative_tolerance > 0.0))
     throw InputError("PathOptimizerOptions.relative_tolerance must be positive");
+  if (simultaneous_max_iterations < 1)
+    throw InputError("PathOptimizerOptions.simultaneous_max_iterations must be >= 1");
+  if (simultaneous_lateral_iterations < 1)
+    throw InputError("PathOptimizerOptions.simultaneous_lateral_iterations must be >= 1");
+  if (!(simultaneous_tolerance > 0.0) || !std::isfinite(simultaneous_tolerance))
+    throw InputError("PathOptimizerOptions.simultaneous_tolerance must be positive");
   speeds.validate();
 }
 
@@ -82,6 +227,8 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   std::size_t stations = 0;
   double initial_time = std::numeric_limits<double>::infinity();
   std::string failure;
+  const bool simultaneous = options.formulation == PathFormulation::kSimultaneous;
+  bool on_data = false;
   while (true) {
     initial.emplace(fit_clamped_cubic(
         resample_polyline(initial_polyline,
@@ -99,10 +246,13 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                         control_points, stations, options.speeds);
       initial_time = objective->evaluate(objective->variables(initial->control_points()));
       failure = objective->profile().message;
+      on_data = stays_on_data(terrain, *initial, stations);
     } catch (const InputError& e) {
       failure = e.what();
     }
     if (std::isfinite(initial_time)) break;
+    // The simultaneous NLP starts from an infeasible profile (restoration).
+    if (simultaneous && on_data) break;
     if (!options.adaptive_control_points || control_points >= options.max_control_points) {
       throw InputError("the initial path (" + std::to_string(control_points) +
                        " control points) leaves the map or the measured data or has no "
@@ -138,6 +288,10 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                         terrain.cellsize()),
                0.45 * narrowest);
 
+  if (simultaneous) {
+    return optimize_simultaneous(terrain, vehicle, *objective, problem, control_points, stations,
+                                 options, started);
+  }
   detail::TrackedObjective tracked(*objective);
   // The start clamped into the bounds is the solvers' first point.
   initial_time = tracked(problem.start, nullptr);
@@ -162,8 +316,10 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   out.control_points = control_points;
   out.travel_time = tracked.best_value();
   out.initial_time = initial_time;
+  out.formulation = to_string(options.formulation);
   out.solver = to_string(options.solver);
   out.solver_status = run.status;
+  out.converged = converged_status(run.status);
   out.solver_failed = run.failed;
   out.iterations = run.iterations;
   out.stations = stations;

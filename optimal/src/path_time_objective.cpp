@@ -2,10 +2,9 @@
 
 #include <cmath>
 #include <limits>
-#include <unsupported/Eigen/AutoDiff>
 
 #include "profile_sensitivity.hpp"
-#include "talus/bspline/lifted_geometry.hpp"
+#include "station_derivatives.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
 
@@ -19,41 +18,6 @@ KnotVector uniform_clamped_knots(std::size_t control_points) {
   const std::size_t spans = control_points - 3;
   for (std::size_t k = 0; k <= spans; ++k) breaks.push_back(static_cast<double>(k) / spans);
   return KnotVector::clamped(3, breaks);
-}
-
-// Station geometry as a function of the planar curve's position, first and
-// second derivatives at the station: (x, y, x', y', x'', y'').
-using Local = Eigen::AutoDiffScalar<Eigen::Matrix<double, 6, 1>>;
-using LocalVector2 = Eigen::Matrix<Local, 2, 1>;
-
-/// Jacobian rows: κ_n, κ_g, k_t, k_q, k_r, speed, speed_rate.
-Eigen::Matrix<double, 7, 6> local_jacobian(const BPatch& terrain,
-                                           const Eigen::Matrix<double, 2, 3>& planar) {
-  const Vec2 position = planar.col(0);
-  const SurfacePoint sp = terrain.evaluate(position);
-  const Eigen::Vector4d third = terrain.third_derivatives(position);  // xxx, xxy, xyy, yyy
-  using Derivative = Eigen::Matrix<double, 6, 1>;
-  const auto along_position = [](double dx, double dy) {
-    Derivative d = Derivative::Zero();
-    d[0] = dx;
-    d[1] = dy;
-    return d;
-  };
-  const Mat2& H = sp.hessian;
-  LocalVector2 gradient(Local(sp.gradient.x(), along_position(H(0, 0), H(0, 1))),
-                        Local(sp.gradient.y(), along_position(H(1, 0), H(1, 1))));
-  Eigen::Matrix<Local, 2, 2> hessian;
-  hessian(0, 0) = Local(H(0, 0), along_position(third[0], third[1]));
-  hessian(0, 1) = hessian(1, 0) = Local(H(0, 1), along_position(third[1], third[2]));
-  hessian(1, 1) = Local(H(1, 1), along_position(third[2], third[3]));
-  LocalVector2 d1(Local(planar(0, 1), 6, 2), Local(planar(1, 1), 6, 3));
-  LocalVector2 d2(Local(planar(0, 2), 6, 4), Local(planar(1, 2), 6, 5));
-  const LiftedGeometry<Local> g = lifted_geometry<Local>(gradient, hessian, d1, d2);
-  Eigen::Matrix<double, 7, 6> out;
-  const Local* outputs[7] = {&g.kappa_n, &g.kappa_g, &g.k_t,       &g.k_q,
-                             &g.k_r,     &g.speed,   &g.speed_rate};
-  for (int r = 0; r < 7; ++r) out.row(r) = outputs[r]->derivatives().transpose();
-  return out;
 }
 
 }  // namespace
@@ -196,7 +160,8 @@ bool PathTimeObjective::adjoint_gradient(Eigen::VectorXd& gradient) {
     const double after = k + 1 < n ? sensitivity.step_length[k] : 0.0;
     outer[5] = 0.5 * h * (before + after);
     outer[6] = h * h / 12.0 * (after - before);
-    const Eigen::Matrix<double, 1, 6> local = outer * local_jacobian(*terrain_, planar_[k]);
+    const Eigen::Matrix<double, 1, 6> local =
+        outer * detail::station_derivatives(*terrain_, planar_[k]).jacobian;
     for (int b = 0; b < 4; ++b) {
       const std::size_t i = first_basis_[k] + static_cast<std::size_t>(b);
       if (i == 0 || i + 1 == control_points_) continue;  // start and goal are fixed

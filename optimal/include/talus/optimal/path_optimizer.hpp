@@ -14,7 +14,35 @@
 /// path on the map (a B-spline lies in the convex hull of its control
 /// points); paths over NODATA or without an admissible profile are
 /// infeasible points the solvers step back from.
+///
+/// Formulations (PathOptimizerOptions::formulation):
+/// - nested (default): T(control points), the exact profile solved inside
+///   every evaluation, with the solver above. T is only piecewise smooth (it
+///   kinks where a switching point crosses a station), so gradient solvers
+///   stall on rough terrain.
+/// - simultaneous: direct transcription (as in minimum-lap-time planning,
+///   Christ et al. 2019): a smooth NLP in the same control points and the
+///   squared speed ṡ² at every search station, travel time as objective and
+///   the vehicle's admissible set (friction cone and every ForceCondition of
+///   AdmissibleSet: contact, tip-over, drive, brake; max speed as a bound) at
+///   both ends of every step as smooth inequalities, exact sparse Jacobian,
+///   finite-difference (or limited-memory) Hessian, Ipopt (MUMPS) with its
+///   restoration phase, so the initial fit need not have an admissible
+///   profile (it must stay on the data). The variables are the B-spline's
+///   control points rather than a lateral offset from the candidate's centre
+///   line: the same paths as the nested formulation (so the two compare on
+///   one search space and the result is a Curve2 that evaluate_trajectory
+///   takes as it is), exact geometry derivatives through the B-spline basis,
+///   and no offset coordinate that folds where a winding candidate's
+///   curvature radius is smaller than the offset. Two phases: each control
+///   point moving along its own lateral direction first (robust from far),
+///   then every coordinate free from there (the simultaneous_* options).
+///   `solver` is ignored (always Ipopt). The result is re-evaluated with the
+///   exact profile
+///   solver at the search stations: travel_time is that, never the NLP's own
+///   objective (nlp_travel_time, a diagnostic).
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -33,8 +61,15 @@ std::string_view to_string(PathSolver solver);
 /// Inverse of to_string; throws InputError listing the choices.
 PathSolver parse_path_solver(std::string_view name);
 
+enum class PathFormulation { kNested, kSimultaneous };
+/// "nested", "simultaneous".
+std::string_view to_string(PathFormulation formulation);
+/// Inverse of to_string; throws InputError listing the choices.
+PathFormulation parse_path_formulation(std::string_view name);
+
 struct PathOptimizerOptions {
-  PathSolver solver = PathSolver::kIpopt;
+  PathFormulation formulation = PathFormulation::kNested;
+  PathSolver solver = PathSolver::kIpopt;  ///< of the nested formulation
   /// Of the clamped cubic path (>= 4). 8 from the control-point study of the
   /// shiller-gwo experiment: from 5 to 16 points the optimum changes by less
   /// than 1 % on its cases (not at all on West Bijou), and the local stage's
@@ -42,6 +77,8 @@ struct PathOptimizerOptions {
   std::size_t control_points = 8;
   /// Grow M by half (up to max_control_points) while the fit to the
   /// candidate has no admissible profile: winding candidates need more.
+  /// Simultaneous formulation: only while the fit leaves the measured data
+  /// (it starts from a fit without an admissible profile).
   bool adaptive_control_points = true;
   std::size_t max_control_points = 48;
   double station_spacing = 0.5;  ///< profile stations during the search [m] (> 0)
@@ -53,7 +90,28 @@ struct PathOptimizerOptions {
   /// 400 gained 0.05 % of travel time at 2.3x the local-stage time.
   std::size_t max_evaluations = 150;
   double relative_tolerance = 1e-5;  ///< stop when the travel time changes less than this
-  ProfileOptions speeds;             ///< start and end speeds
+  /// Simultaneous formulation, phase 1: Ipopt iterations (>= 1) with each
+  /// interior control point moving only along its lateral direction (normal
+  /// to its neighbours' chord in the initial control polygon). Without
+  /// tangential freedom this phase converges from far (on the tests' smooth
+  /// hill in 28 iterations, where all coordinates free from the fit took
+  /// over 1000), but its optimum is restricted (3.5 % slower there).
+  std::size_t simultaneous_lateral_iterations = 300;
+  /// Simultaneous formulation, phase 2: Ipopt iterations (>= 1) with every
+  /// coordinate free (the nested formulation's search space), from phase 1's
+  /// point and speeds. The evaluation budget max_evaluations does not apply
+  /// (no profile is solved inside either phase).
+  std::size_t simultaneous_max_iterations = 300;
+  /// Simultaneous formulation: Ipopt's tol on the scaled KKT error (> 0);
+  /// 100 times it is the acceptable level.
+  double simultaneous_tolerance = 1e-6;
+  /// Simultaneous formulation: Ipopt's limited-memory quasi-Newton Hessian
+  /// instead of the default, central differences of the Lagrangian's exact
+  /// gradient (one probe pair per coordinate and three for all the speeds).
+  /// With L-BFGS phase 2 stalled on the tests' flat plane and smooth hill
+  /// (1000 iterations without convergence).
+  bool simultaneous_limited_memory = false;
+  ProfileOptions speeds;  ///< start and end speeds
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -66,11 +124,24 @@ struct OptimizedPath {
   std::size_t control_points = 0;  ///< M used (more than asked when the fit needed them)
   double travel_time = 0.0;        ///< its travel time at the search's station spacing [s]
   double initial_time = 0.0;       ///< the initial path's travel time, same stations [s]
-  std::string solver;              ///< to_string(PathSolver)
+  std::string formulation;         ///< to_string(PathFormulation)
+  std::string solver;              ///< to_string(PathSolver); "ipopt" when simultaneous
   std::string solver_status;       ///< the solver's return code as text (Ipopt / NLopt names)
-  bool solver_failed = false;      ///< an error return; the best point seen is still reported
-  std::size_t iterations = 0;      ///< Ipopt iterations; NLopt: objective evaluations
-  std::size_t evaluations = 0;     ///< objective evaluations
+  /// Ipopt's Solve_Succeeded ("success") or Solved_To_Acceptable_Level
+  /// ("stop_at_acceptable_point"); NLopt: a tolerance stop (not a limit).
+  bool converged = false;
+  /// Simultaneous formulation: the NLP's own travel time at its final
+  /// iterate [s] (a diagnostic; travel_time is the exact re-evaluation). NaN
+  /// for the nested formulation.
+  double nlp_travel_time = std::numeric_limits<double>::quiet_NaN();
+  /// Simultaneous formulation: the phase whose point is returned (1 lateral
+  /// offsets, 2 every coordinate; 2 unless its exact time is worse), and
+  /// solver_status / converged are that phase's; iterations and evaluations
+  /// count both. 0 for the nested formulation.
+  int phase = 0;
+  bool solver_failed = false;   ///< an error return; the best point seen is still reported
+  std::size_t iterations = 0;   ///< Ipopt iterations; NLopt: objective evaluations
+  std::size_t evaluations = 0;  ///< objective evaluations
   std::size_t gradient_evaluations = 0;
   std::size_t finite_difference_fallbacks = 0;  ///< gradients taken by finite differences
   /// First-order optimality at the returned path: the largest component of
@@ -83,9 +154,11 @@ struct OptimizedPath {
 
 /// Fits the initial path to `initial_polyline` (fit_clamped_cubic to the
 /// polyline resampled at 10 points per control point, ends exact) and
-/// minimises its travel time with the chosen solver. Throws InputError if the
-/// initial path is off the data or has no admissible profile; a solver
-/// failure is reported in the result (status, best point), not thrown.
+/// minimises its travel time with the chosen formulation and solver. Throws
+/// InputError if the initial path is off the data or (nested) has no
+/// admissible profile, or (simultaneous) neither it nor the NLP's result has
+/// one; a solver failure is reported in the result (status, best point), not
+/// thrown.
 OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                             const std::vector<Vec2>& initial_polyline,
                             const PathOptimizerOptions& options);

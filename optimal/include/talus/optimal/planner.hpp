@@ -6,7 +6,9 @@
 ///    (edge cost J = ∫ ds / v_max);
 /// 2. optimize_path() of each candidate (its end vertices replaced by the
 ///    exact start and goal): a clamped cubic B-spline minimising the travel
-///    time of its exact time-optimal profile;
+///    time of its exact time-optimal profile (PlannerOptions::local.formulation:
+///    the nested formulation, or the simultaneous NLP in the control points
+///    and the squared speeds);
 /// 3. every optimum and its initial fit re-evaluated with
 ///    evaluate_trajectory() at PlannerOptions::station_spacing; an optimum
 ///    slower there than its own initial fit is replaced by the fit (the

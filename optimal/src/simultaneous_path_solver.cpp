@@ -1,0 +1,551 @@
+#include "simultaneous_path_solver.hpp"
+
+#include <IpIpoptApplication.hpp>
+#include <IpTNLP.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "ipopt_status.hpp"
+#include "station_derivatives.hpp"
+#include "talus/core/error.hpp"
+#include "talus/dynamics/admissible_set.hpp"
+
+namespace talus::detail {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+/// Ipopt's "infinite" bound.
+constexpr double kIpoptInfinity = 1e19;
+
+class SimultaneousNlp : public Ipopt::TNLP {
+ public:
+  explicit SimultaneousNlp(const SimultaneousProblem& problem)
+      : problem_(problem),
+        terrain_(*problem.terrain),
+        set_(problem.vehicle),
+        control_(problem.initial->control_points()),
+        points_(control_.size()),
+        stations_(problem.stations) {
+    const std::size_t m = points_;
+    if (m < 4 || stations_ < 2) throw InputError("the simultaneous stage needs M >= 4, N >= 2");
+    dims_ = problem.lateral_offsets ? 1 : 2;
+    free_ = dims_ * (m - 2);
+    origin_ = control_;
+    // Each point's lateral direction: normal to the chord of its neighbours
+    // in the initial control polygon.
+    normal_.assign(m, Vec2::Zero());
+    for (std::size_t i = 1; i + 1 < m; ++i) {
+      const Vec2 chord = control_[i + 1] - control_[i - 1];
+      normal_[i] = chord.norm() > 0.0 ? Vec2(-chord.y(), chord.x()) / chord.norm() : Vec2(0, 1);
+    }
+    for (const ForceCondition& c : set_.conditions()) conditions_.push_back(c);
+    rows_per_end_ = 1 + conditions_.size();
+    const KnotVector& knots = problem.initial->knots();
+    first_basis_.resize(stations_);
+    basis_.resize(stations_);
+    Eigen::MatrixXd values(3, 4);
+    for (std::size_t k = 0; k < stations_; ++k) {
+      const double sigma =
+          (k + 1 == stations_) ? 1.0 : static_cast<double>(k) / static_cast<double>(stations_ - 1);
+      const std::size_t span = knots.find_span(sigma);
+      knots.basis_derivatives(span, sigma, values);
+      first_basis_[k] = span - 3;
+      basis_[k] = values;
+    }
+    h_ = 1.0 / static_cast<double>(stations_ - 1);
+    // Jacobian columns of each step: the free coordinates of the control
+    // points that move either end, then b_j and b_{j+1}.
+    step_columns_.resize(stations_ - 1);
+    for (std::size_t j = 0; j + 1 < stations_; ++j) {
+      auto& columns = step_columns_[j];
+      for (std::size_t i = first_basis_[j]; i <= first_basis_[j + 1] + 3; ++i) {
+        for (std::size_t d = 0; d < dims_; ++d) {
+          columns.push_back(i == 0 || i + 1 == m ? -1 : static_cast<Index>(dims_ * (i - 1) + d));
+        }
+      }
+      columns.push_back(static_cast<Index>(free_ + j));
+      columns.push_back(static_cast<Index>(free_ + j + 1));
+      for (Index c : columns) nonzeros_ += c >= 0 ? static_cast<Index>(2 * rows_per_end_) : 0;
+    }
+    // The Lagrangian's Hessian couples two variables iff they share a step:
+    // the lower triangle of every step's clique.
+    std::set<std::pair<Index, Index>> entries;
+    for (const auto& columns : step_columns_) {
+      for (Index a : columns) {
+        for (Index b : columns) {
+          if (a >= 0 && b >= 0 && a >= b) entries.insert({a, b});
+        }
+      }
+    }
+    hessian_entries_.assign(entries.begin(), entries.end());
+    const long n = static_cast<long>(free_ + stations_);
+    control_columns_.assign(free_, Eigen::VectorXd::Zero(n));
+    for (auto& b : b_columns_) b = Eigen::VectorXd::Zero(n);
+    value_.resize(stations_);
+    derivative_.resize(stations_);
+    step_length_.resize(stations_ - 1);
+  }
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
+                    IndexStyleEnum& index_style) override {
+    n = static_cast<Index>(free_ + stations_);
+    m = static_cast<Index>((stations_ - 1) * 2 * rows_per_end_);
+    nnz_jac_g = nonzeros_;
+    nnz_h_lag = static_cast<Index>(hessian_entries_.size());
+    index_style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index, Number* x_l, Number* x_u, Index m, Number* g_l,
+                       Number* g_u) override {
+    for (std::size_t i = 1; i + 1 < points_; ++i) {
+      const long a = 2 * static_cast<long>(i) - 2;
+      const Vec2 lo(problem_.lower[a], problem_.lower[a + 1]);
+      const Vec2 hi(problem_.upper[a], problem_.upper[a + 1]);
+      if (dims_ == 2) {
+        for (int axis = 0; axis < 2; ++axis) {
+          x_l[2 * (i - 1) + axis] = lo[axis] - origin_[i][axis];
+          x_u[2 * (i - 1) + axis] = hi[axis] - origin_[i][axis];
+        }
+        continue;
+      }
+      // The offsets that keep the point in the box.
+      double lower = -kIpoptInfinity, upper = kIpoptInfinity;
+      for (int axis = 0; axis < 2; ++axis) {
+        const double nu = normal_[i][axis];
+        if (std::abs(nu) < 1e-12) continue;
+        double a0 = (lo[axis] - origin_[i][axis]) / nu, a1 = (hi[axis] - origin_[i][axis]) / nu;
+        if (a0 > a1) std::swap(a0, a1);
+        lower = std::max(lower, a0);
+        upper = std::min(upper, a1);
+      }
+      x_l[i - 1] = std::min(lower, 0.0);
+      x_u[i - 1] = std::max(upper, 0.0);
+    }
+    const double v_max = set_.max_speed();
+    const double b_max = std::isfinite(v_max) ? v_max * v_max : kIpoptInfinity;
+    for (std::size_t k = 0; k < stations_; ++k) {
+      x_l[free_ + k] = kMinSquaredSpeed;
+      x_u[free_ + k] = b_max;
+    }
+    const double b0 = end_value(problem_.speeds.start_speed);
+    const double b1 = end_value(problem_.speeds.end_speed);
+    x_l[free_] = x_u[free_] = b0;
+    x_l[free_ + stations_ - 1] = x_u[free_ + stations_ - 1] = b1;
+    for (Index r = 0; r < m; ++r) {
+      g_l[r] = 0.0;
+      g_u[r] = kIpoptInfinity;
+    }
+    return true;
+  }
+
+  bool get_starting_point(Index, bool, Number* x, bool, Number*, Number*, Index, bool,
+                          Number*) override {
+    for (std::size_t i = 0; i < free_; ++i) x[i] = 0.0;
+    const double v_max = set_.max_speed();
+    // Without a profile to start from: slow (a tenth of the speed cap, at
+    // most 1 m/s), where the constraints are nearly those of standing still.
+    const double slow = std::min(1.0, std::isfinite(v_max) ? 0.01 * v_max * v_max : 1.0);
+    for (std::size_t k = 0; k < stations_; ++k) {
+      double b = problem_.initial_squared_speeds.size() == stations_
+                     ? problem_.initial_squared_speeds[k]
+                     : slow;
+      if (std::isfinite(v_max)) b = std::min(b, v_max * v_max);
+      x[free_ + k] = std::max(b, kMinSquaredSpeed);
+    }
+    x[free_] = end_value(problem_.speeds.start_speed);
+    x[free_ + stations_ - 1] = end_value(problem_.speeds.end_speed);
+    return true;
+  }
+
+  bool eval_f(Index, const Number* x, bool new_x, Number& value) override {
+    if (!update(x, new_x)) return false;
+    value = 0.0;
+    for (std::size_t j = 0; j + 1 < stations_; ++j) {
+      value += 2.0 * step_length_[j] / (std::sqrt(x[free_ + j]) + std::sqrt(x[free_ + j + 1]));
+    }
+    return std::isfinite(value);
+  }
+
+  bool eval_grad_f(Index n, const Number* x, bool new_x, Number* gradient) override {
+    if (!update(x, new_x)) return false;
+    ++gradient_evaluations_;
+    std::fill(gradient, gradient + n, 0.0);
+    add_objective_gradient(x, 1.0, gradient);
+    return true;
+  }
+
+  bool eval_h(Index n, const Number* x, bool new_x, Number obj_factor, Index, const Number* lambda,
+              bool, Index, Index* i_row, Index* j_col, Number* values) override {
+    if (values == nullptr) {
+      for (std::size_t e = 0; e < hessian_entries_.size(); ++e) {
+        i_row[e] = hessian_entries_[e].first;
+        j_col[e] = hessian_entries_[e].second;
+      }
+      return true;
+    }
+    // Central differences of the Lagrangian's exact gradient, one perturbed
+    // column per free coordinate and three interleaved groups of b (b_k
+    // and b_{k+3} never share a step); the b-coordinate entries come from
+    // the coordinates' columns (symmetry).
+    if (!update(x, new_x)) return false;
+    const long dimension = n;
+    std::vector<double> probe(x, x + n);
+    Eigen::VectorXd plus(dimension), minus(dimension);
+    const double control_step = 1e-4 * terrain_.cellsize();
+    const auto column = [&](auto&& perturb, Eigen::VectorXd& out) {
+      perturb(+1.0);
+      const bool ok_plus = lagrangian_gradient(probe.data(), obj_factor, lambda, plus);
+      perturb(-1.0);
+      const bool ok_minus = lagrangian_gradient(probe.data(), obj_factor, lambda, minus);
+      std::copy(x, x + n, probe.begin());
+      out = plus - minus;
+      return ok_plus && ok_minus;
+    };
+    bool ok = true;
+    for (std::size_t c = 0; c < free_ && ok; ++c) {
+      ok = column([&](double sign) { probe[c] = x[c] + sign * control_step; }, control_columns_[c]);
+      control_columns_[c] /= 2.0 * control_step;
+    }
+    std::vector<double> b_step(stations_);
+    for (std::size_t k = 0; k < stations_; ++k) b_step[k] = 1e-4 * x[free_ + k] + 1e-8;
+    for (std::size_t group = 0; group < 3 && ok; ++group) {
+      ok = column(
+          [&](double sign) {
+            for (std::size_t k = group; k < stations_; k += 3)
+              probe[free_ + k] = x[free_ + k] + sign * b_step[k];
+          },
+          b_columns_[group]);
+    }
+    cached_ = false;  // the workspace holds the last probe
+    if (!ok) return false;
+    for (std::size_t e = 0; e < hessian_entries_.size(); ++e) {
+      const auto [r, c] = hessian_entries_[e];
+      const std::size_t col = static_cast<std::size_t>(c);
+      if (col < free_) {
+        values[e] = control_columns_[col][r];
+      } else {
+        const std::size_t k = col - free_;
+        values[e] = b_columns_[k % 3][r] / (2.0 * b_step[k]);
+      }
+    }
+    return true;
+  }
+
+ private:
+  /// ∇(factor f + λᵀ g) at x (recomputes the workspace there).
+  bool lagrangian_gradient(const Number* x, double factor, const Number* lambda,
+                           Eigen::VectorXd& out) {
+    if (!update(x, true)) return false;
+    out.setZero();
+    add_objective_gradient(x, factor, out.data());
+    std::vector<double>& rows = rows_;
+    rows.resize(2 * rows_per_end_);
+    for (std::size_t j = 0; j + 1 < stations_; ++j) {
+      step_rows(j, x, rows.data(), &jacobian_);
+      const auto& columns = step_columns_[j];
+      const Number* l = lambda + row_offset(j);
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        if (columns[c] < 0) continue;
+        double sum = 0.0;
+        for (std::size_t r = 0; r < 2 * rows_per_end_; ++r)
+          sum += l[r] * jacobian_(static_cast<long>(r), static_cast<long>(c));
+        out[columns[c]] += sum;
+      }
+    }
+    return true;
+  }
+
+  /// gradient += factor ∇T at x (workspace up to date).
+  void add_objective_gradient(const Number* x, double factor, Number* gradient) {
+    Eigen::VectorXd& local = local_;
+    for (std::size_t j = 0; j + 1 < stations_; ++j) {
+      const double r0 = std::sqrt(x[free_ + j]), r1 = std::sqrt(x[free_ + j + 1]);
+      const double sum = r0 + r1;
+      const double dt_ds = 2.0 / sum;
+      const double dt_dsum = -2.0 * step_length_[j] / (sum * sum);
+      step_length_gradient(j, local);
+      const auto& columns = step_columns_[j];
+      const std::size_t controls = columns.size() - 2;
+      for (std::size_t c = 0; c < controls; ++c) {
+        if (columns[c] >= 0) gradient[columns[c]] += factor * dt_ds * local[static_cast<long>(c)];
+      }
+      gradient[free_ + j] += factor * dt_dsum * 0.5 / r0;
+      gradient[free_ + j + 1] += factor * dt_dsum * 0.5 / r1;
+    }
+  }
+
+ public:
+  bool eval_g(Index, const Number* x, bool new_x, Index, Number* g) override {
+    if (!update(x, new_x)) return false;
+    for (std::size_t j = 0; j + 1 < stations_; ++j) step_rows(j, x, g + row_offset(j), nullptr);
+    return true;
+  }
+
+  bool eval_jac_g(Index, const Number* x, bool new_x, Index, Index, Index* i_row, Index* j_col,
+                  Number* values) override {
+    if (values == nullptr) {
+      Index e = 0;
+      for (std::size_t j = 0; j + 1 < stations_; ++j) {
+        for (std::size_t r = 0; r < 2 * rows_per_end_; ++r) {
+          for (Index c : step_columns_[j]) {
+            if (c < 0) continue;
+            i_row[e] = static_cast<Index>(row_offset(j) + r);
+            j_col[e] = c;
+            ++e;
+          }
+        }
+      }
+      return true;
+    }
+    if (!update(x, new_x)) return false;
+    Index e = 0;
+    std::vector<double> rows(2 * rows_per_end_);
+    for (std::size_t j = 0; j + 1 < stations_; ++j) {
+      step_rows(j, x, rows.data(), &jacobian_);
+      const auto& columns = step_columns_[j];
+      for (std::size_t r = 0; r < 2 * rows_per_end_; ++r) {
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+          if (columns[c] < 0) continue;
+          values[e++] = jacobian_(static_cast<long>(r), static_cast<long>(c));
+        }
+      }
+    }
+    return true;
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode, Index iteration, Number, Number, Number, Number,
+                             Number, Number, Number, Number, Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
+    iterations_ = static_cast<std::size_t>(iteration);
+    return true;
+  }
+
+  void finalize_solution(Ipopt::SolverReturn status, Index, const Number* x, const Number*,
+                         const Number*, Index, const Number*, const Number*, Number objective,
+                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+    status_ = status;
+    set_control(x);
+    result_z_.resize(2 * static_cast<long>(points_ - 2));
+    for (std::size_t i = 1; i + 1 < points_; ++i) {
+      result_z_[2 * static_cast<long>(i) - 2] = control_[i].x();
+      result_z_[2 * static_cast<long>(i) - 1] = control_[i].y();
+    }
+    result_b_.assign(x + free_, x + free_ + stations_);
+    objective_ = objective;
+  }
+
+  Ipopt::SolverReturn status() const { return status_; }
+  std::size_t iterations() const { return iterations_; }
+  std::size_t evaluations() const { return evaluations_; }
+  std::size_t gradient_evaluations() const { return gradient_evaluations_; }
+  const Eigen::VectorXd& result_variables() const { return result_z_; }
+  const std::vector<double>& result_squared_speeds() const { return result_b_; }
+  double objective() const { return objective_; }
+
+ private:
+  static double end_value(double speed) { return std::max(speed * speed, kMinSquaredSpeed); }
+  std::size_t row_offset(std::size_t step) const { return step * 2 * rows_per_end_; }
+
+  void set_control(const Number* x) {
+    for (std::size_t i = 1; i + 1 < points_; ++i) {
+      const std::size_t a = dims_ * (i - 1);
+      control_[i] = dims_ == 2 ? Vec2(origin_[i].x() + x[a], origin_[i].y() + x[a + 1])
+                               : Vec2(origin_[i] + x[a] * normal_[i]);
+    }
+  }
+
+  /// The station geometry and its derivatives at x; false where a station
+  /// leaves the data, the curve has a cusp or a step has no length.
+  bool update(const Number* x, bool new_x) {
+    if (!new_x && cached_) return valid_;
+    cached_ = true;
+    valid_ = false;
+    ++evaluations_;
+    set_control(x);
+    for (std::size_t k = 0; k < stations_; ++k) {
+      Eigen::Matrix<double, 2, 3> p = Eigen::Matrix<double, 2, 3>::Zero();
+      for (int b = 0; b < 4; ++b) {
+        const Vec2& c = control_[first_basis_[k] + static_cast<std::size_t>(b)];
+        for (int d = 0; d < 3; ++d) p.col(d) += basis_[k](d, b) * c;
+      }
+      const Vec2 position = p.col(0);
+      if (!p.allFinite() || !terrain_.contains(position) || !terrain_.on_data(position))
+        return false;
+      if (!(p.col(1).norm() > 0.0)) return false;
+      const StationDerivatives sd = station_derivatives(terrain_, p);
+      if (!sd.value.allFinite() || !sd.jacobian.allFinite()) return false;
+      value_[k] = sd.value;
+      // Chain to the station's four control points: column dims b + d.
+      derivative_[k].setZero();
+      for (int b = 0; b < 4; ++b) {
+        const std::size_t i = first_basis_[k] + static_cast<std::size_t>(b);
+        for (int axis = 0; axis < 2; ++axis) {
+          const Eigen::Matrix<double, 7, 1> along = sd.jacobian.col(axis) * basis_[k](0, b) +
+                                                    sd.jacobian.col(2 + axis) * basis_[k](1, b) +
+                                                    sd.jacobian.col(4 + axis) * basis_[k](2, b);
+          if (dims_ == 2) {
+            derivative_[k].col(2 * b + axis) = along;
+          } else {
+            derivative_[k].col(b) += normal_[i][axis] * along;
+          }
+        }
+      }
+    }
+    for (std::size_t j = 0; j + 1 < stations_; ++j) {
+      step_length_[j] = 0.5 * h_ * (value_[j][5] + value_[j + 1][5]) +
+                        h_ * h_ / 12.0 * (value_[j][6] - value_[j + 1][6]);
+      if (!(step_length_[j] > 0.0)) return false;
+    }
+    valid_ = true;
+    return true;
+  }
+
+  /// dΔs_j over the step's columns (step_columns_ order, b entries zero).
+  void step_length_gradient(std::size_t j, Eigen::VectorXd& out) const {
+    out.setZero(static_cast<long>(step_columns_[j].size()));
+    const double a = 0.5 * h_, c = h_ * h_ / 12.0;
+    for (int end = 0; end < 2; ++end) {
+      const std::size_t k = j + static_cast<std::size_t>(end);
+      const long offset = static_cast<long>(dims_ * (first_basis_[k] - first_basis_[j]));
+      const long w = static_cast<long>(4 * dims_);
+      const double sign = end == 0 ? 1.0 : -1.0;
+      out.segment(offset, w) +=
+          (a * derivative_[k].row(5) + sign * c * derivative_[k].row(6)).head(w).transpose();
+    }
+  }
+
+  /// The 2 (1 + C) constraint values of step j (the friction cone, then each
+  /// ForceCondition, at its first end and then at its second) and, when
+  /// `jacobian` is given, their derivatives over the step's columns.
+  void step_rows(std::size_t j, const Number* x, double* rows, Eigen::MatrixXd* jacobian) {
+    const double g = set_.gravity(), mu = set_.friction();
+    const double b0 = x[free_ + j], b1 = x[free_ + j + 1];
+    const double ds = step_length_[j];
+    const double u = (b1 - b0) / (2.0 * ds);
+    const long width = static_cast<long>(step_columns_[j].size());
+    const long col_b0 = width - 2, col_b1 = width - 1;
+    Eigen::VectorXd &du = du_, &dft = dft_, &dfq = dfq_, &dr = dr_;
+    if (jacobian != nullptr) {
+      jacobian->setZero(static_cast<long>(2 * rows_per_end_), width);
+      step_length_gradient(j, du);
+      du *= -u / ds;
+      du[col_b0] = -1.0 / (2.0 * ds);
+      du[col_b1] = 1.0 / (2.0 * ds);
+    }
+    for (int end = 0; end < 2; ++end) {
+      const std::size_t k = j + static_cast<std::size_t>(end);
+      const double b = end == 0 ? b0 : b1;
+      const auto& v = value_[k];
+      const double ft = u + g * v[2];
+      const double fq = g * v[3] + v[1] * b;
+      const double rn = g * v[4] + v[0] * b;
+      double* out = rows + static_cast<std::size_t>(end) * rows_per_end_;
+      out[0] = (mu * mu * rn * rn - ft * ft - fq * fq) / (2.0 * g);
+      for (std::size_t c = 0; c < conditions_.size(); ++c) {
+        const ForceCondition& f = conditions_[c];
+        out[1 + c] = f.t * ft + f.q * fq + f.r * rn + f.c;
+      }
+      if (jacobian == nullptr) continue;
+      // d(f_t, f_q, R) over the step's columns.
+      const long offset = static_cast<long>(dims_ * (first_basis_[k] - first_basis_[j]));
+      const long w = static_cast<long>(4 * dims_);
+      const auto& d = derivative_[k];
+      dft = du;
+      dft.segment(offset, w) += g * d.row(2).head(w).transpose();
+      dfq.setZero(width);
+      dfq.segment(offset, w) = (g * d.row(3) + b * d.row(1)).head(w).transpose();
+      dr.setZero(width);
+      dr.segment(offset, w) = (g * d.row(4) + b * d.row(0)).head(w).transpose();
+      const long col_b = end == 0 ? col_b0 : col_b1;
+      dfq[col_b] += v[1];
+      dr[col_b] += v[0];
+      const long row = static_cast<long>(static_cast<std::size_t>(end) * rows_per_end_);
+      jacobian->row(row) = ((mu * mu * rn) * dr - ft * dft - fq * dfq).transpose() / g;
+      for (std::size_t c = 0; c < conditions_.size(); ++c) {
+        const ForceCondition& f = conditions_[c];
+        jacobian->row(row + 1 + static_cast<long>(c)) =
+            (f.t * dft + f.q * dfq + f.r * dr).transpose();
+      }
+    }
+  }
+
+  const SimultaneousProblem& problem_;
+  const BPatch& terrain_;
+  AdmissibleSet set_;
+  std::vector<ForceCondition> conditions_;
+  std::vector<Vec2> control_;  // workspace: the current control points
+  std::size_t points_, stations_, dims_ = 2, free_ = 0, rows_per_end_ = 0;
+  std::vector<Vec2> origin_, normal_;  // the initial control points, their lateral directions
+  double h_ = 0.0;
+  std::vector<std::size_t> first_basis_;
+  std::vector<Eigen::Matrix<double, 3, 4>> basis_;
+  std::vector<std::vector<Index>> step_columns_;
+  Index nonzeros_ = 0;
+  // Per-point cache.
+  std::vector<Eigen::Matrix<double, 7, 1>> value_;
+  std::vector<Eigen::Matrix<double, 7, 8>> derivative_;
+  std::vector<double> step_length_;
+  Eigen::MatrixXd jacobian_;
+  std::vector<double> rows_;
+  Eigen::VectorXd local_, du_, dft_, dfq_, dr_;
+  std::vector<std::pair<Index, Index>> hessian_entries_;  // (row, column), row >= column
+  std::vector<Eigen::VectorXd> control_columns_;          // finite-difference Hessian columns
+  std::array<Eigen::VectorXd, 3> b_columns_;
+  bool cached_ = false, valid_ = false;
+  // Outcome.
+  Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
+  std::size_t iterations_ = 0, evaluations_ = 0, gradient_evaluations_ = 0;
+  Eigen::VectorXd result_z_;
+  std::vector<double> result_b_;
+  double objective_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+}  // namespace
+
+SimultaneousRun run_simultaneous(const SimultaneousProblem& problem) {
+  Ipopt::SmartPtr<SimultaneousNlp> nlp = new SimultaneousNlp(problem);
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  auto options = app->Options();
+  options->SetIntegerValue("print_level", 0);
+  options->SetStringValue("sb", "yes");
+  if (problem.limited_memory_hessian)
+    options->SetStringValue("hessian_approximation", "limited-memory");
+  options->SetIntegerValue("max_iter", static_cast<int>(problem.max_iterations));
+  options->SetNumericValue("tol", problem.tolerance);
+  options->SetNumericValue("constr_viol_tol", 1e-7);
+  options->SetNumericValue("acceptable_tol", 100.0 * problem.tolerance);
+  options->SetNumericValue("acceptable_constr_viol_tol", 1e-6);
+  // Monotone: on the smooth-hill and infeasible-start tests the adaptive
+  // strategy took 2 to 4 times the iterations in the second phase.
+  options->SetStringValue("mu_strategy", "monotone");
+  // Never set linear_solver=ma97: Debian's Ipopt 3.11 calls exit(1) for it.
+  SimultaneousRun run;
+  if (app->Initialize() != Ipopt::Solve_Succeeded) {
+    run.status = "initialization_failed";
+    run.failed = true;
+    return run;
+  }
+  app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
+  const Ipopt::SolverReturn s = nlp->status();
+  run.status = ipopt_status_text(s);
+  run.converged = s == Ipopt::SUCCESS || s == Ipopt::STOP_AT_ACCEPTABLE_POINT;
+  run.failed = !(run.converged || s == Ipopt::MAXITER_EXCEEDED || s == Ipopt::CPUTIME_EXCEEDED ||
+                 s == Ipopt::STOP_AT_TINY_STEP);
+  run.iterations = nlp->iterations();
+  run.evaluations = nlp->evaluations();
+  run.gradient_evaluations = nlp->gradient_evaluations();
+  run.variables = nlp->result_variables();
+  run.squared_speeds = nlp->result_squared_speeds();
+  run.nlp_time = nlp->objective();
+  return run;
+}
+
+}  // namespace talus::detail

@@ -314,6 +314,8 @@ int main(int argc, char** argv) {
       "candidate locally: a clamped cubic B-spline with --control-points control points, start "
       "and goal fixed, minimising the travel time of its exact time-optimal velocity profile "
       "(from --v0 to --v1) with --solver (ipopt by default, with the exact adjoint gradient), "
+      "or with --formulation simultaneous one smooth Ipopt NLP in the control points and the "
+      "squared speeds at the stations (it can start from a fit without an admissible profile), "
       "and keeps the best. Both stages write, in --out "
       "DIR (created if needed): candidates.csv (columns candidate,x,y: the lattice vertices of "
       "each candidate from the start node to the goal node, candidate 0 the best), "
@@ -328,7 +330,8 @@ int main(int argc, char** argv) {
       "at most about 2000 rows each), plan.png and profile.png (gnuplot scripts and data "
       "beside them), and adds travel_time [s] (the best), global_travel_time (the best "
       "candidate's initial B-spline fit, same 0.1 m stations), improvement_percent, optima "
-      "[{travel_time, initial_time, solver, solver_status, iterations, evaluations, "
+      "[{travel_time, initial_time, solver, solver_status, formulation, converged, phase, "
+      "nlp_travel_time, iterations, evaluations, "
       "optimality (projected-gradient norm [s/m]), ...}] and seconds {fit, global, local, "
       "profile, plots, total}. Exit code 0 when a result exists; 2 when the goal is "
       "unreachable or (full) every candidate's profile is infeasible (summary still written "
@@ -366,8 +369,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   plan->add_option("--solver", plan_request.solver,
                    "local solver, --stage full: ipopt (interior point, exact gradient), "
-                   "nlopt-lbfgs (exact gradient) or nlopt-bobyqa (derivative-free)")
+                   "nlopt-lbfgs (exact gradient) or nlopt-bobyqa (derivative-free); nested "
+                   "formulation only")
       ->capture_default_str();
+  plan->add_option("--formulation", plan_request.formulation,
+                   "local stage, --stage full: nested (the travel time of the exact profile as a "
+                   "function of the control points) or simultaneous (direct transcription: "
+                   "control points and squared speeds in one smooth NLP, Ipopt; the reported "
+                   "time is still the exact profile's)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({std::string("nested"), std::string("simultaneous")}));
   plan->add_option("--v0", plan_request.start_speed, "speed at the start [m/s], >= 0, --stage full")
       ->capture_default_str();
   plan->add_option("--v1", plan_request.end_speed, "speed at the goal [m/s], >= 0, --stage full")

@@ -44,6 +44,11 @@ void check_plan_options(const PlanRequest& request) {
   } catch (const InputError& e) {
     throw InputError(std::string("--solver: ") + e.what());
   }
+  try {
+    parse_path_formulation(request.formulation);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--formulation: ") + e.what());
+  }
   if (request.control_points < 4 || request.control_points > kMaxPlanControlPoints) {
     throw InputError("--control-points must be in [4, " + std::to_string(kMaxPlanControlPoints) +
                      "], got " + std::to_string(request.control_points));
@@ -197,6 +202,10 @@ nlohmann::json optimum_json(const CandidateOutcome& c, const std::string& solver
   entry["solver"] = solver;
   entry["solver_status"] = o ? nlohmann::json(o->solver_status) : nlohmann::json(nullptr);
   entry["solver_failed"] = o ? o->solver_failed : false;
+  entry["formulation"] = o ? nlohmann::json(o->formulation) : nlohmann::json(nullptr);
+  entry["converged"] = o ? o->converged : false;
+  entry["phase"] = o ? o->phase : 0;
+  entry["nlp_travel_time"] = finite_or_null(o ? o->nlp_travel_time : kNaN);
   entry["iterations"] = o ? o->iterations : 0;
   entry["evaluations"] = o ? o->evaluations : 0;
   entry["gradient_evaluations"] = o ? o->gradient_evaluations : 0;
@@ -264,8 +273,8 @@ void render_plan_figures(const PlanRequest& request, const ElevationGrid& grid,
 /// summary fields.
 void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
                       const PlanningProblem& problem, const PlannerOptions& options,
-                      const PlannerResult& result, const OutputFolder& out,
-                      nlohmann::json& summary, nlohmann::json& seconds) {
+                      const PlannerResult& result, const OutputFolder& out, nlohmann::json& summary,
+                      nlohmann::json& seconds) {
   const Trajectory* best = result.best();
   const std::filesystem::path& dir = out.staging();
   write_text_file(dir / "trajectory.csv", trajectory_csv(best));
@@ -301,6 +310,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
       best ? nlohmann::json(best->profile.switching_points.size()) : nullptr;
   summary["optima"] = std::move(optima);
   summary["solver"] = request.solver;
+  summary["formulation"] = request.formulation;
   summary["optimality_note"] =
       "optima[].optimality: largest projected-gradient component of the travel time at the "
       "returned path [s/m], from the adjoint gradient (for every solver); the travel time is "
@@ -331,6 +341,7 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.global.cost_fields = true;  // fields.csv
   options.optimize = request.stage == kPlanStageFull;
   options.local.solver = parse_path_solver(request.solver);
+  options.local.formulation = parse_path_formulation(request.formulation);
   options.local.control_points = static_cast<std::size_t>(request.control_points);
   options.local.max_control_points =
       std::max(options.local.max_control_points, options.local.control_points);

@@ -20,7 +20,8 @@ namespace talus::experiments {
 
 /// `talus plan --terrain T.asc --start X,Y --goal X,Y --vehicle V.yaml
 /// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
-/// [--smoothing LAMBDA] [--control-points M] [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa] [--v0 A]
+/// [--smoothing LAMBDA] [--control-points M] [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa]
+/// [--formulation nested|simultaneous] [--v0 A]
 /// [--v1 B] --out DIR`.
 struct PlanRequest {
   std::string terrain;           ///< ESRI ASCII grid
@@ -37,8 +38,10 @@ struct PlanRequest {
   // The local stage (--stage full only).
   long long control_points = 8;  ///< of each optimised clamped cubic (4 to 64)
   std::string solver = "ipopt";  ///< ipopt, nlopt-lbfgs or nlopt-bobyqa (parse_path_solver)
-  double start_speed = 0.0;      ///< --v0 [m/s] (finite, >= 0, <= max_speed)
-  double end_speed = 0.0;        ///< --v1 [m/s]
+  /// nested or simultaneous (parse_path_formulation; PathOptimizerOptions::formulation).
+  std::string formulation = "nested";
+  double start_speed = 0.0;  ///< --v0 [m/s] (finite, >= 0, <= max_speed)
+  double end_speed = 0.0;    ///< --v1 [m/s]
 };
 
 /// The stages `--stage` accepts.
@@ -74,7 +77,7 @@ Vec2 parse_point(const std::string& option, const std::string& text);
 /// feasible trajectory was found too).
 struct PlanOutcome {
   std::shared_ptr<const BPatch> surface;  ///< the fitted terrain the result's paths lie on
-  PlannerResult result;  ///< the library planner's result (talus::plan)
+  PlannerResult result;                   ///< the library planner's result (talus::plan)
   nlohmann::json summary;
   bool reachable = false;
 };

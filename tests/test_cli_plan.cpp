@@ -59,7 +59,6 @@ std::vector<PlanVertex> plan_candidate(const std::vector<PlanVertex>& rows, int 
 /// candidates.csv agrees with the summary: each candidate's vertex count, from
 /// the start node to the goal node, ordered by cost.
 void expect_plan_candidates(const nlohmann::json& j, const std::string& dir) {
-  EXPECT_GE(j.at("search_seconds").get<double>(), 0.0);
   EXPECT_LE(j.at("reachable_nodes"), j.at("nodes"));
   const std::vector<PlanVertex> rows = read_plan_candidates(dir + "/candidates.csv");
   const auto& candidates = j.at("candidates");
@@ -216,9 +215,12 @@ nlohmann::json run_plan_full_ok(const std::string& args, const std::string& dir)
     EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
   }
   if (!j.contains("optima") || !j.contains("seconds")) return j;
-  for (const char* key : {"global", "local", "profile", "total"}) {
-    EXPECT_GE(j.at("seconds").value(key, -1.0), 0.0) << key;
-  }
+  // The stages are parts of the run: together no longer than its total.
+  const nlohmann::json& seconds = j.at("seconds");
+  EXPECT_LE(
+      seconds.value("global", NAN) + seconds.value("local", NAN) + seconds.value("profile", NAN),
+      seconds.value("total", 0.0))
+      << seconds.dump();
   EXPECT_EQ(j.at("optima").size(), j.at("candidates").size());
   for (const nlohmann::json& o : j.at("optima")) {
     for (const char* key : {"travel_time", "initial_time", "solver_status", "iterations"}) {
@@ -302,8 +304,8 @@ TEST(CliPlan, SmoothingFitAndLbfgsKeepTheFlatPlaneClosedForm) {
         dir);
     EXPECT_NEAR(j.value("travel_time", 0.0), expected, 1e-5 * expected) << extra << j.dump();
   }
-  const nlohmann::json lbfgs = parse_json(read_text(scratch_file("full_variant_out") +
-                                                    "/summary.json"), "summary.json");
+  const nlohmann::json lbfgs =
+      parse_json(read_text(scratch_file("full_variant_out") + "/summary.json"), "summary.json");
   EXPECT_EQ(lbfgs.value("solver", ""), "nlopt-lbfgs");
 }
 

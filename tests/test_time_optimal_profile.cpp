@@ -34,7 +34,9 @@ Vehicle vehicle(double mu, double max_accel = INFINITY, double max_decel = INFIN
 }
 
 /// The library's default spacing (the issue: analytic times within 0.5 % at the default spacing).
-std::size_t stations_for(double length) { return station_count(length); }
+std::size_t stations_for(double length) {
+  return station_count(length);
+}
 
 TimeOptimalProfile solve_straight(const BPatch& patch, const Vec2& a, const Vec2& b,
                                   const Vehicle& v, double v0 = 0.0, double v1 = 0.0) {

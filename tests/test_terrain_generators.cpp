@@ -246,7 +246,7 @@ TEST(FractalGenerator, ReproducesRecordedValues) {
   // here. The values are the generator's own output when this test was written; after a
   // deliberate change, regenerate them with
   //   talus terrain generate fractal --ncols 5 --nrows 4 --cellsize 0.5 --seed 7 -o s.asc
-  // (rows from the south, as values()) and say so in the commit.
+  // (the .asc lists rows from the north; values() from the south) and say so in the commit.
   FractalTerrainOptions options;
   options.shape = {5, 4, 0.5, 0.0, 0.0};
   options.seed = 7;

@@ -175,7 +175,10 @@ HaitValidityOptions hait_validity_options(const HaitOptions& options);
 
 /// The full planner: placement and validity of `robot` on `terrain` (with the
 /// worst-case checks of §5 when uncertainties are set), collision through the
-/// quadtree, potential bitmaps, then hait_search(). Throws InputError for an
+/// quadtree, potential bitmaps (a control point past the map's edge reads
+/// the potential at the nearest point of the map), then hait_search(). A
+/// valid child whose heuristic is infinite gets no node but its cell is
+/// marked like any other (§4.1). Throws InputError for an
 /// invalid robot or options, a start or goal off the map or on NODATA.
 HaitResult plan_hait(const RuledTerrain& terrain, const Robot& robot, const SE2Pose& start,
                      const SE2Pose& goal, const HaitOptions& options);

@@ -11,13 +11,13 @@
 #include <variant>
 #include <vector>
 
+#include "random_test_support.hpp"
 #include "talus/core/error.hpp"
 #include "talus/kinematic/hait/chassis_uncertainty_table.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 #include "talus/kinematic/hait/robot.hpp"
 #include "talus/kinematic/hait/robot_validity.hpp"
-#include "random_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -346,6 +346,30 @@ TEST(HaitChassis, DetoursAroundASteepHillWithEveryConfigurationValid) {
     EXPECT_GT(r.length_m, 9.2) << heuristic_name(h);
     EXPECT_GT(max_offset, 1.0) << heuristic_name(h);
   }
+}
+
+TEST(HaitChassis, TerrainUncertaintyCountsEveryPlacementOnTMin) {
+  // Under δz a check reads one interval from the table, then places the chassis
+  // directly on T_min for the collision test: that placement is its middle
+  // axle's Place_axle plus every Place_other_axle iteration (at least three).
+  const RuledTerrain t = rolling(3);
+  const ArticulatedChassis ch = marsokhod();
+  const double dz = 0.02;
+  const HaitRobotValidity uncertain(t, ch, dz);
+  const RuledTerrain lower = t.lower_envelope(dz);
+  std::mt19937_64 rng(23);
+  int valid = 0;
+  for (int n = 0; n < 200; ++n) {
+    const SE2Pose q{uniform(rng, 2, 10), uniform(rng, 2, 6), uniform(rng, -kPi, kPi)};
+    const ConfigurationCheck c = uncertain.check(q);
+    if (!c.valid) continue;
+    ++valid;
+    const ChassisPlacement on_lower = place_chassis(ch, lower, q.x, q.y, q.theta);
+    ASSERT_GE(on_lower.axle_placements, 3);
+    EXPECT_EQ(c.placements, 1u + static_cast<std::size_t>(on_lower.axle_placements))
+        << q.x << " " << q.y << " " << q.theta;
+  }
+  EXPECT_GT(valid, 50);
 }
 
 TEST(HaitChassis, UncertainPathIsValidForTheCertainChecks) {

@@ -279,6 +279,11 @@ void run_hait_preprocessing(const ExperimentContext& context) {
   report.table(timings)
       .paragraph(slice_times)
       .paragraph(
+          "Timing noise: the same terrain (" + nodes +
+          " nodes at 0.25 m) appears in sweeps (a), (b) and (c); their times differ by the load "
+          "of the machine, which bounds how far the fitted time exponents can be trusted. The "
+          "Place_axle counts are exact.")
+      .paragraph(
           "The paper's absolute times (Fig. 20, a 2002 workstation) are not given in the text; "
           "its 12 s for one terrain without uncertainty (§5.4) compares with our total at about "
           "20000 nodes above.")

@@ -115,12 +115,15 @@ HaitResult plan_hait(const RuledTerrain& terrain, const Robot& robot, const SE2P
     front = std::make_shared<PotentialBitmap>(terrain, goal_front, bo, dz.get());
     rear = used_offset > 0.0 ? std::make_shared<PotentialBitmap>(terrain, goal_rear, bo, dz.get())
                              : front;
-    potential = [front, rear, used_offset, &terrain](const SE2Pose& q) {
+    // A control point past the map's edge (the robot's overhang can reach beyond
+    // it while its wheels stand on the map) reads the potential at the nearest
+    // point of the map: an infinite value there would deny every configuration
+    // near the edge a node although its validity was checked.
+    const Vec2 lo(grid.x_min(), grid.y_min()), hi(grid.x_max(), grid.y_max());
+    potential = [front, rear, used_offset, lo, hi](const SE2Pose& q) {
       const Vec2 d(std::cos(q.theta), std::sin(q.theta));
-      const Vec2 pf = q.position() + used_offset * d, pr = q.position() - used_offset * d;
-      if (!terrain.contains(pf) || !terrain.contains(pr)) {
-        return std::numeric_limits<double>::infinity();
-      }
+      const Vec2 pf = (q.position() + used_offset * d).cwiseMax(lo).cwiseMin(hi);
+      const Vec2 pr = (q.position() - used_offset * d).cwiseMax(lo).cwiseMin(hi);
       return 0.5 * (front->potential(pf) + rear->potential(pr));
     };
   }

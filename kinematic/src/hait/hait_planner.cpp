@@ -314,9 +314,11 @@ HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction
         cost += weighted(ds, c.margin, options.margin_weight);
       }
       if (!ok) continue;
+      // The cell is visited once its arc is valid, whatever the heuristic says: an
+      // unmarked cell would be validated again from every other parent reaching it.
+      marked.insert(key);
       const double h = heuristic(end);
       if (!std::isfinite(h)) continue;  // the potential says the goal is unreachable from here
-      marked.insert(key);
       nodes.push_back({end, node.g + cost, id, u, false});
       ++result.nodes_created;
       open.push({node.g + cost + h, static_cast<std::int64_t>(nodes.size() - 1)});

@@ -115,8 +115,11 @@ struct HaitRobotValidity::Impl {
       ++out.placements;
       v = check_validity(c, in);
       if (!v.valid()) return out;
-      p = place_chassis(c, lower, q.x, q.y, q.theta);  // worst case for collision: on T_min
-      ++out.placements;
+      // Worst case for collision: on T_min, placed directly (no table holds the whole
+      // chassis on T_min): each of its Place_axle runs, the middle axle's and every
+      // Place_other_axle iteration's, is a placement made for this check.
+      p = place_chassis(c, lower, q.x, q.y, q.theta);
+      out.placements += static_cast<std::size_t>(p.axle_placements);
       if (!usable(p.status)) return out;
     } else {
       p = table->place(q.x, q.y, q.theta);

@@ -76,7 +76,8 @@ class HaitRobotValidity {
 
   /// Valid / margin at q, for the whole uncertainty domain when ρ or Δθ > 0;
   /// `placements` counts robot placements made (one per placement or table
-  /// interval; under δz the interval's runs plus the placement on T_min).
+  /// interval; under δz the interval's runs plus the placement on T_min, which
+  /// for the chassis is placed directly and counts its Place_axle runs).
   ConfigurationCheck check(const SE2Pose& q) const;
   /// check() as a ValidityFunction (keeps a pointer to the shared state, so
   /// it stays valid when this object is moved, not when it is destroyed).

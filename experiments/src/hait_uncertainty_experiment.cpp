@@ -360,7 +360,14 @@ void run_hait_uncertainty(const ExperimentContext& context) {
       .bullet(std::string("*The cost bitmap penalises high-uncertainty areas and guides the "
                           "robot away from them*: ") +
               (mapped.in_patch == 0.0 && constant.in_patch > 0.0
-                   ? "reproduced with the δz map (the route leaves the patch)."
+                   ? (constant_route_invalid_under_map == 0
+                          ? std::string("reproduced with the δz map: the route leaves the patch "
+                                        "although the validity would accept it.")
+                          : "the route leaves the patch with the δz map, but at this δz the "
+                            "validity rejects the straight route as well (" +
+                                std::to_string(constant_route_invalid_under_map) +
+                                " configurations), so the penalty alone is not isolated; the "
+                                "bitmap raises the patch's cost by 2 δz / clearance.")
                    : "not reproduced (the route still crosses the patch)."))
       .write(context.output_dir,
              "`uncertainty.csv` (every case), `uncertainty.png`, `uncertainty_map.png`, "

@@ -321,6 +321,11 @@ void ChassisTableOptions::validate() const {
         << terrain_uncertainty;
     throw InputError(msg.str());
   }
+  if (terrain_uncertainty_map && terrain_uncertainty > 0.0) {
+    throw InputError(
+        "ChassisTableOptions: terrain_uncertainty and terrain_uncertainty_map are both set; "
+        "set one");
+  }
   axle.validate();
 }
 
@@ -430,11 +435,14 @@ ChassisPlacementTable::ChassisPlacementTable(const ArticulatedChassis& chassis,
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   slices_ = options.theta_slices;
-  const bool uncertain = options.terrain_uncertainty > 0.0;
-  const RuledTerrain lower =
-      uncertain ? terrain.lower_envelope(options.terrain_uncertainty) : terrain;
-  const RuledTerrain upper =
-      uncertain ? terrain.upper_envelope(options.terrain_uncertainty) : terrain;
+  const ElevationGrid* dz_map = options.terrain_uncertainty_map.get();
+  const bool uncertain = options.terrain_uncertainty > 0.0 || dz_map != nullptr;
+  const RuledTerrain lower = dz_map      ? terrain.lower_envelope(*dz_map)
+                             : uncertain ? terrain.lower_envelope(options.terrain_uncertainty)
+                                         : terrain;
+  const RuledTerrain upper = dz_map      ? terrain.upper_envelope(*dz_map)
+                             : uncertain ? terrain.upper_envelope(options.terrain_uncertainty)
+                                         : terrain;
   const DirectSource src{&terrain, &lower, &upper, chassis.half_axle_width, options.axle};
   const ElevationGrid& grid = terrain.grid();
   const std::size_t nodes = grid.ncols() * grid.nrows();

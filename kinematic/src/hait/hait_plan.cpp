@@ -55,6 +55,7 @@ PotentialBitmapOptions bitmap_options(const Robot& robot, double radius, double 
 HaitValidityOptions hait_validity_options(const HaitOptions& options) {
   HaitValidityOptions vo;
   vo.terrain_uncertainty = options.terrain_uncertainty;
+  vo.terrain_uncertainty_map = options.terrain_uncertainty_map;
   vo.position_uncertainty = options.position_uncertainty;
   vo.heading_uncertainty = options.heading_uncertainty;
   vo.sample_spacing = options.check_spacing;
@@ -104,11 +105,11 @@ HaitResult plan_hait(const RuledTerrain& terrain, const Robot& robot, const SE2P
       goal_front = goal_rear = goal.position();
       used_offset = 0.0;
     }
-    std::unique_ptr<ElevationGrid> dz;
-    if (options.terrain_uncertainty > 0.0) {
+    std::shared_ptr<const ElevationGrid> dz = options.terrain_uncertainty_map;
+    if (!dz && options.terrain_uncertainty > 0.0) {
       const ElevationGrid& g = terrain.grid();
-      dz = std::make_unique<ElevationGrid>(g.ncols(), g.nrows(), g.cellsize(), g.x_min(), g.y_min(),
-                                           options.terrain_uncertainty);
+      dz = std::make_shared<const ElevationGrid>(g.ncols(), g.nrows(), g.cellsize(), g.x_min(),
+                                                 g.y_min(), options.terrain_uncertainty);
     }
     const PotentialBitmapOptions bo =
         bitmap_options(robot, model.radius(), options.position_uncertainty);

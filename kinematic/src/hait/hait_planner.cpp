@@ -133,6 +133,10 @@ void HaitOptions::validate() const {
           ">= 0");
   require(nonneg(goal_heading_tolerance), "goal_heading_tolerance", goal_heading_tolerance, ">= 0");
   require(nonneg(terrain_uncertainty), "terrain_uncertainty", terrain_uncertainty, ">= 0");
+  if (terrain_uncertainty_map && terrain_uncertainty > 0.0) {
+    throw InputError(
+        "HaitOptions: terrain_uncertainty and terrain_uncertainty_map are both set; set one");
+  }
   require(nonneg(position_uncertainty), "position_uncertainty", position_uncertainty, ">= 0");
   require(nonneg(heading_uncertainty) && heading_uncertainty < std::numbers::pi,
           "heading_uncertainty", heading_uncertainty, "in [0, pi)");

@@ -11,6 +11,7 @@
 /// points (wheel radii are not modelled; fold them into the body clearances).
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -149,7 +150,11 @@ ChassisPlacementInterval place_chassis_interval(const ArticulatedChassis& chassi
 struct ChassisTableOptions {
   int theta_slices = 72;             ///< n_θ slices over [0, 2π) (>= 4)
   double terrain_uncertainty = 0.0;  ///< δz [m] (>= 0); > 0 adds the four §5.1.1 runs
-  AxlePlacementOptions axle;         ///< for every Place_axle
+  /// Per-node δz [m] instead of the constant (same shape as the terrain's grid,
+  /// >= 0, NODATA = 0); set, it adds the four §5.1.1 runs on its envelopes and
+  /// terrain_uncertainty must be 0. Null = the constant.
+  std::shared_ptr<const ElevationGrid> terrain_uncertainty_map;
+  AxlePlacementOptions axle;  ///< for every Place_axle
   /// Throws InputError naming the field.
   void validate() const;
 };

@@ -59,6 +59,7 @@
 /// query on rough terrain.
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,10 @@ struct HaitOptions {
 
   // --- uncertainty (§5)
   double terrain_uncertainty = 0.0;  ///< δz, elevation interval half-width at every node [m] (>= 0)
+  /// Per-node δz [m] instead (HaitValidityOptions::terrain_uncertainty_map: the
+  /// terrain grid's shape, >= 0); set, terrain_uncertainty must be 0. The
+  /// validity uses its envelopes and the cost bitmap its local δz (§5.3.1).
+  std::shared_ptr<const ElevationGrid> terrain_uncertainty_map;
   double position_uncertainty = 0.0;  ///< ρ [m] (>= 0)
   double heading_uncertainty = 0.0;   ///< Δθ [rad] in [0, π)
 

@@ -272,7 +272,7 @@ TEST(MovedLowerFaces, CoverEveryFaceOfTheDomainFromBelow) {
   const ChassisPlacementInterval in = table.place_interval(q.x, q.y, q.theta);
   ASSERT_TRUE(usable(in.status));
   const std::vector<Quad> faces = moved_lower_faces(ch, in, q.x, q.y, q.theta, 0.3, 0.7);
-  ASSERT_EQ(faces.size(), 4u);
+  ASSERT_EQ(faces.size(), 12u);  // per body and roll extreme, the swept 8-gon in three quads
   int corners = 0;
   for (int l = -3; l <= 3; ++l) {
     for (int k = -3; k <= 3; ++k) {
@@ -380,6 +380,27 @@ TEST(SweptBodyOutline, HoldsEverySweptFootprintAndHugsItsHull) {
   EXPECT_THROW(swept_body_outline(0.0, w, 0.1, 0.1), InputError);
   EXPECT_THROW(swept_body_outline(L, w, -0.1, 0.1), InputError);
   EXPECT_THROW(swept_body_outline(L, w, 0.1, kPi / 2), InputError);
+}
+
+TEST(MovedLowerFaces, StayWithinTheReachOfTheSweptBody) {
+  // No point of a body turned by at most Δθ about the middle axle and moved by at most ρ is
+  // farther than ρ + √(L² + w²) from the axle; the outline's tangent segments overshoot that
+  // circle by the factor 1/cos(β/5), β = Δθ + atan(w/L) (L = 0.75 m, w = 0.3 m here).
+  const RuledTerrain t = hill(0.0);
+  const ArticulatedChassis ch = marsokhod();
+  const double rho = 0.3, dtheta = 40.0 * kPi / 180.0;
+  ChassisUncertaintyOptions uo;
+  uo.position_uncertainty = rho;
+  uo.heading_uncertainty = dtheta;
+  const ChassisUncertaintyTable table(ch, t, {}, uo);
+  const SE2Pose q{6.0, 4.0, 0.6};
+  const ChassisPlacementInterval in = table.place_interval(q.x, q.y, q.theta);
+  ASSERT_TRUE(usable(in.status));
+  const double L = ch.axle_spacing + ch.body.overhang, w = ch.body.half_width;
+  const double reach = rho + std::hypot(L, w) / std::cos((dtheta + std::atan2(w, L)) / 5);
+  for (const Quad& f : moved_lower_faces(ch, in, q.x, q.y, q.theta, rho, dtheta)) {
+    for (const Vec3& v : f) EXPECT_LE(std::hypot(v.x() - q.x, v.y() - q.y), reach + 1e-9);
+  }
 }
 
 // ---------------------------------------------------------------- plan_hait with the chassis

@@ -25,8 +25,10 @@ if [[ $sanitize -eq 1 ]]; then
   build_dir=build-sanitize
   export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  # -O1 -g1: ASan's recommended optimisation, and line tables (enough for its stack traces);
+  # compiling a test file this way takes about half as long as at -O2 -g.
   cmake -S . -B "$build_dir" -DTALUS_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-        -DTALUS_BUILD_BENCHMARKS=OFF
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DTALUS_BUILD_BENCHMARKS=OFF
 else
   build_dir=build
   cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release

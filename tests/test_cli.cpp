@@ -39,7 +39,7 @@ TEST(Cli, TerrainFitInterpolatesExactlyAndSmoothingLeavesResiduals) {
   const auto e = nlohmann::json::parse(exact.out);
   EXPECT_LT(e.at("max_node_residual").get<double>(), 1e-8);
   EXPECT_EQ(e.at("patches"), 112 * 120);
-  EXPECT_GE(e.at("fit_seconds").get<double>(), 0.0);
+  EXPECT_TRUE(e.at("fit_seconds").is_number());
   const RunResult smooth = run_talus("terrain fit '" + file + "' --smoothing 1");
   ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
   const auto s = nlohmann::json::parse(smooth.out);

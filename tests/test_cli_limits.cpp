@@ -90,7 +90,7 @@ void expect_consistent(const std::vector<LimitsRow>& rows, const nlohmann::json&
     total += n.get<std::size_t>();
   }
   EXPECT_EQ(total, rows.size());
-  EXPECT_GE(summary.at("seconds").get<double>(), 0.0);
+  EXPECT_TRUE(summary.at("seconds").is_number());
 }
 
 /// Runs a limits command that must succeed and returns its JSON summary.

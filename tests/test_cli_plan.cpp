@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "cli_test_support.hpp"
+#include "profile_csv_test_support.hpp"
 
 namespace talus::cli_test {
 namespace {
@@ -59,7 +59,6 @@ std::vector<PlanVertex> plan_candidate(const std::vector<PlanVertex>& rows, int 
 /// candidates.csv agrees with the summary: each candidate's vertex count, from
 /// the start node to the goal node, ordered by cost.
 void expect_plan_candidates(const nlohmann::json& j, const std::string& dir) {
-  EXPECT_GE(j.at("search_seconds").get<double>(), 0.0);
   EXPECT_LE(j.at("reachable_nodes"), j.at("nodes"));
   const std::vector<PlanVertex> rows = read_plan_candidates(dir + "/candidates.csv");
   const auto& candidates = j.at("candidates");
@@ -216,9 +215,12 @@ nlohmann::json run_plan_full_ok(const std::string& args, const std::string& dir)
     EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
   }
   if (!j.contains("optima") || !j.contains("seconds")) return j;
-  for (const char* key : {"global", "local", "profile", "total"}) {
-    EXPECT_GE(j.at("seconds").value(key, -1.0), 0.0) << key;
-  }
+  // The stages are parts of the run: together no longer than its total.
+  const nlohmann::json& seconds = j.at("seconds");
+  EXPECT_LE(
+      seconds.value("global", NAN) + seconds.value("local", NAN) + seconds.value("profile", NAN),
+      seconds.value("total", 0.0))
+      << seconds.dump();
   EXPECT_EQ(j.at("optima").size(), j.at("candidates").size());
   for (const nlohmann::json& o : j.at("optima")) {
     for (const char* key : {"travel_time", "initial_time", "solver_status", "iterations"}) {
@@ -232,16 +234,24 @@ nlohmann::json run_plan_full_ok(const std::string& args, const std::string& dir)
     EXPECT_GT(o.value("iterations", 0), 0);
     EXPECT_TRUE(o.contains("solver")) << o.dump();
   }
+  // trajectory.csv is a consistent profile on its own, from the requested speeds to the
+  // summary's time and length.
   const double travel_time = j.at("travel_time").get<double>();
-  const auto rows = read_csv(dir + "/trajectory.csv", "s,x,y,z,v,a,t,v_max,binding");
+  const std::vector<ProfileRow> rows = read_profile_csv(dir + "/trajectory.csv");
   EXPECT_GT(rows.size(), 100u);
-  double previous_t = -1.0;
-  for (const auto& f : rows) {
-    const double t = parse_number(f[6]);
-    EXPECT_GT(t, previous_t);
-    previous_t = t;
+  EXPECT_EQ(rows.size(), j.at("stations").get<std::size_t>());
+  expect_consistent_rows(rows, travel_time, j.at("length_m").get<double>(),
+                         j.at("start_speed").get<double>(), j.at("end_speed").get<double>());
+  // The best candidate is the fastest of the optima, and its time is the plan's.
+  const std::size_t best = j.at("best_candidate").get<std::size_t>();
+  EXPECT_LT(best, j.at("optima").size());
+  if (best >= j.at("optima").size()) return j;
+  EXPECT_EQ(j.at("optima")[best].at("travel_time").get<double>(), travel_time);
+  for (const nlohmann::json& o : j.at("optima")) {
+    if (!o.at("travel_time").is_null()) {
+      EXPECT_GE(o.at("travel_time").get<double>(), travel_time);
+    }
   }
-  EXPECT_NEAR(previous_t, travel_time, 1e-9 * travel_time);
   const auto optima = read_csv(dir + "/optima.csv", "candidate,s,x,y,v");
   EXPECT_GT(optima.size(), 10u);
   EXPECT_LE(optima.size(), j.at("optima").size() * 2001);
@@ -263,6 +273,40 @@ TEST(CliPlan, FullStageOnFlatPlaneMatchesRestToRestStraightLine) {
   // the time by 5e-4).
   EXPECT_NEAR(j.value("travel_time", 0.0), expected, 1e-5 * expected) << j.dump();
   EXPECT_LE(j.value("travel_time", 0.0), j.value("global_travel_time", 0.0) * (1.0 + 1e-12));
+}
+
+TEST(CliPlan, FullStageWithStartAndEndSpeedsMatchesTheClosedForm) {
+  // 50 m straight from 4 m/s to 2 m/s, top speed 10 m/s, a = mu g both ways:
+  // t = (v - v0)/a + (v - v1)/a + (L - (v^2 - v0^2)/2a - (v^2 - v1^2)/2a) / v.
+  const std::string dir = scratch_file("full_speeds_out");
+  const nlohmann::json j = run_plan_full_ok(
+      "--terrain " + quoted(plan_flat_terrain()) + " --start 5,20 --goal 55,20 --vehicle " +
+          quoted(plan_vehicle("v10.yaml", 10.0)) + " --candidates 1 --v0 4 --v1 2",
+      dir);
+  const double a = 0.7 * 9.81, v = 10.0, v0 = 4.0, v1 = 2.0, length = 50.0;
+  const double cruise = length - (v * v - v0 * v0) / (2 * a) - (v * v - v1 * v1) / (2 * a);
+  const double expected = (v - v0) / a + (v - v1) / a + cruise / v;
+  EXPECT_NEAR(j.value("travel_time", 0.0), expected, 1e-5 * expected) << j.dump();
+  EXPECT_EQ(j.value("start_speed", -1.0), 4.0);
+  EXPECT_EQ(j.value("end_speed", -1.0), 2.0);
+}
+
+TEST(CliPlan, SmoothingFitAndLbfgsKeepTheFlatPlaneClosedForm) {
+  // A smoothing fit of a plane is the plane, and every solver keeps the straight line: the
+  // closed-form rest-to-rest time of FullStageOnFlatPlaneMatchesRestToRestStraightLine.
+  const double a = 0.7 * 9.81, v = 10.0, length = 50.0;
+  const double expected = 2.0 * v / a + (length - v * v / a) / v;
+  for (const std::string extra : {"--smoothing 2", "--solver nlopt-lbfgs"}) {
+    const std::string dir = scratch_file("full_variant_out");
+    const nlohmann::json j = run_plan_full_ok(
+        "--terrain " + quoted(plan_flat_terrain()) + " --start 5,20 --goal 55,20 --vehicle " +
+            quoted(plan_vehicle("v10.yaml", 10.0)) + " --candidates 1 " + extra,
+        dir);
+    EXPECT_NEAR(j.value("travel_time", 0.0), expected, 1e-5 * expected) << extra << j.dump();
+  }
+  const nlohmann::json lbfgs =
+      parse_json(read_text(scratch_file("full_variant_out") + "/summary.json"), "summary.json");
+  EXPECT_EQ(lbfgs.value("solver", ""), "nlopt-lbfgs");
 }
 
 TEST(CliPlan, EveryAcceptedControlPointCountIsOptimised) {

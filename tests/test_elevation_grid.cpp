@@ -53,6 +53,23 @@ TEST(ElevationGrid, NearestFillTakesTheClosestValidValue) {
                    1.0);  // ties at equal distance go to the first valid node in scan order
 }
 
+TEST(ElevationGrid, VoidFillUsesTheChebyshevDistance) {
+  // Two valid nodes on a 5 x 5 void grid: (3, 3) = 10 and (0, 4) = 20. From (0, 0) the first is
+  // 3 steps away in Chebyshev distance (Euclidean 4.24, Manhattan 6), the second 4 (Euclidean and
+  // Manhattan 4): only the Chebyshev metric picks 10 there.
+  ElevationGrid grid(5, 5, 1.0, 0, 0);
+  for (std::size_t j = 0; j < 5; ++j)
+    for (std::size_t i = 0; i < 5; ++i) grid.set_void(i, j);
+  grid.set(3, 3, 10.0);
+  grid.set(0, 4, 20.0);
+  const ElevationGrid filled = fill_voids(grid, VoidFill::kNearest);
+  EXPECT_EQ(filled.at(0, 0), 10.0);
+  EXPECT_EQ(filled.at(0, 3), 20.0);  // 1 step from (0, 4), 3 from (3, 3)
+  EXPECT_EQ(filled.at(4, 0), 10.0);  // 3 steps from (3, 3), 4 from (0, 4)
+  EXPECT_EQ(filled.at(3, 3), 10.0);  // valid nodes keep their values
+  EXPECT_EQ(filled.at(0, 4), 20.0);
+}
+
 TEST(ElevationGrid, FillingAnAllVoidGridIsAnError) {
   ElevationGrid grid(3, 3, 1.0, 0, 0);
   for (std::size_t j = 0; j < 3; ++j)

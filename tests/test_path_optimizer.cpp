@@ -53,7 +53,8 @@ TEST_P(EverySolver, StraightensABentPathOnAPlane) {
   // Started on the straight line, it keeps it, at the analytic time.
   PathOptimizerOptions defaults;
   defaults.solver = GetParam();
-  const OptimizedPath kept = optimize_path(flat, point_mass_rover(0.5), {{5, 20}, {55, 20}}, defaults);
+  const OptimizedPath kept =
+      optimize_path(flat, point_mass_rover(0.5), {{5, 20}, {55, 20}}, defaults);
   for (const Vec2& c : kept.curve.control_points()) EXPECT_NEAR(c.y(), 20.0, 1e-6);
   // On the straight line only the two switch steps differ from the analytic time, by at most
   // (spacing / length)^2 = 1e-4 at the search's default 0.5 m (measured 2e-5).

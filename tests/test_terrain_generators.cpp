@@ -241,8 +241,12 @@ TEST(FractalGenerator, SameSeedGivesBitIdenticalGridsAndAnotherSeedDiffers) {
 }
 
 TEST(FractalGenerator, ReproducesRecordedValues) {
-  // Guards the promise that a seed means the same terrain in every version:
-  // any change to the random streams or the synthesis shows up here.
+  // A snapshot, not an independent value: it guards the promise that a seed means the same
+  // terrain in every version, so any change to the random streams or the synthesis shows up
+  // here. The values are the generator's own output when this test was written; after a
+  // deliberate change, regenerate them with
+  //   talus terrain generate fractal --ncols 5 --nrows 4 --cellsize 0.5 --seed 7 -o s.asc
+  // (the .asc lists rows from the north; values() from the south) and say so in the commit.
   FractalTerrainOptions options;
   options.shape = {5, 4, 0.5, 0.0, 0.0};
   options.seed = 7;

@@ -34,7 +34,9 @@ Vehicle vehicle(double mu, double max_accel = INFINITY, double max_decel = INFIN
 }
 
 /// The library's default spacing (the issue: analytic times within 0.5 % at the default spacing).
-std::size_t stations_for(double length) { return station_count(length); }
+std::size_t stations_for(double length) {
+  return station_count(length);
+}
 
 TimeOptimalProfile solve_straight(const BPatch& patch, const Vec2& a, const Vec2& b,
                                   const Vehicle& v, double v0 = 0.0, double v1 = 0.0) {
@@ -130,6 +132,26 @@ TEST(TimeOptimalProfile, DiscreteErrorIsSecondOrderInTheSpacing) {
     EXPECT_GT(order, 1.8) << "errors " << errors[k - 1] << " -> " << errors[k];
     EXPECT_LT(order, 2.5) << "errors " << errors[k - 1] << " -> " << errors[k];
   }
+}
+
+TEST(TimeOptimalProfile, RigidBodyPitchOverBindsBothWaysOnAStraightLine) {
+  // l/h = 0.4 < mu = 0.9: the rigid body tips forward under braking and backward under drive at
+  // 0.4 g, so rest to rest over L takes 2 sqrt(L / (0.4 g)) where the point mass takes
+  // 2 sqrt(L / (0.9 g)).
+  const BPatch flat = BPatch::interpolate(
+      grid_from_function([](double, double) { return 0.0; }, 0, -5, 210, 5, 1.0));
+  const double L = 200.0;
+  Vehicle rb = vehicle(0.9);
+  rb.cg_height = 1.0;
+  rb.half_track = 1.2;
+  rb.model = VehicleModel::kRigidBody;
+  rb.half_wheelbase = 0.4;
+  const TimeOptimalProfile p = solve_straight(flat, {5, 0}, {5 + L, 0}, rb);
+  ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
+  expect_exact_up_to_the_switch_step(p.travel_time, 2.0 * std::sqrt(L / (0.4 * kG)));
+  EXPECT_NEAR(p.a.front(), 0.4 * kG, 1e-9);
+  const TimeOptimalProfile pm = solve_straight(flat, {5, 0}, {5 + L, 0}, vehicle(0.9));
+  expect_exact_up_to_the_switch_step(pm.travel_time, 2.0 * std::sqrt(L / (0.9 * kG)));
 }
 
 TEST(TimeOptimalProfile, FlatCircleAtItsSteadySpeedStaysThere) {

@@ -5,9 +5,9 @@
 #include <numbers>
 #include <random>
 
+#include "path_test_support.hpp"
 #include "talus/core/error.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
-#include "path_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -62,8 +62,8 @@ TEST_P(ClosedForm, SpeedLimits_FlatCircleSlidingLimitIsSqrtMuGR) {
   EXPECT_EQ(l.v_min, 0.0);
   EXPECT_EQ(l.lower_binding, Constraint::kNone);
   // Turning right is symmetric.
-  EXPECT_DOUBLE_EQ(speed_limits(point_mass(mu, 0.5, 2.0, g()), {0.0, -1.0 / r, 0.0, 0.0, 1.0}).v_max,
-                   l.v_max);
+  EXPECT_DOUBLE_EQ(
+      speed_limits(point_mass(mu, 0.5, 2.0, g()), {0.0, -1.0 / r, 0.0, 0.0, 1.0}).v_max, l.v_max);
 }
 
 TEST_P(ClosedForm, SpeedLimits_FlatCircleTipoverLimitWhenTrackIsNarrow) {
@@ -265,7 +265,7 @@ TEST(VelocityLimits, FlatCirclePathAtEveryStation) {
   EXPECT_EQ(limits.first_untraversable(), limits.size());
   for (std::size_t k = 0; k < limits.size(); ++k) {
     expect_on_spline(limits.limits(k).v_max, std::sqrt(mu * kG * r),
-                               "station " + std::to_string(k));
+                     "station " + std::to_string(k));
   }
   EXPECT_NEAR(limits.frame(limits.size() - 1).s, 2 * kPi * r, 1e-6);
 }
@@ -274,7 +274,8 @@ double max_relative_error_on_circle(int points) {
   const BPatch flat =
       BPatch::interpolate(grid_around_origin([](double, double) { return 100.0; }, 40, 2.0));
   const double r = 30.0, mu = 0.7, exact = std::sqrt(mu * kG * r);
-  const VelocityLimits limits(point_mass(mu, 0.5, 1.0), SurfacePath(flat, path_test::circle(r, points)), 400);
+  const VelocityLimits limits(point_mass(mu, 0.5, 1.0),
+                              SurfacePath(flat, path_test::circle(r, points)), 400);
   double worst = 0.0;
   for (std::size_t k = 0; k < limits.size(); ++k) {
     worst = std::max(worst, std::abs(limits.limits(k).v_max - exact) / exact);

@@ -54,7 +54,8 @@ TEST(VerifyProfile, SolverProfilesVerifyOnRandomTerrainsForEveryModel) {
           const VelocityLimits limits(v, *path, 300);
           // Rest to rest is an input error where an end station needs a minimum speed (a steep
           // side slope the vehicle tips on at rest): not this test's subject either.
-          if (limits.limits(0).v_min > 0.0 || limits.limits(limits.size() - 1).v_min > 0.0) continue;
+          if (limits.limits(0).v_min > 0.0 || limits.limits(limits.size() - 1).v_min > 0.0)
+            continue;
           const TimeOptimalProfile p = solver.solve(limits, {});
           if (p.status != ProfileStatus::kOk) continue;
           const ProfileVerification check = verify_profile(limits, p);

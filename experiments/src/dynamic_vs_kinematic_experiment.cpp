@@ -129,6 +129,15 @@ void run_dynamic_vs_kinematic(const ExperimentContext& context) {
                     "dynamic-vs-kinematic: " + name + " terrain");
   }
   write_text_file(context.output_dir / "comparison.csv", csv);
+  for (const Row& r : rows) {
+    ExperimentSummary& summary = *context.summary;
+    summary.set("kinematic_time_" + r.terrain + "_s", r.kinematic_time, "s");
+    summary.set("talus_time_" + r.terrain + "_s", r.talus_time, "s");
+    summary.set("time_ratio_" + r.terrain, r.kinematic_time / r.talus_time, "1");
+    summary.set("talus_time_over_length_at_max_speed_" + r.terrain,
+                r.talus_time / (r.talus_length / vehicle.max_speed), "1",
+                "> 1: no profile beats its own length at the top speed");
+  }
 
   Report report("dynamic-vs-kinematic: path–velocity decomposition vs Talus's time-optimal plan");
   report.paragraph(

@@ -131,6 +131,30 @@ void draw_solver_figure(const fs::path& dir, const std::vector<std::string>& sol
 
 }  // namespace
 
+/// The headline numbers of summary.json. The planner keeps the initial fit when the optimum is
+/// slower, so no run's travel time exceeds its best global candidate's.
+void summarise(const std::vector<Run>& runs, const std::vector<Run>& study,
+               ExperimentSummary& summary) {
+  double worst_ratio = 0.0, best = INFINITY, worst = 0.0;
+  std::size_t failed = 0;
+  for (const std::vector<Run>* set : {&runs, &study}) {
+    for (const Run& r : *set) {
+      if (!std::isfinite(r.travel_time())) {
+        ++failed;
+        continue;
+      }
+      worst_ratio = std::max(worst_ratio, r.travel_time() / r.global_travel_time());
+      best = std::min(best, r.travel_time());
+      worst = std::max(worst, r.travel_time());
+    }
+  }
+  summary.set("plans_without_trajectory", static_cast<double>(failed), "count");
+  summary.set("max_travel_time_over_global", worst_ratio, "1",
+              "<= 1: never slower than the best global candidate");
+  summary.set("best_travel_time_s", best, "s");
+  summary.set("solver_and_control_point_spread", worst / best, "1");
+}
+
 void run_shiller_gwo(const ExperimentContext& context) {
   const fs::path& out = context.output_dir;
   const bool quick = context.quick;
@@ -253,6 +277,7 @@ void run_shiller_gwo(const ExperimentContext& context) {
     report.paragraph("Control points (Ipopt):").table(study_table);
   }
   write_text_file(out / "solvers.csv", solver_csv.str());
+  summarise(runs, study, *context.summary);
   draw_solver_figure(out, solvers);
   report.heading("Solvers")
       .figure("solvers", "solvers.png")

@@ -72,8 +72,10 @@ class ElevationGrid {
 
 /// Ways to fill NODATA nodes, used only when the caller names one.
 enum class VoidFill {
-  kNearest,  ///< each void takes the value of the nearest valid node (grid distance, ties by scan
-             ///< order)
+  /// Each void takes the value of the nearest valid node in Chebyshev distance (the number of
+  /// 8-neighbour steps); ties go to the node whose breadth-first wave arrives first (valid
+  /// nodes start in row-major order).
+  kNearest,
 };
 
 /// A copy of `grid` with every NODATA node filled by `method`.

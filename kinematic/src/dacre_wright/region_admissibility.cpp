@@ -33,6 +33,33 @@ Range sinusoid_range(double a, double b, double t1, double t2) {
   return r;
 }
 
+/// The heading interval [t1, t2] with its end directions, so that the range
+/// of A cos θ + B sin θ costs no trigonometric call when t2 − t1 < π: the
+/// maximum amp is reached inside iff the direction (A, B) lies between the end
+/// directions, the minimum iff (−A, −B) does.
+struct Arc {
+  double t1, t2, c1, s1, c2, s2;
+  bool wide;  ///< t2 − t1 >= π: fall back to sinusoid_range
+  Arc(double a, double b)
+      : t1(a),
+        t2(b),
+        c1(std::cos(a)),
+        s1(std::sin(a)),
+        c2(std::cos(b)),
+        s2(std::sin(b)),
+        wide(b - a >= kPi) {}
+  bool holds(double x, double y) const { return c1 * y - s1 * x >= 0.0 && x * s2 - y * c2 >= 0.0; }
+  Range range(double a, double b) const {
+    if (wide) return sinusoid_range(a, b, t1, t2);
+    const double f1 = a * c1 + b * s1, f2 = a * c2 + b * s2;
+    Range r{std::min(f1, f2), std::max(f1, f2)};
+    if (a == 0.0 && b == 0.0) return r;
+    if (holds(a, b)) r.hi = std::sqrt(a * a + b * b);
+    if (holds(-a, -b)) r.lo = -std::sqrt(a * a + b * b);
+    return r;
+  }
+};
+
 Range add(Range a, Range b) {
   return {a.lo + b.lo, a.hi + b.hi};
 }
@@ -136,21 +163,20 @@ bool CsBox::contains(const SE2Pose& q) const {
   return q.x >= x1 && q.x <= x2 && q.y >= y1 && q.y <= y2 && q.theta >= theta1 && q.theta <= theta2;
 }
 
-void AveragePlaneAccumulator::add(double x, double y, double z) {
-  const Vec3 row(x - origin_.x(), y - origin_.y(), 1.0);
-  ata_.noalias() += row * row.transpose();
-  atb_ += row * z;
-  ++count_;
+Mat3 AveragePlaneAccumulator::ata() const {
+  Mat3 m;
+  m << suu_, suv_, su_, suv_, svv_, sv_, su_, sv_, static_cast<double>(count_);
+  return m;
 }
 
 bool AveragePlaneAccumulator::solve(Vec3& abc) const {
   if (count_ < 3) return false;
-  const Eigen::LDLT<Mat3> ldlt(ata_);
+  const Eigen::LDLT<Mat3> ldlt(ata());
   if (ldlt.info() != Eigen::Success) return false;
   // Collinear points make AᵀA singular: its smallest pivot vanishes against the largest.
   const Vec3 d = ldlt.vectorD().cwiseAbs();
   if (!(d.minCoeff() > 1e-12 * d.maxCoeff())) return false;
-  const Vec3 local = ldlt.solve(atb_);
+  const Vec3 local = ldlt.solve(atb());
   // z = a (x - x0) + b (y - y0) + c'  →  c = c' - a x0 - b y0.
   abc = Vec3(local.x(), local.y(), local.z() - local.x() * origin_.x() - local.y() * origin_.y());
   return true;
@@ -225,6 +251,7 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, 
     // rectangle swept over [θ1, θ2] and translated over [x1, x2] × [y1, y2].
     const Range sphi = sin_range(dom.roll), cphi = cos_range(dom.roll);
     const Range spsi = sin_range(dom.pitch), cpsi = cos_range(dom.pitch);
+    const Arc arc(box.theta1, box.theta2);
     for (int i = 0; i < n; ++i) {
       const double u = robot.wheels[i].x(), v = robot.wheels[i].y();
       const Range w{-robot.cg_height + dom.ext[i].lo, -robot.cg_height + dom.ext[i].hi};
@@ -233,8 +260,8 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, 
       Range rx{1e300, -1e300}, ry{1e300, -1e300};
       for (double cx : {xp.lo, xp.hi}) {
         for (double cy : {yp.lo, yp.hi}) {
-          const Range ox = sinusoid_range(cx, -cy, box.theta1, box.theta2);
-          const Range oy = sinusoid_range(cy, cx, box.theta1, box.theta2);
+          const Range ox = arc.range(cx, -cy);
+          const Range oy = arc.range(cy, cx);
           rx = {std::min(rx.lo, ox.lo), std::max(rx.hi, ox.hi)};
           ry = {std::min(ry.lo, oy.lo), std::max(ry.hi, oy.hi)};
         }
@@ -334,8 +361,8 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, 
 
     // §3.3.3: Δφ, Δψ around the plane's attitude over the whole θ interval.
     const double nrm = std::sqrt(1.0 + a * a + b * b);
-    const Range t = sinusoid_range(b, -a, box.theta1, box.theta2);  // cross slope · ...
-    const Range s = sinusoid_range(a, b, box.theta1, box.theta2);   // slope along u
+    const Range t = arc.range(b, -a);  // cross slope × N, along the body's v axis
+    const Range s = arc.range(a, b);   // slope along the body's u axis
     const Range roll_a{std::asin(std::clamp(t.lo / nrm, -1.0, 1.0)),
                        std::asin(std::clamp(t.hi / nrm, -1.0, 1.0))};
     const Range pitch_a{std::atan(s.lo), std::atan(s.hi)};

@@ -72,16 +72,30 @@ struct CsBox {
 class AveragePlaneAccumulator {
  public:
   explicit AveragePlaneAccumulator(Vec2 origin = Vec2::Zero()) : origin_(origin) {}
-  void add(double x, double y, double z);
+  /// Adds the row (x, y, 1) of A and z of B: AᵀA += rowᵀ row, AᵀB += rowᵀ z.
+  void add(double x, double y, double z) {
+    const double u = x - origin_.x(), v = y - origin_.y();
+    suu_ += u * u;
+    suv_ += u * v;
+    su_ += u;
+    svv_ += v * v;
+    sv_ += v;
+    suz_ += u * z;
+    svz_ += v * z;
+    sz_ += z;
+    ++count_;
+  }
   std::size_t count() const { return count_; }
+  /// AᵀA (symmetric) and AᵀB in coordinates relative to the origin.
+  Mat3 ata() const;
+  Vec3 atb() const { return {suz_, svz_, sz_}; }
   /// (a, b, c) in world coordinates; false if fewer than 3 points or the
   /// points are collinear (then `abc` is untouched).
   bool solve(Vec3& abc) const;
 
  private:
   Vec2 origin_;
-  Mat3 ata_ = Mat3::Zero();
-  Vec3 atb_ = Vec3::Zero();
+  double suu_ = 0, suv_ = 0, su_ = 0, svv_ = 0, sv_ = 0, suz_ = 0, svz_ = 0, sz_ = 0;
   std::size_t count_ = 0;
 };
 

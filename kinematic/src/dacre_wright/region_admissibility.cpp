@@ -127,7 +127,8 @@ void require_symmetric_wheels(const WheeledRobot& robot, double tolerance) {
   const double quad = tolerance * std::max(scale, 1e-300);
   const auto fail = [&](const char* what, double value) {
     std::ostringstream msg;
-    msg << "robot '" << robot.name << "': the Dacre-Wright-Simeon analysis needs a wheel layout "
+    msg << (robot.name.empty() ? std::string("the robot") : "robot '" + robot.name + "'")
+        << ": the Dacre-Wright-Simeon analysis needs a wheel layout "
         << "symmetric about G (sum u = sum v = sum u*v = 0, s3.3.2), but " << what << " = "
         << value;
     throw InputError(msg.str());

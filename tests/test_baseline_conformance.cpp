@@ -33,6 +33,7 @@ constexpr double kGoalHeadingTolerance = 2 * kPi / 32 + 1e-9;  // [rad]
 BaselineOptions conformance_options(const std::string& name) {
   const std::map<std::string, BaselineOptions> options{
       {"hait", {{"robot", TALUS_DATA_DIR "/robots/rover4_sprung.yaml"}}},
+      {"dacre-wright", {{"robot", TALUS_DATA_DIR "/robots/dacre_wright_six_wheel.yaml"}}},
   };
   const auto it = options.find(name);
   return it == options.end() ? BaselineOptions{} : it->second;

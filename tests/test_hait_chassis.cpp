@@ -11,13 +11,14 @@
 #include <variant>
 #include <vector>
 
+#include "random_test_support.hpp"
 #include "talus/core/error.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
 #include "talus/kinematic/hait/chassis_uncertainty_table.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 #include "talus/kinematic/hait/robot.hpp"
 #include "talus/kinematic/hait/robot_validity.hpp"
-#include "random_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -271,7 +272,7 @@ TEST(MovedLowerFaces, CoverEveryFaceOfTheDomainFromBelow) {
   const ChassisPlacementInterval in = table.place_interval(q.x, q.y, q.theta);
   ASSERT_TRUE(usable(in.status));
   const std::vector<Quad> faces = moved_lower_faces(ch, in, q.x, q.y, q.theta, 0.3, 0.7);
-  ASSERT_EQ(faces.size(), 4u);
+  ASSERT_EQ(faces.size(), 12u);  // per body and roll extreme, the swept 8-gon in three quads
   int corners = 0;
   for (int l = -3; l <= 3; ++l) {
     for (int k = -3; k <= 3; ++k) {
@@ -307,6 +308,99 @@ TEST(MovedLowerFaces, CoverEveryFaceOfTheDomainFromBelow) {
     }
   }
   EXPECT_THROW(moved_lower_faces(ch, in, q.x, q.y, q.theta, -0.1, 0.1), InputError);
+}
+
+/// Twice the signed area of the triangle (a, b, c): > 0 when c is left of a→b.
+double cross(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+double polygon_area(const std::vector<Vec2>& p) {
+  double a = 0.0;
+  for (std::size_t k = 0; k < p.size(); ++k) a += cross(Vec2::Zero(), p[k], p[(k + 1) % p.size()]);
+  return 0.5 * a;
+}
+
+/// Convex hull (Andrew's monotone chain), counter-clockwise.
+std::vector<Vec2> convex_hull(std::vector<Vec2> pts) {
+  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  std::vector<Vec2> h(2 * pts.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  for (std::size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(h[k - 2], h[k - 1], pts[i - 1]) <= 0) --k;
+    h[k++] = pts[i - 1];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+TEST(SweptBodyOutline, HoldsEverySweptFootprintAndHugsItsHull) {
+  // The body rectangle [0, L] x [-w, w] turned by phi in [-dtheta, dtheta] about the middle axle
+  // and moved by t in [-rho, rho] sideways (§5.2, Fig. 25 b): every corner of every sampled
+  // footprint lies in the outline, whose area is at most 6 % above the sampled hull's.
+  const double L = 0.75, w = 0.3;  // marsokhod_chassis.yaml: axle_spacing + overhang, half_width
+  for (const double rho : {0.0, 0.3}) {
+    for (const double dtheta : {0.0, 0.1, 0.4, 40.0 * kPi / 180.0, 1.2, 1.5}) {
+      const std::vector<Vec2> outline = swept_body_outline(L, w, rho, dtheta);
+      ASSERT_EQ(outline.size(), dtheta == 0.0 ? 4u : 8u);
+      for (std::size_t k = 0; k < outline.size(); ++k) {  // convex, counter-clockwise
+        EXPECT_GT(
+            cross(outline[k], outline[(k + 1) % outline.size()], outline[(k + 2) % outline.size()]),
+            0.0)
+            << "rho " << rho << ", dtheta " << dtheta << ", vertex " << k + 1;
+      }
+      std::vector<Vec2> swept;
+      for (int i = -200; i <= 200; ++i) {
+        const double phi = dtheta * i / 200, c = std::cos(phi), s = std::sin(phi);
+        for (const double t : {-rho, rho}) {
+          for (const Vec2& corner : {Vec2(0, -w), Vec2(L, -w), Vec2(L, w), Vec2(0, w)}) {
+            const Vec2 p(c * corner.x() - s * corner.y(), s * corner.x() + c * corner.y() + t);
+            swept.push_back(p);
+            for (std::size_t k = 0; k < outline.size(); ++k) {
+              EXPECT_GE(cross(outline[k], outline[(k + 1) % outline.size()], p), -1e-12)
+                  << "rho " << rho << ", dtheta " << dtheta << ": (" << p.x() << ", " << p.y()
+                  << ") outside edge " << k;
+            }
+          }
+        }
+      }
+      const double hull = polygon_area(convex_hull(swept));
+      EXPECT_LE(polygon_area(outline), 1.06 * hull) << "rho " << rho << ", dtheta " << dtheta;
+      if (dtheta == 0.0) {
+        EXPECT_NEAR(polygon_area(outline), L * 2 * (w + rho), 1e-12);
+      }
+    }
+  }
+  EXPECT_THROW(swept_body_outline(0.0, w, 0.1, 0.1), InputError);
+  EXPECT_THROW(swept_body_outline(L, w, -0.1, 0.1), InputError);
+  EXPECT_THROW(swept_body_outline(L, w, 0.1, kPi / 2), InputError);
+}
+
+TEST(MovedLowerFaces, StayWithinTheReachOfTheSweptBody) {
+  // No point of a body turned by at most Δθ about the middle axle and moved by at most ρ is
+  // farther than ρ + √(L² + w²) from the axle; the outline's tangent segments overshoot that
+  // circle by the factor 1/cos(β/5), β = Δθ + atan(w/L) (L = 0.75 m, w = 0.3 m here).
+  const RuledTerrain t = hill(0.0);
+  const ArticulatedChassis ch = marsokhod();
+  const double rho = 0.3, dtheta = 40.0 * kPi / 180.0;
+  ChassisUncertaintyOptions uo;
+  uo.position_uncertainty = rho;
+  uo.heading_uncertainty = dtheta;
+  const ChassisUncertaintyTable table(ch, t, {}, uo);
+  const SE2Pose q{6.0, 4.0, 0.6};
+  const ChassisPlacementInterval in = table.place_interval(q.x, q.y, q.theta);
+  ASSERT_TRUE(usable(in.status));
+  const double L = ch.axle_spacing + ch.body.overhang, w = ch.body.half_width;
+  const double reach = rho + std::hypot(L, w) / std::cos((dtheta + std::atan2(w, L)) / 5);
+  for (const Quad& f : moved_lower_faces(ch, in, q.x, q.y, q.theta, rho, dtheta)) {
+    for (const Vec3& v : f) EXPECT_LE(std::hypot(v.x() - q.x, v.y() - q.y), reach + 1e-9);
+  }
 }
 
 // ---------------------------------------------------------------- plan_hait with the chassis
@@ -346,6 +440,30 @@ TEST(HaitChassis, DetoursAroundASteepHillWithEveryConfigurationValid) {
     EXPECT_GT(r.length_m, 9.2) << heuristic_name(h);
     EXPECT_GT(max_offset, 1.0) << heuristic_name(h);
   }
+}
+
+TEST(HaitChassis, TerrainUncertaintyCountsEveryPlacementOnTMin) {
+  // Under δz a check reads one interval from the table, then places the chassis
+  // directly on T_min for the collision test: that placement is its middle
+  // axle's Place_axle plus every Place_other_axle iteration (at least three).
+  const RuledTerrain t = rolling(3);
+  const ArticulatedChassis ch = marsokhod();
+  const double dz = 0.02;
+  const HaitRobotValidity uncertain(t, ch, dz);
+  const RuledTerrain lower = t.lower_envelope(dz);
+  std::mt19937_64 rng(23);
+  int valid = 0;
+  for (int n = 0; n < 200; ++n) {
+    const SE2Pose q{uniform(rng, 2, 10), uniform(rng, 2, 6), uniform(rng, -kPi, kPi)};
+    const ConfigurationCheck c = uncertain.check(q);
+    if (!c.valid) continue;
+    ++valid;
+    const ChassisPlacement on_lower = place_chassis(ch, lower, q.x, q.y, q.theta);
+    ASSERT_GE(on_lower.axle_placements, 3);
+    EXPECT_EQ(c.placements, 1u + static_cast<std::size_t>(on_lower.axle_placements))
+        << q.x << " " << q.y << " " << q.theta;
+  }
+  EXPECT_GT(valid, 50);
 }
 
 TEST(HaitChassis, UncertainPathIsValidForTheCertainChecks) {

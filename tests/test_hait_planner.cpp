@@ -3,15 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
+#include <tuple>
 #include <vector>
 
+#include "random_test_support.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/graph_search.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
-#include "random_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -445,6 +447,52 @@ TEST(HaitSearch, EnclosedGoalIsNoPath) {
             HaitStatus::kNodeLimit);
 }
 
+/// The planner's cell of q (§4.1: cell_size x cell_size x 2π / bins), re-derived here.
+std::tuple<long, long, long> cell_of(const SE2Pose& q, double cell, int bins) {
+  double t = std::fmod(q.theta, 2 * kPi);
+  if (t < 0) t += 2 * kPi;
+  return {
+      static_cast<long>(std::floor(q.x / cell)), static_cast<long>(std::floor(q.y / cell)),
+      std::min(static_cast<long>(std::floor(t / (2 * kPi) * bins)), static_cast<long>(bins - 1))};
+}
+
+TEST(HaitSearch, AChildOfInfinitePotentialIsValidatedOnce) {
+  // The potential is infinite from x = 1 on: valid children there get no node,
+  // but their cells are visited, so no other parent validates them again (§4.1:
+  // "each new cell is marked"). One check per arc (step = check_spacing), so
+  // every validity call but the start's and the goal's ends one arc.
+  DiscWorld w;
+  w.x0 = -2;
+  w.x1 = 4;
+  w.y0 = -2;
+  w.y1 = 2;
+  HaitOptions o;
+  o.heuristic = HaitHeuristic::kPotential;
+  o.connect_goal = false;
+  o.check_spacing = o.step;
+  const SE2Pose start{0, 0, 0}, goal{3, 0, 0};
+  const PotentialFunction wall = [&](const SE2Pose& q) {
+    return q.x < 1.0 ? std::hypot(goal.x - q.x, goal.y - q.y) : kInf;
+  };
+  std::map<std::tuple<long, long, long>, int> beyond;  // cells past the wall: validity calls
+  std::size_t calls = 0, placements = 0;
+  const ValidityFunction counted = [&](const SE2Pose& q) {
+    const ConfigurationCheck c = w.check(q);
+    ++calls;
+    placements += c.placements;
+    if (c.valid && q.x >= 1.0 && calls > 2) ++beyond[cell_of(q, o.cell_size, o.theta_bins)];
+    return c;
+  };
+  const HaitResult r = hait_search(counted, wall, start, goal, o);
+  EXPECT_EQ(r.status, HaitStatus::kNoPath) << r.message;
+  EXPECT_EQ(r.placements, placements);
+  ASSERT_GT(beyond.size(), 20u);  // the wall is reached along its whole length
+  for (const auto& [cell, n] : beyond) {
+    EXPECT_EQ(n, 1) << "cell (" << std::get<0>(cell) << ", " << std::get<1>(cell) << ", "
+                    << std::get<2>(cell) << ") validated " << n << " times";
+  }
+}
+
 TEST(HaitSearch, RejectsBadOptionsAndInputs) {
   DiscWorld w;
   HaitOptions o;
@@ -478,9 +526,8 @@ WheeledRobot small_rover() {
 
 /// 12 m x 8 m at 0.25 m; an optional steep Gaussian hill (peak `height` at (6, 4), sigma 0.9 m).
 RuledTerrain hill_terrain(double height) {
-  return RuledTerrain(
-      terrain_test::grid_of_nodes(terrain_test::gaussian_hill(Vec2(6, 4), height, 0.9), 49, 33,
-                                  0.25, 0.0, 0.0));
+  return RuledTerrain(terrain_test::grid_of_nodes(
+      terrain_test::gaussian_hill(Vec2(6, 4), height, 0.9), 49, 33, 0.25, 0.0, 0.0));
 }
 
 TEST(HaitPlan, StraightPathOnFlatGround) {
@@ -550,6 +597,24 @@ TEST(HaitPlan, UncertainPathIsValidForTheCertainRobot) {
     if (c.valid && !u.valid) ++tighter;
   }
   EXPECT_GT(tighter, 0);
+}
+
+TEST(HaitPlan, ConfigurationsWhoseControlPointLeavesTheMapGetNodes) {
+  // Heading west 0.45 m from the west edge: the wheels (0.4 m ahead and behind)
+  // stand on the map, the front control point (0.5 m ahead, half the body) does
+  // not. The potential there is read at the map's edge, not +inf, so the
+  // search starts and reverses out.
+  const RuledTerrain flat = hill_terrain(0.0);
+  const WheeledRobot rover = small_rover();
+  const SE2Pose start{0.45, 4, kPi};
+  ASSERT_TRUE(HaitRobotValidity(flat, rover).check(start).valid);
+  for (HaitHeuristic h : {HaitHeuristic::kPotential, HaitHeuristic::kPotentialRs}) {
+    HaitOptions o;
+    o.heuristic = h;
+    const HaitResult r = plan_hait(flat, rover, start, {6, 4, kPi}, o);
+    ASSERT_EQ(r.status, HaitStatus::kFound) << heuristic_name(h) << ": " << r.message;
+    EXPECT_GE(r.length_m, 6 - 0.45 - 1e-9) << heuristic_name(h);  // the start-goal distance
+  }
 }
 
 TEST(HaitPlan, InvalidOrOffMapStartAndGoal) {

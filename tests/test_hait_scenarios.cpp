@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "talus/core/error.hpp"
 #include "talus/kinematic/hait/hait_scenarios.hpp"
 
 namespace talus {
@@ -78,6 +79,7 @@ TEST(HaitScenarios, GorgeRidgeAsDocumented) {
     EXPECT_NEAR(s.gorge.y(), 0.35 * side, 1e-12);
     EXPECT_NEAR(s.ridge_end_y, 0.6 * side, 1e-12);
     EXPECT_EQ(s.ridge_half_thickness, 1.5);
+    EXPECT_EQ(s.gorge_half_width, 0.9 + 0.35);  // the documented floor half-width + wall
     const ElevationGrid base = hait_fractal_base(n, n, 0.25, 0.15, 11);
     const auto added = [&](std::size_t i, std::size_t j) {
       return s.grid.at(i, j) - base.at(i, j);
@@ -145,9 +147,62 @@ TEST(HaitScenarios, RidgeCrossing) {
   HaitScenario gorge;
   gorge.gorge = Vec2(5.0, 2.0);
   gorge.ridge_end_y = 6.0;
+  gorge.gorge_half_width = 1.0;
   EXPECT_TRUE(passes_through_gorge(path({Vec2(0, 2), Vec2(10, 2)}), gorge));
+  EXPECT_TRUE(passes_through_gorge(path({Vec2(0, 1.1), Vec2(10, 2.9)}), gorge));  // y = 2 at x = 5
+  // Round the ridge's north end.
   EXPECT_FALSE(passes_through_gorge(path({Vec2(0, 2), Vec2(0, 8), Vec2(10, 8)}), gorge));
+  // Over the ridge south of its end but outside the gorge, on either side of it.
+  EXPECT_FALSE(passes_through_gorge(path({Vec2(0, 4), Vec2(10, 4)}), gorge));
+  EXPECT_FALSE(passes_through_gorge(path({Vec2(0, 3.2), Vec2(10, 3.2)}), gorge));
+  EXPECT_FALSE(passes_through_gorge(path({Vec2(0, 0.5), Vec2(10, 0.5)}), gorge));
+  // Only the first crossing counts: over the ridge, then back through the gorge.
+  EXPECT_FALSE(passes_through_gorge(
+      path({Vec2(0, 4), Vec2(10, 4), Vec2(10, 2), Vec2(0, 2), Vec2(0, 2.1), Vec2(10, 2.1)}),
+      gorge));
   EXPECT_FALSE(passes_through_gorge(path({Vec2(0, 2), Vec2(4, 2)}), gorge));  // never crosses
+}
+
+TEST(HaitScenarios, UncertaintyDiscMap) {
+  const ElevationGrid grid(9, 7, 0.5, 10.0, 20.0, 3.0);
+  const ElevationGrid dz = uncertainty_disc_map(grid, 0.02, Vec2(12.0, 21.5), 1.0, 0.3);
+  ASSERT_EQ(dz.ncols(), 9u);
+  ASSERT_EQ(dz.nrows(), 7u);
+  EXPECT_EQ(dz.cellsize(), 0.5);
+  EXPECT_EQ(dz.x_min(), 10.0);
+  EXPECT_EQ(dz.y_min(), 20.0);
+  std::size_t high = 0;
+  for (std::size_t j = 0; j < 7; ++j)
+    for (std::size_t i = 0; i < 9; ++i) {
+      const double d = (grid.node_position(i, j) - Vec2(12.0, 21.5)).norm();
+      EXPECT_EQ(dz.at(i, j), d <= 1.0 ? 0.3 : 0.02) << i << ", " << j;
+      high += dz.at(i, j) == 0.3;
+    }
+  // Nodes (i, j) with (i - 4)^2 + (j - 3)^2 <= 4 at 0.5 m spacing: 13 (the centre, 4 at 0.5 m,
+  // 4 at 0.71 m, 4 at 1 m).
+  EXPECT_EQ(high, 13u);
+  EXPECT_THROW(uncertainty_disc_map(grid, -0.1, Vec2(12, 21), 1.0, 0.3), InputError);
+  EXPECT_THROW(uncertainty_disc_map(grid, 0.0, Vec2(12, 21), 1.0, std::nan("")), InputError);
+}
+
+TEST(HaitScenarios, LengthWithinDisc) {
+  const auto path = [](std::vector<Vec2> points) {
+    std::vector<PathPoint> out;
+    for (const Vec2& p : points) out.push_back({{p.x(), p.y(), 0.0}, {}});
+    return out;
+  };
+  // Through the centre: the diameter.
+  EXPECT_NEAR(length_within_disc(path({Vec2(-5, 0), Vec2(5, 0)}), Vec2(0, 0), 2.0), 4.0, 1e-12);
+  // A chord at distance 1 from the centre of a disc of radius 2: 2 sqrt(3), over several pieces.
+  EXPECT_NEAR(length_within_disc(path({Vec2(-5, 1), Vec2(-0.5, 1), Vec2(0.7, 1), Vec2(5, 1)}),
+                                 Vec2(0, 0), 2.0),
+              2.0 * std::sqrt(3.0), 1e-12);
+  // Starting inside: from the centre out.
+  EXPECT_NEAR(length_within_disc(path({Vec2(3, 4), Vec2(3, 9)}), Vec2(3, 4), 1.5), 1.5, 1e-12);
+  // Missing, tangent, and degenerate paths.
+  EXPECT_EQ(length_within_disc(path({Vec2(-5, 3), Vec2(5, 3)}), Vec2(0, 0), 2.0), 0.0);
+  EXPECT_EQ(length_within_disc(path({Vec2(-5, 2), Vec2(5, 2)}), Vec2(0, 0), 2.0), 0.0);
+  EXPECT_EQ(length_within_disc(path({Vec2(0, 0)}), Vec2(0, 0), 2.0), 0.0);
 }
 
 }  // namespace

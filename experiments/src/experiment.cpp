@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "dacre_wright_experiment.hpp"
 #include "dynamic_vs_kinematic_experiment.hpp"
 #include "global_search_experiment.hpp"
 #include "hait_experiments.hpp"
@@ -58,6 +59,11 @@ std::vector<Experiment> all_experiments() {
        "the Hait-Simeon-Taix kinematic path at its own time-optimal profile against Talus's "
        "time-optimal plan: travel times, ratio and planning times on the hait terrains",
        run_dynamic_vs_kinematic},
+      {"dacre-wright-octree",
+       "Dacre-Wright-Simeon free-space structuring: the (x, y, theta) octree of admissible "
+       "voxels on a 64 x 64 rough terrain (FREE voxels at four headings, voxels per level, the "
+       "effect of p0), an incremental search against the whole octree, Proposition 1 sampled",
+       run_dacre_wright_octree},
   };
 }
 

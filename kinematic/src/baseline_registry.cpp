@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "talus/core/error.hpp"
+#include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
 #include "talus/kinematic/hait/hait_baseline.hpp"
 
 namespace talus {
@@ -11,6 +12,7 @@ const BaselineRegistry& BaselineRegistry::builtin() {
   static const BaselineRegistry registry = [] {
     BaselineRegistry r;
     r.add(hait_baseline_entry());
+    r.add(dacre_wright_baseline_entry());
     return r;
   }();
   return registry;

@@ -1,10 +1,12 @@
 // Test paths: closed curves with known geometry.
 #pragma once
 
+#include <cmath>
 #include <numbers>
 #include <vector>
 
 #include "talus/bspline/bspline_curve.hpp"
+#include "talus/core/types.hpp"
 
 namespace talus::path_test {
 

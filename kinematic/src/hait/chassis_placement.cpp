@@ -321,6 +321,11 @@ void ChassisTableOptions::validate() const {
         << terrain_uncertainty;
     throw InputError(msg.str());
   }
+  if (terrain_uncertainty_map && terrain_uncertainty > 0.0) {
+    throw InputError(
+        "ChassisTableOptions: terrain_uncertainty and terrain_uncertainty_map are both set; "
+        "set one");
+  }
   axle.validate();
 }
 
@@ -380,6 +385,37 @@ ChassisPlacement place_chassis(const ArticulatedChassis& chassis, const RuledTer
   return chassis_on(src, Set::kNominal, chassis, x, y, theta, options);
 }
 
+std::vector<Vec2> swept_body_outline(double length, double half_width, double rho, double dtheta) {
+  if (!(length > 0 && std::isfinite(length)) || !(half_width > 0 && std::isfinite(half_width)) ||
+      !(rho >= 0 && std::isfinite(rho)) || !(dtheta >= 0 && dtheta < 0.5 * kPi)) {
+    std::ostringstream msg;
+    msg << "swept_body_outline: need length > 0, half_width > 0, rho >= 0, dtheta in [0, pi/2); "
+           "got "
+        << length << ", " << half_width << ", " << rho << ", " << dtheta;
+    throw InputError(msg.str());
+  }
+  const double L = length, w = half_width;
+  if (dtheta == 0.0) return {{0, -w - rho}, {L, -w - rho}, {L, w + rho}, {0, w + rho}};
+  const double sd = std::sin(dtheta), cd = std::cos(dtheta);
+  // The far corners (L, ±w) turned by ±Δθ reach polar angles up to ±β at radius r.
+  const double r = std::hypot(L, w);
+  const double beta = std::atan2(L * sd + w * cd, L * cd - w * sd);
+  constexpr int kSegments = 5;  // odd: no vertex on the axis, so ±ρ shifts every vertex
+  const double step = 2.0 * beta / kSegments;
+  const double outer = r / std::cos(0.5 * step);  // vertices of the tangent segments
+  const auto shifted = [rho](Vec2 v) {
+    v.y() += v.y() > 0 ? rho : -rho;
+    return v;
+  };
+  std::vector<Vec2> out{shifted({-w * sd, -w * cd})};  // near edge, right end
+  for (int i = 0; i <= kSegments; ++i) {
+    const double a = -beta + step * i;
+    out.push_back(shifted({outer * std::cos(a), outer * std::sin(a)}));
+  }
+  out.push_back(shifted({-w * sd, w * cd}));  // near edge, left end
+  return out;
+}
+
 ChassisPlacementInterval place_chassis_interval(const ArticulatedChassis& chassis,
                                                 const RuledTerrain& terrain,
                                                 const RuledTerrain& lower,
@@ -399,11 +435,14 @@ ChassisPlacementTable::ChassisPlacementTable(const ArticulatedChassis& chassis,
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   slices_ = options.theta_slices;
-  const bool uncertain = options.terrain_uncertainty > 0.0;
-  const RuledTerrain lower =
-      uncertain ? terrain.lower_envelope(options.terrain_uncertainty) : terrain;
-  const RuledTerrain upper =
-      uncertain ? terrain.upper_envelope(options.terrain_uncertainty) : terrain;
+  const ElevationGrid* dz_map = options.terrain_uncertainty_map.get();
+  const bool uncertain = options.terrain_uncertainty > 0.0 || dz_map != nullptr;
+  const RuledTerrain lower = dz_map      ? terrain.lower_envelope(*dz_map)
+                             : uncertain ? terrain.lower_envelope(options.terrain_uncertainty)
+                                         : terrain;
+  const RuledTerrain upper = dz_map      ? terrain.upper_envelope(*dz_map)
+                             : uncertain ? terrain.upper_envelope(options.terrain_uncertainty)
+                                         : terrain;
   const DirectSource src{&terrain, &lower, &upper, chassis.half_axle_width, options.axle};
   const ElevationGrid& grid = terrain.grid();
   const std::size_t nodes = grid.ncols() * grid.nrows();

@@ -1,6 +1,7 @@
 #include "talus/kinematic/hait/chassis_uncertainty_table.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -9,6 +10,7 @@
 
 #include "slice_stencil.hpp"
 #include "talus/core/error.hpp"
+#include "talus/kinematic/hait/chassis_placement.hpp"
 
 namespace talus {
 namespace {
@@ -304,13 +306,13 @@ std::vector<Quad> moved_lower_faces(const ArticulatedChassis& ch,
   const Vec3 f(std::cos(theta), std::sin(theta), 0.0);
   const Vec3 g(-std::sin(theta), std::cos(theta), 0.0);
   const Vec3 m(x, y, in.z.lo);
-  const double len = ch.axle_spacing + ch.body.overhang;
-  const double hw = ch.body.half_width;
-  const double sd = std::sin(dtheta), td = std::tan(dtheta);
-  const double a0 = -hw * sd, a1 = len + hw * sd;
-  const auto half_width = [&](double a) {
-    return rho + hw / std::cos(dtheta) + (a + 2 * hw * sd) * td;
-  };
+  // The body's footprint swept by the domain (s along the body, l to its left), an 8-gon
+  // (4 vertices without Δθ), cut into convex quads for the collision test.
+  const std::vector<Vec2> o =
+      swept_body_outline(ch.axle_spacing + ch.body.overhang, ch.body.half_width, rho, dtheta);
+  const std::vector<std::array<int, 4>> pieces =
+      o.size() == 4 ? std::vector<std::array<int, 4>>{{0, 1, 2, 3}}
+                    : std::vector<std::array<int, 4>>{{0, 1, 2, 3}, {3, 4, 5, 6}, {0, 3, 6, 7}};
   std::vector<Quad> faces;
   for (int direction : {+1, -1}) {
     const Interval& pitch = direction > 0 ? in.pitch_front : in.pitch_rear;
@@ -324,9 +326,9 @@ std::vector<Quad> moved_lower_faces(const ArticulatedChassis& ch,
       const Vec3 lat = (axle - axle.dot(e) * e).normalized();
       const Vec3 up = (direction * e).cross(lat);
       const Vec3 base = m + ch.body.clearance * up;
-      const double w0 = half_width(a0), w1 = half_width(a1);
-      faces.push_back(counter_clockwise({base + a0 * e - w0 * lat, base + a1 * e - w1 * lat,
-                                         base + a1 * e + w1 * lat, base + a0 * e + w0 * lat}));
+      const auto at = [&](int k) { return Vec3(base + o[k].x() * e + o[k].y() * lat); };
+      for (const auto& q : pieces)
+        faces.push_back(counter_clockwise({at(q[0]), at(q[1]), at(q[2]), at(q[3])}));
     }
   }
   return faces;

@@ -55,6 +55,7 @@ PotentialBitmapOptions bitmap_options(const Robot& robot, double radius, double 
 HaitValidityOptions hait_validity_options(const HaitOptions& options) {
   HaitValidityOptions vo;
   vo.terrain_uncertainty = options.terrain_uncertainty;
+  vo.terrain_uncertainty_map = options.terrain_uncertainty_map;
   vo.position_uncertainty = options.position_uncertainty;
   vo.heading_uncertainty = options.heading_uncertainty;
   vo.sample_spacing = options.check_spacing;
@@ -104,23 +105,26 @@ HaitResult plan_hait(const RuledTerrain& terrain, const Robot& robot, const SE2P
       goal_front = goal_rear = goal.position();
       used_offset = 0.0;
     }
-    std::unique_ptr<ElevationGrid> dz;
-    if (options.terrain_uncertainty > 0.0) {
+    std::shared_ptr<const ElevationGrid> dz = options.terrain_uncertainty_map;
+    if (!dz && options.terrain_uncertainty > 0.0) {
       const ElevationGrid& g = terrain.grid();
-      dz = std::make_unique<ElevationGrid>(g.ncols(), g.nrows(), g.cellsize(), g.x_min(), g.y_min(),
-                                           options.terrain_uncertainty);
+      dz = std::make_shared<const ElevationGrid>(g.ncols(), g.nrows(), g.cellsize(), g.x_min(),
+                                                 g.y_min(), options.terrain_uncertainty);
     }
     const PotentialBitmapOptions bo =
         bitmap_options(robot, model.radius(), options.position_uncertainty);
     front = std::make_shared<PotentialBitmap>(terrain, goal_front, bo, dz.get());
     rear = used_offset > 0.0 ? std::make_shared<PotentialBitmap>(terrain, goal_rear, bo, dz.get())
                              : front;
-    potential = [front, rear, used_offset, &terrain](const SE2Pose& q) {
+    // A control point past the map's edge (the robot's overhang can reach beyond
+    // it while its wheels stand on the map) reads the potential at the nearest
+    // point of the map: an infinite value there would deny every configuration
+    // near the edge a node although its validity was checked.
+    const Vec2 lo(grid.x_min(), grid.y_min()), hi(grid.x_max(), grid.y_max());
+    potential = [front, rear, used_offset, lo, hi](const SE2Pose& q) {
       const Vec2 d(std::cos(q.theta), std::sin(q.theta));
-      const Vec2 pf = q.position() + used_offset * d, pr = q.position() - used_offset * d;
-      if (!terrain.contains(pf) || !terrain.contains(pr)) {
-        return std::numeric_limits<double>::infinity();
-      }
+      const Vec2 pf = (q.position() + used_offset * d).cwiseMax(lo).cwiseMin(hi);
+      const Vec2 pr = (q.position() - used_offset * d).cwiseMax(lo).cwiseMin(hi);
       return 0.5 * (front->potential(pf) + rear->potential(pr));
     };
   }

@@ -133,6 +133,10 @@ void HaitOptions::validate() const {
           ">= 0");
   require(nonneg(goal_heading_tolerance), "goal_heading_tolerance", goal_heading_tolerance, ">= 0");
   require(nonneg(terrain_uncertainty), "terrain_uncertainty", terrain_uncertainty, ">= 0");
+  if (terrain_uncertainty_map && terrain_uncertainty > 0.0) {
+    throw InputError(
+        "HaitOptions: terrain_uncertainty and terrain_uncertainty_map are both set; set one");
+  }
   require(nonneg(position_uncertainty), "position_uncertainty", position_uncertainty, ">= 0");
   require(nonneg(heading_uncertainty) && heading_uncertainty < std::numbers::pi,
           "heading_uncertainty", heading_uncertainty, "in [0, pi)");
@@ -314,9 +318,11 @@ HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction
         cost += weighted(ds, c.margin, options.margin_weight);
       }
       if (!ok) continue;
+      // The cell is visited once its arc is valid, whatever the heuristic says: an
+      // unmarked cell would be validated again from every other parent reaching it.
+      marked.insert(key);
       const double h = heuristic(end);
       if (!std::isfinite(h)) continue;  // the potential says the goal is unreachable from here
-      marked.insert(key);
       nodes.push_back({end, node.g + cost, id, u, false});
       ++result.nodes_created;
       open.push({node.g + cost + h, static_cast<std::int64_t>(nodes.size() - 1)});

@@ -40,6 +40,11 @@ void HaitValidityOptions::validate() const {
   require(sample_angle_step > 0.0 && std::isfinite(sample_angle_step), "sample_angle_step",
           sample_angle_step, "positive and finite [rad]");
   require(theta_slices >= 4, "theta_slices", theta_slices, ">= 4");
+  if (terrain_uncertainty_map && terrain_uncertainty > 0.0) {
+    throw InputError(
+        "HaitValidityOptions: terrain_uncertainty and terrain_uncertainty_map are both set; set "
+        "one (the map holds every node's delta z)");
+  }
 }
 
 struct HaitRobotValidity::Impl {
@@ -47,15 +52,19 @@ struct HaitRobotValidity::Impl {
       : terrain(t),
         robot(r),
         opt(o),
-        dz(o.terrain_uncertainty),
-        lower(dz > 0.0 ? t.lower_envelope(dz) : t),
-        upper(dz > 0.0 ? t.upper_envelope(dz) : t),
+        uncertain(o.terrain_uncertainty > 0.0 || o.terrain_uncertainty_map != nullptr),
+        lower(o.terrain_uncertainty_map ? t.lower_envelope(*o.terrain_uncertainty_map)
+              : uncertain               ? t.lower_envelope(o.terrain_uncertainty)
+                                        : t),
+        upper(o.terrain_uncertainty_map ? t.upper_envelope(*o.terrain_uncertainty_map)
+              : uncertain               ? t.upper_envelope(o.terrain_uncertainty)
+                                        : t),
         quadtree(upper) {}
   RuledTerrain terrain;
   Robot robot;
   HaitValidityOptions opt;
-  double dz;
-  RuledTerrain lower, upper;  ///< T_min, T_max (copies of the terrain when δz = 0)
+  bool uncertain;             ///< δz > 0 somewhere: the worst-case checks of §5.1.2
+  RuledTerrain lower, upper;  ///< T_min, T_max (copies of the terrain when certain)
   TerrainQuadtree quadtree;   ///< on T_max (§5.1.2)
   std::optional<ChassisPlacementTable> table;          ///< chassis without ρ, Δθ
   std::optional<ChassisUncertaintyTable> uncertainty;  ///< chassis with ρ or Δθ
@@ -73,7 +82,7 @@ struct HaitRobotValidity::Impl {
   ConfigurationCheck check(const WheeledRobot& r, const SE2Pose& q) const {
     ConfigurationCheck out{false, 0.0, 0};
     Validity v;
-    if (dz > 0.0) {
+    if (uncertain) {
       const RobotPlacementInterval in =
           place_robot_interval(r, terrain, lower, upper, q.x, q.y, q.theta);
       out.placements += static_cast<std::size_t>(in.placements);
@@ -83,7 +92,7 @@ struct HaitRobotValidity::Impl {
     // Collision: placed on T_min (the terrain itself when certain), against T_max.
     const RobotPlacement p = place_robot(r, lower, q.x, q.y, q.theta);
     ++out.placements;
-    if (dz == 0.0) {
+    if (!uncertain) {
       v = check_validity(r, p);
       if (!v.valid()) return out;
     } else if (!usable(p.status)) {
@@ -110,13 +119,16 @@ struct HaitRobotValidity::Impl {
       }
       return {true, v.margin, out.placements};
     }
-    if (dz > 0.0) {
+    if (uncertain) {
       const ChassisPlacementInterval in = table->place_interval(q.x, q.y, q.theta);
       ++out.placements;
       v = check_validity(c, in);
       if (!v.valid()) return out;
-      p = place_chassis(c, lower, q.x, q.y, q.theta);  // worst case for collision: on T_min
-      ++out.placements;
+      // Worst case for collision: on T_min, placed directly (no table holds the whole
+      // chassis on T_min): each of its Place_axle runs, the middle axle's and every
+      // Place_other_axle iteration's, is a placement made for this check.
+      p = place_chassis(c, lower, q.x, q.y, q.theta);
+      out.placements += static_cast<std::size_t>(p.axle_placements);
       if (!usable(p.status)) return out;
     } else {
       p = table->place(q.x, q.y, q.theta);
@@ -148,6 +160,7 @@ HaitRobotValidity::HaitRobotValidity(const RuledTerrain& terrain, const Robot& r
   if (const auto* c = std::get_if<ArticulatedChassis>(&robot)) {
     ChassisTableOptions o;
     o.terrain_uncertainty = options.terrain_uncertainty;
+    o.terrain_uncertainty_map = options.terrain_uncertainty_map;
     o.theta_slices = options.theta_slices;
     if (positional) {
       if (!(options.heading_uncertainty < 0.5 * kPi)) {

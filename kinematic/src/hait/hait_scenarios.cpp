@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <sstream>
+
+#include "talus/core/error.hpp"
 
 namespace talus {
 namespace {
@@ -112,6 +115,7 @@ HaitScenario hait_gorge_scenario(bool quick) {
   s.gorge = Vec2(xc, yc);
   s.ridge_half_thickness = half_thickness;
   s.ridge_end_y = ridge_end;
+  s.gorge_half_width = floor_half + wall;
   s.start = {0.15 * w, yc, 0.0};
   s.goal = {0.85 * w, yc, 0.0};
   s.description =
@@ -136,7 +140,45 @@ double first_crossing_y(std::span<const PathPoint> path, double x) {
 
 bool passes_through_gorge(std::span<const PathPoint> path, const HaitScenario& gorge_scenario) {
   const double y = first_crossing_y(path, gorge_scenario.gorge.x());
-  return std::isfinite(y) && y < gorge_scenario.ridge_end_y;
+  return std::isfinite(y) &&
+         std::abs(y - gorge_scenario.gorge.y()) < gorge_scenario.gorge_half_width;
+}
+
+ElevationGrid uncertainty_disc_map(const ElevationGrid& grid, double base, const Vec2& centre,
+                                   double radius, double high) {
+  for (const double v : {base, high, radius}) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      std::ostringstream msg;
+      msg << "uncertainty_disc_map: base, high and radius must be finite and >= 0, got " << base
+          << ", " << high << ", " << radius;
+      throw InputError(msg.str());
+    }
+  }
+  ElevationGrid dz(grid.ncols(), grid.nrows(), grid.cellsize(), grid.x_min(), grid.y_min(), base);
+  for (std::size_t j = 0; j < grid.nrows(); ++j) {
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      if ((grid.node_position(i, j) - centre).norm() <= radius) dz.at(i, j) = high;
+    }
+  }
+  return dz;
+}
+
+double length_within_disc(std::span<const PathPoint> path, const Vec2& centre, double radius) {
+  double inside = 0.0;
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const Vec2 a = path[k - 1].pose.position() - centre, b = path[k].pose.position() - centre;
+    const Vec2 d = b - a;
+    const double dd = d.squaredNorm();
+    if (dd == 0.0) continue;
+    // |a + t d|^2 = r^2: t = (-a.d ± sqrt((a.d)^2 - dd (|a|^2 - r^2))) / dd, clipped to [0, 1].
+    const double ad = a.dot(d);
+    const double disc = ad * ad - dd * (a.squaredNorm() - radius * radius);
+    if (disc <= 0.0) continue;
+    const double root = std::sqrt(disc);
+    const double t0 = std::max(0.0, (-ad - root) / dd), t1 = std::min(1.0, (-ad + root) / dd);
+    if (t1 > t0) inside += (t1 - t0) * std::sqrt(dd);
+  }
+  return inside;
 }
 
 }  // namespace talus

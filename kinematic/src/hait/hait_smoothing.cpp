@@ -111,21 +111,55 @@ std::vector<double> cumulative_length(const std::vector<PathPoint>& path, double
   return s;
 }
 
+/// Index of the control run (segment) of every configuration: 0 for the
+/// first point and the points after it with its successor's control, +1 at
+/// every control change. The segment between points k − 1 and k has the
+/// control of point k, so a portion i..j covers runs run[i + 1] .. run[j].
+std::vector<std::size_t> control_runs(const std::vector<PathPoint>& path) {
+  std::vector<std::size_t> run(path.size(), 0);
+  for (std::size_t k = 2; k < path.size(); ++k) {
+    run[k] = run[k - 1] + (path[k].control == path[k - 1].control ? 0 : 1);
+  }
+  return run;
+}
+
 /// The paper's random pairs (§4.4).
 void random_pairs(Smoother& sm, const HaitSmoothingOptions& options, double radius) {
   std::mt19937_64 rng(options.seed);
   std::vector<double> s = cumulative_length(sm.path(), radius);
+  std::vector<std::size_t> run = control_runs(sm.path());
+  const bool by_length = options.max_span > 0.0;
+  const bool by_controls = options.max_span_controls > 0;
+  // Controls covered by the portion i..j (i < j).
+  const auto controls = [&](std::size_t i, std::size_t j) { return run[j] - run[i + 1] + 1; };
   for (std::size_t it = 0; it < options.iterations; ++it) {
     const std::size_t n = sm.path().size();
     if (n < 3) break;
     std::size_t i = uniform_index(rng, n);
     std::size_t j = 0;
-    if (options.draw_within_span && options.max_span > 0.0) {
-      // j uniform among the configurations within max_span of i (i excluded).
-      const auto lo = static_cast<std::size_t>(
-          std::lower_bound(s.begin(), s.end(), s[i] - options.max_span) - s.begin());
-      const auto hi = static_cast<std::size_t>(
-          std::upper_bound(s.begin(), s.end(), s[i] + options.max_span) - s.begin());
+    if (options.draw_within_span && (by_length || by_controls)) {
+      // j uniform among the configurations within both limits of i (i excluded).
+      std::size_t lo = 0, hi = n;
+      if (by_length) {
+        lo = static_cast<std::size_t>(
+            std::lower_bound(s.begin(), s.end(), s[i] - options.max_span) - s.begin());
+        hi = static_cast<std::size_t>(
+            std::upper_bound(s.begin(), s.end(), s[i] + options.max_span) - s.begin());
+      }
+      if (by_controls) {
+        // Forward: j with run[j] <= run[i + 1] + N − 1; backward: j with run[j + 1] >=
+        // run[i] − (N − 1), i.e. run[j] >= run[i] − N + 1 up to the one-point offset (checked
+        // exactly below).
+        const std::size_t span = options.max_span_controls - 1;
+        const std::size_t up = (i + 1 < n ? run[i + 1] : run[i]) + span;
+        const std::size_t down = run[i] > span ? run[i] - span : 0;
+        lo = std::max(lo, static_cast<std::size_t>(std::lower_bound(run.begin(), run.end(), down) -
+                                                   run.begin()));
+        hi = std::min(hi, static_cast<std::size_t>(std::upper_bound(run.begin(), run.end(), up) -
+                                                   run.begin()));
+      }
+      lo = std::min(lo, i);
+      hi = std::max(hi, i + 1);
       if (hi - lo < 2) continue;
       j = lo + uniform_index(rng, hi - lo - 1);
       if (j >= i) ++j;
@@ -134,8 +168,12 @@ void random_pairs(Smoother& sm, const HaitSmoothingOptions& options, double radi
     }
     if (i > j) std::swap(i, j);
     if (j < i + 2) continue;  // nothing between them to replace
-    if (options.max_span > 0.0 && s[j] - s[i] > options.max_span) continue;
-    if (sm.try_replace(i, j)) s = cumulative_length(sm.path(), radius);
+    if (by_length && s[j] - s[i] > options.max_span) continue;
+    if (by_controls && controls(i, j) > options.max_span_controls) continue;
+    if (sm.try_replace(i, j)) {
+      s = cumulative_length(sm.path(), radius);
+      run = control_runs(sm.path());
+    }
   }
 }
 

@@ -90,6 +90,7 @@ PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
 
   // Cost bitmap: plane fit over each node's disc (file comment).
   const std::vector<Offset> disc = disc_offsets(std::max(options_.robot_radius, h), h);
+  stats_.disc_nodes = disc.size();
   // Normal matrix of a disc with every node present: the same for all inner nodes.
   const auto normal_matrix = [&](auto&& present) {
     Mat3 a = Mat3::Zero();
@@ -151,7 +152,8 @@ PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
   if (options_.position_uncertainty > 0.0) {
     // No offset reaches past the map's diagonal: a larger rho grows by the
     // whole map, and its disc (O(rho^2) offsets) must not be built.
-    const double diagonal = h * std::hypot(static_cast<double>(ncols_), static_cast<double>(nrows_));
+    const double diagonal =
+        h * std::hypot(static_cast<double>(ncols_), static_cast<double>(nrows_));
     const double radius = std::min(options_.position_uncertainty, diagonal);
     require_memory(std::numbers::pi * std::pow(radius / h + 1.0, 2.0) * sizeof(Offset),
                    "growing the potential bitmap by the position uncertainty",

@@ -11,6 +11,7 @@
 /// points (wheel radii are not modelled; fold them into the body clearances).
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -104,6 +105,23 @@ ChassisPlacement place_chassis(const ArticulatedChassis& chassis, const RuledTer
                                double x, double y, double theta,
                                const AxlePlacementOptions& options = {});
 
+/// The footprint of one chassis body swept by the §5.2 uncertainty domain (a
+/// segment of ±`rho` [m] normal to the heading times headings ±`dtheta` [rad]
+/// about the middle axle), for the moved faces of §5.2.2. Body frame: s along
+/// the body from the middle axle, l to its left; the body is the rectangle
+/// s ∈ [0, `length`], l ∈ [−`half_width`, `half_width`]. Returns a convex
+/// polygon, counter-clockwise in (s, l), that holds every footprint of the
+/// domain and hugs their convex hull: the near edge s = −w sin Δθ, the sides
+/// of the body turned by ±Δθ, and around the far end the arc of radius
+/// √(L² + w²) swept by the far corners, circumscribed by 5 tangent segments
+/// (8 vertices; 4, the body grown by ρ sideways, when Δθ = 0). Everything
+/// shifted by ±ρ sideways. Its area is within a few per cent of the hull's
+/// (the tangent segments overshoot the arc by 1/cos(β/5) − 1 in radius, β =
+/// Δθ + atan(w/L) the arc's half-angle: 0.6 % at Δθ = 40° for the bundled
+/// chassis, 6 % in area at Δθ = 1.5). Throws InputError unless length > 0,
+/// half_width > 0, rho >= 0 and dtheta in [0, π/2).
+std::vector<Vec2> swept_body_outline(double length, double half_width, double rho, double dtheta);
+
 /// Placement intervals of the chassis under terrain uncertainty (§5.1.1).
 struct ChassisPlacementInterval {
   PlacementStatus status = PlacementStatus::kOffMap;
@@ -132,7 +150,11 @@ ChassisPlacementInterval place_chassis_interval(const ArticulatedChassis& chassi
 struct ChassisTableOptions {
   int theta_slices = 72;             ///< n_θ slices over [0, 2π) (>= 4)
   double terrain_uncertainty = 0.0;  ///< δz [m] (>= 0); > 0 adds the four §5.1.1 runs
-  AxlePlacementOptions axle;         ///< for every Place_axle
+  /// Per-node δz [m] instead of the constant (same shape as the terrain's grid,
+  /// >= 0, NODATA = 0); set, it adds the four §5.1.1 runs on its envelopes and
+  /// terrain_uncertainty must be 0. Null = the constant.
+  std::shared_ptr<const ElevationGrid> terrain_uncertainty_map;
+  AxlePlacementOptions axle;  ///< for every Place_axle
   /// Throws InputError naming the field.
   void validate() const;
 };

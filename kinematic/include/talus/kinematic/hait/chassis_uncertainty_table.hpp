@@ -110,10 +110,9 @@ class ChassisUncertaintyTable {
 /// extreme of its mean axle roll (lo, hi) one planar face: it lies `clearance`
 /// above the body line that starts at the lowest middle-axle elevation
 /// (interval.z.lo) and climbs at the body's lowest pitch, hence under the
-/// nominal face; and its outline is the trapezoid that covers the body's
-/// footprint swept by the domain, from −w sin Δθ to L + w sin Δθ along the body
-/// (L the body length, w its half-width) and ρ + w / cos Δθ + (s + 2 w sin Δθ)
-/// tan Δθ to either side at distance s. The two roll extremes bound every roll
+/// nominal face; and its outline is the body's footprint swept by the domain
+/// (swept_body_outline: an 8-gon hugging the swept footprint, cut into three
+/// convex quads; one quad when Δθ = 0). The two roll extremes bound every roll
 /// in between from below at each lateral offset. Empty if the interval is unusable.
 std::vector<Quad> moved_lower_faces(const ArticulatedChassis& chassis,
                                     const ChassisPlacementInterval& interval, double x, double y,

@@ -31,11 +31,12 @@
 /// (1 − d/d_s) times the Reeds–Shepp distance's excess over the straight-line
 /// distance d (the detour the goal heading costs, 0 when aligned), so h is
 /// continuous at the region's edge (a step there makes A* develop the band
-/// outside the region first). On the hait-heuristics problems it creates
-/// fewer nodes than kPotential with `connect_goal` (the default); without
-/// the connection it does not help there, because our potential is nearly
-/// exact near the goal and any added term raises f above that of nodes far
-/// behind (see the experiment's report).
+/// outside the region first). The blend was tuned on the hait-heuristics
+/// problem (seed 7) with `connect_goal`; on its five seeded variants it
+/// creates fewer nodes than kPotential on four (equal on the fifth) with the
+/// connection, but fewer on only one without it (the paper's configuration),
+/// because our potential is nearly exact near the goal and any added term
+/// raises f above that of nodes far behind (see the experiment's report).
 ///
 /// Goal (§4.2): reached by a node within `goal_position_tolerance` and
 /// `goal_heading_tolerance` of the goal, or, when `connect_goal`, by a valid
@@ -58,6 +59,7 @@
 /// query on rough terrain.
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -109,6 +111,10 @@ struct HaitOptions {
 
   // --- uncertainty (§5)
   double terrain_uncertainty = 0.0;  ///< δz, elevation interval half-width at every node [m] (>= 0)
+  /// Per-node δz [m] instead (HaitValidityOptions::terrain_uncertainty_map: the
+  /// terrain grid's shape, >= 0); set, terrain_uncertainty must be 0. The
+  /// validity uses its envelopes and the cost bitmap its local δz (§5.3.1).
+  std::shared_ptr<const ElevationGrid> terrain_uncertainty_map;
   double position_uncertainty = 0.0;  ///< ρ [m] (>= 0)
   double heading_uncertainty = 0.0;   ///< Δθ [rad] in [0, π)
 
@@ -175,7 +181,10 @@ HaitValidityOptions hait_validity_options(const HaitOptions& options);
 
 /// The full planner: placement and validity of `robot` on `terrain` (with the
 /// worst-case checks of §5 when uncertainties are set), collision through the
-/// quadtree, potential bitmaps, then hait_search(). Throws InputError for an
+/// quadtree, potential bitmaps (a control point past the map's edge reads
+/// the potential at the nearest point of the map), then hait_search(). A
+/// valid child whose heuristic is infinite gets no node but its cell is
+/// marked like any other (§4.1). Throws InputError for an
 /// invalid robot or options, a start or goal off the map or on NODATA.
 HaitResult plan_hait(const RuledTerrain& terrain, const Robot& robot, const SE2Pose& start,
                      const SE2Pose& goal, const HaitOptions& options);

@@ -6,10 +6,9 @@
 /// and mechanical limits with their margin, and collision of the lower faces
 /// with the terrain through the quadtree.
 ///
-/// With a terrain uncertainty δz > 0 the checks are the worst case of §5.1.2:
-/// the placement intervals on T_min / T_max must satisfy every limit, and the
-/// faces of the robot placed on T_min must clear T_max (the quadtree is built
-/// on T_max).
+/// With a terrain uncertainty δz > 0 (a constant, or a per-node map) the checks are the worst case
+/// of §5.1.2: the placement intervals on T_min / T_max must satisfy every limit, and the faces of
+/// the robot placed on T_min must clear T_max (the quadtree is built on T_max).
 ///
 /// Position uncertainty (ρ, Δθ, §5.2) takes one of two paths:
 /// - articulated chassis: the paper's method, the min/max placement surfaces
@@ -23,6 +22,7 @@
 #include <memory>
 #include <numbers>
 
+#include "talus/core/elevation_grid.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/configuration_space.hpp"
 #include "talus/kinematic/hait/robot.hpp"
@@ -38,7 +38,12 @@ enum class PositionUncertaintyMethod {
 
 /// Uncertainties and preprocessing choices of HaitRobotValidity (SI units).
 struct HaitValidityOptions {
-  double terrain_uncertainty = 0.0;   ///< δz [m] (>= 0)
+  double terrain_uncertainty = 0.0;  ///< δz [m] (>= 0), the same at every node
+  /// Per-node δz [m] (§5.1: "an interval δz associated with each point of the
+  /// grid"): a grid of the terrain's shape, >= 0, NODATA = 0. Null (default) =
+  /// the constant terrain_uncertainty; set, terrain_uncertainty must be 0 and
+  /// the envelopes are z ∓ δz(i, j). A shape mismatch throws InputError.
+  std::shared_ptr<const ElevationGrid> terrain_uncertainty_map;
   double position_uncertainty = 0.0;  ///< ρ [m] (>= 0)
   /// Δθ [rad]: [0, π/2) for the chassis (the moved faces need it), [0, π) for the rigid body.
   double heading_uncertainty = 0.0;
@@ -76,7 +81,8 @@ class HaitRobotValidity {
 
   /// Valid / margin at q, for the whole uncertainty domain when ρ or Δθ > 0;
   /// `placements` counts robot placements made (one per placement or table
-  /// interval; under δz the interval's runs plus the placement on T_min).
+  /// interval; under δz the interval's runs plus the placement on T_min, which
+  /// for the chassis is placed directly and counts its Place_axle runs).
   ConfigurationCheck check(const SE2Pose& q) const;
   /// check() as a ValidityFunction (keeps a pointer to the shared state, so
   /// it stays valid when this object is moved, not when it is destroyed).

@@ -29,11 +29,13 @@ struct HaitScenario {
   std::string description;  ///< one paragraph for the reports (how the terrain was made)
   /// The Gaussian hills added to the fractal base (none for the gorge).
   std::vector<GaussianHill> hills;
-  /// hait_gorge_scenario: the gorge's centre, the ridge's x–half-thickness [m]
-  /// and the y where the ridge ends (north); unused elsewhere.
+  /// hait_gorge_scenario: the gorge's centre, the ridge's x–half-thickness [m],
+  /// the y where the ridge ends (north) and the gorge's half-width at the top
+  /// of its walls (floor half-width + wall width) [m]; unused elsewhere.
   Vec2 gorge = Vec2::Zero();
   double ridge_half_thickness = 0.0;
   double ridge_end_y = 0.0;
+  double gorge_half_width = 0.0;
 };
 
 /// Adds every hill of `hills` (terrain_generators.hpp: height ·
@@ -83,8 +85,22 @@ HaitScenario hait_gorge_scenario(bool quick);
 double first_crossing_y(std::span<const PathPoint> path, double x);
 
 /// Whether `path` crosses the ridge of a gorge scenario through the gorge:
-/// its first crossing of the ridge line x = gorge.x is south of the ridge's
-/// end (y < ridge_end_y). False if it never crosses.
+/// its first crossing of the ridge line x = gorge.x lies in the gorge's
+/// opening, |y − gorge.y| < gorge_half_width. A crossing elsewhere south of
+/// the ridge's end is over the ridge, one north of it is round the ridge;
+/// both are false, and so is a path that never crosses.
 bool passes_through_gorge(std::span<const PathPoint> path, const HaitScenario& gorge_scenario);
+
+/// A per-node terrain uncertainty map (HaitOptions::terrain_uncertainty_map)
+/// of `grid`'s shape: `high` [m] at the nodes within `radius` [m] of `centre`
+/// (inclusive), `base` [m] elsewhere. Throws InputError for a negative or
+/// non-finite δz or radius.
+ElevationGrid uncertainty_disc_map(const ElevationGrid& grid, double base, const Vec2& centre,
+                                   double radius, double high);
+
+/// Planar length [m] of the pieces of `path` (consecutive poses joined by
+/// chords) that lie within `radius` of `centre`: each chord is clipped to the
+/// disc exactly. 0 for fewer than two poses.
+double length_within_disc(std::span<const PathPoint> path, const Vec2& centre, double radius);
 
 }  // namespace talus

@@ -31,12 +31,20 @@ struct HaitSmoothingOptions {
   HaitSmoothingMethod method = HaitSmoothingMethod::kRandomPairs;
   std::size_t iterations = 200;  ///< random pairs tried (>= 0)
   /// Longest portion [m] of path replaced by a random pair ("random close
-  /// configurations", §4.4); 0 = no limit. The greedy passes ignore it.
+  /// configurations", §4.4); 0 = no limit. The greedy passes ignore it. This
+  /// metric limit is ours; the paper's hint is `max_span_controls`.
   double max_span = 5.0;
+  /// The paper's hint (§4.4, "the number of change control is limited"): the
+  /// portion between a random pair covers at most this many controls
+  /// (segments), i.e. at most max_span_controls − 1 control changes; 0 = no
+  /// limit. Applies together with max_span (set max_span = 0 for this limit
+  /// alone); draw_within_span draws within both. The greedy passes ignore it.
+  std::size_t max_span_controls = 0;
   /// How the second configuration of a random pair is drawn: true = uniformly
-  /// among the configurations within max_span of the first, so every try is
-  /// usable; false = both uniformly over the whole path, pairs farther apart
-  /// than max_span being skipped (about 4 tries in 5 wasted on a 46 m path).
+  /// among the configurations within max_span (and max_span_controls) of the
+  /// first, so every try is usable; false = both uniformly over the whole
+  /// path, pairs beyond the limits being skipped (with the 5 m limit, about 4
+  /// tries in 5 wasted on a 46 m path).
   bool draw_within_span = true;
   double check_spacing =
       0.1;                 ///< validity checks along a new curve at most this far apart [m] (> 0)
@@ -45,10 +53,15 @@ struct HaitSmoothingOptions {
   void validate() const;
 };
 
-/// What the smoothing did.
+/// What the smoothing did. The paper counts controls (Fig. 21: "the number
+/// of controls decreases from 40 to 13"), the segments of constant control:
+/// controls = control changes + 1 (controls()).
 struct HaitSmoothingReport {
   std::size_t control_changes_before = 0;
   std::size_t control_changes_after = 0;
+  /// Controls (segments) before / after, the paper's count: control changes + 1.
+  std::size_t controls_before() const { return control_changes_before + 1; }
+  std::size_t controls_after() const { return control_changes_after + 1; }
   std::size_t control_changes_random = 0;  ///< after the random pairs, before any greedy pass
   std::size_t replacements = 0;            ///< accepted Reeds–Shepp replacements (all stages)
   std::size_t greedy_passes = 0;           ///< greedy passes run (0 for kRandomPairs)

@@ -60,6 +60,9 @@ struct PotentialBitmapStats {
   std::size_t reached = 0;        ///< nodes with a finite potential
   std::size_t expanded = 0;       ///< nodes taken off the propagation queue
   bool goal_on_obstacle = false;  ///< the goal node was an obstacle (see PotentialBitmap)
+  /// Lattice nodes in the evaluation disc of radius max(robot_radius, spacing): the cost
+  /// bitmap fits a plane to this many nodes around every node, ≈ π (R / h)².
+  std::size_t disc_nodes = 0;
 };
 
 /// Cost and potential bitmaps over the nodes of a ruled terrain for one goal.

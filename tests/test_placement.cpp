@@ -6,12 +6,12 @@
 #include <random>
 #include <vector>
 
+#include "random_test_support.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
 #include "talus/kinematic/hait/placement.hpp"
 #include "talus/kinematic/hait/robot_validity.hpp"
-#include "random_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {

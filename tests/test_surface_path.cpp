@@ -4,9 +4,9 @@
 #include <functional>
 #include <numbers>
 
+#include "path_test_support.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
-#include "path_test_support.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {

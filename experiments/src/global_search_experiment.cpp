@@ -891,7 +891,8 @@ void write_report(const Setup& setup, const std::vector<FrictionRun>& runs,
 /// The headline numbers of summary.json: each friction's best cost, against two bounds that
 /// hold whatever the terrain: no route is faster than the straight line at the top speed, and
 /// less friction never makes the best route faster.
-void summarise(const Setup& setup, const std::vector<FrictionRun>& runs, ExperimentSummary& summary) {
+void summarise(const Setup& setup, const std::vector<FrictionRun>& runs,
+               ExperimentSummary& summary) {
   const double straight = (setup.goal - setup.start).norm();
   for (const FrictionRun& run : runs) {
     const std::string tag = friction_tag(run.friction);

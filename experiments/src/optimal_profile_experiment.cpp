@@ -793,8 +793,9 @@ void summarise(const std::vector<ProfileRun>& runs, const ProfileRun& check_run,
                const Convergence& convergence, ExperimentSummary& summary) {
   summary.set("travel_time_point_mass_s", runs[0].profile.travel_time, "s");
   summary.set("travel_time_rigid_body_s", runs[1].profile.travel_time, "s");
-  summary.set("rigid_body_over_point_mass", runs[1].profile.travel_time / runs[0].profile.travel_time,
-              "1", ">= 1: pitch-over only removes admissible states");
+  summary.set("rigid_body_over_point_mass",
+              runs[1].profile.travel_time / runs[0].profile.travel_time, "1",
+              ">= 1: pitch-over only removes admissible states");
   summary.set("rigid_body_long_minus_point_mass_s",
               check_run.profile.travel_time - runs[0].profile.travel_time, "s",
               "0: with l/h > mu pitch-over never binds, so the rigid body is the point mass");

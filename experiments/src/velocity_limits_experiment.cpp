@@ -718,16 +718,16 @@ void summarise(const std::vector<CaseResult>& cases, ExperimentSummary& summary)
   summary.set("path_length_dem_m", dem.length, "m");
   summary.set("path_length_rover_m", rover.length, "m");
   for (const CaseResult* c : {&dem, &rover}) {
-    summary.set("min_v_max_point_mass_" + c->name + "_m_per_s",
-                c->runs.front().summary.min_v_max, "m/s");
+    summary.set("min_v_max_point_mass_" + c->name + "_m_per_s", c->runs.front().summary.min_v_max,
+                "m/s");
   }
   double low = INFINITY, high = -INFINITY;
   const auto& a = dem.runs.front().profile.stations;
   const auto& b = rover.runs.front().profile.stations;
   for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
-    for (const auto& [va, vb] : {std::pair(a[k].v_sliding, b[k].v_sliding),
-                                 std::pair(a[k].v_tipover, b[k].v_tipover),
-                                 std::pair(a[k].v_contact, b[k].v_contact)}) {
+    for (const auto& [va, vb] :
+         {std::pair(a[k].v_sliding, b[k].v_sliding), std::pair(a[k].v_tipover, b[k].v_tipover),
+          std::pair(a[k].v_contact, b[k].v_contact)}) {
       if (!std::isfinite(va) || !std::isfinite(vb) || !(vb > 0.0)) continue;
       low = std::min(low, va / vb);
       high = std::max(high, va / vb);

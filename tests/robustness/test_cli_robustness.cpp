@@ -69,9 +69,13 @@ void expect_refused(const std::vector<Case>& cases, const std::string& never_wri
   }
 }
 
-std::string vehicle() { return point_mass_vehicle("robust_v10.yaml", 0.7, 10.0); }
+std::string vehicle() {
+  return point_mass_vehicle("robust_v10.yaml", 0.7, 10.0);
+}
 
-std::string path_file() { return write_points("robust_path.csv", {{{5, 20}}, {{35, 20}}}); }
+std::string path_file() {
+  return write_points("robust_path.csv", {{{5, 20}}, {{35, 20}}});
+}
 
 std::string flat() {
   return generate_terrain("robust_flat.asc", "plane --ncols 61 --nrows 41 --cellsize 1");
@@ -127,8 +131,8 @@ TEST(CliRobustness, MalformedFilesGetMessagesThatSayWhatIsWrong) {
           {"two values on a header line", grid("n44.asc", "ncols 2 2\nnrows 2\n" + tail),
            "'ncols' has more than one value"},
           {"inf before any header", grid("inf.asc", "inf 2\n"), "the header is missing"},
-          {"underflow", grid("tiny.asc", "ncols 2\nnrows 2\n" + tail.substr(0, tail.size() - 4) +
-                                             "3 1e-400\n"),
+          {"underflow",
+           grid("tiny.asc", "ncols 2\nnrows 2\n" + tail.substr(0, tail.size() - 4) + "3 1e-400\n"),
            "out of the range of a double"},
           {"undeclared float NODATA",
            grid("void.asc", "ncols 2\nnrows 2\n" + tail.substr(0, tail.size() - 4) + "3 -3.4e38\n"),
@@ -157,14 +161,14 @@ TEST(CliRobustness, OptionsThatWouldWrapHangOrExhaustMemory) {
            "--peaks"},
           {"negative column count", "terrain generate fractal --ncols -1 -o " + quoted(out),
            "--ncols"},
-          {"negative seed", "terrain generate fractal --seed -1 -o " + quoted(out),
-           "whole number"},
-          {"huge grid", "terrain generate plane --ncols 100000000 --nrows 100000000 -o " +
-                            quoted(out),
+          {"negative seed", "terrain generate fractal --seed -1 -o " + quoted(out), "whole number"},
+          {"huge grid",
+           "terrain generate plane --ncols 100000000 --nrows 100000000 -o " + quoted(out),
            "memory budget"},
           {"curvature to infinity", "terrain generate bowl --curvature 1e308 -o " + quoted(out),
            "beyond the supported magnitude"},
-          {"unknown kind", "terrain generate fancy -o " + quoted(out), "unknown terrain kind 'fancy'"},
+          {"unknown kind", "terrain generate fancy -o " + quoted(out),
+           "unknown terrain kind 'fancy'"},
       },
       out);
   expect_refused(
@@ -176,18 +180,19 @@ TEST(CliRobustness, OptionsThatWouldWrapHangOrExhaustMemory) {
       },
       dir);
   const std::string profile_out = scratch_file("robust_profile.csv");
-  expect_refused({{"stations beyond memory",
-                   "profile --terrain " + quoted(flat()) + " --path " + quoted(path_file()) +
-                       " --vehicle " + quoted(vehicle()) + " --stations 10000000 -o " +
-                       quoted(profile_out),
-                   "use fewer stations"}},
-                 profile_out);
+  expect_refused(
+      {{"stations beyond memory",
+        "profile --terrain " + quoted(flat()) + " --path " + quoted(path_file()) + " --vehicle " +
+            quoted(vehicle()) + " --stations 10000000 -o " + quoted(profile_out),
+        "use fewer stations"}},
+      profile_out);
 }
 
 TEST(CliRobustness, APathAcrossNodataIsRefusedWhereItCrossesTheVoid) {
   // A void in the middle of the path's straight run; both way points on data.
-  std::string grid = "ncols 31\nnrows 11\nxllcorner -0.5\nyllcorner -0.5\ncellsize 1\n"
-                     "NODATA_value -9999\n";
+  std::string grid =
+      "ncols 31\nnrows 11\nxllcorner -0.5\nyllcorner -0.5\ncellsize 1\n"
+      "NODATA_value -9999\n";
   for (int r = 0; r < 11; ++r) {
     for (int c = 0; c < 31; ++c) grid += (r == 5 && c == 15 ? "-9999" : "0") + std::string(" ");
     grid += "\n";
@@ -197,12 +202,12 @@ TEST(CliRobustness, APathAcrossNodataIsRefusedWhereItCrossesTheVoid) {
   const std::string path = write_points("across_void.csv", {{{3, 5}}, {{27, 5}}});
   const std::string out = scratch_file("void_out.csv");
   for (const char* command : {"limits", "profile"}) {
-    expect_refused({{command,
-                     std::string(command) + " --terrain " + quoted(terrain) + " --path " +
-                         quoted(path) + " --vehicle " + quoted(vehicle()) +
-                         " --smoothing 1 -o " + quoted(out),
-                     "crosses a NODATA cell"}},
-                   out);
+    expect_refused(
+        {{command,
+          std::string(command) + " --terrain " + quoted(terrain) + " --path " + quoted(path) +
+              " --vehicle " + quoted(vehicle()) + " --smoothing 1 -o " + quoted(out),
+          "crosses a NODATA cell"}},
+        out);
   }
 }
 

@@ -47,11 +47,11 @@ struct PlanningProblem {
       : surface(&terrain), vehicle(std::move(model)), start(from), goal(to) {}
   /// Not owned: it must outlive the problem and the result's trajectories.
   const BPatch* surface;
-  Vehicle vehicle;            ///< needs a finite max_speed (the global cost is time at the limit)
-  Vec2 start;                 ///< [m], in the surface's domain
-  Vec2 goal;                  ///< [m], in the surface's domain
-  double start_speed = 0.0;   ///< ṡ at the start [m/s], in [0, max_speed]
-  double end_speed = 0.0;     ///< ṡ at the goal [m/s], in [0, max_speed]
+  Vehicle vehicle;           ///< needs a finite max_speed (the global cost is time at the limit)
+  Vec2 start;                ///< [m], in the surface's domain
+  Vec2 goal;                 ///< [m], in the surface's domain
+  double start_speed = 0.0;  ///< ṡ at the start [m/s], in [0, max_speed]
+  double end_speed = 0.0;    ///< ṡ at the goal [m/s], in [0, max_speed]
   /// Throws InputError naming what is wrong.
   void validate() const;
 };
@@ -126,7 +126,7 @@ struct PlannerResult {
   PlannerStatus status = PlannerStatus::kUnreachable;
   std::string message;  ///< why, when not kOk; empty otherwise
   GlobalSearchResult global;
-  std::vector<CandidateOutcome> candidates;  ///< in the global search's order
+  std::vector<CandidateOutcome> candidates;   ///< in the global search's order
   std::optional<std::size_t> best_candidate;  ///< the fastest feasible one
   PlannerTimings seconds;
 

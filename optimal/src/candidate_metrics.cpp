@@ -93,7 +93,7 @@ CorridorOverlap corridor_overlap(std::span<const Vec2> route, std::span<const Ve
 }
 
 double default_separation(const GlobalSearchResult& result) {
-  return std::max(0.1 * (result.goal_node - result.start_node).norm(), 3.0 * result.spacing);
+  return default_candidate_separation(result.start_node, result.goal_node, result.spacing);
 }
 
 Vec2 lattice_node_position(const GlobalSearchResult& result, std::size_t n) {

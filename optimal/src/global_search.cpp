@@ -10,8 +10,8 @@
 
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
-#include "talus/core/memory_budget.hpp"
 #include "talus/core/graph_search.hpp"
+#include "talus/core/memory_budget.hpp"
 #include "talus/dynamics/admissible_set.hpp"
 
 namespace talus {
@@ -413,7 +413,7 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   const double separation =
       options.distinctness > 0.0
           ? options.distinctness
-          : std::max(0.1 * (result.goal_node - result.start_node).norm(), 3.0 * spacing);
+          : default_candidate_separation(result.start_node, result.goal_node, spacing);
   std::vector<std::uint32_t> order;
   for (std::uint32_t k = 0; k < n; ++k) {
     const double through = from_start.cost[k] + to_goal.cost[k];

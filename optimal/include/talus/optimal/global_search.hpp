@@ -14,6 +14,7 @@
 /// every admissible speed (too steep to drive down and stop). J alone ignores
 /// the tangential acceleration, so without (b) and (c) the search would route
 /// straight up a cliff whose v_max is high because it is straight.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -99,6 +100,13 @@ struct GlobalSearchResult {
 /// limit, and an unlimited straight road would cost nothing), a start or goal
 /// off the map, on NODATA or on untraversable terrain; an unreachable goal
 /// is a status.
+/// The candidates' separation when GlobalSearchOptions::distinctness is 0: a tenth of the
+/// start-goal distance between lattice nodes, at least three lattice spacings [m].
+inline double default_candidate_separation(const Vec2& start_node, const Vec2& goal_node,
+                                           double spacing) {
+  return std::max(0.1 * (goal_node - start_node).norm(), 3.0 * spacing);
+}
+
 GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
                                  const Vec2& goal, const GlobalSearchOptions& options);
 

@@ -47,7 +47,8 @@ ElevationGrid grid_from_array(const DoubleArray& z, double cellsize, double x_mi
                               const py::object& valid) {
   if (z.ndim() != 2) throw py::type_error("z must be a 2-D array (nrows, ncols), row 0 the south");
   py::array_t<bool, py::array::c_style | py::array::forcecast> mask;
-  if (!valid.is_none()) {
+  const bool has_mask = !valid.is_none();
+  if (has_mask) {
     mask = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(valid);
     if (!mask || mask.ndim() != 2 || mask.shape(0) != z.shape(0) || mask.shape(1) != z.shape(1)) {
       throw py::type_error("valid must be a boolean array of z's shape");
@@ -60,7 +61,7 @@ ElevationGrid grid_from_array(const DoubleArray& z, double cellsize, double x_mi
     for (py::ssize_t i = 0; i < z.shape(1); ++i) {
       const auto ci = static_cast<std::size_t>(i), cj = static_cast<std::size_t>(j);
       const double value = a(j, i);
-      if (std::isnan(value) || (mask && !mask.at(j, i))) {
+      if (std::isnan(value) || (has_mask && !mask.at(j, i))) {
         grid.set_void(ci, cj);
         continue;
       }

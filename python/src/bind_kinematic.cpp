@@ -100,7 +100,8 @@ void bind_kinematic(py::module_& m) {
       .value("START_INVALID", BaselineStatus::kStartInvalid)
       .value("GOAL_INVALID", BaselineStatus::kGoalInvalid)
       .value("BUDGET_EXCEEDED", BaselineStatus::kBudgetExceeded)
-      .def("__str__", [](BaselineStatus s) { return to_string(s); });
+      .def(
+          "__str__", [](BaselineStatus s) { return to_string(s); }, py::prepend());
 
   py::class_<BaselineResult>(m, "BaselineResult")
       .def_readonly("status", &BaselineResult::status)

@@ -59,7 +59,8 @@ void bind_profile(py::module_& m) {
       .value("ACCELERATE", ControlKind::kAccelerate)
       .value("DECELERATE", ControlKind::kDecelerate)
       .value("LIMIT", ControlKind::kLimit)
-      .def("__str__", [](ControlKind k) { return std::string(to_string(k)); });
+      .def(
+          "__str__", [](ControlKind k) { return std::string(to_string(k)); }, py::prepend());
 
   py::class_<SwitchingPoint>(m, "SwitchingPoint")
       .def_readonly("station", &SwitchingPoint::station)
@@ -214,11 +215,13 @@ void bind_planner(py::module_& m) {
       .value("IPOPT", PathSolver::kIpopt)
       .value("NLOPT_LBFGS", PathSolver::kNloptLbfgs)
       .value("NLOPT_BOBYQA", PathSolver::kNloptBobyqa)
-      .def("__str__", [](PathSolver s) { return std::string(to_string(s)); });
+      .def(
+          "__str__", [](PathSolver s) { return std::string(to_string(s)); }, py::prepend());
   py::enum_<PathFormulation>(m, "PathFormulation")
       .value("NESTED", PathFormulation::kNested)
       .value("SIMULTANEOUS", PathFormulation::kSimultaneous)
-      .def("__str__", [](PathFormulation f) { return std::string(to_string(f)); });
+      .def(
+          "__str__", [](PathFormulation f) { return std::string(to_string(f)); }, py::prepend());
 
   py::class_<PathOptimizerOptions>(m, "PathOptimizerOptions",
                                    "Options of the local stage; solver and formulation also take "
@@ -298,7 +301,8 @@ void bind_planner(py::module_& m) {
       .value("GLOBAL_SEARCH", PlannerStage::kGlobalSearch)
       .value("LOCAL_OPTIMISATION", PlannerStage::kLocalOptimisation)
       .value("DONE", PlannerStage::kDone)
-      .def("__str__", [](PlannerStage s) { return std::string(to_string(s)); });
+      .def(
+          "__str__", [](PlannerStage s) { return std::string(to_string(s)); }, py::prepend());
   py::class_<PlannerProgress>(m, "PlannerProgress")
       .def_readonly("stage", &PlannerProgress::stage)
       .def_readonly("candidate", &PlannerProgress::candidate)
@@ -322,7 +326,8 @@ void bind_planner(py::module_& m) {
       .value("UNREACHABLE", PlannerStatus::kUnreachable)
       .value("INFEASIBLE", PlannerStatus::kInfeasible)
       .value("STOPPED", PlannerStatus::kStopped)
-      .def("__str__", [](PlannerStatus s) { return std::string(to_string(s)); });
+      .def(
+          "__str__", [](PlannerStatus s) { return std::string(to_string(s)); }, py::prepend());
 
   py::class_<CandidateOutcome>(m, "CandidateOutcome")
       .def_readonly("candidate", &CandidateOutcome::candidate)

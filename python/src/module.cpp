@@ -98,6 +98,7 @@ PYBIND11_MODULE(talus, m) {
       "A thin binding of the C++ library: the same classes, functions, fields and messages "
       "(C++ methods stay methods, fields are attributes; per-station results are numpy "
       "arrays). SI units throughout: x east, y north, z up [m].";
+  m.attr("__version__") = TALUS_VERSION;
   tp::bind_errors(m);
   tp::bind_core(m);
   tp::bind_surface(m);

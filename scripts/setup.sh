@@ -13,6 +13,8 @@ packages=(
   libopenblas-dev
   # OMPL (Reeds–Shepp curves, kinematic/); its CMake config names the Boost libraries.
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
+  # mpirun for `talus sweep` across ranks and its tests (libopenmpi-dev comes with SUNDIALS).
+  openmpi-bin libopenmpi-dev
 )
 
 if ! command -v dpkg-query >/dev/null 2>&1 || ! command -v apt-get >/dev/null 2>&1; then

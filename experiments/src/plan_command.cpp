@@ -281,7 +281,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   write_text_file(dir / "optima.csv", optima_csv(result));
 
   const auto plots_start = Clock::now();
-  const bool plots = best != nullptr && gnuplot_available();
+  const bool plots = request.figures && best != nullptr && gnuplot_available();
   if (plots) render_plan_figures(request, grid, problem, result, dir);
   const double plots_seconds = seconds_since(plots_start);
 

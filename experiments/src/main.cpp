@@ -520,6 +520,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       const std::filesystem::path folder = std::filesystem::path(out_dir) / e.name;
       context.data_dir = ex::find_data_dir(data_dir);
       context.quick = quick;
+      context.run_command = [](const std::vector<std::string>& args) {
+        return run_cli(args, false);
+      };
+      context.check_command = [](const std::vector<std::string>& args) { run_cli(args, true); };
       ex::OutputFolder out(folder);
       context.output_dir = out.staging();
       e.run(context);

@@ -20,8 +20,9 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-const std::set<std::string> kTopLevelKeys = {"job",     "design", "parameters", "cases",
-                                             "samples", "seed",   "retries",    "case_time_limit"};
+const std::set<std::string> kTopLevelKeys = {"job",     "design",          "parameters",
+                                             "cases",   "samples",         "seed",
+                                             "retries", "case_time_limit", "quick"};
 const std::set<std::string> kJobs = {"plan", "profile", "noop"};
 
 [[noreturn]] void fail(const std::string& source, const std::string& what) {
@@ -219,8 +220,11 @@ std::string option_name(const std::string& key) {
   return "--" + name;
 }
 
-std::string absolute_text(const std::string& path) {
-  return std::filesystem::absolute(path).lexically_normal().string();
+std::string absolute_text(const std::filesystem::path& base, const std::string& path) {
+  const std::filesystem::path p = base.empty() || std::filesystem::path(path).is_absolute()
+                                      ? std::filesystem::path(path)
+                                      : base / path;
+  return std::filesystem::absolute(p).lexically_normal().string();
 }
 
 }  // namespace
@@ -236,8 +240,9 @@ std::string fnv1a_hex(const std::string& text) {
   return digits;
 }
 
-SweepConfig parse_sweep_config(const std::string& yaml_text, const std::string& source) {
-  const YAML::Node root = talus::detail::load_strict_yaml(yaml_text, source);
+SweepConfig parse_sweep_config(const std::string& yaml_text, const std::string& source,
+                               bool quick) {
+  YAML::Node root = talus::detail::load_strict_yaml(yaml_text, source);
   SweepConfig config;
   config.source = source;
   if (!root.IsMap()) fail(source, "a sweep configuration is a map (job:, design:, parameters:)");
@@ -245,7 +250,7 @@ SweepConfig parse_sweep_config(const std::string& yaml_text, const std::string& 
     const std::string key = entry.first.as<std::string>();
     if (kTopLevelKeys.count(key) == 0) {
       fail(source, "unknown key '" + printable(key) +
-                       "' (expected job, design, parameters, cases, samples, seed, retries, "
+                       "' (expected job, design, parameters, cases, samples, seed, retries, quick, "
                        "case_time_limit)");
     }
   }
@@ -258,7 +263,17 @@ SweepConfig parse_sweep_config(const std::string& yaml_text, const std::string& 
                      "' (expected plan, profile, baseline NAME or noop)");
   }
   config.design = root["design"] ? root["design"].as<std::string>() : "grid";
-  const YAML::Node parameters = root["parameters"];
+  YAML::Node parameters = root["parameters"];
+  if (root["quick"]) {
+    if (!root["quick"].IsMap() || !parameters || !parameters.IsMap()) {
+      fail(source, "`quick:` is a map of parameters (of `parameters:`) to replace in quick runs");
+    }
+    for (const auto& entry : root["quick"]) {
+      const std::string key = entry.first.as<std::string>();
+      if (!parameters[key]) fail(source, "`quick:` names '" + key + "', which is not a parameter");
+      if (quick) parameters[key] = entry.second;
+    }
+  }
   if (parameters && !parameters.IsMap()) fail(source, "`parameters:` must be a map");
   if (root["cases"] && config.design != "list") {
     fail(source, "`cases:` belongs to design list, not design " + config.design);
@@ -298,8 +313,9 @@ SweepConfig parse_sweep_config(const std::string& yaml_text, const std::string& 
   return config;
 }
 
-SweepConfig load_sweep_config(const std::filesystem::path& path) {
-  return parse_sweep_config(read_input_file(path.string(), kMaxConfigFileBytes), path.string());
+SweepConfig load_sweep_config(const std::filesystem::path& path, bool quick) {
+  return parse_sweep_config(read_input_file(path.string(), kMaxConfigFileBytes), path.string(),
+                            quick);
 }
 
 PreparedCase prepare_case(const SweepConfig& config, const SweepCase& c,
@@ -325,14 +341,14 @@ PreparedCase prepare_case(const SweepConfig& config, const SweepCase& c,
   for (const auto& [key, value] : c.parameters.items()) {
     const std::string text = value_text(value);
     if (key == "terrain.file") {
-      terrain_file = absolute_text(text);
+      terrain_file = absolute_text(config.base_dir, text);
     } else if (key == "terrain.generator") {
       generate.insert(generate.begin(), {"terrain", "generate", text});
     } else if (key.rfind("terrain.", 0) == 0) {
       generate.push_back(option_name(key.substr(8)));
       generate.push_back(text);
     } else if (key == "vehicle.file") {
-      vehicle_file = absolute_text(text);
+      vehicle_file = absolute_text(config.base_dir, text);
     } else if (key.rfind("vehicle.", 0) == 0) {
       vehicle_overrides[key.substr(8)] = text;
       has_vehicle_override = true;

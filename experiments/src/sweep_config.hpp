@@ -22,6 +22,8 @@
 ///     retries: 2                 # a case whose worker crashed or hung is
 ///                                #   run again at most this often
 ///     case_time_limit: 600       # [s] a worker running longer is killed
+///     quick: {terrain.ncols: 33} # values replacing parameters' in quick runs
+///                                #   (`talus experiment NAME --quick`)
 ///
 /// Parameter keys: `terrain.file` (a grid), or `terrain.generator` (a kind of
 /// `talus terrain generate`) with `terrain.*` its options (ncols, seed,
@@ -64,13 +66,18 @@ struct SweepConfig {
   int retries = 2;
   double case_time_limit = 600.0;  ///< [s]
   std::string source;              ///< the file, for messages
+  /// Relative file parameters (terrain.file, vehicle.file) are taken from
+  /// here; empty = the working directory.
+  std::filesystem::path base_dir;
 };
 
 /// Parses a sweep configuration. InputError naming the file and the key for
 /// an unknown job, design or top-level key, an empty design, a malformed
 /// parameter or two cases with the same parameters.
-SweepConfig parse_sweep_config(const std::string& yaml_text, const std::string& source);
-SweepConfig load_sweep_config(const std::filesystem::path& path);
+/// With `quick`, the values under `quick:` replace those parameters' values.
+SweepConfig parse_sweep_config(const std::string& yaml_text, const std::string& source,
+                               bool quick = false);
+SweepConfig load_sweep_config(const std::filesystem::path& path, bool quick = false);
 
 /// The files and commands that run one case in `case_dir`: the job's
 /// command line (without the program name), preceded by a `terrain

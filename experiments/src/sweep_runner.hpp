@@ -13,7 +13,8 @@
 ///   results.rank-R.jsonl), one JSON object per finished case — every input
 ///   parameter, status, the job's key figures (the scalar fields of the JSON
 ///   it prints, timings left out), seconds, attempts, host, rank — appended
-///   and flushed to disk as each case ends.
+///   with one write() as each case ends (no user-space buffer: a killed sweep
+///   loses nothing it recorded).
 /// - Resuming is the default: cases whose id is in a results file are
 ///   skipped; a torn last line (the sweep was killed while writing it) is cut
 ///   off and its case redone. A second sweep on the same DIR is refused (a

@@ -223,9 +223,11 @@ std::size_t lines_in(const fs::path& file) {
 TEST(SweepCli, TheReadmeConfigRunsAsWrittenFromTheRepositoryRoot) {
   const fs::path dir = fresh_dir("readme_sweep");
   const fs::path root = fs::path(TALUS_DATA_DIR).parent_path();
-  const RunResult r = run_talus("sweep " + quoted((root / "data/sweeps/example.yaml").string()) +
-                                " --out " + quoted(dir.string()) + " --jobs 2");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // As the README runs it: from the repository root, with the config's relative paths.
+  const std::string command = "cd " + quoted(root.string()) + " && '" + std::string(TALUS_CLI) +
+                              "' sweep data/sweeps/example.yaml --out " + quoted(dir.string()) +
+                              " --jobs 2 >" + quoted(scratch_file("readme.out")) + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(scratch_file("readme.out"));
   std::ifstream in(dir / "results.csv");
   std::string header;
   std::getline(in, header);

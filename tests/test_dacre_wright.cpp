@@ -427,7 +427,7 @@ TEST(DacreWrightPlanner, PathStaysInTheChannelAndEveryPoseIsAdmissible) {
   full.full = true;
   const DacreWrightResult w = plan_dacre_wright(t, six_wheel(), start, goal, full);
   ASSERT_TRUE(w.found()) << w.brief_report();
-  EXPECT_LT(r.analysed.size(), w.analysed.size());
+  EXPECT_LT(r.voxels_analysed(), w.voxels_analysed());
 }
 
 TEST(DacreWrightPlanner, InvalidStartGoalAndBadOptionsAreClear) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "dacre_wright_outputs.hpp"
 #include "number_format.hpp"
 #include "plot.hpp"
 #include "report.hpp"
@@ -34,53 +35,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 /// A uniform draw in [lo, hi) from the top 53 bits (the same on every platform).
 double uniform(std::mt19937_64& rng, double lo, double hi) {
   return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
-
-/// Fig. 4: the FREE leaves cut by the slices θ = `thetas`, the channel's
-/// voxels and the path's (x, y), one panel per slice.
-void render_octree(const std::filesystem::path& dir, ConfigurationOctree& oct,
-                   const std::vector<VoxelKey>& leaves, const DacreWrightResult& query,
-                   const std::vector<double>& thetas, double side) {
-  const std::filesystem::path data = dir / "octree_slices.dat";
-  std::ofstream out = open_output_file(data);
-  for (double th : thetas) {
-    for (const VoxelKey& v : leaves) {
-      const CsBox b = oct.box(v);
-      if (th < b.theta1 || th >= b.theta2) continue;
-      out << fmt("%.6g", 0.5 * (b.x1 + b.x2)) << ' ' << fmt("%.6g", 0.5 * (b.y1 + b.y2)) << ' '
-          << fmt("%.6g", 0.5 * (b.x2 - b.x1)) << ' ' << fmt("%.6g", 0.5 * (b.y2 - b.y1)) << '\n';
-    }
-    out << "\n\n";
-  }
-  close_output_file(out, data);
-  const std::filesystem::path channel = dir / "channel_boxes.dat";
-  std::ofstream ch = open_output_file(channel);
-  for (const CsBox& b : query.channel_boxes) {
-    ch << fmt("%.6g", 0.5 * (b.x1 + b.x2)) << ' ' << fmt("%.6g", 0.5 * (b.y1 + b.y2)) << ' '
-       << fmt("%.6g", 0.5 * (b.x2 - b.x1)) << ' ' << fmt("%.6g", 0.5 * (b.y2 - b.y1)) << '\n';
-  }
-  close_output_file(ch, channel);
-  const std::filesystem::path path = dir / "path_xy.dat";
-  std::ofstream pa = open_output_file(path);
-  for (const SE2Pose& q : query.path) pa << fmt("%.6g", q.x) << ' ' << fmt("%.6g", q.y) << '\n';
-  close_output_file(pa, path);
-
-  std::string gp = png_terminal(1200, 1100) + "\nset output 'octree.png'\n";
-  gp += "set multiplot layout 2,2 title " +
-        gnuplot_string("dacre-wright-octree: FREE voxels at four headings (cf. Fig. 4)") + "\n";
-  gp += "set size ratio -1\nset xrange [0:" + fmt("%.6g", side) +
-        "]\nset yrange [0:" + fmt("%.6g", side) +
-        "]\nset xlabel 'x [m]'\nset ylabel 'y [m]'\nset key off\n";
-  for (std::size_t k = 0; k < thetas.size(); ++k) {
-    gp += "set title " + gnuplot_string("θ = " + fmt("%.0f", thetas[k] * 180 / kPi) + "°") + "\n";
-    gp += "plot 'octree_slices.dat' index " + std::to_string(k) +
-          " with boxxyerror fs solid 0.35 lc rgb '#2ca25f' lw 0.5, "
-          "'channel_boxes.dat' with boxxyerror fs empty lc rgb '#e6550d' lw 1.5, "
-          "'path_xy.dat' with lines lc rgb '#08519c' lw 2\n";
-  }
-  gp += "unset multiplot\n";
-  write_text_file(dir / "octree.gp", gp);
-  run_gnuplot(dir / "octree.gp");
 }
 
 }  // namespace
@@ -200,7 +154,17 @@ void run_dacre_wright_octree(const ExperimentContext& context) {
     path_csv += csv_number(q.x) + "," + csv_number(q.y) + "," + csv_number(q.theta) + "\n";
   write_text_file(context.output_dir / "path.csv", path_csv);
 
-  render_octree(context.output_dir, oct, leaves, ri, {0.0, kPi / 4, kPi / 2, 3 * kPi / 4}, side);
+  OctreeSliceFigure figure;
+  for (const VoxelKey& v : leaves) figure.free_voxels.push_back(oct.box(v));
+  figure.channel = ri.channel_boxes;
+  figure.path = ri.path;
+  figure.thetas = {0.0, kPi / 4, kPi / 2, 3 * kPi / 4};
+  figure.x_min = grid.x_min();
+  figure.x_max = grid.x_min() + side;
+  figure.y_min = grid.y_min();
+  figure.y_max = grid.y_min() + side;
+  figure.title = "dacre-wright-octree: FREE voxels at four headings (cf. Fig. 4)";
+  render_octree_slices(context.output_dir, "octree", figure);
 
   // Summary numbers, each with what it is to be compared with.
   ExperimentSummary& sum = *context.summary;
@@ -215,10 +179,10 @@ void run_dacre_wright_octree(const ExperimentContext& context) {
           "the paper: about 1 minute for octree and trajectory on a 1993 SGI Indigo");
   sum.set("whole_octree_voxels_analysed", static_cast<double>(oct.analyses()), "1",
           "at most the 8^p_max voxels of the finest level plus their ancestors");
-  sum.set("incremental_voxels_analysed", static_cast<double>(ri.analysed.size()), "1", "");
+  sum.set("incremental_voxels_analysed", static_cast<double>(ri.voxels_analysed()), "1", "");
   sum.set("incremental_over_full_analyses",
-          static_cast<double>(ri.analysed.size()) / static_cast<double>(rw.analysed.size()), "1",
-          "below 1: the incremental search builds only part of the octree (§4.3)");
+          static_cast<double>(ri.voxels_analysed()) / static_cast<double>(rw.voxels_analysed()),
+          "1", "below 1: the incremental search builds only part of the octree (§4.3)");
   sum.set("incremental_seconds", ri.search_seconds, "s", "");
   sum.set("path_length_m", ri.length_m, "m",
           "at least the straight line " + sig3((goal.position() - start.position()).norm()) + " m");
@@ -248,8 +212,8 @@ void run_dacre_wright_octree(const ExperimentContext& context) {
                        std::to_string(admissible_samples) + " of " + std::to_string(samples) +
                            " sampled configurations pass the placement test"})
                  .row({"incremental vs whole", "incremental builds only what the search needs",
-                       std::to_string(ri.analysed.size()) + " vs " +
-                           std::to_string(rw.analysed.size()) + " voxels analysed"})
+                       std::to_string(ri.voxels_analysed()) + " vs " +
+                           std::to_string(rw.voxels_analysed()) + " voxels analysed"})
                  .row({"Haït search with / without the channel", "used as a guide",
                        "not implemented here (see the closing note of issue 14)"}));
   report.heading("Reference level p0").table(p0_table);

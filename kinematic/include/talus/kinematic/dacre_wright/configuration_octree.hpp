@@ -60,10 +60,12 @@ struct OctreeOptions {
   void validate() const;
 };
 
-/// One analysed voxel, in the order of analysis.
+/// One voxel whose state was decided, in the order of decision: analysed by
+/// analyse_box (levels >= p0) or, above p0, combined from its eight sons.
 struct AnalysedVoxel {
   VoxelKey key;
   VoxelStatus status = VoxelStatus::kUnknown;
+  bool from_sons = false;  ///< decided bottom-up from the sons, not analysed
 };
 
 /// The lazily built octree of one robot on one terrain.
@@ -103,10 +105,12 @@ class ConfigurationOctree {
   double free_volume_fraction();
 
   bool budget_exhausted() const { return exhausted_; }
-  std::size_t analyses() const { return analysed_.size(); }
+  /// analyse_box calls so far (what the budget counts).
+  std::size_t analyses() const { return analyses_; }
   /// analyse_box calls per level (index = level).
   const std::vector<std::size_t>& analyses_per_level() const { return per_level_; }
-  const std::vector<AnalysedVoxel>& analysed() const { return analysed_; }
+  /// Every decided voxel (analysed or combined from its sons), in order.
+  const std::vector<AnalysedVoxel>& decided() const { return decided_; }
 
  private:
   std::size_t index(const VoxelKey& v) const;
@@ -122,7 +126,8 @@ class ConfigurationOctree {
   double x0_ = 0.0, y0_ = 0.0, side_ = 1.0;
   std::vector<std::vector<VoxelStatus>> cache_;  ///< per level, 8^p entries
   std::vector<std::size_t> per_level_;
-  std::vector<AnalysedVoxel> analysed_;
+  std::vector<AnalysedVoxel> decided_;
+  std::size_t analyses_ = 0;
   bool exhausted_ = false;
 };
 

@@ -135,19 +135,26 @@ DacreWrightResult plan_dacre_wright(const RuledTerrain& terrain, const WheeledRo
     r.analyses_per_level = oct.analyses_per_level();
     const std::vector<AnalysedVoxel>& decided = oct.decided();
     r.voxels.reserve(decided.size());
+    // Only FREE voxels are looked up (the channel's, the leaves).
     std::unordered_map<std::uint64_t, std::size_t> where;
-    where.reserve(decided.size());
+    double volume = 0.0;
     for (const AnalysedVoxel& v : decided) {
-      where.emplace(v.key.code(), r.voxels.size());
+      if (v.status == VoxelStatus::kFree) {
+        where.emplace(v.key.code(), r.voxels.size());
+        // A FREE leaf: no ancestor is FREE (the canonical decomposition).
+        bool leaf = true;
+        for (VoxelKey a = v.key; a.level > 0 && leaf;) {
+          a = ConfigurationOctree::father(a);
+          leaf = oct.cached(a) != VoxelStatus::kFree;
+        }
+        if (leaf) {
+          r.free_leaf_indices.push_back(r.voxels.size());
+          volume += std::ldexp(1.0, -3 * v.key.level);
+        }
+      }
       r.voxels.push_back({v.key, oct.box(v.key), v.status, v.from_sons});
     }
     for (const VoxelKey& v : r.channel) r.channel_indices.push_back(where.at(v.code()));
-    double volume = 0.0;
-    for (const VoxelKey& v : oct.free_leaves()) {
-      r.free_leaf_indices.push_back(where.at(v.code()));
-      volume += std::ldexp(1.0, -3 * v.level);
-    }
-    std::sort(r.free_leaf_indices.begin(), r.free_leaf_indices.end());
     r.free_volume_fraction = volume;
     r.search_seconds = seconds_since(t0) - r.preprocessing_seconds;
     return r;

@@ -84,6 +84,10 @@ class ConfigurationOctree {
   /// outside the root square.
   std::optional<VoxelKey> locate(const SE2Pose& q, int level) const;
 
+  /// The cached state of v: kUnknown if it was never decided (no analysis).
+  VoxelStatus cached(const VoxelKey& v) const {
+    return cache_[static_cast<std::size_t>(v.level)][index(v)];
+  }
   /// FREE or MIXED, analysing (or, above p0, combining the sons) as needed.
   /// Once the budget is spent, unanalysed voxels are MIXED (conservative).
   VoxelStatus state(const VoxelKey& v);
@@ -120,6 +124,7 @@ class ConfigurationOctree {
 
   const WheeledRobot& robot_;
   const RuledTerrain& terrain_;
+  ElevationSums sums_;  ///< the average plane's integral images, built once
   OctreeOptions options_;
   int max_level_ = 6;
   int p0_ = 3;

@@ -55,7 +55,7 @@ void BM_IncrementalQuery(benchmark::State& state) {
   bool found = false;
   for (auto _ : state) {
     const talus::DacreWrightResult r = talus::plan_dacre_wright(map64(), robot(), start, goal, o);
-    analyses = r.analysed.size();
+    analyses = r.voxels_analysed();
     found = r.found();
     benchmark::DoNotOptimize(analyses);
   }

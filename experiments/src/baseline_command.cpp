@@ -1,11 +1,16 @@
 #include "baseline_command.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <memory>
+#include <numbers>
+#include <optional>
 #include <system_error>
 #include <variant>
 
 #include "cli_values.hpp"
+#include "dacre_wright_outputs.hpp"
 #include "hait_figures.hpp"
 #include "limits_command.hpp"
 #include "number_format.hpp"
@@ -16,6 +21,7 @@
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
+#include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -50,6 +56,23 @@ std::unique_ptr<BaselinePlanner> make_planner(const BaselineRequest& request) {
   }
 }
 
+/// The octree figure's slices: four headings evenly spread over those the path
+/// takes (a quarter turn apart when it keeps one heading), in [0, 2π).
+std::vector<double> slice_headings(const std::vector<SE2Pose>& path) {
+  double lo = path.front().theta, hi = lo;
+  for (const SE2Pose& q : path) {
+    lo = std::min(lo, q.theta);
+    hi = std::max(hi, q.theta);
+  }
+  const double step = hi - lo > 1e-6 ? (hi - lo) / 3.0 : 0.5 * std::numbers::pi;
+  std::vector<double> out;
+  for (int k = 0; k < 4; ++k) {
+    const double th = std::fmod(lo + k * step, 2.0 * std::numbers::pi);
+    out.push_back(th < 0 ? th + 2.0 * std::numbers::pi : th);
+  }
+  return out;
+}
+
 }  // namespace
 
 SE2Pose parse_pose(const std::string& option, const std::string& text) {
@@ -79,11 +102,23 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   check_on_map("--start", start, terrain, request.terrain);
   check_on_map("--goal", goal, terrain, request.terrain);
 
-  const BaselineResult result = planner->plan(terrain, start, goal);
+  // The Dacre-Wright baseline's full result (voxels, channel) feeds its own outputs.
+  std::optional<DacreWrightResult> octree;
+  BaselineResult result;
+  if (const auto* dw = dynamic_cast<const DacreWrightBaseline*>(planner.get())) {
+    octree = dw->plan_full(terrain, start, goal);
+    result = to_baseline_result(*octree, dw->options().full);
+  } else {
+    result = planner->plan(terrain, start, goal);
+  }
   const bool found = result.found();
 
   const std::filesystem::path& dir = out.staging();
   write_text_file(dir / "path.csv", baseline_path_csv(result.path, result.motions));
+  if (octree) {
+    write_text_file(dir / "voxels.csv", dacre_wright_voxels_csv(*octree));
+    write_text_file(dir / "channel.csv", dacre_wright_channel_csv(*octree));
+  }
 
   const auto plot_start = Clock::now();
   const bool plots = found && gnuplot_available();
@@ -98,6 +133,20 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
     map.title = "talus baseline " + planner->name() + ": " +
                 std::filesystem::path(request.terrain).filename().string();
     render_hait_map(dir, "path", map);
+    if (octree) {
+      OctreeSliceFigure figure = octree_slice_figure(*octree);
+      figure.thetas = slice_headings(octree->path);
+      const ElevationGrid& g = terrain.grid();
+      const double side = std::max(g.x_max() - g.x_min(), g.y_max() - g.y_min());
+      figure.x_min = g.x_min();
+      figure.x_max = g.x_min() + side;
+      figure.y_min = g.y_min();
+      figure.y_max = g.y_min() + side;
+      figure.title =
+          "talus baseline dacre-wright: FREE voxels at four headings of the path, the "
+          "channel and the path";
+      render_octree_slices(dir, "octree", figure);
+    }
   }
 
   nlohmann::json summary;
@@ -111,6 +160,7 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   summary["search_seconds"] = result.search_seconds;
   summary["length_m"] = found ? nlohmann::json(result.length_m) : nlohmann::json(nullptr);
   summary["path_points"] = result.path.size();
+  if (octree) add_dacre_wright_summary(summary, *octree);
   for (const BaselineSetting& s : planner->settings()) {
     std::visit([&](const auto& v) { summary[s.section][s.key] = v; }, s.value);
   }
@@ -125,6 +175,12 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
       {"path", out.final_path("path.csv").string()},
       {"summary", out.final_path("summary.json").string()},
       {"path_png", plots ? nlohmann::json(out.final_path("path.png").string()) : nullptr}};
+  if (octree) {
+    summary["files"]["voxels"] = out.final_path("voxels.csv").string();
+    summary["files"]["channel"] = out.final_path("channel.csv").string();
+    summary["files"]["octree_png"] =
+        plots ? nlohmann::json(out.final_path("octree.png").string()) : nullptr;
+  }
   summary["plot_seconds"] = seconds_since(plot_start);
   summary["seconds"] = seconds_since(start_time);
   write_text_file(dir / "summary.json", summary.dump(2) + "\n");

@@ -40,7 +40,14 @@ inline constexpr const char* kBaselineOutputHelp =
     "reverse-right, or none on the first row), summary.json (status found | no_path | "
     "start_invalid | goal_invalid | budget_exceeded, message, the planner's counters, "
     "preprocessing_seconds, search_seconds, length_m, the planner's settings such as robot and "
-    "options, ...; also printed) and path.png (the path over shaded relief). Exit code 0 when a "
+    "options, ...; also printed) and path.png (the path over shaded relief). dacre-wright also "
+    "writes "
+    "voxels.csv (columns level,x_min,x_max,y_min,y_max,theta_min,theta_max,status: every voxel "
+    "whose state was decided, analysed or combined from its sons above p0, status FREE or "
+    "MIXED), channel.csv (columns step,voxel: the channel from the start's voxel to the goal's, "
+    "voxel = 0-based data row of voxels.csv), octree.png (FREE voxels at four headings of the "
+    "path, the channel and the path) and the summary keys voxels_analysed_per_level, "
+    "free_volume_fraction, voxels_decided, free_leaves, reference_level. Exit code 0 when a "
     "path is found; 2 when none exists, the start or goal configuration is invalid or the "
     "budget ran out (summary still written); 1 on bad input: malformed numbers or options, "
     "missing or bad files, a start or goal off the map or on NODATA (one line on stderr, "
@@ -69,7 +76,10 @@ struct BaselineOutcome {
 ///   per section of the planner's settings (e.g. robot, options), terrain
 ///   {file, ncols, nrows, cellsize}, start, goal, files, plot_seconds, seconds;
 /// - path.png: the path over the terrain's shaded relief (when a path exists
-///   and gnuplot is installed).
+///   and gnuplot is installed);
+/// - for the dacre-wright baseline also voxels.csv, channel.csv
+///   (dacre_wright_outputs.hpp), octree.png (when a path exists and gnuplot is
+///   installed) and add_dacre_wright_summary()'s keys.
 /// Bad input (an unknown baseline, bad options, malformed numbers, missing or
 /// bad files, a start or goal off the map or on NODATA) throws InputError,
 /// naming a bad option as its flag (--KEY), and writes nothing.

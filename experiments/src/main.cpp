@@ -12,6 +12,7 @@
 #include "experiment.hpp"
 #include "limits_command.hpp"
 #include "output_folder.hpp"
+#include "placement_command.hpp"
 #include "plan_command.hpp"
 #include "profile_command.hpp"
 #include "sweep_command.hpp"
@@ -498,6 +499,21 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       if (!outcome.found) exit_code = ex::kBaselineNoPathExitCode;
     });
   }
+
+  ex::PlacementRequest placement_request;
+  CLI::App* placement = app.add_subcommand("placement", ex::kPlacementHelp);
+  placement->add_option("--terrain", placement_request.terrain, "ESRI ASCII grid (.asc)")
+      ->required();
+  placement
+      ->add_option("--robot", placement_request.robot,
+                   "robot YAML (type wheeled or articulated_chassis, data/robots/README.md)")
+      ->required();
+  placement
+      ->add_option("--configs", placement_request.configs,
+                   "configurations CSV with the header x,y,theta")
+      ->required();
+  placement->add_option("-o,--output", placement_request.output, "output .csv file")->required();
+  placement->callback([&]() { std::cout << ex::run_placement(placement_request).dump(2) << "\n"; });
 
   std::string experiment_name, out_dir = "talus-out", data_dir;
   bool quick = false;

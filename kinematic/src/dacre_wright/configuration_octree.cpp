@@ -43,7 +43,7 @@ void OctreeOptions::validate() const {
 
 ConfigurationOctree::ConfigurationOctree(const WheeledRobot& robot, const RuledTerrain& terrain,
                                          const OctreeOptions& options)
-    : robot_(robot), terrain_(terrain), options_(options) {
+    : robot_(robot), terrain_(terrain), sums_(terrain), options_(options) {
   options_.validate();
   robot_.validate();
   require_symmetric_wheels(robot_);
@@ -121,16 +121,18 @@ VoxelStatus ConfigurationOctree::state(const VoxelKey& v) {
     // Once the budget is spent a MIXED here may only mean "not analysed": do not cache it.
     if (s == VoxelStatus::kMixed && exhausted_) return s;
     slot = s;
+    decided_.push_back({v, s, true});
     return s;
   }
-  if (analysed_.size() >= options_.budget) {
+  if (analyses_ >= options_.budget) {
     exhausted_ = true;
     return VoxelStatus::kMixed;
   }
-  const BoxAnalysis a = analyse_box(robot_, terrain_, box(v), options_.analysis);
+  const BoxAnalysis a = analyse_box(robot_, sums_, box(v), options_.analysis);
   slot = a.free() ? VoxelStatus::kFree : VoxelStatus::kMixed;
   ++per_level_[static_cast<std::size_t>(v.level)];
-  analysed_.push_back({v, slot});
+  ++analyses_;
+  decided_.push_back({v, slot, false});
   return slot;
 }
 

@@ -110,7 +110,11 @@ DacreWrightResult DacreWrightBaseline::plan_full(const RuledTerrain& terrain, co
 
 BaselineResult DacreWrightBaseline::solve(const RuledTerrain& terrain, const SE2Pose& start,
                                           const SE2Pose& goal) const {
-  const DacreWrightResult r = plan_dacre_wright(terrain, robot_, start, goal, options_);
+  return to_baseline_result(plan_dacre_wright(terrain, robot_, start, goal, options_),
+                            options_.full);
+}
+
+BaselineResult to_baseline_result(const DacreWrightResult& r, bool full) {
   BaselineResult out;
   out.status = baseline_status(r.status);
   out.message = std::string(to_string(r.status)) + ": " + r.message;
@@ -120,15 +124,13 @@ BaselineResult DacreWrightBaseline::solve(const RuledTerrain& terrain, const SE2
   }
   out.preprocessing_seconds = r.preprocessing_seconds;
   out.search_seconds = r.search_seconds;
-  std::size_t total = 0;
   for (std::size_t p = 0; p < r.analyses_per_level.size(); ++p) {
     out.counters["voxels_analysed_level_" + std::to_string(p)] = r.analyses_per_level[p];
-    total += r.analyses_per_level[p];
   }
-  out.counters["voxels_analysed"] = total;
+  out.counters["voxels_analysed"] = r.voxels_analysed();
   out.counters["channel_voxels"] = r.channel.size();
   out.counters["expansions"] = r.expansions;
-  out.flags = {{"full_octree", options_.full}};
+  out.flags = {{"full_octree", full}};
   return out;
 }
 

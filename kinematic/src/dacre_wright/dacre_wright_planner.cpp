@@ -89,10 +89,15 @@ const char* to_string(DacreWrightStatus status) {
   return "unknown";
 }
 
-std::string DacreWrightResult::brief_report() const {
-  std::ostringstream s;
+std::size_t DacreWrightResult::voxels_analysed() const {
   std::size_t n = 0;
   for (std::size_t c : analyses_per_level) n += c;
+  return n;
+}
+
+std::string DacreWrightResult::brief_report() const {
+  std::ostringstream s;
+  const std::size_t n = voxels_analysed();
   s << to_string(status) << ": channel " << channel.size() << " voxels, path " << path.size()
     << " poses, " << length_m << " m, " << n << " voxels analysed (p0 = " << reference_level
     << "), " << expansions << " expansions, free volume " << free_volume_fraction
@@ -127,9 +132,30 @@ DacreWrightResult plan_dacre_wright(const RuledTerrain& terrain, const WheeledRo
   const auto finish = [&](DacreWrightStatus s, std::string message) {
     r.status = s;
     r.message = std::move(message);
-    r.analysed = oct.analysed();
     r.analyses_per_level = oct.analyses_per_level();
-    r.free_volume_fraction = oct.free_volume_fraction();
+    const std::vector<AnalysedVoxel>& decided = oct.decided();
+    r.voxels.reserve(decided.size());
+    // Only FREE voxels are looked up (the channel's, the leaves).
+    std::unordered_map<std::uint64_t, std::size_t> where;
+    double volume = 0.0;
+    for (const AnalysedVoxel& v : decided) {
+      if (v.status == VoxelStatus::kFree) {
+        where.emplace(v.key.code(), r.voxels.size());
+        // A FREE leaf: no ancestor is FREE (the canonical decomposition).
+        bool leaf = true;
+        for (VoxelKey a = v.key; a.level > 0 && leaf;) {
+          a = ConfigurationOctree::father(a);
+          leaf = oct.cached(a) != VoxelStatus::kFree;
+        }
+        if (leaf) {
+          r.free_leaf_indices.push_back(r.voxels.size());
+          volume += std::ldexp(1.0, -3 * v.key.level);
+        }
+      }
+      r.voxels.push_back({v.key, oct.box(v.key), v.status, v.from_sons});
+    }
+    for (const VoxelKey& v : r.channel) r.channel_indices.push_back(where.at(v.code()));
+    r.free_volume_fraction = volume;
     r.search_seconds = seconds_since(t0) - r.preprocessing_seconds;
     return r;
   };

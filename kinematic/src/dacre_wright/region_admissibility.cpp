@@ -5,6 +5,11 @@
 #include <numbers>
 #include <sstream>
 #include <variant>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "talus/core/error.hpp"
 
@@ -215,8 +220,115 @@ double paper_beta_max(double k) {
   return 2.0 * std::atan(k / (std::sqrt(k * k + 1.0) + 1.0));
 }
 
+ElevationSums::ElevationSums(const RuledTerrain& terrain) : terrain_(terrain) {
+  const ElevationGrid& g = terrain.grid();
+  const std::size_t nc = g.ncols(), nr = g.nrows();
+  stride_ = nc + 1;
+  // The reference elevation: the first data node (conditioning of the sums).
+  for (std::size_t k = 0; k < nc * nr; ++k) {
+    if (g.valid(k % nc, k / nc)) {
+      z_ref_ = g.at(k % nc, k / nc);
+      break;
+    }
+  }
+  const std::size_t size = stride_ * (nr + 1);
+  z_.assign(size, 0.0);
+  iz_.assign(size, 0.0);
+  jz_.assign(size, 0.0);
+  invalid_.assign(size, 0.0);
+  for (std::size_t j = 0; j < nr; ++j) {
+    double rz = 0, riz = 0, rjz = 0, rinv = 0;  // running sums along the row
+    for (std::size_t i = 0; i < nc; ++i) {
+      const bool ok = g.valid(i, j);
+      const double z = ok ? g.at(i, j) - z_ref_ : 0.0;
+      rz += z;
+      riz += static_cast<double>(i) * z;
+      rjz += static_cast<double>(j) * z;
+      rinv += ok ? 0.0 : 1.0;
+      const std::size_t k = (j + 1) * stride_ + (i + 1), up = j * stride_ + (i + 1);
+      z_[k] = z_[up] + rz;
+      iz_[k] = iz_[up] + riz;
+      jz_[k] = jz_[up] + rjz;
+      invalid_[k] = invalid_[up] + rinv;
+    }
+  }
+}
+
+bool ElevationSums::accumulate(long i_lo, long i_hi, long j_lo, long j_hi,
+                               AveragePlaneAccumulator& acc) const {
+  if (rect(invalid_, i_lo, i_hi, j_lo, j_hi) > 0.5) return false;
+  const ElevationGrid& g = terrain_.grid();
+  const double h = g.cellsize();
+  // Local indices i' = i - i_lo in [0, w), j' = j - j_lo in [0, r): exact moments.
+  const double w = static_cast<double>(i_hi - i_lo + 1), r = static_cast<double>(j_hi - j_lo + 1);
+  const double n = w * r;
+  const double si = r * w * (w - 1) / 2, sj = w * r * (r - 1) / 2;
+  const double sii = r * (w - 1) * w * (2 * w - 1) / 6, sjj = w * (r - 1) * r * (2 * r - 1) / 6;
+  const double sij = (w * (w - 1) / 2) * (r * (r - 1) / 2);
+  const double z = rect(z_, i_lo, i_hi, j_lo, j_hi);
+  const double iz = rect(iz_, i_lo, i_hi, j_lo, j_hi) - static_cast<double>(i_lo) * z;
+  const double jz = rect(jz_, i_lo, i_hi, j_lo, j_hi) - static_cast<double>(j_lo) * z;
+  // u = ox + h i', v = oy + h j' relative to the accumulator's origin.
+  const double ox = g.x_min() + h * static_cast<double>(i_lo) - acc.origin().x();
+  const double oy = g.y_min() + h * static_cast<double>(j_lo) - acc.origin().y();
+  const double su = n * ox + h * si, sv = n * oy + h * sj;
+  acc.add_sums(static_cast<std::size_t>(n), su, sv, n * ox * ox + 2 * ox * h * si + h * h * sii,
+               n * ox * oy + ox * h * sj + oy * h * si + h * h * sij,
+               n * oy * oy + 2 * oy * h * sj + h * h * sjj, z + n * z_ref_,
+               ox * z + h * iz + z_ref_ * su, oy * z + h * jz + z_ref_ * sv);
+  return true;
+}
+
+namespace {
+
+/// min and max over the row's nodes of z - (a x + b y + c), x = x0 + h i: the
+/// same expression, evaluated the same way, as the plain loop.
+void row_envelope(const double* z, const double* ax, long count, double by, double c, double& lo,
+                  double& hi) {
+  long k = 0;
+#if defined(__SSE2__)
+  __m128d vlo = _mm_set1_pd(lo), vhi = _mm_set1_pd(hi);
+  const __m128d vby = _mm_set1_pd(by), vc = _mm_set1_pd(c);
+  for (; k + 2 <= count; k += 2) {
+    const __m128d t = _mm_add_pd(_mm_add_pd(_mm_loadu_pd(ax + k), vby), vc);
+    const __m128d d = _mm_sub_pd(_mm_loadu_pd(z + k), t);
+    vlo = _mm_min_pd(vlo, d);
+    vhi = _mm_max_pd(vhi, d);
+  }
+  double l2[2], h2[2];
+  _mm_storeu_pd(l2, vlo);
+  _mm_storeu_pd(h2, vhi);
+  lo = std::min(l2[0], l2[1]);
+  hi = std::max(h2[0], h2[1]);
+#endif
+  for (; k < count; ++k) {
+    const double d = z[k] - (ax[k] + by + c);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+}
+
+BoxAnalysis analyse_box_impl(const WheeledRobot& robot, const RuledTerrain& terrain,
+                             const ElevationSums* sums, const CsBox& in,
+                             const BoxAnalysisOptions& options);
+
+}  // namespace
+
 BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, const CsBox& in,
                         const BoxAnalysisOptions& options) {
+  return analyse_box_impl(robot, terrain, nullptr, in, options);
+}
+
+BoxAnalysis analyse_box(const WheeledRobot& robot, const ElevationSums& sums, const CsBox& in,
+                        const BoxAnalysisOptions& options) {
+  return analyse_box_impl(robot, sums.terrain(), &sums, in, options);
+}
+
+namespace {
+
+BoxAnalysis analyse_box_impl(const WheeledRobot& robot, const RuledTerrain& terrain,
+                             const ElevationSums* sums, const CsBox& in,
+                             const BoxAnalysisOptions& options) {
   options.validate();
   CsBox box = in;
   if (box.x1 > box.x2) std::swap(box.x1, box.x2);
@@ -242,8 +354,10 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, 
   for (int i = 0; i < n; ++i) dom.ext[i] = {-lmax, lmax};
 
   std::array<long, WheeledRobot::kMaxWheels> i_lo{}, i_hi{}, j_lo{}, j_hi{};
+  thread_local std::vector<double> ax;  // a x of one region's columns (envelopes)
   const Vec2 centre(0.5 * (box.x1 + box.x2), 0.5 * (box.y1 + box.y2));
 
+  const Arc arc(box.theta1, box.theta2);
   for (int pass = 0; pass <= options.refinements; ++pass) {
     out.passes = pass + 1;
     // §3.2.1: contact regions. The wheel's projection in the heading frame,
@@ -252,7 +366,6 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, 
     // rectangle swept over [θ1, θ2] and translated over [x1, x2] × [y1, y2].
     const Range sphi = sin_range(dom.roll), cphi = cos_range(dom.roll);
     const Range spsi = sin_range(dom.pitch), cpsi = cos_range(dom.pitch);
-    const Arc arc(box.theta1, box.theta2);
     for (int i = 0; i < n; ++i) {
       const double u = robot.wheels[i].x(), v = robot.wheels[i].y();
       const Range w{-robot.cg_height + dom.ext[i].lo, -robot.cg_height + dom.ext[i].hi};
@@ -283,7 +396,13 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, 
     // §3.2.2: the average plane over the nodes of every contact region (a
     // node in two regions counts twice; P_a is only a reference plane).
     AveragePlaneAccumulator acc(centre);
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n && sums; ++i) {
+      if (!sums->accumulate(i_lo[i], i_hi[i], j_lo[i], j_hi[i], acc)) {
+        out.verdict = BoxVerdict::kOffMap;
+        return out;
+      }
+    }
+    for (int i = 0; i < n && !sums; ++i) {
       for (long jj = j_lo[i]; jj <= j_hi[i]; ++jj) {
         const double y = grid.y_min() + h * static_cast<double>(jj);
         for (long ii = i_lo[i]; ii <= i_hi[i]; ++ii) {
@@ -309,16 +428,20 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, 
     // take their extremes at the nodes, so these bound the whole surface over R_i.
     const double ca = 1.0 / std::sqrt(1.0 + a * a + b * b);  // cos φ_a cos ψ_a
     std::array<Range, WheeledRobot::kMaxWheels> d{};
+    const double* zs = grid.values().data();
     for (int i = 0; i < n; ++i) {
       Range r{1e300, -1e300};
+      const long w = i_hi[i] - i_lo[i] + 1;
+      ax.resize(static_cast<std::size_t>(w));
+      for (long ii = i_lo[i]; ii <= i_hi[i]; ++ii) {
+        ax[static_cast<std::size_t>(ii - i_lo[i])] =
+            a * (grid.x_min() + h * static_cast<double>(ii));
+      }
       for (long jj = j_lo[i]; jj <= j_hi[i]; ++jj) {
         const double y = grid.y_min() + h * static_cast<double>(jj);
-        for (long ii = i_lo[i]; ii <= i_hi[i]; ++ii) {
-          const double x = grid.x_min() + h * static_cast<double>(ii);
-          const double dz = grid.at(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj)) -
-                            (a * x + b * y + c);
-          r = {std::min(r.lo, dz), std::max(r.hi, dz)};
-        }
+        row_envelope(
+            zs + static_cast<std::size_t>(jj) * grid.ncols() + static_cast<std::size_t>(i_lo[i]),
+            ax.data(), w, b * y, c, r.lo, r.hi);
       }
       out.dz[i] = r;
       d[i] = {ca * r.lo, ca * r.hi};
@@ -413,5 +536,7 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const RuledTerrain& terrain, 
   }
   return out;
 }
+
+}  // namespace
 
 }  // namespace talus

@@ -189,12 +189,20 @@ ValidityFunction neighbourhood_validity(ValidityFunction base, double rho, doubl
   };
 }
 
-HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction& potential,
+HaitResult hait_search(const ValidityFunction& robot_validity, const PotentialFunction& potential,
                        const SE2Pose& start, const SE2Pose& goal, const HaitOptions& options) {
   options.validate();
   require_finite_pose(start, "start");
   require_finite_pose(goal, "goal");
-  if (!validity) throw InputError("hait_search: no validity function");
+  if (!robot_validity) throw InputError("hait_search: no validity function");
+  // The guide region: outside it a configuration is not valid, and costs no placement.
+  ValidityFunction validity = robot_validity;
+  if (options.allowed_region) {
+    validity = [&robot_validity, &region = options.allowed_region](const SE2Pose& q) {
+      if (!region(q)) return ConfigurationCheck{false, 0.0, 0};
+      return robot_validity(q);
+    };
+  }
   if (options.heuristic != HaitHeuristic::kEuclidean && !potential) {
     throw InputError("hait_search: heuristic '" + heuristic_name(options.heuristic) +
                      "' needs a potential function");
@@ -220,15 +228,20 @@ HaitResult hait_search(const ValidityFunction& validity, const PotentialFunction
 
   const ConfigurationCheck start_check = validity(start);
   result.placements += start_check.placements;
+  const char* outside = " (outside the allowed region)";
   if (!start_check.valid) {
-    return finish(HaitStatus::kStartInvalid,
-                  "start configuration " + pose_string(start) + " is not valid for the robot");
+    const bool out = options.allowed_region && !options.allowed_region(start);
+    return finish(HaitStatus::kStartInvalid, "start configuration " + pose_string(start) +
+                                                 " is not valid for the robot" +
+                                                 (out ? outside : ""));
   }
   const ConfigurationCheck goal_check = validity(goal);
   result.placements += goal_check.placements;
   if (!goal_check.valid) {
-    return finish(HaitStatus::kGoalInvalid,
-                  "goal configuration " + pose_string(goal) + " is not valid for the robot");
+    const bool out = options.allowed_region && !options.allowed_region(goal);
+    return finish(HaitStatus::kGoalInvalid, "goal configuration " + pose_string(goal) +
+                                                " is not valid for the robot" +
+                                                (out ? outside : ""));
   }
 
   auto heuristic = [&](const SE2Pose& q) {

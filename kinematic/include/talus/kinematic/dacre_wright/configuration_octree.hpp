@@ -60,10 +60,12 @@ struct OctreeOptions {
   void validate() const;
 };
 
-/// One analysed voxel, in the order of analysis.
+/// One voxel whose state was decided, in the order of decision: analysed by
+/// analyse_box (levels >= p0) or, above p0, combined from its eight sons.
 struct AnalysedVoxel {
   VoxelKey key;
   VoxelStatus status = VoxelStatus::kUnknown;
+  bool from_sons = false;  ///< decided bottom-up from the sons, not analysed
 };
 
 /// The lazily built octree of one robot on one terrain.
@@ -82,6 +84,10 @@ class ConfigurationOctree {
   /// outside the root square.
   std::optional<VoxelKey> locate(const SE2Pose& q, int level) const;
 
+  /// The cached state of v: kUnknown if it was never decided (no analysis).
+  VoxelStatus cached(const VoxelKey& v) const {
+    return cache_[static_cast<std::size_t>(v.level)][index(v)];
+  }
   /// FREE or MIXED, analysing (or, above p0, combining the sons) as needed.
   /// Once the budget is spent, unanalysed voxels are MIXED (conservative).
   VoxelStatus state(const VoxelKey& v);
@@ -103,10 +109,12 @@ class ConfigurationOctree {
   double free_volume_fraction();
 
   bool budget_exhausted() const { return exhausted_; }
-  std::size_t analyses() const { return analysed_.size(); }
+  /// analyse_box calls so far (what the budget counts).
+  std::size_t analyses() const { return analyses_; }
   /// analyse_box calls per level (index = level).
   const std::vector<std::size_t>& analyses_per_level() const { return per_level_; }
-  const std::vector<AnalysedVoxel>& analysed() const { return analysed_; }
+  /// Every decided voxel (analysed or combined from its sons), in order.
+  const std::vector<AnalysedVoxel>& decided() const { return decided_; }
 
  private:
   std::size_t index(const VoxelKey& v) const;
@@ -116,13 +124,15 @@ class ConfigurationOctree {
 
   const WheeledRobot& robot_;
   const RuledTerrain& terrain_;
+  ElevationSums sums_;  ///< the average plane's integral images, built once
   OctreeOptions options_;
   int max_level_ = 6;
   int p0_ = 3;
   double x0_ = 0.0, y0_ = 0.0, side_ = 1.0;
   std::vector<std::vector<VoxelStatus>> cache_;  ///< per level, 8^p entries
   std::vector<std::size_t> per_level_;
-  std::vector<AnalysedVoxel> analysed_;
+  std::vector<AnalysedVoxel> decided_;
+  std::size_t analyses_ = 0;
   bool exhausted_ = false;
 };
 

@@ -53,6 +53,11 @@ class DacreWrightBaseline final : public BaselinePlanner {
   std::string robot_file_;
 };
 
+/// The BaselineResult of a plan_dacre_wright() result (what solve() returns):
+/// status mapped as in the file comment, path and length when found, times,
+/// the counters and the flag full_octree = `full`.
+BaselineResult to_baseline_result(const DacreWrightResult& result, bool full);
+
 /// The registry entry "dacre-wright" (options in the file comment).
 BaselineEntry dacre_wright_baseline_entry();
 

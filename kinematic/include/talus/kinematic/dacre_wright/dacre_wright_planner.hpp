@@ -55,15 +55,30 @@ enum class DacreWrightStatus {
 /// "goal_uncovered", "budget_exceeded".
 const char* to_string(DacreWrightStatus status);
 
+/// One decided voxel of a query, with its box (for output and figures).
+struct DecidedVoxel {
+  VoxelKey key;
+  CsBox box;  ///< θ in [0, 2π]
+  VoxelStatus status = VoxelStatus::kUnknown;
+  bool from_sons = false;  ///< above p0: combined from its sons, not analysed
+};
+
 /// Result of one query.
 struct DacreWrightResult {
   DacreWrightStatus status = DacreWrightStatus::kNoPath;
   std::string message = "plan_dacre_wright was not called";
-  std::vector<VoxelKey> channel;        ///< V_s … V_g, consecutive ones sharing a face
-  std::vector<CsBox> channel_boxes;     ///< their boxes (θ in [0, 2π])
-  std::vector<SE2Pose> path;            ///< start … goal, every pose inside a channel voxel
-  double length_m = 0.0;                ///< xy length of `path` [m]
-  std::vector<AnalysedVoxel> analysed;  ///< every voxel analysed, in order
+  std::vector<VoxelKey> channel;     ///< V_s … V_g, consecutive ones sharing a face
+  std::vector<CsBox> channel_boxes;  ///< their boxes (θ in [0, 2π])
+  std::vector<SE2Pose> path;         ///< start … goal, every pose inside a channel voxel
+  double length_m = 0.0;             ///< xy length of `path` [m]
+  /// Every voxel whose state was decided, in order of decision: analysed
+  /// (analyse_box) or, for levels above p0, combined from its sons.
+  std::vector<DecidedVoxel> voxels;
+  /// channel[k] is voxels[channel_indices[k]] (empty unless found).
+  std::vector<std::size_t> channel_indices;
+  /// The FREE leaves of what was built (FREE voxels with no FREE ancestor), as
+  /// indices into `voxels`, in increasing order.
+  std::vector<std::size_t> free_leaf_indices;
   std::vector<std::size_t> analyses_per_level;  ///< analyse_box calls per level
   int reference_level = 0;                      ///< p0 used
   double free_volume_fraction = 0.0;            ///< FREE leaves / root volume of what was built
@@ -71,6 +86,8 @@ struct DacreWrightResult {
   double preprocessing_seconds = 0.0;           ///< build_full (0 when incremental) [s]
   double search_seconds = 0.0;                  ///< the incremental search and the path [s]
   bool found() const { return status == DacreWrightStatus::kFound; }
+  /// analyse_box calls in all (the sum of analyses_per_level).
+  std::size_t voxels_analysed() const;
   /// One line: status, channel and path sizes, analyses, times, message.
   std::string brief_report() const;
 };

@@ -118,6 +118,16 @@ struct HaitOptions {
   double position_uncertainty = 0.0;  ///< ρ [m] (>= 0)
   double heading_uncertainty = 0.0;   ///< Δθ [rad] in [0, π)
 
+  // --- guide (Dacre-Wright–Siméon 1993, §1: a coarse free-space structure guiding a finer planner)
+  /// The configurations the search may use; empty (the default) = every one.
+  /// A configuration outside it is treated as not valid (zero placements
+  /// computed), everywhere the search checks validity: arcs, the Reeds–Shepp
+  /// connection and the smoothing; a start or goal outside it is
+  /// kStartInvalid / kGoalInvalid. Must be deterministic. Filled from a
+  /// Dacre-Wright voxel channel by dacre_wright_channel_region()
+  /// (dacre_wright/channel_region.hpp).
+  std::function<bool(const SE2Pose&)> allowed_region;
+
   /// Throws InputError naming the field, its value and the accepted range.
   void validate() const;
 };

@@ -13,6 +13,8 @@ packages=(
   libopenblas-dev
   # OMPL (Reeds–Shepp curves, kinematic/); its CMake config names the Boost libraries.
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
+  # GDAL: the CLI's terrain rasters (GeoTIFF, .hgt, ... in; GeoTIFF out); gdal-bin for gdalinfo.
+  libgdal-dev gdal-bin
 )
 
 if ! command -v dpkg-query >/dev/null 2>&1 || ! command -v apt-get >/dev/null 2>&1; then

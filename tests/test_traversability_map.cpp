@@ -44,7 +44,10 @@ class PlaneTraversability : public ::testing::TestWithParam<PlaneCase> {};
 
 INSTANTIATE_TEST_SUITE_P(Vehicles, PlaneTraversability,
                          ::testing::Values(PlaneCase{0.7, 0.5, 0.6, Constraint::kSliding},
-                                           PlaneCase{1.0, 1.0, 0.5, Constraint::kTipover}));
+                                           PlaneCase{1.0, 1.0, 0.5, Constraint::kTipover}),
+                         [](const ::testing::TestParamInfo<PlaneCase>& info) {
+                           return std::string(to_string(info.param.side_binding));
+                         });
 
 /// tan α = 1 (45°): the straight pass is stable where min(μ, b/h) k_r >= |k_q|: up and down the
 /// fall line and near it, not across. Every node of the plane sees the same limits.

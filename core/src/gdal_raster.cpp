@@ -21,6 +21,7 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
+#include "talus/core/memory_budget.hpp"
 
 namespace talus::detail {
 namespace {
@@ -183,6 +184,10 @@ ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source
                      std::to_string(ny) + " pixels, more than Talus reads (" +
                      format(kMaxRasterNodes) + "); crop it first (gdal_translate -srcwin)");
   }
+  // The pixels as doubles, the grid's values and its mask.
+  require_memory(17.0 * static_cast<double>(nx) * static_cast<double>(ny),
+                 source + " (" + std::to_string(nx) + " x " + std::to_string(ny) + " pixels)",
+                 "crop or resample the raster first (gdal_translate -srcwin, gdalwarp -tr)");
   double gt[6];
   if (GDALGetGeoTransform(ds, gt) != CE_None) {
     throw InputError(source +
@@ -249,10 +254,15 @@ ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source
 TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOptions& options) {
   register_drivers();
   const std::string source = printable(path, 200);
+  // As read_input_file: nothing that is not a regular file reaches GDAL (a FIFO
+  // would block, /dev/zero never end), and no GDAL virtual path (/vsicurl/...).
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(source + ": no such file");
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(source + ": is a folder, not a raster file");
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw InputError(source + ": no such file");
+  if (std::filesystem::is_directory(status)) throw InputError(source + ": is a folder, not a file");
+  if (!std::filesystem::is_regular_file(status)) {
+    throw InputError(source +
+                     ": is not a regular file (a device, FIFO or socket); give a file's path");
   }
   QuietErrors quiet;
   NoSideFiles no_side_files;

@@ -15,6 +15,11 @@ packages=(
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   # GDAL: the CLI's terrain rasters (GeoTIFF, .hgt, ... in; GeoTIFF out); gdal-bin for gdalinfo.
   libgdal-dev gdal-bin
+  # Python bindings (python/, `import talus`): pybind11, the interpreter's headers, numpy;
+  # pytest runs their tests under CTest and matplotlib draws python/examples/plan.py.
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  # mpirun for `talus sweep` across ranks and its tests (libopenmpi-dev comes with SUNDIALS).
+  openmpi-bin libopenmpi-dev
 )
 
 if ! command -v dpkg-query >/dev/null 2>&1 || ! command -v apt-get >/dev/null 2>&1; then

@@ -45,6 +45,8 @@ struct PlanRequest {
   double end_speed = 0.0;    ///< --v1 [m/s]
   /// --rasters: also write cost_to_go.tif and trajectory.geojson (see plan()).
   bool rasters = false;
+  /// false (--no-figures): no plan.png and profile.png (sweeps draw their own).
+  bool figures = true;
 };
 
 /// The stages `--stage` accepts.

@@ -13,6 +13,8 @@ packages=(
   libopenblas-dev
   # OMPL (Reeds–Shepp curves, kinematic/); its CMake config names the Boost libraries.
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
+  # GDAL: the CLI's terrain rasters (GeoTIFF, .hgt, ... in; GeoTIFF out); gdal-bin for gdalinfo.
+  libgdal-dev gdal-bin
   # Python bindings (python/, `import talus`): pybind11, the interpreter's headers, numpy;
   # pytest runs their tests under CTest and matplotlib draws python/examples/plan.py.
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib

@@ -22,6 +22,7 @@
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
+#include "terrain_input.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -95,7 +96,7 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
     throw InputError("--out " + request.output_dir + " exists and is not a folder");
   }
   OutputFolder out(request.output_dir);  // locked for the whole run
-  const RuledTerrain terrain(read_esri_ascii(request.terrain));
+  const RuledTerrain terrain(load_terrain(request.terrain, request.reproject).grid);
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
     throw InputError(request.terrain + ": the planner needs at least 2 x 2 nodes");
   }

@@ -16,12 +16,13 @@ namespace talus::experiments {
 /// --out DIR [--KEY VALUE | --FLAG ...]`, the KEYs being the baseline's own
 /// options (BaselineEntry::options).
 struct BaselineRequest {
-  std::string baseline;     ///< registry name, e.g. "hait"
-  std::string terrain;      ///< ESRI ASCII grid
-  std::string start;        ///< "X,Y,THETA": [m], [m], heading [rad]
-  std::string goal;         ///< "X,Y,THETA"
-  std::string output_dir;   ///< --out: created if needed
-  BaselineOptions options;  ///< the baseline's options given on the command line
+  std::string baseline;            ///< registry name, e.g. "hait"
+  std::string terrain;             ///< DEM (load_terrain)
+  std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
+  std::string start;               ///< "X,Y,THETA": [m], [m], heading [rad]
+  std::string goal;                ///< "X,Y,THETA"
+  std::string output_dir;          ///< --out: created if needed
+  BaselineOptions options;         ///< the baseline's options given on the command line
 };
 
 /// Exit code of `talus baseline NAME` when no path was found: none exists,

@@ -21,6 +21,7 @@
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
+#include "terrain_input.hpp"
 
 namespace talus::experiments {
 
@@ -48,11 +49,13 @@ void check_path_options(const std::optional<long long>& stations,
 }
 
 TerrainPath build_terrain_path(const std::string& terrain_file, const std::string& path_file,
-                               const std::optional<double>& smoothing) {
+                               const std::optional<double>& smoothing,
+                               const std::string& reproject) {
   const PathPointSource source{path_file, terrain_file};
   const std::vector<Vec2> points = read_path_csv(path_file);
   check_no_reversal(points, source);  // before the terrain is read, as it always was
-  return surface_path_from_points(points, read_esri_ascii(terrain_file), smoothing, source);
+  return surface_path_from_points(points, load_terrain(terrain_file, reproject).grid, smoothing,
+                                  source);
 }
 
 std::size_t default_station_count(double planar_length) {
@@ -71,7 +74,7 @@ nlohmann::json limits(const LimitsRequest& request) {
 
   const Vehicle vehicle = load_vehicle(request.vehicle);
   const TerrainPath terrain_path =
-      build_terrain_path(request.terrain, request.path, request.smoothing);
+      build_terrain_path(request.terrain, request.path, request.smoothing, request.reproject);
   const SurfacePath& path = *terrain_path.path;
 
   const std::size_t stations = request.stations ? static_cast<std::size_t>(*request.stations)

@@ -22,6 +22,7 @@
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "terrain_commands.hpp"
+#include "terrain_input.hpp"
 
 namespace {
 
@@ -200,7 +201,10 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
 /// vehicle and the optional smoothing of the terrain fit.
 template <typename Request>
 void add_path_input_options(CLI::App& command, Request& request) {
-  command.add_option("--terrain", request.terrain, "ESRI ASCII grid (.asc)")->required();
+  command.add_option("--terrain", request.terrain, ex::kTerrainHelp)->required();
+  command.add_option("--reproject", request.reproject, ex::kReprojectHelp)
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+      ->capture_default_str();
   command
       .add_option("--path", request.path,
                   "path CSV: header `x,y`, then one way point per line in the terrain's "
@@ -283,13 +287,18 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
   CLI::App* terrain = app.add_subcommand("terrain", "inspect, generate and fit terrains");
   terrain->require_subcommand(1);
 
-  std::string info_path;
+  std::string info_path, info_reproject = "none";
   CLI::App* info = terrain->add_subcommand(
       "info",
       "print JSON: ncols, nrows, cellsize, xmin, xmax, ymin, ymax (node domain: the "
-      "centres of the edge cells), zmin, zmax, voids");
-  info->add_option("FILE", info_path, "ESRI ASCII grid (.asc)")->required();
-  info->callback([&info_path]() { std::cout << ex::terrain_info(info_path).dump(2) << "\n"; });
+      "centres of the edge cells), zmin, zmax, voids, crs {label, epsg, name, wkt} (null when "
+      "the file has none), driver (esri-ascii or GDAL's driver name), reprojected, source_crs");
+  info->add_option("FILE", info_path, ex::kTerrainHelp)->required();
+  info->add_option("--reproject", info_reproject, ex::kReprojectHelp)
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+      ->capture_default_str();
+  info->callback(
+      [&]() { std::cout << ex::terrain_info(info_path, info_reproject).dump(2) << "\n"; });
 
   ex::TerrainFitRequest fit_request;
   std::string fill;
@@ -297,7 +306,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "fit",
       "fit a bicubic B-patch and print JSON: max_node_residual, rms_residual [m], "
       "fit_seconds, patches");
-  fit->add_option("FILE", fit_request.path, "ESRI ASCII grid (.asc)")->required();
+  fit->add_option("FILE", fit_request.path, ex::kTerrainHelp)->required();
+  fit->add_option("--reproject", fit_request.reproject, ex::kReprojectHelp)
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+      ->capture_default_str();
   fit->add_option("--smoothing", fit_request.smoothing,
                   "curvature weight lambda > 0 (dimensionless) of the smoothing fit; without it "
                   "the surface interpolates every node");
@@ -307,6 +319,39 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
     fit_request.fill_nearest = (fill == "nearest");
     std::cout << ex::terrain_fit(fit_request).dump(2) << "\n";
   });
+
+  ex::TraversabilityRequest traversability_request;
+  CLI::App* traversability = terrain->add_subcommand(
+      "traversability",
+      "speed limits of a vehicle's straight pass over every node of a DEM, in --headings "
+      "equally spaced headings (2 pi k / N, counter-clockwise from east): writes OUT.tif, a "
+      "float32 GeoTIFF in the DEM's CRS and grid with bands speed_limit_heading_000 ... [m/s; "
+      "inf = nothing limits it, 0 = no speed admissible], speed_limit_min [m/s], "
+      "binding_constraint (what sets the minimum: 0 none, 1 sliding, 2 tipover, 3 contact, 4 "
+      "max_speed, 5 pitchover, 6 drive, 7 brake) and untraversable (1 where no heading admits "
+      "any speed), NODATA -9999 where the DEM has none; and OUT.png, a preview of "
+      "speed_limit_min (red 0 to green the largest, dark red untraversable); prints a JSON "
+      "summary. On bad input: one line on stderr, nothing written");
+  traversability->add_option("--terrain", traversability_request.terrain, ex::kTerrainHelp)
+      ->required();
+  traversability
+      ->add_option("--vehicle", traversability_request.vehicle,
+                   "vehicle YAML (see data/vehicles/README.md)")
+      ->required();
+  traversability
+      ->add_option("--headings", traversability_request.headings, "number of headings, 1 to 360")
+      ->capture_default_str();
+  traversability->add_option("--smoothing", traversability_request.smoothing,
+                             "curvature weight lambda > 0 of the smoothing fit; without it the "
+                             "surface interpolates every node (NODATA filled by the nearest "
+                             "node for the fit, NODATA in the output)");
+  traversability->add_option("--reproject", traversability_request.reproject, ex::kReprojectHelp)
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+      ->capture_default_str();
+  traversability->add_option("-o,--output", traversability_request.output, "output GeoTIFF")
+      ->required();
+  traversability->callback(
+      [&]() { std::cout << ex::terrain_traversability(traversability_request).dump(2) << "\n"; });
 
   GenerateOptions generate_options;
   add_generate_commands(*terrain, generate_options);
@@ -396,7 +441,16 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "and printed); 1 on bad input: a start or goal off the map, on NODATA or on "
       "untraversable terrain, a vehicle without max_speed, a malformed X,Y, an unknown "
       "solver (one line on stderr, nothing written)");
-  plan->add_option("--terrain", plan_request.terrain, "ESRI ASCII grid (.asc)")->required();
+  plan->add_option("--terrain", plan_request.terrain, ex::kTerrainHelp)->required();
+  plan->add_option("--reproject", plan_request.reproject, ex::kReprojectHelp)
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+      ->capture_default_str();
+  plan->add_flag("--rasters", plan_request.rasters,
+                 "also write cost_to_go.tif (float32 GeoTIFF on the lattice in the DEM's CRS: "
+                 "bands cost_from_start, cost_to_goal [s; inf = not reachable, NODATA = not "
+                 "computed] and unreachable (1/0)) and trajectory.geojson (the best "
+                 "trajectory, or with --stage global the best candidate, as a LineString "
+                 "x, y, z in the DEM's CRS, and every candidate's lattice path)");
   plan->add_option("--start", plan_request.start, "start X,Y in the terrain's frame [m]")
       ->required();
   plan->add_option("--goal", plan_request.goal, "goal X,Y in the terrain's frame [m]")->required();
@@ -471,7 +525,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
     f.request.baseline = entry.name;
     CLI::App* sub =
         baseline->add_subcommand(entry.name, entry.summary + ". " + ex::kBaselineOutputHelp);
-    sub->add_option("--terrain", f.request.terrain, "ESRI ASCII grid (.asc)")->required();
+    sub->add_option("--terrain", f.request.terrain, ex::kTerrainHelp)->required();
+    sub->add_option("--reproject", f.request.reproject, ex::kReprojectHelp)
+        ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+        ->capture_default_str();
     sub->add_option("--start", f.request.start,
                     "start configuration X,Y,THETA: position [m] in the terrain's frame, "
                     "heading [rad] counter-clockwise from east")
@@ -502,8 +559,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
 
   ex::PlacementRequest placement_request;
   CLI::App* placement = app.add_subcommand("placement", ex::kPlacementHelp);
-  placement->add_option("--terrain", placement_request.terrain, "ESRI ASCII grid (.asc)")
-      ->required();
+  placement->add_option("--terrain", placement_request.terrain, ex::kTerrainHelp)->required();
   placement
       ->add_option("--robot", placement_request.robot,
                    "robot YAML (type wheeled or articulated_chassis, data/robots/README.md)")
@@ -513,6 +569,9 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "configurations CSV with the header x,y,theta")
       ->required();
   placement->add_option("-o,--output", placement_request.output, "output .csv file")->required();
+  placement->add_option("--reproject", placement_request.reproject, ex::kReprojectHelp)
+      ->capture_default_str()
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}));
   placement->callback([&]() { std::cout << ex::run_placement(placement_request).dump(2) << "\n"; });
 
   std::string experiment_name, out_dir = "talus-out", data_dir;

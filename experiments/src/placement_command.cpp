@@ -9,11 +9,11 @@
 #include "cli_values.hpp"
 #include "plot.hpp"
 #include "talus/core/error.hpp"
-#include "talus/core/esri_ascii.hpp"
 #include "talus/core/input_file.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/placement_query.hpp"
 #include "talus/kinematic/hait/robot.hpp"
+#include "terrain_input.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -116,7 +116,7 @@ nlohmann::json run_placement(const PlacementRequest& request) {
       "-o", request.output,
       {{"--terrain", request.terrain}, {"--robot", request.robot}, {"--configs", request.configs}});
   Robot robot = load_robot(request.robot);
-  const RuledTerrain terrain(read_esri_ascii(request.terrain));
+  const RuledTerrain terrain(load_terrain(request.terrain, request.reproject).grid);
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
     throw InputError(request.terrain + ": a placement needs at least 2 x 2 nodes");
   }

@@ -14,7 +14,8 @@ namespace talus::experiments {
 
 /// `talus placement --terrain T.asc --robot R.yaml --configs C.csv -o OUT.csv`.
 struct PlacementRequest {
-  std::string terrain;  ///< ESRI ASCII grid
+  std::string terrain;             ///< DEM (load_terrain: .asc or any GDAL raster)
+  std::string reproject = "none";  ///< --reproject none|auto
   std::string robot;    ///< Haït robot file (load_robot): wheeled or articulated_chassis
   std::string configs;  ///< configurations CSV (read_configurations_csv)
   std::string output;   ///< CSV written here

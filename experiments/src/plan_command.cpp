@@ -16,6 +16,7 @@
 #include "limits_command.hpp"
 #include "output_folder.hpp"
 #include "plan_figures.hpp"
+#include "plan_rasters.hpp"
 #include "plot.hpp"
 #include "stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
@@ -24,6 +25,7 @@
 #include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/planner.hpp"
+#include "terrain_input.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -396,7 +398,8 @@ PlanOutcome plan(const PlanRequest& request) {
     }
   }
 
-  const ElevationGrid grid = read_esri_ascii(request.terrain);
+  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject);
+  const ElevationGrid& grid = terrain.grid;
   check_in_domain("--start", start, grid, request.terrain);
   check_in_domain("--goal", goal, grid, request.terrain);
   const auto fit_start = Clock::now();
@@ -426,6 +429,10 @@ PlanOutcome plan(const PlanRequest& request) {
   write_text_file(dir / "candidates.csv", candidates_csv(result));
   const bool write_fields = result.nx * result.ny <= kMaxFieldNodes;
   if (write_fields) write_text_file(dir / "fields.csv", fields_csv(result));
+  if (request.rasters) {  // in the DEM's CRS
+    write_geotiff(cost_to_go_layers(result, terrain.crs), (dir / "cost_to_go.tif").string());
+    write_text_file(dir / "trajectory.geojson", plan_geojson(planned, terrain.crs));
+  }
   const std::string summary_file = out.final_path("summary.json").string();
 
   nlohmann::json candidates = nlohmann::json::array();
@@ -458,11 +465,16 @@ PlanOutcome plan(const PlanRequest& request) {
   summary["reachable_nodes"] = result.reachable_nodes;
   summary["vehicle_max_speed"] = vehicle.max_speed;
   summary["fit"] = request.smoothing ? "smoothing" : "interpolating";
+  summary["crs"] = terrain.crs.known() ? nlohmann::json(terrain.crs.label()) : nullptr;
   summary["smoothing"] =
       request.smoothing ? nlohmann::json(*request.smoothing) : nlohmann::json(nullptr);
   summary["files"] = {
       {"candidates", out.final_path("candidates.csv").string()},
       {"fields", write_fields ? nlohmann::json(out.final_path("fields.csv").string()) : nullptr},
+      {"cost_to_go",
+       request.rasters ? nlohmann::json(out.final_path("cost_to_go.tif").string()) : nullptr},
+      {"geojson",
+       request.rasters ? nlohmann::json(out.final_path("trajectory.geojson").string()) : nullptr},
       {"summary", summary_file}};
   summary["fit_seconds"] = fit_seconds;
   summary["search_seconds"] = result.search_seconds;

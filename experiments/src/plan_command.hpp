@@ -24,15 +24,16 @@ namespace talus::experiments {
 /// [--formulation nested|simultaneous] [--v0 A]
 /// [--v1 B] --out DIR`.
 struct PlanRequest {
-  std::string terrain;           ///< ESRI ASCII grid
-  std::string vehicle;           ///< vehicle YAML/JSON (load_vehicle); needs a finite max_speed
-  std::string start;             ///< "X,Y" in the terrain's frame [m] (parse_point)
-  std::string goal;              ///< "X,Y" [m]
-  std::string stage = "full";    ///< "full" or "global"
-  std::string output_dir;        ///< --out: created if needed
-  long long candidates = 3;      ///< distinct candidates wanted (>= 1)
-  double lattice_spacing = 0.0;  ///< [m]; 0 = the terrain's cell size
-  int connectivity = 16;         ///< 8, 16 or 32
+  std::string terrain;             ///< DEM (load_terrain)
+  std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
+  std::string vehicle;             ///< vehicle YAML/JSON (load_vehicle); needs a finite max_speed
+  std::string start;               ///< "X,Y" in the terrain's frame [m] (parse_point)
+  std::string goal;                ///< "X,Y" [m]
+  std::string stage = "full";      ///< "full" or "global"
+  std::string output_dir;          ///< --out: created if needed
+  long long candidates = 3;        ///< distinct candidates wanted (>= 1)
+  double lattice_spacing = 0.0;    ///< [m]; 0 = the terrain's cell size
+  int connectivity = 16;           ///< 8, 16 or 32
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
   // The local stage (--stage full only).
@@ -42,6 +43,8 @@ struct PlanRequest {
   std::string formulation = "nested";
   double start_speed = 0.0;  ///< --v0 [m/s] (finite, >= 0, <= max_speed)
   double end_speed = 0.0;    ///< --v1 [m/s]
+  /// --rasters: also write cost_to_go.tif and trajectory.geojson (see plan()).
+  bool rasters = false;
   /// false (--no-figures): no plan.png and profile.png (sweeps draw their own).
   bool figures = true;
 };

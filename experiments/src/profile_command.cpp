@@ -40,8 +40,7 @@ std::size_t default_profile_station_count(double length) {
   if (!(length / kDefaultStationSpacing < static_cast<double>(kMaxDefaultProfileStations))) {
     return kMaxDefaultProfileStations;
   }
-  return std::clamp(station_count(length), kMinDefaultProfileStations,
-                    kMaxDefaultProfileStations);
+  return std::clamp(station_count(length), kMinDefaultProfileStations, kMaxDefaultProfileStations);
 }
 
 std::string default_profile_stations_text() {
@@ -56,16 +55,15 @@ std::string default_profile_stations_text() {
 ProfileOutcome profile(const ProfileRequest& request) {
   const auto start = Clock::now();
   check_path_options(request.stations, request.smoothing, request.output);
-  check_output_is_not_an_input("-o", request.output,
-                               {{"--terrain", request.terrain},
-                                {"--path", request.path},
-                                {"--vehicle", request.vehicle}});
+  check_output_is_not_an_input(
+      "-o", request.output,
+      {{"--terrain", request.terrain}, {"--path", request.path}, {"--vehicle", request.vehicle}});
   check_speed_option("--v0", request.start_speed);
   check_speed_option("--v1", request.end_speed);
 
   const Vehicle vehicle = load_vehicle(request.vehicle);
   const TerrainPath terrain_path =
-      build_terrain_path(request.terrain, request.path, request.smoothing);
+      build_terrain_path(request.terrain, request.path, request.smoothing, request.reproject);
   const SurfacePath& path = *terrain_path.path;
   const std::size_t stations = request.stations ? static_cast<std::size_t>(*request.stations)
                                                 : default_profile_station_count(path.length());

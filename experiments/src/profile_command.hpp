@@ -14,7 +14,8 @@ namespace talus::experiments {
 /// `talus profile --terrain T.asc --path P.csv --vehicle V.yaml [--v0 A]
 /// [--v1 B] [--stations N] [--smoothing LAMBDA] -o OUT.csv`.
 struct ProfileRequest {
-  std::string terrain;       ///< ESRI ASCII grid
+  std::string terrain;             ///< DEM (load_terrain)
+  std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
   std::string path;          ///< path CSV (read_path_csv): way points in the terrain's frame [m]
   std::string vehicle;       ///< vehicle YAML/JSON (load_vehicle)
   std::string output;        ///< CSV written here

@@ -1,0 +1,406 @@
+// The GDAL half of raster_io.hpp (compiled only with TALUS_WITH_GDAL).
+#include "gdal_raster.hpp"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <gdal.h>
+#include <gdal_utils.h>
+#include <ogr_srs_api.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "talus/core/error.hpp"
+#include "talus/core/input_file.hpp"
+#include "talus/core/memory_budget.hpp"
+
+namespace talus::detail {
+namespace {
+
+/// Largest raster read [nodes]: 8 bytes a node twice (read buffer and grid).
+constexpr double kMaxRasterNodes = 2.5e8;
+
+void register_drivers() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/// GDAL's errors go quiet while it lives (this thread only); last() is the
+/// last message GDAL raised, for InputError texts.
+class QuietErrors {
+ public:
+  QuietErrors() {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietErrors() { CPLPopErrorHandler(); }
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+  static std::string last() {
+    const char* message = CPLGetLastErrorMsg();
+    return message && *message ? printable(message, 300) : std::string("no reason given");
+  }
+};
+
+/// No .aux.xml side files: a temporary file is renamed after writing, and a
+/// reader must not leave files beside a user's DEM.
+class NoSideFiles {
+ public:
+  NoSideFiles() { CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", "NO"); }
+  ~NoSideFiles() { CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", nullptr); }
+  NoSideFiles(const NoSideFiles&) = delete;
+  NoSideFiles& operator=(const NoSideFiles&) = delete;
+};
+
+struct DatasetCloser {
+  void operator()(void* h) const {
+    if (h) GDALClose(h);
+  }
+};
+using Dataset = std::unique_ptr<void, DatasetCloser>;
+
+struct SrsDeleter {
+  void operator()(void* h) const {
+    if (h) OSRDestroySpatialReference(h);
+  }
+};
+using Srs = std::unique_ptr<void, SrsDeleter>;
+
+struct TransformDeleter {
+  void operator()(void* h) const {
+    if (h) OCTDestroyCoordinateTransformation(h);
+  }
+};
+
+std::string take_cpl_string(char* s) {
+  std::string out = s ? s : "";
+  CPLFree(s);
+  return out;
+}
+
+std::optional<int> epsg_of(OGRSpatialReferenceH srs) {
+  const auto code = [](OGRSpatialReferenceH h) -> std::optional<int> {
+    const char* authority = OSRGetAuthorityName(h, nullptr);
+    const char* code = OSRGetAuthorityCode(h, nullptr);
+    if (authority && code && std::string(authority) == "EPSG") return std::atoi(code);
+    return std::nullopt;
+  };
+  if (auto c = code(srs)) return c;
+  Srs clone(OSRClone(srs));
+  if (clone && OSRAutoIdentifyEPSG(clone.get()) == OGRERR_NONE) return code(clone.get());
+  return std::nullopt;
+}
+
+GeoReference describe(OGRSpatialReferenceH srs) {
+  GeoReference g;
+  char* wkt = nullptr;
+  if (OSRExportToWkt(srs, &wkt) == OGRERR_NONE) g.wkt = take_cpl_string(wkt);
+  if (g.wkt.empty()) {  // some CRSs have WKT2 only
+    const char* options[] = {"FORMAT=WKT2_2018", nullptr};
+    wkt = nullptr;
+    if (OSRExportToWktEx(srs, &wkt, options) == OGRERR_NONE) g.wkt = take_cpl_string(wkt);
+  }
+  if (const char* name = OSRGetName(srs)) g.name = name;
+  g.epsg = epsg_of(srs);
+  return g;
+}
+
+/// The dataset's CRS, or null for none.
+Srs dataset_srs(GDALDatasetH ds) {
+  OGRSpatialReferenceH srs = GDALGetSpatialRef(ds);
+  if (!srs) return Srs(nullptr);
+  Srs clone(OSRClone(srs));
+  OSRSetAxisMappingStrategy(clone.get(), OAMS_TRADITIONAL_GIS_ORDER);
+  return clone;
+}
+
+std::string format(double v) {
+  std::ostringstream out;
+  out.precision(12);
+  out << v;
+  return out.str();
+}
+
+/// The EPSG code of the WGS 84 UTM zone holding the centre of `ds` (whose CRS is `srs`).
+int utm_zone_epsg(GDALDatasetH ds, OGRSpatialReferenceH srs, const std::string& source) {
+  double gt[6];
+  GDALGetGeoTransform(ds, gt);
+  const double cx = 0.5 * GDALGetRasterXSize(ds), cy = 0.5 * GDALGetRasterYSize(ds);
+  double x = gt[0] + gt[1] * cx + gt[2] * cy;
+  double y = gt[3] + gt[4] * cx + gt[5] * cy;
+  Srs wgs84(OSRNewSpatialReference(nullptr));
+  OSRImportFromEPSG(wgs84.get(), 4326);
+  OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<void, TransformDeleter> transform(
+      OCTNewCoordinateTransformation(srs, wgs84.get()));
+  if (!transform || !OCTTransform(transform.get(), 1, &x, &y, nullptr) || !std::isfinite(x) ||
+      !(std::abs(y) <= 90.0)) {
+    throw InputError(source +
+                     ": --reproject auto cannot place the raster's centre in longitude and "
+                     "latitude (" +
+                     QuietErrors::last() + ")");
+  }
+  const double lon = std::remainder(x, 360.0);  // in [-180, 180]
+  int zone = static_cast<int>(std::floor((lon + 180.0) / 6.0)) + 1;
+  zone = std::min(std::max(zone, 1), 60);
+  return (y >= 0.0 ? 32600 : 32700) + zone;
+}
+
+/// GDALWarp of `ds` to EPSG:`epsg` (bilinear, float64, NODATA NaN), in memory.
+Dataset warp_to(GDALDatasetH ds, int epsg, const std::string& source) {
+  const std::string target = "EPSG:" + std::to_string(epsg);
+  const char* argv[] = {"-of", "MEM",     "-t_srs",     target.c_str(), "-r",   "bilinear",
+                        "-ot", "Float64", "-dstnodata", "nan",          nullptr};
+  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(const_cast<char**>(argv), nullptr);
+  int usage_error = 0;
+  GDALDatasetH sources[] = {ds};
+  Dataset out(GDALWarp("", nullptr, 1, sources, options, &usage_error));
+  GDALWarpAppOptionsFree(options);
+  if (!out) {
+    throw InputError(source + ": --reproject auto could not warp the raster to " + target + " (" +
+                     QuietErrors::last() + ")");
+  }
+  return out;
+}
+
+/// ElevationGrid from band `band_index` of `ds`, after every geometric check.
+ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source) {
+  const int nx = GDALGetRasterXSize(ds), ny = GDALGetRasterYSize(ds);
+  if (nx < 2 || ny < 2) {
+    throw InputError(source + ": the raster has " + std::to_string(nx) + " x " +
+                     std::to_string(ny) + " pixels; Talus needs at least 2 x 2");
+  }
+  if (static_cast<double>(nx) * static_cast<double>(ny) > kMaxRasterNodes) {
+    throw InputError(source + ": the raster has " + std::to_string(nx) + " x " +
+                     std::to_string(ny) + " pixels, more than Talus reads (" +
+                     format(kMaxRasterNodes) + "); crop it first (gdal_translate -srcwin)");
+  }
+  // The pixels as doubles, the grid's values and its mask.
+  require_memory(17.0 * static_cast<double>(nx) * static_cast<double>(ny),
+                 source + " (" + std::to_string(nx) + " x " + std::to_string(ny) + " pixels)",
+                 "crop or resample the raster first (gdal_translate -srcwin, gdalwarp -tr)");
+  double gt[6];
+  if (GDALGetGeoTransform(ds, gt) != CE_None) {
+    throw InputError(source +
+                     ": the raster has no geotransform (pixel size and origin); Talus needs a "
+                     "georeferenced north-up raster with square pixels in metres");
+  }
+  if (gt[2] != 0.0 || gt[4] != 0.0) {
+    throw InputError(source + ": the raster is rotated (geotransform rotation terms " +
+                     format(gt[2]) + ", " + format(gt[4]) +
+                     "); Talus needs a north-up raster: warp it first (gdalwarp)");
+  }
+  if (!(gt[1] > 0.0) || gt[5] == 0.0 || !std::isfinite(gt[1]) || !std::isfinite(gt[5]) ||
+      !std::isfinite(gt[0]) || !std::isfinite(gt[3])) {
+    throw InputError(source + ": the raster's pixel size " + format(gt[1]) + " x " + format(gt[5]) +
+                     " is not usable (columns must run west to east with a positive, finite "
+                     "pixel width)");
+  }
+  const double h = gt[1];
+  if (std::abs(std::abs(gt[5]) - h) > 1e-9 * h) {
+    throw InputError(source + ": the raster has non-square pixels (" + format(h) + " x " +
+                     format(std::abs(gt[5])) +
+                     "); Talus needs square pixels: resample it first (gdalwarp -tr H H)");
+  }
+  if (band_index > GDALGetRasterCount(ds)) {
+    throw InputError(source + ": band " + std::to_string(band_index) +
+                     " requested, the raster has " + std::to_string(GDALGetRasterCount(ds)));
+  }
+  GDALRasterBandH band = GDALGetRasterBand(ds, band_index);
+  int has_nodata = 0;
+  const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+  const std::size_t w = static_cast<std::size_t>(nx), rows = static_cast<std::size_t>(ny);
+  std::vector<double> pixels(w * rows);
+  if (GDALRasterIO(band, GF_Read, 0, 0, nx, ny, pixels.data(), nx, ny, GDT_Float64, 0, 0) !=
+      CE_None) {
+    throw InputError(source + ": cannot read the raster's pixels (" + QuietErrors::last() + ")");
+  }
+  const bool north_up = gt[5] < 0.0;
+  const double x_min = gt[0] + 0.5 * h;
+  const double y_min =
+      north_up ? gt[3] + static_cast<double>(ny) * gt[5] + 0.5 * h : gt[3] + 0.5 * h;
+  ElevationGrid grid(w, rows, h, x_min, y_min);
+  for (std::size_t r = 0; r < rows; ++r) {
+    const std::size_t j = north_up ? rows - 1 - r : r;
+    for (std::size_t i = 0; i < w; ++i) {
+      const double z = pixels[r * w + i];
+      if (std::isnan(z) || (has_nodata && z == nodata)) {
+        grid.set_void(i, j);
+        continue;
+      }
+      if (!(std::abs(z) <= kMaxElevationMagnitude)) {
+        throw InputError(source + ": pixel (column " + std::to_string(i) + ", row " +
+                         std::to_string(r) + " from the north) is " + format(z) +
+                         ", beyond the supported elevation magnitude of 1e9 m (a void? declare "
+                         "it as the band's NODATA value)");
+      }
+      grid.at(i, j) = z;
+    }
+  }
+  return grid;
+}
+
+}  // namespace
+
+TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOptions& options) {
+  register_drivers();
+  const std::string source = printable(path, 200);
+  // As read_input_file: nothing that is not a regular file reaches GDAL (a FIFO
+  // would block, /dev/zero never end), and no GDAL virtual path (/vsicurl/...).
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw InputError(source + ": no such file");
+  if (std::filesystem::is_directory(status)) throw InputError(source + ": is a folder, not a file");
+  if (!std::filesystem::is_regular_file(status)) {
+    throw InputError(source +
+                     ": is not a regular file (a device, FIFO or socket); give a file's path");
+  }
+  QuietErrors quiet;
+  NoSideFiles no_side_files;
+  Dataset ds(
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  if (!ds) {
+    throw InputError(source + ": not a raster GDAL can read (" + QuietErrors::last() + ")");
+  }
+  TerrainRaster out;
+  if (GDALDriverH driver = GDALGetDatasetDriver(ds.get())) {
+    out.driver = GDALGetDriverShortName(driver);
+  }
+  Srs srs = dataset_srs(ds.get());
+  if (srs) out.source_crs = describe(srs.get());
+  if (srs && !OSRIsProjected(srs.get()) && !OSRIsLocal(srs.get())) {
+    const bool geographic = OSRIsGeographic(srs.get()) != 0;
+    if (!geographic) {
+      throw InputError(source + ": the raster's CRS " + out.source_crs.label() +
+                       " is neither projected nor geographic; Talus needs a metric CRS");
+    }
+    const int epsg = utm_zone_epsg(ds.get(), srs.get(), source);
+    if (options.reproject == Reprojection::kNone) {
+      throw InputError(source + ": the raster's CRS " + out.source_crs.label() +
+                       " is geographic (degrees), not metres; pass --reproject auto to warp it "
+                       "to the UTM zone of its centre (EPSG:" +
+                       std::to_string(epsg) + "), or reproject it first (gdalwarp -t_srs)");
+    }
+    ds = warp_to(ds.get(), epsg, source);
+    srs = dataset_srs(ds.get());
+    out.reprojected = true;
+  }
+  if (srs) {
+    char* unit = nullptr;  // owned by the SRS
+    const double to_metres = OSRGetLinearUnits(srs.get(), &unit);
+    if (std::abs(to_metres - 1.0) > 1e-12) {
+      throw InputError(source + ": the raster's CRS " + describe(srs.get()).label() + " is in " +
+                       (unit ? std::string(unit) : std::string("unknown units")) + " (" +
+                       format(to_metres) +
+                       " m), not metres; reproject it to a metric CRS first (gdalwarp -t_srs)");
+    }
+    out.crs = describe(srs.get());
+  }
+  if (!out.reprojected) out.source_crs = out.crs;
+  out.grid = grid_of(ds.get(), options.band, source);
+  return out;
+}
+
+std::optional<GeoReference> gdal_read_prj(const std::string& prj_path) {
+  register_drivers();
+  QuietErrors quiet;
+  std::string text;
+  try {
+    text = read_input_file(prj_path, kMaxConfigFileBytes);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+  Srs srs(OSRNewSpatialReference(nullptr));
+  if (OSRSetFromUserInput(srs.get(), text.c_str()) != OGRERR_NONE) return std::nullopt;
+  return describe(srs.get());
+}
+
+void gdal_write_geotiff(const RasterLayers& layers, const std::string& file,
+                        const std::string& path) {
+  register_drivers();
+  QuietErrors quiet;
+  NoSideFiles no_side_files;
+  GDALDriverH driver = GDALGetDriverByName("GTiff");
+  if (!driver) throw InputError(path + ": GDAL has no GTiff driver");
+  const int nx = static_cast<int>(layers.ncols), ny = static_cast<int>(layers.nrows);
+  const char* create_options[] = {"COMPRESS=DEFLATE", "INTERLEAVE=BAND", nullptr};
+  Dataset ds(GDALCreate(driver, file.c_str(), nx, ny, static_cast<int>(layers.bands.size()),
+                        GDT_Float32, const_cast<char**>(create_options)));
+  if (!ds) throw InputError(path + ": cannot create the GeoTIFF (" + QuietErrors::last() + ")");
+  const double h = layers.cellsize;
+  double gt[6] = {
+      layers.x_min - 0.5 * h, h, 0.0, layers.y_min + (static_cast<double>(ny) - 0.5) * h, 0.0, -h};
+  if (GDALSetGeoTransform(ds.get(), gt) != CE_None ||
+      (layers.crs.known() && GDALSetProjection(ds.get(), layers.crs.wkt.c_str()) != CE_None)) {
+    throw InputError(path + ": cannot georeference the GeoTIFF (" + QuietErrors::last() + ")");
+  }
+  const std::size_t w = layers.ncols, rows = layers.nrows;
+  std::vector<float> pixels(w * rows);
+  const float nodata = static_cast<float>(layers.nodata);
+  for (std::size_t b = 0; b < layers.bands.size(); ++b) {
+    const RasterBand& layer = layers.bands[b];
+    GDALRasterBandH band = GDALGetRasterBand(ds.get(), static_cast<int>(b + 1));
+    GDALSetDescription(band, layer.name.c_str());
+    GDALSetRasterNoDataValue(band, static_cast<double>(nodata));
+    if (!layer.unit.empty()) GDALSetRasterUnitType(band, layer.unit.c_str());
+    for (const auto& [key, value] : layer.metadata) {
+      GDALSetMetadataItem(band, key.c_str(), value.c_str(), nullptr);
+    }
+    for (std::size_t r = 0; r < rows; ++r) {
+      const std::size_t j = rows - 1 - r;
+      for (std::size_t i = 0; i < w; ++i) {
+        const double v = layer.values[j * w + i];
+        pixels[r * w + i] = std::isnan(v) ? nodata : static_cast<float>(v);
+      }
+    }
+    if (GDALRasterIO(band, GF_Write, 0, 0, nx, ny, pixels.data(), nx, ny, GDT_Float32, 0, 0) !=
+        CE_None) {
+      throw InputError(path + ": cannot write band '" + layer.name + "' (" + QuietErrors::last() +
+                       ")");
+    }
+  }
+  CPLErrorReset();
+  ds.reset();  // flushes and closes
+  if (CPLGetLastErrorType() >= CE_Failure) {
+    throw InputError(path + ": writing the GeoTIFF failed (" + QuietErrors::last() + ")");
+  }
+}
+
+void gdal_write_png(const RgbaImage& image, const std::string& file, const std::string& path) {
+  register_drivers();
+  QuietErrors quiet;
+  NoSideFiles no_side_files;
+  GDALDriverH mem = GDALGetDriverByName("MEM");
+  GDALDriverH png = GDALGetDriverByName("PNG");
+  if (!mem || !png) throw InputError(path + ": GDAL has no MEM or PNG driver");
+  const int w = static_cast<int>(image.width), h = static_cast<int>(image.height);
+  Dataset ds(GDALCreate(mem, "", w, h, 4, GDT_Byte, nullptr));
+  if (!ds) throw InputError(path + ": cannot create the image (" + QuietErrors::last() + ")");
+  for (int c = 0; c < 4; ++c) {
+    // Pixel stride 4 bytes, line stride 4 w bytes: band c reads every fourth byte.
+    if (GDALRasterIO(GDALGetRasterBand(ds.get(), c + 1), GF_Write, 0, 0, w, h,
+                     const_cast<std::uint8_t*>(image.rgba.data()) + c, w, h, GDT_Byte, 4,
+                     4 * w) != CE_None) {
+      throw InputError(path + ": cannot fill the image (" + QuietErrors::last() + ")");
+    }
+  }
+  GDALSetRasterColorInterpretation(GDALGetRasterBand(ds.get(), 4), GCI_AlphaBand);
+  Dataset out(GDALCreateCopy(png, file.c_str(), ds.get(), FALSE, nullptr, nullptr, nullptr));
+  if (!out) throw InputError(path + ": cannot write the PNG (" + QuietErrors::last() + ")");
+  CPLErrorReset();
+  out.reset();
+  if (CPLGetLastErrorType() >= CE_Failure) {
+    throw InputError(path + ": writing the PNG failed (" + QuietErrors::last() + ")");
+  }
+}
+
+}  // namespace talus::detail

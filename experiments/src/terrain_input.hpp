@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// The one place the `talus` commands load a terrain (--terrain, terrain
+/// FILE): talus::read_terrain (core/raster_io.hpp) with the --reproject
+/// choice, so every command accepts the same files.
+#include <string>
+
+#include "talus/core/raster_io.hpp"
+
+namespace talus::experiments {
+
+/// Help text of every --terrain option.
+inline constexpr const char* kTerrainHelp =
+    "DEM: an ESRI ASCII grid (.asc, Talus's strict reader) or any raster GDAL reads (GeoTIFF, "
+    "SRTM .hgt, ...): north-up, square pixels, elevations in metres, a metric CRS (see "
+    "--reproject)";
+/// Help text of every --reproject option.
+inline constexpr const char* kReprojectHelp =
+    "what to do with a geographic (degrees) DEM: none = refuse it; auto = warp it (bilinear) to "
+    "the WGS 84 UTM zone of its centre on square pixels";
+
+/// read_terrain(path) with Reprojection parse_reprojection(reproject).
+TerrainRaster load_terrain(const std::string& path, const std::string& reproject = "none");
+
+}  // namespace talus::experiments

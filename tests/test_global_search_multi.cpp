@@ -28,7 +28,8 @@ struct Case {
 };
 
 BPatch flat(double z, double w, double h) {
-  return BPatch::interpolate(grid_from_function([z](double, double) { return z; }, 0, 0, w, h, 1.0));
+  return BPatch::interpolate(
+      grid_from_function([z](double, double) { return z; }, 0, 0, w, h, 1.0));
 }
 
 BPatch hill(double height, double sigma) {
@@ -88,9 +89,11 @@ std::vector<Case> existing_cases() {
   cases.push_back(
       {"sine A*", sine, point_mass_rover(0.6), {5, 5}, {75, 55}, with(1, 16, 0.0, false)});
   cases.push_back({"knight 16", flat(0.0, 60, 40), point_mass_rover(), {5, 5}, {45, 25}, with(1)});
-  cases.push_back({"knight 8", flat(0.0, 60, 40), point_mass_rover(), {5, 5}, {45, 25}, with(1, 8)});
+  cases.push_back(
+      {"knight 8", flat(0.0, 60, 40), point_mass_rover(), {5, 5}, {45, 25}, with(1, 8)});
   cases.push_back({"hill grippy", hill(6, 6), point_mass_rover(1.5), {5, 30}, {75, 30}, with(1)});
-  cases.push_back({"hill slippery", hill(6, 6), point_mass_rover(0.25), {5, 30}, {75, 30}, with(1)});
+  cases.push_back(
+      {"hill slippery", hill(6, 6), point_mass_rover(0.25), {5, 30}, {75, 30}, with(1)});
   cases.push_back({"mirror", hill(20, 6), point_mass_rover(0.5), {5, 30}, {75, 30}, with(2)});
   cases.push_back({"ridge gap", ridge, point_mass_rover(0.6), {10, 15}, {70, 15}, with(1)});
   cases.push_back({"plane", plane, point_mass_rover(), {5, 5}, {45, 25}, with(1)});
@@ -100,22 +103,34 @@ std::vector<Case> existing_cases() {
         {"32 neighbours", flat(0.0, 40, 50), point_mass_rover(), start, start + d, with(1, 32)});
   }
   for (double spacing : {2.0, 1.0, 0.5}) {  // 0.25 as well in the full test
-    cases.push_back({"finer lattice " + std::to_string(spacing), flat(1.0, 60, 40),
-                     point_mass_rover(), {6, 20}, {54, 20}, with(1, 16, spacing)});
+    cases.push_back({"finer lattice " + std::to_string(spacing),
+                     flat(1.0, 60, 40),
+                     point_mass_rover(),
+                     {6, 20},
+                     {54, 20},
+                     with(1, 16, spacing)});
   }
   for (double d : {6.0, 12.0}) {
     GlobalSearchOptions o = with(5);
     o.max_cost_ratio = 3.0;
     o.distinctness = d;
-    cases.push_back({"bumps separation " + std::to_string(d), bumps(), point_mass_rover(0.3),
-                     {3, 30}, {77, 30}, o});
+    cases.push_back({"bumps separation " + std::to_string(d),
+                     bumps(),
+                     point_mass_rover(0.3),
+                     {3, 30},
+                     {77, 30},
+                     o});
   }
   for (double ratio : {3.0, 1.1, 1.02, 1.0}) {
     GlobalSearchOptions o = with(6);
     o.distinctness = 5.0;
     o.max_cost_ratio = ratio;
-    cases.push_back({"bumps ratio " + std::to_string(ratio), bumps(), point_mass_rover(0.3),
-                     {3, 30}, {77, 30}, o});
+    cases.push_back({"bumps ratio " + std::to_string(ratio),
+                     bumps(),
+                     point_mass_rover(0.3),
+                     {3, 30},
+                     {77, 30},
+                     o});
   }
   return cases;
 }
@@ -132,8 +147,7 @@ GlobalSearchOptions multi(GlobalSearchOptions o) {
 TEST(GlobalSearchMulti, SameBestCandidateAsTheFullSearchOnEveryGlobalSearchTestCase) {
   std::size_t restricted = 0;
   for (const Case& c : existing_cases()) {
-    const GlobalSearchResult full =
-        global_search(c.terrain, c.vehicle, c.start, c.goal, c.options);
+    const GlobalSearchResult full = global_search(c.terrain, c.vehicle, c.start, c.goal, c.options);
     const GlobalSearchResult m =
         global_search(c.terrain, c.vehicle, c.start, c.goal, multi(c.options));
     ASSERT_EQ(full.status, GlobalSearchStatus::kOk) << c.name;
@@ -196,7 +210,9 @@ TEST(GlobalSearchMulti, BadOptionsAreInputErrors) {
 /// A wall one node wide (1.5 m high) along x = 58, open only for 70 < y < 78.
 BPatch thin_wall() {
   return BPatch::interpolate(grid_from_function(
-      [](double x, double y) { return (std::abs(x - 58) < 0.5 && !(y > 70 && y < 78)) ? 1.5 : 0.0; },
+      [](double x, double y) {
+        return (std::abs(x - 58) < 0.5 && !(y > 70 && y < 78)) ? 1.5 : 0.0;
+      },
       0, 0, 120, 90, 1.0));
 }
 
@@ -208,7 +224,8 @@ TEST(GlobalSearchMulti, TheCorridorWidensWhenItHasNoRoute) {
   o.resolution = GlobalSearchResolution::kMulti;
   o.coarse_factor = 8;
   o.corridor_width = 4.0;
-  const GlobalSearchResult m = global_search(terrain, point_mass_rover(0.6), {20, 15}, {100, 15}, o);
+  const GlobalSearchResult m =
+      global_search(terrain, point_mass_rover(0.6), {20, 15}, {100, 15}, o);
   ASSERT_EQ(full.status, GlobalSearchStatus::kOk);
   ASSERT_EQ(m.status, GlobalSearchStatus::kOk) << m.message;
   // The coarse lattice's edges step over the wall: its route is straight.
@@ -233,23 +250,28 @@ TEST(GlobalSearchMulti, TheCorridorWidensWhenItHasNoRoute) {
 // ---- The stop check --------------------------------------------------------
 
 TEST(GlobalSearchStop, ExpandsAtMostOneBatchAfterTheStopIsDue) {
-  const Case c = existing_cases()[1];  // 81 x 61 nodes, both fields
-  for (std::size_t due : {0u, 1u, 3u, 10u}) {
-    for (std::size_t interval : {1u, 16u, 100u}) {
-      GlobalSearchOptions o = c.options;
-      o.stop_interval = interval;
-      std::size_t polls = 0;
-      // "The deadline passes" after `due` polls said no.
-      o.stop = [&polls, due] { return polls++ >= due; };
-      const GlobalSearchResult r = global_search(c.terrain, c.vehicle, c.start, c.goal, o);
-      ASSERT_EQ(r.status, GlobalSearchStatus::kStopped) << due << " " << interval;
-      EXPECT_EQ(polls, due + 1);  // nothing polled after the stop
-      // Sampling polls every interval nodes: by the deadline at most
-      // due * interval nodes were sampled or expanded, and at most one batch
-      // follows.
-      EXPECT_LE(r.expanded, (due + 1) * interval);
-      EXPECT_NE(r.message.find("stopped"), std::string::npos);
-    }
+  const Case c = existing_cases()[1];  // 81 x 61 = 4941 nodes, both fields
+  struct Due {
+    std::size_t polls, interval;
+    const char* phase;  // where the stop falls
+  };
+  // Sampling polls every interval nodes (4941 / 16 -> 309, / 100 -> 50
+  // polls), then each search every interval expansions.
+  for (const Due due :
+       {Due{0, 16, "before the search"}, Due{3, 100, "sampling"}, Due{400, 16, "from the start"},
+        Due{70, 100, "from the start"}, Due{110, 100, "to the goal"}}) {
+    GlobalSearchOptions o = c.options;
+    o.stop_interval = due.interval;
+    std::size_t polls = 0;
+    // "The deadline passes" after `due.polls` polls said no.
+    o.stop = [&polls, due] { return polls++ >= due.polls; };
+    const GlobalSearchResult r = global_search(c.terrain, c.vehicle, c.start, c.goal, o);
+    ASSERT_EQ(r.status, GlobalSearchStatus::kStopped) << due.polls;
+    EXPECT_EQ(polls, due.polls + 1);  // it stopped at the first yes
+    EXPECT_NE(r.message.find(due.phase), std::string::npos) << r.message;
+    // Every poll but the first follows a batch of at most `interval` nodes
+    // sampled or expanded: at most one batch after the last "no".
+    EXPECT_LE(r.expanded, due.polls * due.interval) << r.message;
   }
 }
 

@@ -531,9 +531,8 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
     add_candidate(tree.path_to(g), tree.cost[g]);
     return finish(GlobalSearchStatus::kOk, "");
   }
-  const ShortestPathTree from_start =
-      shortest_paths(n, s, forward, ShortestPathTree::kNone, NoHeuristic{}, stop,
-                     options.stop_interval);
+  const ShortestPathTree from_start = shortest_paths(n, s, forward, ShortestPathTree::kNone,
+                                                     NoHeuristic{}, stop, options.stop_interval);
   result.expanded += from_start.expanded;
   result.reachable_nodes = static_cast<std::size_t>(std::count_if(
       from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
@@ -654,9 +653,11 @@ TileMask corridor_tiles(const std::vector<CandidatePath>& candidates, const Vec2
     const Vec2 q = (p - origin) / tile;
     const double r = radius / tile;
     const long i0 = std::max(0L, static_cast<long>(std::floor(q.x() - r)));
-    const long i1 = std::min(static_cast<long>(mask.tx) - 1, static_cast<long>(std::floor(q.x() + r)));
+    const long i1 =
+        std::min(static_cast<long>(mask.tx) - 1, static_cast<long>(std::floor(q.x() + r)));
     const long j0 = std::max(0L, static_cast<long>(std::floor(q.y() - r)));
-    const long j1 = std::min(static_cast<long>(mask.ty) - 1, static_cast<long>(std::floor(q.y() + r)));
+    const long j1 =
+        std::min(static_cast<long>(mask.ty) - 1, static_cast<long>(std::floor(q.y() + r)));
     for (long j = j0; j <= j1; ++j)
       for (long i = i0; i <= i1; ++i) {
         // Distance from q to the tile [i, i + 1) x [j, j + 1).
@@ -742,9 +743,8 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
                            (terrain.y_max() - terrain.y_min()) >= 8.0 * coarse_spacing;
   if (coarse_fits) {
     try {
-      coarse.emplace(
-          search_lattice(terrain, vehicle, set, start, goal, coarse_options, coarse_spacing,
-                         nullptr));
+      coarse.emplace(search_lattice(terrain, vehicle, set, start, goal, coarse_options,
+                                    coarse_spacing, nullptr));
     } catch (const InputError& e) {
       fallback = std::string("the coarse search failed (") + e.what() + ")";
     }

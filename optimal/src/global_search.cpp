@@ -235,6 +235,21 @@ class Lattice {
   }
   std::size_t edges_evaluated() const { return evaluated_; }
 
+  /// Calls emit(m, cost) for every finite-cost edge n -> m (forward) or
+  /// m -> n (!forward); the node's coordinates are computed once.
+  template <typename Emit>
+  void for_each_edge(std::uint32_t n, bool forward, Emit&& emit) {
+    const auto [i, j] = coords(n);
+    for (std::size_t k = 0; k < offsets_.size(); ++k) {
+      const auto [dx, dy] = offsets_[k];
+      const std::uint32_t m = node_at(i + dx, j + dy);
+      if (m == kNoNode) continue;
+      // Offset k < half is the positive edge n -> m; else m -> n is positive.
+      const std::pair<double, double> c = k < half_ ? ensure(n, m, k) : ensure(m, n, k - half_);
+      const double cost = (k < half_) == forward ? c.first : c.second;
+      if (cost < kInf) emit(m, cost);
+    }
+  }
   /// Cost of the directed edge from n along offset k (+inf if none); its end in `*to`.
   double cost(std::uint32_t n, std::size_t k, std::uint32_t* to = nullptr) {
     const std::uint32_t m = neighbour(n, k);
@@ -496,18 +511,10 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
 
   const std::size_t n = lattice.size();
   const auto forward = [&lattice](std::uint32_t node, auto&& emit) {
-    std::uint32_t next = kNoNode;
-    for (std::size_t k = 0; k < lattice.offsets(); ++k) {
-      const double c = lattice.cost(node, k, &next);
-      if (c < kInf) emit(next, c);
-    }
+    lattice.for_each_edge(node, true, emit);
   };
   const auto reverse = [&lattice](std::uint32_t node, auto&& emit) {
-    std::uint32_t previous = kNoNode;
-    for (std::size_t k = 0; k < lattice.offsets(); ++k) {
-      const double c = lattice.cost_into(node, k, &previous);
-      if (c < kInf) emit(previous, c);
-    }
+    lattice.for_each_edge(node, false, emit);
   };
   if (!options.cost_fields && options.candidates == 1) {
     const Vec2 goal_position = lattice.position(g);

@@ -93,7 +93,9 @@ struct GlobalSearchOptions {
   /// node surface samples or candidate seeds; true cuts the search short
   /// with status kStopped (used by the planner's time limit). So the search
   /// runs at most one batch of stop_interval expansions past the moment
-  /// `stop` would first have said yes. Empty: never stops.
+  /// `stop` would first have said yes (in the candidate extraction, one
+  /// O(nodes) step: the sort of the seeds or one candidate's distance map).
+  /// Empty: never stops.
   std::function<bool()> stop;
   std::size_t stop_interval = 1024;  ///< >= 1
   /// Throws InputError naming the field.

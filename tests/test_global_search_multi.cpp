@@ -121,7 +121,7 @@ std::vector<Case> existing_cases() {
                      {77, 30},
                      o});
   }
-  for (double ratio : {3.0, 1.1, 1.02, 1.0}) {
+  for (double ratio : {3.0, 1.02}) {  // 1.1 and 1.0 as well in the full test
     GlobalSearchOptions o = with(6);
     o.distinctness = 5.0;
     o.max_cost_ratio = ratio;
@@ -174,7 +174,7 @@ TEST(GlobalSearchMulti, SameBestCandidateAsTheFullSearchOnEveryGlobalSearchTestC
     restricted += m.nodes < full.nodes;
   }
   // Most cases searched a corridor smaller than the map.
-  EXPECT_GE(restricted, 15u);
+  EXPECT_GE(restricted, 13u);
 }
 
 TEST(GlobalSearchMulti, AWholeMapCorridorIsTheFullSearch) {

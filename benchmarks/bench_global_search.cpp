@@ -2,7 +2,10 @@
 // 16-connected (issue target: 512^2 in < 0.5 s on one core including edge
 // costs). "Fields" computes both cost-to-go fields and 3 distinct candidates
 // (every edge gets evaluated); "AStar" is the single-source single-target
-// search with lazily evaluated edges.
+// search with lazily evaluated edges. "MultiFields" / "MultiAStar" are the
+// same with GlobalSearchResolution::kMulti (coarse lattice 4x coarser, then
+// the fine lattice in a corridor around its candidates); the counters
+// report the corridor's nodes and how often it widened.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -37,7 +40,8 @@ const Case& terrain_case(std::size_t n) {
   return it->second;
 }
 
-void run(benchmark::State& state, std::size_t candidates, bool fields) {
+void run(benchmark::State& state, std::size_t candidates, bool fields,
+         talus::GlobalSearchResolution resolution = talus::GlobalSearchResolution::kFull) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const Case& c = terrain_case(n);
   const double w = c.terrain.x_max() - c.terrain.x_min();
@@ -45,6 +49,7 @@ void run(benchmark::State& state, std::size_t candidates, bool fields) {
   options.connectivity = 16;
   options.candidates = candidates;
   options.cost_fields = fields;
+  options.resolution = resolution;
   talus::GlobalSearchResult result;
   for (auto _ : state) {
     result =
@@ -55,6 +60,9 @@ void run(benchmark::State& state, std::size_t candidates, bool fields) {
   state.counters["nodes"] = static_cast<double>(result.nodes);
   state.counters["edges"] = static_cast<double>(result.edges_evaluated);
   state.counters["candidates"] = static_cast<double>(result.candidates.size());
+  state.counters["best_cost_s"] =
+      result.candidates.empty() ? 0.0 : result.candidates[0].cost_seconds;
+  state.counters["widenings"] = static_cast<double>(result.corridor_widenings);
 }
 
 void BM_GlobalSearchFields(benchmark::State& state) {
@@ -62,6 +70,12 @@ void BM_GlobalSearchFields(benchmark::State& state) {
 }
 void BM_GlobalSearchAStar(benchmark::State& state) {
   run(state, 1, false);
+}
+void BM_GlobalSearchMultiFields(benchmark::State& state) {
+  run(state, 3, true, talus::GlobalSearchResolution::kMulti);
+}
+void BM_GlobalSearchMultiAStar(benchmark::State& state) {
+  run(state, 1, false, talus::GlobalSearchResolution::kMulti);
 }
 BENCHMARK(BM_GlobalSearchFields)
     ->Arg(128)
@@ -71,6 +85,20 @@ BENCHMARK(BM_GlobalSearchFields)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
 BENCHMARK(BM_GlobalSearchAStar)
+    ->Arg(128)
+    ->Arg(256)
+    ->Arg(512)
+    ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+BENCHMARK(BM_GlobalSearchMultiFields)
+    ->Arg(128)
+    ->Arg(256)
+    ->Arg(512)
+    ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+BENCHMARK(BM_GlobalSearchMultiAStar)
     ->Arg(128)
     ->Arg(256)
     ->Arg(512)

@@ -483,6 +483,9 @@ TEST(CliPlan, HelpDocumentsTheContract) {
                                "cost_seconds",
                                "unreachable",
                                "Exit code 0",
+                               "--time-limit",
+                               "time_limit",
+                               "--resolution",
                                "2 when",
                                "--candidates",
                                "--lattice-spacing",
@@ -500,6 +503,34 @@ TEST(CliPlan, HelpDocumentsTheContract) {
                                "nlopt-lbfgs"}) {
     EXPECT_NE(r.out.find(fragment), std::string::npos) << fragment << " not in " << r.out;
   }
+}
+
+TEST(CliPlan, TimeLimitAndMultiResolution) {
+  const std::string base = "--terrain " + quoted(plan_flat_terrain()) +
+                           " --start 5,20 --goal 55,20 --vehicle " +
+                           quoted(plan_vehicle("v10.yaml", 10.0));
+  // A limit of 1 ns has passed before the global search's first look at the
+  // clock: no route, no trajectory, exit code 2, status time_limit.
+  const std::string cut = scratch_file("time_limit_out");
+  const nlohmann::json j = run_plan_and_check(base + " --time-limit 1e-9", cut, 2);
+  EXPECT_EQ(j.value("status", ""), "time_limit") << j.dump();
+  EXPECT_NE(j.value("message", "").find("no trajectory"), std::string::npos) << j.dump();
+  EXPECT_TRUE(j.at("travel_time").is_null());
+  EXPECT_EQ(j.value("time_limit", 0.0), 1e-9);
+  // The multi-resolution search: the same straight line, no fields.csv.
+  const std::string multi = scratch_file("multi_out");
+  const nlohmann::json m = run_plan_ok(base + " --stage global --resolution multi", multi);
+  EXPECT_EQ(m.value("resolution", ""), "multi");
+  EXPECT_NEAR(m.at("candidates")[0].at("cost_seconds").get<double>(), 5.0, 1e-9 * 5.0);
+  EXPECT_GT(m.value("coarse_nodes", 0), 0);
+  EXPECT_TRUE(m.at("files").at("fields").is_null());
+  EXPECT_FALSE(std::filesystem::exists(multi + "/fields.csv"));
+  const std::string dir = scratch_file("never_written");
+  std::filesystem::remove_all(dir);
+  expect_bad_input("plan",
+                   {{base + " --time-limit 0 --out " + quoted(dir), "--time-limit"},
+                    {base + " --resolution coarse --out " + quoted(dir), "--resolution"}},
+                   dir);
 }
 
 }  // namespace

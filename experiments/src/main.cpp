@@ -436,9 +436,14 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "[{travel_time, initial_time, solver, solver_status, formulation, converged, phase, "
       "nlp_travel_time, iterations, evaluations, "
       "optimality (projected-gradient norm [s/m]), ...}] and seconds {fit, global, local, "
-      "profile, plots, total}. Exit code 0 when a result exists; 2 when the goal is "
-      "unreachable or (full) every candidate's profile is infeasible (summary still written "
-      "and printed); 1 on bad input: a start or goal off the map, on NODATA or on "
+      "profile, plots, total}. --time-limit SECONDS bounds the whole plan: on it the status is "
+      "time_limit and the best feasible trajectory found by then is returned (message and "
+      "not_optimised say which candidates were cut short or never optimised; if the global "
+      "search is cut before it found a route there is no trajectory). Exit code 0 when a "
+      "result exists (also with status time_limit); 2 when the goal is "
+      "unreachable, (full) every candidate's profile is infeasible, or the time limit left no "
+      "trajectory (summary still written and printed); 1 on bad input: a start or goal off the "
+      "map, on NODATA or on "
       "untraversable terrain, a vehicle without max_speed, a malformed X,Y, an unknown "
       "solver (one line on stderr, nothing written)");
   plan->add_option("--terrain", plan_request.terrain, ex::kTerrainHelp)->required();
@@ -491,6 +496,15 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "time is still the exact profile's)")
       ->capture_default_str()
       ->check(CLI::IsMember({std::string("nested"), std::string("simultaneous")}));
+  plan->add_option("--resolution", plan_request.resolution,
+                   "global search: full (every lattice node) or multi (a coarse lattice 4x "
+                   "coarser, then the fine lattice in a corridor around its candidates, widened "
+                   "while needed; no fields.csv)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({std::string("full"), std::string("multi")}));
+  plan->add_option("--time-limit", plan_request.time_limit,
+                   "wall-clock budget of the plan [s] (> 0; default none): returns the best "
+                   "feasible trajectory so far with status time_limit");
   plan->add_option("--v0", plan_request.start_speed, "speed at the start [m/s], >= 0, --stage full")
       ->capture_default_str();
   plan->add_option("--v1", plan_request.end_speed, "speed at the goal [m/s], >= 0, --stage full")

@@ -77,6 +77,15 @@ void check_plan_options(const PlanRequest& request) {
     throw InputError("--connectivity must be 8, 16 or 32, got " +
                      std::to_string(request.connectivity));
   }
+  try {
+    parse_global_search_resolution(request.resolution);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--resolution: ") + e.what());
+  }
+  if (!(request.time_limit > 0.0)) {
+    throw InputError("--time-limit must be a number of seconds > 0, got " +
+                     format_number(request.time_limit));
+  }
   if (request.smoothing && !(std::isfinite(*request.smoothing) && *request.smoothing > 0.0)) {
     throw InputError("--smoothing must be a positive finite number (lambda), got " +
                      format_number(*request.smoothing));
@@ -297,6 +306,11 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
     summary["status"] = "infeasible";
     summary["message"] = "no candidate has a feasible trajectory (see optima[].message)";
   }
+  if (result.status == PlannerStatus::kTimeLimit) {
+    summary["status"] = "time_limit";
+    summary["message"] = result.message;
+  }
+  summary["not_optimised"] = result.not_optimised;
   summary["travel_time"] = finite_or_null(best ? best->travel_time() : NAN);
   summary["global_travel_time"] = finite_or_null(result.global_travel_time());
   summary["improvement_percent"] = finite_or_null(result.improvement_percent());
@@ -351,6 +365,8 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.global.connectivity = request.connectivity;
   options.global.candidates = static_cast<std::size_t>(request.candidates);
   options.global.cost_fields = true;  // fields.csv
+  options.global.resolution = parse_global_search_resolution(request.resolution);
+  options.time_limit = request.time_limit;
   options.optimize = request.stage == kPlanStageFull;
   options.local.solver = parse_path_solver(request.solver);
   options.local.formulation = parse_path_formulation(request.formulation);
@@ -423,11 +439,17 @@ PlanOutcome plan(const PlanRequest& request) {
   outcome.result = talus::plan(problem, options);
   const PlannerResult& planned = outcome.result;
   const GlobalSearchResult& result = planned.global;
-  const bool reachable = result.status == GlobalSearchStatus::kOk;
+  // A search cut by the time limit after it found a route counts as reaching the goal.
+  const bool reachable =
+      result.status == GlobalSearchStatus::kOk ||
+      (result.status == GlobalSearchStatus::kStopped && !result.candidates.empty());
+  const bool time_limited = planned.status == PlannerStatus::kTimeLimit;
 
   const std::filesystem::path& dir = out.staging();
   write_text_file(dir / "candidates.csv", candidates_csv(result));
-  const bool write_fields = result.nx * result.ny <= kMaxFieldNodes;
+  // No fields without a full-resolution search that computed them.
+  const bool write_fields =
+      result.nx * result.ny <= kMaxFieldNodes && !result.cost_from_start.empty();
   if (write_fields) write_text_file(dir / "fields.csv", fields_csv(result));
   if (request.rasters) {  // in the DEM's CRS
     write_geotiff(cost_to_go_layers(result, terrain.crs), (dir / "cost_to_go.tif").string());
@@ -442,8 +464,14 @@ PlanOutcome plan(const PlanRequest& request) {
                           {"vertices", c.vertices.size()}});
   }
   nlohmann::json summary;
-  summary["status"] = reachable ? "ok" : "unreachable";
-  summary["message"] = reachable ? nlohmann::json(nullptr) : nlohmann::json(result.message);
+  summary["status"] = time_limited ? "time_limit" : reachable ? "ok" : "unreachable";
+  summary["message"] = time_limited ? nlohmann::json(planned.message)
+                       : reachable  ? nlohmann::json(nullptr)
+                                    : nlohmann::json(result.message);
+  summary["time_limit"] = finite_or_null(request.time_limit);
+  summary["resolution"] = request.resolution;
+  summary["coarse_nodes"] = result.coarse_nodes;
+  summary["corridor_widenings"] = result.corridor_widenings;
   summary["stage"] = request.stage;
   // The best corridor's lattice travel time: monotone in the vehicle's limits
   // (every edge's cost is), unlike the locally optimised time.
@@ -490,6 +518,7 @@ PlanOutcome plan(const PlanRequest& request) {
   if (reachable) {
     write_full_stage(request, grid, problem, options, planned, out, summary, seconds);
   } else {  // no trajectory: the full stage's fields are empty
+    summary["not_optimised"] = nlohmann::json::array();
     write_text_file(dir / "trajectory.csv", trajectory_csv(nullptr));
     write_text_file(dir / "optima.csv", std::string(kOptimaCsvHeader) + "\n");
     for (const char* key : {"travel_time", "global_travel_time", "improvement_percent"}) {
@@ -505,7 +534,7 @@ PlanOutcome plan(const PlanRequest& request) {
   write_text_file(dir / "summary.json", summary.dump(2) + "\n");
   out.commit();
   outcome.summary = std::move(summary);
-  outcome.reachable = planned.status == PlannerStatus::kOk;
+  outcome.reachable = planned.status == PlannerStatus::kOk || (time_limited && planned.best());
   return outcome;
 }
 

@@ -7,6 +7,7 @@
 /// (talus::optimize_path: a clamped cubic B-spline minimising the exact
 /// time-optimal profile's travel time, Ipopt or NLopt) and keeps the best.
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,7 +23,7 @@ namespace talus::experiments {
 /// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
 /// [--smoothing LAMBDA] [--control-points M] [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa]
 /// [--formulation nested|simultaneous] [--v0 A]
-/// [--v1 B] --out DIR`.
+/// [--v1 B] [--time-limit SECONDS] [--resolution full|multi] --out DIR`.
 struct PlanRequest {
   std::string terrain;             ///< DEM (load_terrain)
   std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
@@ -34,6 +35,10 @@ struct PlanRequest {
   long long candidates = 3;        ///< distinct candidates wanted (>= 1)
   double lattice_spacing = 0.0;    ///< [m]; 0 = the terrain's cell size
   int connectivity = 16;           ///< 8, 16 or 32
+  /// The global search's GlobalSearchOptions::resolution: "full" or "multi".
+  std::string resolution = "full";
+  /// PlannerOptions::time_limit [s] (> 0; +inf = none).
+  double time_limit = std::numeric_limits<double>::infinity();
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
   // The local stage (--stage full only).

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include "talus/bspline/surface_path.hpp"
@@ -107,10 +108,28 @@ std::vector<std::pair<int, int>> neighbour_offsets(int connectivity) {
   return all;
 }
 
-/// The lattice with lazily computed, cached edge costs in both directions.
+constexpr std::uint32_t kNoNode = ShortestPathTree::kNone;
+/// Side of the corridor's tiles (multi-resolution search) [nodes].
+constexpr std::size_t kTile = 16;
+
+/// Which tiles of kTile x kTile nodes a corridor covers, over the full lattice.
+struct TileMask {
+  std::size_t tx = 0, ty = 0;          ///< tiles per row and column
+  std::vector<unsigned char> present;  ///< tx * ty, row-major
+  bool all() const {
+    return std::all_of(present.begin(), present.end(), [](unsigned char p) { return p != 0; });
+  }
+};
+
+/// The lattice with lazily computed, cached edge costs in both directions:
+/// every node of the grid, or (with a TileMask) only the nodes of a corridor.
+/// Corridor nodes are numbered row by row in the full lattice's order (so
+/// the searches break ties alike); each row holds its present tiles' kTile
+/// nodes, those past the grid's east edge being unused placeholders.
 class Lattice {
  public:
-  Lattice(const BPatch& terrain, const AdmissibleSet& set, double spacing, int connectivity)
+  Lattice(const BPatch& terrain, const AdmissibleSet& set, double spacing, int connectivity,
+          const TileMask* mask = nullptr)
       : terrain_(terrain), set_(set), spacing_(spacing), offsets_(neighbour_offsets(connectivity)) {
     origin_ = Vec2(terrain.x_min(), terrain.y_min());
     nx_ =
@@ -122,64 +141,149 @@ class Lattice {
     if (nx_ < 2 || ny_ < 2) throw InputError("lattice spacing is larger than the terrain");
     if (nx_ * ny_ > 50'000'000) throw InputError("lattice too large: increase --lattice-spacing");
     half_ = offsets_.size() / 2;
+    size_ = nx_ * ny_;
+    if (mask != nullptr) {
+      full_ = false;
+      tx_ = mask->tx;
+      tile_rank_.assign(mask->present.size(), -1);
+      std::vector<std::size_t> per_row(mask->ty, 0);
+      for (std::size_t tj = 0; tj < mask->ty; ++tj)
+        for (std::size_t ti = 0; ti < mask->tx; ++ti)
+          if (mask->present[tj * tx_ + ti]) {
+            tile_rank_[tj * tx_ + ti] = static_cast<int>(per_row[tj]++);
+          }
+      row_start_.assign(ny_ + 1, 0);
+      for (std::size_t j = 0; j < ny_; ++j)
+        row_start_[j + 1] = row_start_[j] + kTile * per_row[j / kTile];
+      size_ = row_start_[ny_];
+    }
     // Per node: its surface sample and data flag, both directions' cost of
     // each of its half_ edges, and the searches' fields, labels and queues.
-    const double per_node = static_cast<double>(sizeof(surface_[0]) + 1 + 16 * half_ + 64);
-    require_memory(per_node * static_cast<double>(nx_ * ny_),
+    const double per_node =
+        static_cast<double>(sizeof(surface_[0]) + 1 + 16 * half_ + 64 + (full_ ? 0 : 4));
+    require_memory(per_node * static_cast<double>(size_),
                    "the global search's lattice of " + std::to_string(nx_) + " x " +
-                       std::to_string(ny_) + " nodes",
+                       std::to_string(ny_) + " nodes" +
+                       (full_ ? std::string() : " (corridor of " + std::to_string(size_) + ")"),
                    "increase the lattice spacing (--lattice-spacing; the default is the cell "
                    "size) or lower the connectivity");
-    surface_.resize(nx_ * ny_);
-    on_data_.resize(nx_ * ny_);
-    for (std::size_t n = 0; n < nx_ * ny_; ++n) {
-      const Vec2 p = position(static_cast<std::uint32_t>(n));
-      on_data_[n] = terrain.on_data(p);
-      if (on_data_[n]) surface_[n] = terrain.evaluate(p);
+    if (!full_) {
+      full_index_.assign(size_, kNoNode);
+      for (std::size_t j = 0; j < ny_; ++j)
+        for (std::size_t ti = 0; ti < tx_; ++ti) {
+          const int rank = tile_rank_[(j / kTile) * tx_ + ti];
+          if (rank < 0) continue;
+          for (std::size_t i = ti * kTile; i < std::min(nx_, (ti + 1) * kTile); ++i) {
+            full_index_[row_start_[j] + static_cast<std::size_t>(rank) * kTile + i % kTile] =
+                static_cast<std::uint32_t>(j * nx_ + i);
+          }
+        }
     }
-    forward_.assign(nx_ * ny_ * half_, std::numeric_limits<double>::quiet_NaN());
-    backward_.assign(nx_ * ny_ * half_, std::numeric_limits<double>::quiet_NaN());
+    surface_.resize(size_);
+    on_data_.assign(size_, 0);
+    forward_.assign(size_ * half_, std::numeric_limits<double>::quiet_NaN());
+    backward_.assign(size_ * half_, std::numeric_limits<double>::quiet_NaN());
   }
 
-  std::size_t size() const { return nx_ * ny_; }
+  /// Samples the surface at every node; false if `stop` cut it short
+  /// (polled every `interval` nodes).
+  template <typename Stop>
+  bool sample(Stop&& stop, std::size_t interval) {
+    for (std::size_t n = 0; n < size_; ++n) {
+      if (n % interval == 0 && stop()) return false;
+      if (!exists(static_cast<std::uint32_t>(n))) continue;
+      const Vec2 p = position(static_cast<std::uint32_t>(n));
+      on_data_[n] = terrain_.on_data(p);
+      if (on_data_[n]) surface_[n] = terrain_.evaluate(p);
+    }
+    return true;
+  }
+
+  std::size_t size() const { return size_; }
   std::size_t nx() const { return nx_; }
   std::size_t ny() const { return ny_; }
+  bool full() const { return full_; }
   Vec2 origin() const { return origin_; }
-  Vec2 position(std::uint32_t n) const {
-    return origin_ + spacing_ * Vec2(static_cast<double>(n % nx_), static_cast<double>(n / nx_));
+  /// A real node (not a corridor row's placeholder past the grid's edge).
+  bool exists(std::uint32_t n) const { return full_ || full_index_[n] != kNoNode; }
+  /// Column and row of node n in the full lattice.
+  std::pair<long, long> coords(std::uint32_t n) const {
+    const std::size_t f = full_ ? n : full_index_[n];
+    return {static_cast<long>(f % nx_), static_cast<long>(f / nx_)};
   }
+  /// The node at column i, row j; kNoNode off the grid or outside the corridor.
+  std::uint32_t node_at(long i, long j) const {
+    if (i < 0 || j < 0 || i >= static_cast<long>(nx_) || j >= static_cast<long>(ny_)) {
+      return kNoNode;
+    }
+    const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+    if (full_) return static_cast<std::uint32_t>(uj * nx_ + ui);
+    const int rank = tile_rank_[(uj / kTile) * tx_ + ui / kTile];
+    if (rank < 0) return kNoNode;
+    return static_cast<std::uint32_t>(row_start_[uj] + static_cast<std::size_t>(rank) * kTile +
+                                      ui % kTile);
+  }
+  Vec2 position(std::uint32_t n) const {
+    const auto [i, j] = coords(n);
+    return origin_ + spacing_ * Vec2(static_cast<double>(i), static_cast<double>(j));
+  }
+  /// The node nearest to p (kNoNode if it is outside the corridor).
   std::uint32_t nearest(const Vec2& p) const {
-    const auto i = static_cast<std::size_t>(
-        std::clamp(std::lround((p.x() - origin_.x()) / spacing_), 0L, static_cast<long>(nx_) - 1));
-    const auto j = static_cast<std::size_t>(
+    return node_at(
+        std::clamp(std::lround((p.x() - origin_.x()) / spacing_), 0L, static_cast<long>(nx_) - 1),
         std::clamp(std::lround((p.y() - origin_.y()) / spacing_), 0L, static_cast<long>(ny_) - 1));
-    return static_cast<std::uint32_t>(j * nx_ + i);
   }
   std::size_t edges_evaluated() const { return evaluated_; }
 
-  /// Cost of the directed edge from n along offset k (+inf if none).
-  double cost(std::uint32_t n, std::size_t k) {
-    const auto [dx, dy] = offsets_[k];
-    const long i = static_cast<long>(n % nx_) + dx, j = static_cast<long>(n / nx_) + dy;
-    if (i < 0 || j < 0 || i >= static_cast<long>(nx_) || j >= static_cast<long>(ny_)) return kInf;
-    const auto m =
-        static_cast<std::uint32_t>(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i));
+  /// Calls emit(m, cost) for every finite-cost edge n -> m (forward) or
+  /// m -> n (!forward); the node's coordinates are computed once.
+  template <typename Emit>
+  void for_each_edge(std::uint32_t n, bool forward, Emit&& emit) {
+    const auto [i, j] = coords(n);
+    for (std::size_t k = 0; k < offsets_.size(); ++k) {
+      const auto [dx, dy] = offsets_[k];
+      const std::uint32_t m = node_at(i + dx, j + dy);
+      if (m == kNoNode) continue;
+      // Offset k < half is the positive edge n -> m; else m -> n is positive.
+      const std::pair<double, double> c = k < half_ ? ensure(n, m, k) : ensure(m, n, k - half_);
+      const double cost = (k < half_) == forward ? c.first : c.second;
+      if (cost < kInf) emit(m, cost);
+    }
+  }
+  /// Cost of the directed edge from n along offset k (+inf if none); its end in `*to`.
+  double cost(std::uint32_t n, std::size_t k, std::uint32_t* to = nullptr) {
+    const std::uint32_t m = neighbour(n, k);
+    if (to != nullptr) *to = m;
+    if (m == kNoNode) return kInf;
     if (k < half_) return ensure(n, m, k).first;
     return ensure(m, n, k - half_).second;  // m -> n is positive: n -> m is its backward
   }
-  /// Cost of the directed edge into n from its neighbour along offset k.
-  double cost_into(std::uint32_t n, std::size_t k) {
-    const auto [dx, dy] = offsets_[k];
-    const long i = static_cast<long>(n % nx_) + dx, j = static_cast<long>(n / nx_) + dy;
-    if (i < 0 || j < 0 || i >= static_cast<long>(nx_) || j >= static_cast<long>(ny_)) return kInf;
-    const auto m =
-        static_cast<std::uint32_t>(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i));
+  /// Cost of the directed edge into n from its neighbour along offset k (in `*from`).
+  double cost_into(std::uint32_t n, std::size_t k, std::uint32_t* from = nullptr) {
+    const std::uint32_t m = neighbour(n, k);
+    if (from != nullptr) *from = m;
+    if (m == kNoNode) return kInf;
     if (k < half_) return ensure(n, m, k).second;  // m -> n is the backward of n -> m
     return ensure(m, n, k - half_).first;
   }
+  /// The neighbour of n along offset k; kNoNode off the grid or the corridor.
   std::uint32_t neighbour(std::uint32_t n, std::size_t k) const {
     const auto [dx, dy] = offsets_[k];
-    return static_cast<std::uint32_t>(static_cast<long>(n) + dy * static_cast<long>(nx_) + dx);
+    const auto [i, j] = coords(n);
+    return node_at(i + dx, j + dy);
+  }
+  /// Some neighbour of n is on the grid but outside the corridor.
+  bool on_corridor_edge(std::uint32_t n) const {
+    if (full_) return false;
+    const auto [i, j] = coords(n);
+    for (const auto& [dx, dy] : offsets_) {
+      const long a = i + dx, b = j + dy;
+      if (a >= 0 && b >= 0 && a < static_cast<long>(nx_) && b < static_cast<long>(ny_) &&
+          node_at(a, b) == kNoNode) {
+        return true;
+      }
+    }
+    return false;
   }
   std::size_t offsets() const { return offsets_.size(); }
   bool on_data(std::uint32_t n) const { return on_data_[n] != 0; }
@@ -209,8 +313,16 @@ class Lattice {
   const AdmissibleSet& set_;
   double spacing_;
   std::vector<std::pair<int, int>> offsets_;
-  std::size_t half_ = 0, nx_ = 0, ny_ = 0;
+  std::size_t half_ = 0, nx_ = 0, ny_ = 0, size_ = 0;
   Vec2 origin_;
+  // The corridor (full_ = false): rank of each tile among its tile row's
+  // present tiles (-1 absent), first node of each grid row, full-lattice
+  // index of each node.
+  bool full_ = true;
+  std::size_t tx_ = 0;
+  std::vector<int> tile_rank_;
+  std::vector<std::size_t> row_start_;
+  std::vector<std::uint32_t> full_index_;
   std::vector<SurfacePoint> surface_;
   std::vector<unsigned char> on_data_;
   std::vector<double> forward_, backward_;
@@ -231,33 +343,37 @@ double surface_length(const BPatch& terrain, const AdmissibleSet& set,
 }
 
 /// Distance [m] from every lattice node to the nearest of `sources`, by the
-/// two-pass chamfer transform with steps h and h sqrt(2).
-std::vector<float> chamfer_distance(const std::vector<std::uint32_t>& sources, std::size_t nx,
-                                    std::size_t ny, double spacing) {
+/// two-pass chamfer transform with steps h and h sqrt(2) (in a corridor:
+/// through its nodes only).
+std::vector<float> chamfer_distance(const std::vector<std::uint32_t>& sources,
+                                    const Lattice& lattice, double spacing) {
   const float straight = static_cast<float>(spacing);
   const float diagonal = static_cast<float>(spacing * std::sqrt(2.0));
-  std::vector<float> d(nx * ny, std::numeric_limits<float>::infinity());
+  const std::size_t n = lattice.size();
+  std::vector<float> d(n, std::numeric_limits<float>::infinity());
   for (std::uint32_t s : sources) d[s] = 0.0f;
-  const auto relax = [&](std::size_t i, std::size_t j, long di, long dj, float step) {
-    const long a = static_cast<long>(i) + di, b = static_cast<long>(j) + dj;
-    if (a < 0 || b < 0 || a >= static_cast<long>(nx) || b >= static_cast<long>(ny)) return;
-    float& here = d[j * nx + i];
-    here = std::min(here, d[static_cast<std::size_t>(b) * nx + static_cast<std::size_t>(a)] + step);
+  const auto relax = [&](std::uint32_t node, long i, long j, long di, long dj, float step) {
+    const std::uint32_t other = lattice.node_at(i + di, j + dj);
+    if (other == kNoNode) return;
+    float& here = d[node];
+    here = std::min(here, d[other] + step);
   };
-  for (std::size_t j = 0; j < ny; ++j)
-    for (std::size_t i = 0; i < nx; ++i) {
-      relax(i, j, -1, 0, straight);
-      relax(i, j, 0, -1, straight);
-      relax(i, j, -1, -1, diagonal);
-      relax(i, j, 1, -1, diagonal);
-    }
-  for (std::size_t j = ny; j-- > 0;)
-    for (std::size_t i = nx; i-- > 0;) {
-      relax(i, j, 1, 0, straight);
-      relax(i, j, 0, 1, straight);
-      relax(i, j, 1, 1, diagonal);
-      relax(i, j, -1, 1, diagonal);
-    }
+  for (std::uint32_t node = 0; node < n; ++node) {
+    if (!lattice.exists(node)) continue;
+    const auto [i, j] = lattice.coords(node);
+    relax(node, i, j, -1, 0, straight);
+    relax(node, i, j, 0, -1, straight);
+    relax(node, i, j, -1, -1, diagonal);
+    relax(node, i, j, 1, -1, diagonal);
+  }
+  for (std::uint32_t node = static_cast<std::uint32_t>(n); node-- > 0;) {
+    if (!lattice.exists(node)) continue;
+    const auto [i, j] = lattice.coords(node);
+    relax(node, i, j, 1, 0, straight);
+    relax(node, i, j, 0, 1, straight);
+    relax(node, i, j, 1, 1, diagonal);
+    relax(node, i, j, -1, 1, diagonal);
+  }
   return d;
 }
 
@@ -275,6 +391,46 @@ void GlobalSearchOptions::validate() const {
   if (candidates < 1) throw InputError("GlobalSearchOptions.candidates must be >= 1");
   if (!(distinctness >= 0.0)) throw InputError("GlobalSearchOptions.distinctness must be >= 0");
   if (!(max_cost_ratio >= 1.0)) throw InputError("GlobalSearchOptions.max_cost_ratio must be >= 1");
+  if (resolution != GlobalSearchResolution::kFull && resolution != GlobalSearchResolution::kMulti) {
+    throw InputError("GlobalSearchOptions.resolution is not a GlobalSearchResolution");
+  }
+  if (coarse_factor < 2) {
+    throw InputError("GlobalSearchOptions.coarse_factor must be >= 2, got " +
+                     std::to_string(coarse_factor));
+  }
+  if (!(corridor_width >= 0.0) || !std::isfinite(corridor_width)) {
+    throw InputError("GlobalSearchOptions.corridor_width must be a finite number >= 0 [m]");
+  }
+  if (stop_interval < 1) throw InputError("GlobalSearchOptions.stop_interval must be >= 1");
+}
+
+std::string_view to_string(GlobalSearchResolution resolution) {
+  switch (resolution) {
+    case GlobalSearchResolution::kFull:
+      return "full";
+    case GlobalSearchResolution::kMulti:
+      return "multi";
+  }
+  return "unknown";
+}
+
+GlobalSearchResolution parse_global_search_resolution(std::string_view name) {
+  if (name == "full") return GlobalSearchResolution::kFull;
+  if (name == "multi") return GlobalSearchResolution::kMulti;
+  throw InputError("unknown global search resolution '" + std::string(name) +
+                   "': choose full or multi");
+}
+
+std::string_view to_string(GlobalSearchStatus status) {
+  switch (status) {
+    case GlobalSearchStatus::kOk:
+      return "ok";
+    case GlobalSearchStatus::kUnreachable:
+      return "unreachable";
+    case GlobalSearchStatus::kStopped:
+      return "stopped";
+  }
+  return "unknown";
 }
 
 EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a, const Vec2& b,
@@ -285,6 +441,255 @@ EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a,
     throw InputError("edge_cost: edge leaves the terrain");
   return edge_cost_impl(terrain, AdmissibleSet(vehicle), a, b, stations, nullptr, nullptr);
 }
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// The search of one lattice: the whole grid, or the corridor `mask`.
+/// Throws InputError for an untraversable start or goal node.
+GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
+                                  const AdmissibleSet& set, const Vec2& start, const Vec2& goal,
+                                  const GlobalSearchOptions& options, double spacing,
+                                  const TileMask* mask) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto stop = [&options] { return options.stop && options.stop(); };
+  Lattice lattice(terrain, set, spacing, options.connectivity, mask);
+  GlobalSearchResult result;
+  result.nodes = lattice.size();
+  result.nx = lattice.nx();
+  result.ny = lattice.ny();
+  result.spacing = spacing;
+  result.origin = lattice.origin();
+  const auto finish = [&](GlobalSearchStatus status, std::string message) {
+    result.status = status;
+    result.message = std::move(message);
+    result.edges_evaluated = lattice.edges_evaluated();
+    result.search_seconds = seconds_since(t0);
+    return std::move(result);
+  };
+  const auto stopped = [&](const char* phase) {
+    std::ostringstream msg;
+    msg << "stopped by GlobalSearchOptions::stop while " << phase << " (" << result.expanded
+        << " nodes expanded); " << result.candidates.size() << " candidate"
+        << (result.candidates.size() == 1 ? "" : "s") << " found by then";
+    return finish(GlobalSearchStatus::kStopped, msg.str());
+  };
+  const auto add_candidate = [&](const std::vector<std::uint32_t>& ids, double cost) {
+    CandidatePath candidate;
+    for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
+    candidate.cost_seconds = cost;
+    candidate.length_m = surface_length(terrain, set, candidate.vertices, spacing);
+    result.candidates.push_back(std::move(candidate));
+  };
+  const std::uint32_t s = lattice.nearest(start), g = lattice.nearest(goal);
+  if (s == kNoNode || g == kNoNode) {
+    throw InputError("global search: the corridor misses the start or goal node");  // a bug
+  }
+  result.start_node = lattice.position(s);
+  result.goal_node = lattice.position(g);
+  if (!lattice.sample(stop, options.stop_interval)) return stopped("sampling the surface");
+  for (const auto& [which, node] : {std::pair{"start", s}, std::pair{"goal", g}}) {
+    bool any = false;
+    for (std::size_t k = 0; k < lattice.offsets() && !any; ++k) {
+      any = std::strcmp(which, "start") == 0 ? lattice.cost(node, k) < kInf
+                                             : lattice.cost_into(node, k) < kInf;
+    }
+    if (!any) {
+      std::ostringstream msg;
+      msg.precision(12);
+      const Vec2 p = lattice.position(node);
+      msg << which << " node (" << p.x() << ", " << p.y()
+          << ") is on untraversable terrain: every lattice edge "
+          << (std::strcmp(which, "start") == 0 ? "from" : "into")
+          << " it is too steep or unstable for the vehicle";
+      throw InputError(msg.str());
+    }
+  }
+
+  const std::size_t n = lattice.size();
+  const auto forward = [&lattice](std::uint32_t node, auto&& emit) {
+    lattice.for_each_edge(node, true, emit);
+  };
+  const auto reverse = [&lattice](std::uint32_t node, auto&& emit) {
+    lattice.for_each_edge(node, false, emit);
+  };
+  if (!options.cost_fields && options.candidates == 1) {
+    const Vec2 goal_position = lattice.position(g);
+    const double inverse_speed = 1.0 / vehicle.max_speed;
+    const ShortestPathTree tree = shortest_paths(
+        n, s, forward, g,
+        [&](std::uint32_t node) {
+          return (lattice.position(node) - goal_position).norm() *
+                 inverse_speed;  // 3-D length >= planar
+        },
+        stop, options.stop_interval);
+    result.expanded = tree.expanded;
+    result.reachable_nodes = tree.expanded;
+    // A* finds no path before it expands the goal.
+    if (tree.stopped) return stopped("searching (A*) from the start");
+    if (!(tree.cost[g] < kInf)) {
+      return finish(GlobalSearchStatus::kUnreachable,
+                    "goal unreachable: the search exhausted the " + std::to_string(tree.expanded) +
+                        " lattice nodes reachable from the start without finding it");
+    }
+    add_candidate(tree.path_to(g), tree.cost[g]);
+    return finish(GlobalSearchStatus::kOk, "");
+  }
+  const ShortestPathTree from_start = shortest_paths(n, s, forward, ShortestPathTree::kNone,
+                                                     NoHeuristic{}, stop, options.stop_interval);
+  result.expanded += from_start.expanded;
+  result.reachable_nodes = static_cast<std::size_t>(std::count_if(
+      from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
+  if (from_start.stopped) {
+    // A tentative cost is that of the real path path_to returns.
+    if (from_start.cost[g] < kInf) add_candidate(from_start.path_to(g), from_start.cost[g]);
+    return stopped("computing the cost field from the start");
+  }
+  if (!(from_start.cost[g] < kInf)) {
+    std::ostringstream msg;
+    msg << "goal unreachable: from the start the vehicle can reach " << result.reachable_nodes
+        << " of " << n << " lattice nodes ("
+        << 100.0 * static_cast<double>(result.reachable_nodes) / static_cast<double>(n)
+        << " % of the " << (lattice.full() ? "terrain" : "corridor")
+        << "), and the goal is not among them";
+    if (lattice.full()) result.cost_from_start = from_start.cost;
+    return finish(GlobalSearchStatus::kUnreachable, msg.str());
+  }
+  const ShortestPathTree to_goal = shortest_paths(n, g, reverse, ShortestPathTree::kNone,
+                                                  NoHeuristic{}, stop, options.stop_interval);
+  result.expanded += to_goal.expanded;
+  if (to_goal.stopped) {
+    add_candidate(from_start.path_to(g), from_start.cost[g]);
+    return stopped("computing the cost field to the goal");
+  }
+  if (stop()) {
+    add_candidate(from_start.path_to(g), from_start.cost[g]);
+    return stopped("ordering the candidate seeds");
+  }
+
+  // Candidates: nodes in increasing order of the best cost through them; each
+  // node's path (start tree + goal tree) is accepted if it is far enough, in
+  // Hausdorff distance, from every accepted one.
+  const double best = from_start.cost[g];
+  const double separation =
+      options.distinctness > 0.0
+          ? options.distinctness
+          : default_candidate_separation(result.start_node, result.goal_node, spacing);
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double through = from_start.cost[k] + to_goal.cost[k];
+    if (through <= best * options.max_cost_ratio * (1 + 1e-12)) order.push_back(k);
+  }
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const double ca = from_start.cost[a] + to_goal.cost[a],
+                 cb = from_start.cost[b] + to_goal.cost[b];
+    return ca != cb ? ca < cb : a < b;  // ties by node id: deterministic
+  });
+  // Each accepted candidate gets a lattice distance map (chamfer transform,
+  // within 8 % of the Euclidean distance), so testing a seed and its path is
+  // O(path length) instead of O(path length^2).
+  std::vector<std::vector<float>> distance_maps;
+  // Nodes on a path already examined would mostly grow the same path again.
+  std::vector<unsigned char> examined(n, 0);
+  std::size_t seeds = 0;
+  for (const std::uint32_t node : order) {
+    if (result.candidates.size() >= options.candidates) break;
+    if (examined[node]) continue;
+    if (++seeds % options.stop_interval == 0 && stop()) return stopped("extracting candidates");
+    bool near = false;
+    for (const std::vector<float>& d : distance_maps) near = near || d[node] < separation;
+    if (near) continue;
+    std::vector<std::uint32_t> ids = from_start.path_to(node);
+    for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone;
+         m = to_goal.parent[m])
+      ids.push_back(m);
+    for (std::uint32_t id : ids) examined[id] = 1;
+    // Distinct from an accepted candidate = somewhere at least `separation`
+    // away from it AND at most half of the path within separation / 2 of it:
+    // without the second rule the best corridor with one bulge passed as an
+    // alternative route.
+    bool distinct = true;
+    for (const std::vector<float>& d : distance_maps) {
+      float farthest = 0.0f;
+      std::size_t shared = 0;
+      for (std::uint32_t id : ids) {
+        farthest = std::max(farthest, d[id]);
+        shared += d[id] < 0.5 * separation;
+      }
+      distinct = distinct && farthest >= separation && 2 * shared <= ids.size();
+    }
+    if (!distinct) continue;
+    add_candidate(ids, from_start.cost[node] + to_goal.cost[node]);
+    if (result.candidates.size() < options.candidates) {
+      if (stop()) return stopped("extracting candidates");
+      distance_maps.push_back(chamfer_distance(ids, lattice, spacing));
+    }
+  }
+  if (lattice.full()) {
+    result.cost_from_start = from_start.cost;
+    result.cost_to_goal = to_goal.cost;
+  }
+  // The best route touching the corridor's edge: a better one may lie outside.
+  result.corridor_width = 0.0;
+  if (!lattice.full()) {
+    for (const std::uint32_t id : from_start.path_to(g)) {
+      if (lattice.on_corridor_edge(id)) {
+        result.corridor_width = -1.0;  // flag for the caller
+        break;
+      }
+    }
+  }
+  return finish(GlobalSearchStatus::kOk, "");
+}
+
+/// The tiles within `radius` [m] of the candidates' vertices and edges, and
+/// of the start and goal, on the lattice of `nx` x `ny` nodes at `spacing`.
+TileMask corridor_tiles(const std::vector<CandidatePath>& candidates, const Vec2& start,
+                        const Vec2& goal, const Vec2& origin, std::size_t nx, std::size_t ny,
+                        double spacing, double radius) {
+  TileMask mask;
+  mask.tx = (nx + kTile - 1) / kTile;
+  mask.ty = (ny + kTile - 1) / kTile;
+  mask.present.assign(mask.tx * mask.ty, 0);
+  const double tile = spacing * static_cast<double>(kTile);
+  const auto mark_disc = [&](const Vec2& p) {
+    // Tiles span [t * tile, (t + 1) * tile) of node coordinates from the origin.
+    const Vec2 q = (p - origin) / tile;
+    const double r = radius / tile;
+    const long i0 = std::max(0L, static_cast<long>(std::floor(q.x() - r)));
+    const long i1 =
+        std::min(static_cast<long>(mask.tx) - 1, static_cast<long>(std::floor(q.x() + r)));
+    const long j0 = std::max(0L, static_cast<long>(std::floor(q.y() - r)));
+    const long j1 =
+        std::min(static_cast<long>(mask.ty) - 1, static_cast<long>(std::floor(q.y() + r)));
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i) {
+        // Distance from q to the tile [i, i + 1) x [j, j + 1).
+        const double dx = std::max({0.0, static_cast<double>(i) - q.x(), q.x() - (i + 1.0)});
+        const double dy = std::max({0.0, static_cast<double>(j) - q.y(), q.y() - (j + 1.0)});
+        if (dx * dx + dy * dy <= r * r) {
+          mask.present[static_cast<std::size_t>(j) * mask.tx + static_cast<std::size_t>(i)] = 1;
+        }
+      }
+  };
+  mark_disc(start);
+  mark_disc(goal);
+  const double step = 0.25 * tile;
+  for (const CandidatePath& c : candidates) {
+    for (std::size_t k = 0; k + 1 < c.vertices.size(); ++k) {
+      const Vec2 a = c.vertices[k], b = c.vertices[k + 1];
+      const int pieces = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+      for (int p = 0; p < pieces; ++p) mark_disc(a + (b - a) * (static_cast<double>(p) / pieces));
+    }
+    if (!c.vertices.empty()) mark_disc(c.vertices.back());
+  }
+  return mask;
+}
+
+}  // namespace
 
 GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
                                  const Vec2& goal, const GlobalSearchOptions& options) {
@@ -316,161 +721,104 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   const double spacing =
       options.lattice_spacing > 0.0 ? options.lattice_spacing : terrain.cellsize();
   const AdmissibleSet set(vehicle);
-  Lattice lattice(terrain, set, spacing, options.connectivity);
+  if (options.stop && options.stop()) {
+    GlobalSearchResult result;
+    result.status = GlobalSearchStatus::kStopped;
+    result.message = "stopped by GlobalSearchOptions::stop before the search started";
+    result.resolution = options.resolution;
+    return result;
+  }
+  if (options.resolution == GlobalSearchResolution::kFull) {
+    GlobalSearchResult result =
+        search_lattice(terrain, vehicle, set, start, goal, options, spacing, nullptr);
+    result.corridor_width = 0.0;
+    return result;
+  }
+
+  // Coarse to fine.
+  const double coarse_spacing = spacing * options.coarse_factor;
+  GlobalSearchOptions coarse_options = options;
+  coarse_options.lattice_spacing = coarse_spacing;
+  // The fine search's separation (in metres) for the coarse candidates too.
+  if (coarse_options.distinctness == 0.0) {
+    coarse_options.distinctness = default_candidate_separation(start, goal, spacing);
+  }
+  std::size_t expanded = 0, edges = 0, coarse_nodes = 0;
+  std::optional<GlobalSearchResult> coarse;
+  std::string fallback;
+  const bool coarse_fits = (terrain.x_max() - terrain.x_min()) >= 8.0 * coarse_spacing &&
+                           (terrain.y_max() - terrain.y_min()) >= 8.0 * coarse_spacing;
+  if (coarse_fits) {
+    try {
+      coarse.emplace(search_lattice(terrain, vehicle, set, start, goal, coarse_options,
+                                    coarse_spacing, nullptr));
+    } catch (const InputError& e) {
+      fallback = std::string("the coarse search failed (") + e.what() + ")";
+    }
+  } else {
+    fallback = "the map is under 8 coarse lattice spacings across";
+  }
+  if (coarse) {
+    expanded += coarse->expanded;
+    edges += coarse->edges_evaluated;
+    coarse_nodes = coarse->nodes;
+    if (coarse->status == GlobalSearchStatus::kStopped) {
+      GlobalSearchResult result = std::move(*coarse);
+      result.candidates.clear();  // coarse lattice paths are not fine candidates
+      result.message = result.message + " (in the coarse search)";
+      result.resolution = GlobalSearchResolution::kMulti;
+      result.coarse_nodes = coarse_nodes;
+      result.nodes = 0;
+      result.cost_from_start.clear();
+      result.cost_to_goal.clear();
+      result.search_seconds = seconds_since(t0);
+      return result;
+    }
+    if (coarse->status != GlobalSearchStatus::kOk) {
+      fallback = "the coarse search found no route (" + coarse->message + ")";
+    }
+  }
   GlobalSearchResult result;
-  result.nodes = lattice.size();
-  result.nx = lattice.nx();
-  result.ny = lattice.ny();
-  result.spacing = spacing;
-  result.origin = lattice.origin();
-  const std::uint32_t s = lattice.nearest(start), g = lattice.nearest(goal);
-  result.start_node = lattice.position(s);
-  result.goal_node = lattice.position(g);
-  for (const auto& [which, node] : {std::pair{"start", s}, std::pair{"goal", g}}) {
-    bool any = false;
-    for (std::size_t k = 0; k < lattice.offsets() && !any; ++k) {
-      any = std::strcmp(which, "start") == 0 ? lattice.cost(node, k) < kInf
-                                             : lattice.cost_into(node, k) < kInf;
-    }
-    if (!any) {
-      std::ostringstream msg;
-      msg.precision(12);
-      const Vec2 p = lattice.position(node);
-      msg << which << " node (" << p.x() << ", " << p.y()
-          << ") is on untraversable terrain: every lattice edge "
-          << (std::strcmp(which, "start") == 0 ? "from" : "into")
-          << " it is too steep or unstable for the vehicle";
-      throw InputError(msg.str());
-    }
-  }
-
-  const std::size_t n = lattice.size();
-  const auto forward = [&lattice](std::uint32_t node, auto&& emit) {
-    for (std::size_t k = 0; k < lattice.offsets(); ++k) {
-      const double c = lattice.cost(node, k);
-      if (c < kInf) emit(lattice.neighbour(node, k), c);
-    }
-  };
-  const auto reverse = [&lattice](std::uint32_t node, auto&& emit) {
-    for (std::size_t k = 0; k < lattice.offsets(); ++k) {
-      const double c = lattice.cost_into(node, k);
-      if (c < kInf) emit(lattice.neighbour(node, k), c);
-    }
-  };
-  if (!options.cost_fields && options.candidates == 1) {
-    const Vec2 goal_position = lattice.position(g);
-    const double inverse_speed = 1.0 / vehicle.max_speed;
-    const ShortestPathTree tree = shortest_paths(n, s, forward, g, [&](std::uint32_t node) {
-      return (lattice.position(node) - goal_position).norm() *
-             inverse_speed;  // 3-D length >= planar
-    });
-    result.expanded = tree.expanded;
-    result.edges_evaluated = lattice.edges_evaluated();
-    if (!(tree.cost[g] < kInf)) {
-      result.status = GlobalSearchStatus::kUnreachable;
-      result.reachable_nodes = tree.expanded;
-      result.message = "goal unreachable: the search exhausted the " +
-                       std::to_string(tree.expanded) +
-                       " lattice nodes reachable from the start without finding it";
-    } else {
-      CandidatePath candidate;
-      for (std::uint32_t id : tree.path_to(g)) candidate.vertices.push_back(lattice.position(id));
-      candidate.cost_seconds = tree.cost[g];
-      candidate.length_m = surface_length(terrain, set, candidate.vertices, spacing);
-      result.candidates.push_back(std::move(candidate));
-      result.status = GlobalSearchStatus::kOk;
-      result.reachable_nodes = tree.expanded;
-    }
-    result.search_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return result;
-  }
-  const ShortestPathTree from_start = shortest_paths(n, s, forward);
-  result.expanded += from_start.expanded;
-  result.reachable_nodes = static_cast<std::size_t>(std::count_if(
-      from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
-  if (!(from_start.cost[g] < kInf)) {
-    std::ostringstream msg;
-    msg << "goal unreachable: from the start the vehicle can reach " << result.reachable_nodes
-        << " of " << n << " lattice nodes ("
-        << 100.0 * static_cast<double>(result.reachable_nodes) / static_cast<double>(n)
-        << " % of the terrain), and the goal is not among them";
-    result.status = GlobalSearchStatus::kUnreachable;
-    result.message = msg.str();
-    result.cost_from_start = from_start.cost;
-    result.edges_evaluated = lattice.edges_evaluated();
-    result.search_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return result;
-  }
-  const ShortestPathTree to_goal = shortest_paths(n, g, reverse);
-  result.expanded += to_goal.expanded;
-
-  // Candidates: nodes in increasing order of the best cost through them; each
-  // node's path (start tree + goal tree) is accepted if it is far enough, in
-  // Hausdorff distance, from every accepted one.
-  const double best = from_start.cost[g];
-  const double separation =
-      options.distinctness > 0.0
-          ? options.distinctness
-          : default_candidate_separation(result.start_node, result.goal_node, spacing);
-  std::vector<std::uint32_t> order;
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const double through = from_start.cost[k] + to_goal.cost[k];
-    if (through <= best * options.max_cost_ratio * (1 + 1e-12)) order.push_back(k);
-  }
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const double ca = from_start.cost[a] + to_goal.cost[a],
-                 cb = from_start.cost[b] + to_goal.cost[b];
-    return ca != cb ? ca < cb : a < b;  // ties by node id: deterministic
-  });
-  // Each accepted candidate gets a lattice distance map (chamfer transform,
-  // within 8 % of the Euclidean distance), so testing a seed and its path is
-  // O(path length) instead of O(path length^2).
-  std::vector<std::vector<float>> distance_maps;
-  // Nodes on a path already examined would mostly grow the same path again.
-  std::vector<unsigned char> examined(n, 0);
-  for (const std::uint32_t node : order) {
-    if (result.candidates.size() >= options.candidates) break;
-    if (examined[node]) continue;
-    bool near = false;
-    for (const std::vector<float>& d : distance_maps) near = near || d[node] < separation;
-    if (near) continue;
-    std::vector<std::uint32_t> ids = from_start.path_to(node);
-    for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone;
-         m = to_goal.parent[m])
-      ids.push_back(m);
-    for (std::uint32_t id : ids) examined[id] = 1;
-    // Distinct from an accepted candidate = somewhere at least `separation`
-    // away from it AND at most half of the path within separation / 2 of it:
-    // without the second rule the best corridor with one bulge passed as an
-    // alternative route.
-    bool distinct = true;
-    for (const std::vector<float>& d : distance_maps) {
-      float farthest = 0.0f;
-      std::size_t shared = 0;
-      for (std::uint32_t id : ids) {
-        farthest = std::max(farthest, d[id]);
-        shared += d[id] < 0.5 * separation;
+  std::size_t widenings = 0;
+  double radius = options.corridor_width > 0.0 ? options.corridor_width : 4.0 * coarse_spacing;
+  if (!fallback.empty()) {
+    result = search_lattice(terrain, vehicle, set, start, goal, options, spacing, nullptr);
+    result.fell_back_to_full = true;
+    if (result.status == GlobalSearchStatus::kOk) result.message = fallback + ": full search";
+  } else {
+    // The fine lattice's shape, as Lattice computes it.
+    const auto nodes_along = [spacing](double extent) {
+      return static_cast<std::size_t>(std::floor(extent / spacing + 1e-9)) + 1;
+    };
+    const std::size_t nx = nodes_along(terrain.x_max() - terrain.x_min());
+    const std::size_t ny = nodes_along(terrain.y_max() - terrain.y_min());
+    const Vec2 origin(terrain.x_min(), terrain.y_min());
+    while (true) {
+      const TileMask mask =
+          corridor_tiles(coarse->candidates, start, goal, origin, nx, ny, spacing, radius);
+      const bool whole = mask.all();
+      result = search_lattice(terrain, vehicle, set, start, goal, options, spacing,
+                              whole ? nullptr : &mask);
+      expanded += result.expanded;
+      edges += result.edges_evaluated;
+      const bool touches = result.corridor_width < 0.0;
+      if (whole || result.status == GlobalSearchStatus::kStopped ||
+          (result.status == GlobalSearchStatus::kOk && !touches)) {
+        break;
       }
-      distinct = distinct && farthest >= separation && 2 * shared <= ids.size();
-    }
-    if (!distinct) continue;
-    CandidatePath candidate;
-    for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
-    candidate.cost_seconds = from_start.cost[node] + to_goal.cost[node];
-    candidate.length_m = surface_length(terrain, set, candidate.vertices, spacing);
-    result.candidates.push_back(std::move(candidate));
-    if (result.candidates.size() < options.candidates) {
-      distance_maps.push_back(chamfer_distance(ids, lattice.nx(), lattice.ny(), spacing));
+      radius *= 2.0;
+      ++widenings;
     }
   }
-  result.status = GlobalSearchStatus::kOk;
-  result.cost_from_start = from_start.cost;
-  result.cost_to_goal = to_goal.cost;
-  result.edges_evaluated = lattice.edges_evaluated();
-  result.search_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.corridor_width = result.fell_back_to_full ? 0.0 : radius;
+  result.resolution = GlobalSearchResolution::kMulti;
+  result.coarse_nodes = coarse_nodes;
+  result.corridor_widenings = widenings;
+  result.expanded = expanded + (result.fell_back_to_full ? result.expanded : 0);
+  result.edges_evaluated = edges + (result.fell_back_to_full ? result.edges_evaluated : 0);
+  result.cost_from_start.clear();
+  result.cost_to_goal.clear();
+  result.search_seconds = seconds_since(t0);
   return result;
 }
 

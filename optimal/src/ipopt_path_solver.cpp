@@ -98,8 +98,13 @@ class PathNlp : public Ipopt::TNLP {
                              Number, Number, Number, Number, Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
     iterations_ = static_cast<std::size_t>(iteration);
+    if (problem_.expired && problem_.expired()) {
+      timed_out_ = true;
+      return false;
+    }
     return objective_.evaluations() < problem_.max_evaluations;
   }
+  bool timed_out() const { return timed_out_; }
   void finalize_solution(Ipopt::SolverReturn status, Index, const Number*, const Number*,
                          const Number*, Index, const Number*, const Number*, Number,
                          const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
@@ -114,6 +119,7 @@ class PathNlp : public Ipopt::TNLP {
   const BoxProblem& problem_;
   Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
   std::size_t iterations_ = 0;
+  bool timed_out_ = false;
 };
 
 }  // namespace
@@ -148,8 +154,11 @@ SolverRun run_ipopt(TrackedObjective& objective, const BoxProblem& problem) {
   }
   app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
   run.status = ipopt_status_text(nlp->status());
-  // The only user stop is the evaluation budget (intermediate_callback).
-  if (nlp->status() == Ipopt::USER_REQUESTED_STOP) run.status = "maxeval_reached";
+  // The user stops are the evaluation budget and the time limit
+  // (intermediate_callback).
+  if (nlp->status() == Ipopt::USER_REQUESTED_STOP) {
+    run.status = nlp->timed_out() ? "time_limit" : "maxeval_reached";
+  }
   run.iterations = nlp->iterations();
   const Ipopt::SolverReturn s = nlp->status();
   run.failed = !(s == Ipopt::SUCCESS || s == Ipopt::STOP_AT_ACCEPTABLE_POINT ||

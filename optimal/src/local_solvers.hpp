@@ -4,6 +4,7 @@
 // evaluated, so the caller never gets a path slower than the best one seen
 // (the start included), whatever the solver's own final iterate.
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -44,6 +45,9 @@ struct BoxProblem {
   std::size_t max_evaluations = 400;
   double relative_tolerance = 1e-5;
   double initial_step = 1.0;  ///< derivative-free trust-region radius [m]
+  /// Polled every iteration (Ipopt) or evaluation (NLopt): true stops the
+  /// solver with status "time_limit". Empty: never.
+  std::function<bool()> expired;
 };
 
 struct SolverRun {

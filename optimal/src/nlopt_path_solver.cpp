@@ -3,6 +3,7 @@
 #include <nlopt.hpp>
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ std::string result_text(nlopt::result r) {
 struct Context {
   TrackedObjective& objective;
   std::size_t calls = 0;
+  std::function<bool()> expired;  ///< BoxProblem::expired
+  bool timed_out = false;
 };
 
 // Infeasible paths cost a large finite value above any feasible time, with a
@@ -45,6 +48,10 @@ struct Context {
 // regions then step back.
 double penalised(unsigned n, const double* z, double* gradient, void* data) {
   auto& context = *static_cast<Context*>(data);
+  if (context.expired && context.expired()) {
+    context.timed_out = true;
+    throw nlopt::forced_stop();
+  }
   ++context.calls;
   const Eigen::Map<const Eigen::VectorXd> x(z, n);
   Eigen::VectorXd g;
@@ -66,7 +73,7 @@ SolverRun run_nlopt(nlopt::algorithm algorithm, TrackedObjective& objective,
   };
   optimizer.set_lower_bounds(to_vector(problem.lower));
   optimizer.set_upper_bounds(to_vector(problem.upper));
-  Context context{objective};
+  Context context{objective, 0, problem.expired, false};
   optimizer.set_min_objective(penalised, &context);
   optimizer.set_maxeval(static_cast<int>(problem.max_evaluations));
   optimizer.set_ftol_rel(problem.relative_tolerance);
@@ -89,6 +96,10 @@ SolverRun run_nlopt(nlopt::algorithm algorithm, TrackedObjective& objective,
   }
   run.status = result_text(result);
   run.failed = result < 0 && result != nlopt::ROUNDOFF_LIMITED;
+  if (context.timed_out) {
+    run.status = "time_limit";
+    run.failed = false;
+  }
   // NLopt counts evaluations, not iterations: report the evaluations.
   run.iterations = context.calls;
   return run;

@@ -66,6 +66,7 @@ OptimizedPath optimize_simultaneous(const BPatch& terrain, const Vehicle& vehicl
   nlp.upper = box.upper;
   nlp.tolerance = options.simultaneous_tolerance;
   nlp.limited_memory_hessian = options.simultaneous_limited_memory;
+  nlp.stop = box.expired;
   // Warm start from the initial fit's exact profile when it has one.
   const double initial_time = objective.evaluate(box.start);
   if (std::isfinite(initial_time)) {
@@ -85,7 +86,7 @@ OptimizedPath optimize_simultaneous(const BPatch& terrain, const Vehicle& vehicl
   // from phase 1's point and speeds.
   std::optional<Curve2> lateral_curve;
   int phase = 1;
-  if (usable(run)) {
+  if (usable(run) && !(box.expired && box.expired())) {
     const double lateral_time = objective.evaluate(run.variables);
     lateral_curve.emplace(objective.curve(run.variables));
     nlp.initial = &*lateral_curve;
@@ -209,6 +210,9 @@ void PathOptimizerOptions::validate() const {
     throw InputError("PathOptimizerOptions.simultaneous_lateral_iterations must be >= 1");
   if (!(simultaneous_tolerance > 0.0) || !std::isfinite(simultaneous_tolerance))
     throw InputError("PathOptimizerOptions.simultaneous_tolerance must be positive");
+  if (!(time_limit > 0.0)) {
+    throw InputError("PathOptimizerOptions.time_limit must be > 0 [s] (+inf = none)");
+  }
   speeds.validate();
 }
 
@@ -280,6 +284,14 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   problem.max_iterations = options.max_iterations;
   problem.max_evaluations = options.max_evaluations;
   problem.relative_tolerance = options.relative_tolerance;
+  if (options.stop || std::isfinite(options.time_limit)) {
+    const double limit = options.time_limit;
+    problem.expired = [stop = options.stop, limit, started] {
+      return (stop && stop()) ||
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >=
+                 limit;
+    };
+  }
   // BOBYQA's trust region must fit in the box twice over (NLopt refuses
   // otherwise): elongated or tiny domains cap it.
   const double narrowest = (problem.upper - problem.lower).minCoeff();

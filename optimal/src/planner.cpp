@@ -50,8 +50,7 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
   polyline.front() = problem.start;
   polyline.back() = problem.goal;
   try {
-    outcome.optimization.emplace(
-        optimize_path(*problem.surface, problem.vehicle, polyline, local));
+    outcome.optimization.emplace(optimize_path(*problem.surface, problem.vehicle, polyline, local));
   } catch (const InputError& error) {
     outcome.optimizer_message = error.what();
   }
@@ -59,14 +58,14 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
 
   const auto evaluation_started = Clock::now();
   const BPatch& surface = *problem.surface;
-  outcome.initial = evaluate_trajectory(
-      surface, problem.vehicle,
-      outcome.optimization ? outcome.optimization->initial_curve
-                           : initial_fit(polyline, local.control_points),
-      evaluation, &workspace);
+  outcome.initial =
+      evaluate_trajectory(surface, problem.vehicle,
+                          outcome.optimization ? outcome.optimization->initial_curve
+                                               : initial_fit(polyline, local.control_points),
+                          evaluation, &workspace);
   if (outcome.optimization) {
-    outcome.trajectory = evaluate_trajectory(surface, problem.vehicle,
-                                             outcome.optimization->curve, evaluation, &workspace);
+    outcome.trajectory = evaluate_trajectory(surface, problem.vehicle, outcome.optimization->curve,
+                                             evaluation, &workspace);
   } else {
     outcome.trajectory.message = outcome.optimizer_message;
   }
@@ -97,8 +96,7 @@ void PlanningProblem::validate() const {
       std::ostringstream message;
       message << "PlanningProblem." << name << " " << point_text(p)
               << " is off the surface, whose domain is [" << surface->x_min() << ", "
-              << surface->x_max() << "] x [" << surface->y_min() << ", " << surface->y_max()
-              << "]";
+              << surface->x_max() << "] x [" << surface->y_min() << ", " << surface->y_max() << "]";
       throw InputError(message.str());
     }
   }
@@ -139,6 +137,8 @@ std::string_view to_string(PlannerStatus status) {
       return "infeasible";
     case PlannerStatus::kStopped:
       return "stopped";
+    case PlannerStatus::kTimeLimit:
+      return "time_limit";
   }
   return "unknown";
 }
@@ -148,6 +148,9 @@ void PlannerOptions::validate() const {
   local.validate();
   if (!(std::isfinite(station_spacing) && station_spacing > 0.0)) {
     throw InputError("PlannerOptions.station_spacing must be a positive finite number [m]");
+  }
+  if (!(time_limit > 0.0)) {
+    throw InputError("PlannerOptions.time_limit must be > 0 [s] (+inf = none)");
   }
 }
 
@@ -203,18 +206,46 @@ std::string PlannerResult::brief_report() const {
              << " s/m";
     }
     if (c.kept_initial) report << "; kept the initial fit";
+    if (c.time_limited) report << "; cut short by the time limit";
     report << "\n";
   }
-  report << "  seconds: global " << seconds.global << ", local " << seconds.local
-         << ", evaluation " << seconds.evaluation << ", total " << seconds.total << "\n";
+  if (!not_optimised.empty()) {
+    report << "  time limit: " << not_optimised.size() << " candidate"
+           << (not_optimised.size() == 1 ? "" : "s") << " not optimised:";
+    for (const std::size_t c : not_optimised) report << " " << c;
+    report << "\n";
+  }
+  report << "  seconds: global " << seconds.global << ", local " << seconds.local << ", evaluation "
+         << seconds.evaluation << ", total " << seconds.total << "\n";
   return report.str();
 }
+
+namespace {
+
+/// "1, 2 and 4".
+std::string list_text(const std::vector<std::size_t>& items) {
+  std::ostringstream text;
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    if (k > 0) text << (k + 1 == items.size() ? " and " : ", ");
+    text << items[k];
+  }
+  return text.str();
+}
+
+}  // namespace
 
 PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options) {
   const auto started = Clock::now();
   problem.validate();
   options.validate();
   PlannerResult result;
+  // The time limit, on the injected clock or the steady one.
+  const auto now = [&options, started] {
+    return options.clock ? options.clock() : seconds_since(started);
+  };
+  const bool limited = std::isfinite(options.time_limit);
+  const double deadline = limited ? now() + options.time_limit : 0.0;
+  const auto expired = [&] { return limited && now() >= deadline; };
   const auto keep_going = [&](PlannerStage stage, std::size_t candidate) {
     if (!options.progress) return true;
     const PlannerProgress progress{stage, candidate, result.global.candidates.size(),
@@ -232,35 +263,89 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     return std::move(result);
   };
   constexpr const char* kStopMessage = "stopped by the progress callback";
+  std::ostringstream limit_text;
+  limit_text << "time limit of " << options.time_limit << " s reached";
 
-  if (!keep_going(PlannerStage::kGlobalSearch, 0)) return finish(PlannerStatus::kStopped, kStopMessage);
+  if (!keep_going(PlannerStage::kGlobalSearch, 0))
+    return finish(PlannerStatus::kStopped, kStopMessage);
   const auto global_started = Clock::now();
+  GlobalSearchOptions global = options.global;
+  if (limited) {
+    global.stop = [&expired, user = options.global.stop] { return (user && user()) || expired(); };
+  }
   result.global =
-      global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, options.global);
+      global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global);
   result.seconds.global = seconds_since(global_started);
-  if (result.global.status != GlobalSearchStatus::kOk) {
+  bool global_cut = false;
+  if (result.global.status == GlobalSearchStatus::kStopped) {
+    if (!expired()) return finish(PlannerStatus::kStopped, result.global.message);
+    global_cut = true;
+    if (result.global.candidates.empty()) {
+      return finish(PlannerStatus::kTimeLimit, limit_text.str() +
+                                                   " in the global search before it found a "
+                                                   "route: no candidate, no trajectory (" +
+                                                   result.global.message + ")");
+    }
+  } else if (result.global.status != GlobalSearchStatus::kOk) {
     return finish(PlannerStatus::kUnreachable, result.global.message);
   }
-  if (!options.optimize) return finish(PlannerStatus::kOk, "");
+  if (!options.optimize) {
+    if (global_cut) {
+      return finish(PlannerStatus::kTimeLimit,
+                    limit_text.str() + " in the global search: " + result.global.message);
+    }
+    return finish(PlannerStatus::kOk, "");
+  }
 
   PathOptimizerOptions local = options.local;
   local.speeds = {problem.start_speed, problem.end_speed};
+  if (limited) {
+    local.stop = [&expired, user = options.local.stop] { return (user && user()) || expired(); };
+  }
   TrajectoryOptions evaluation;
   evaluation.speeds = local.speeds;
   evaluation.station_spacing = options.station_spacing;
   TimeOptimalProfileSolver workspace;
+  std::vector<std::size_t> cut_short;
   for (std::size_t c = 0; c < result.global.candidates.size(); ++c) {
+    // Past the limit, only until one trajectory is feasible (its fit alone).
+    const bool late = expired();
+    if (late && result.best_candidate) {
+      for (std::size_t k = c; k < result.global.candidates.size(); ++k) {
+        result.not_optimised.push_back(k);
+      }
+      break;
+    }
     if (!keep_going(PlannerStage::kLocalOptimisation, c)) {
       return finish(PlannerStatus::kStopped, kStopMessage);
     }
-    result.candidates.push_back(
-        optimise_candidate(problem, local, evaluation, result.global, c, workspace,
-                           result.seconds));
-    const CandidateOutcome& outcome = result.candidates.back();
+    result.candidates.push_back(optimise_candidate(problem, local, evaluation, result.global, c,
+                                                   workspace, result.seconds));
+    CandidateOutcome& outcome = result.candidates.back();
+    outcome.time_limited =
+        late || (outcome.optimization && outcome.optimization->solver_status == "time_limit");
+    if (outcome.time_limited) cut_short.push_back(c);
     if (outcome.feasible() &&
         (!result.best_candidate || outcome.trajectory.travel_time() < result.travel_time())) {
       result.best_candidate = c;
     }
+  }
+  if (global_cut || !cut_short.empty() || !result.not_optimised.empty()) {
+    std::string message = limit_text.str();
+    if (global_cut) message += " in the global search (" + result.global.message + ")";
+    if (!cut_short.empty()) {
+      message += std::string(global_cut ? "; " : ": ") + "the optimisation of candidate" +
+                 (cut_short.size() == 1 ? " " : "s ") + list_text(cut_short) +
+                 " cut short (best point so far kept)";
+    }
+    if (!result.not_optimised.empty()) {
+      message += std::string(global_cut || !cut_short.empty() ? "; " : ": ") + "candidate" +
+                 (result.not_optimised.size() == 1 ? " " : "s ") + list_text(result.not_optimised) +
+                 " not optimised";
+    }
+    message += result.best_candidate ? "; the best trajectory so far is returned"
+                                     : "; no feasible trajectory found by then";
+    return finish(PlannerStatus::kTimeLimit, message);
   }
   if (!result.best_candidate) {
     return finish(PlannerStatus::kInfeasible,

@@ -325,8 +325,13 @@ class SimultaneousNlp : public Ipopt::TNLP {
                              Number, Number, Number, Number, Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
     iterations_ = static_cast<std::size_t>(iteration);
+    if (problem_.stop && problem_.stop()) {
+      timed_out_ = true;
+      return false;
+    }
     return true;
   }
+  bool timed_out() const { return timed_out_; }
 
   void finalize_solution(Ipopt::SolverReturn status, Index, const Number* x, const Number*,
                          const Number*, Index, const Number*, const Number*, Number objective,
@@ -502,6 +507,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
   bool cached_ = false, valid_ = false;
   // Outcome.
   Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
+  bool timed_out_ = false;
   std::size_t iterations_ = 0, evaluations_ = 0, gradient_evaluations_ = 0;
   Eigen::VectorXd result_z_;
   std::vector<double> result_b_;
@@ -539,6 +545,10 @@ SimultaneousRun run_simultaneous(const SimultaneousProblem& problem) {
   run.converged = s == Ipopt::SUCCESS || s == Ipopt::STOP_AT_ACCEPTABLE_POINT;
   run.failed = !(run.converged || s == Ipopt::MAXITER_EXCEEDED || s == Ipopt::CPUTIME_EXCEEDED ||
                  s == Ipopt::STOP_AT_TINY_STEP);
+  if (s == Ipopt::USER_REQUESTED_STOP && nlp->timed_out()) {
+    run.status = "time_limit";
+    run.failed = false;
+  }
   run.iterations = nlp->iterations();
   run.evaluations = nlp->evaluations();
   run.gradient_evaluations = nlp->gradient_evaluations();

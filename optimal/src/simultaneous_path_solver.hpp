@@ -22,6 +22,7 @@
 // b <= max_speed² is a bound. Jacobian: exact and sparse, from the B-spline
 // basis and station_derivatives().
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -58,6 +59,8 @@ struct SimultaneousProblem {
   /// Ipopt's L-BFGS approximation instead of the finite-difference Hessian.
   bool limited_memory_hessian = false;
   double tolerance = 1e-6;  ///< Ipopt's tol
+  /// Polled every iteration: true stops Ipopt (status "time_limit"). Empty: never.
+  std::function<bool()> stop;
 };
 
 struct SimultaneousRun {

@@ -173,7 +173,8 @@ void bind_global_search(py::module_& m) {
 
   py::enum_<GlobalSearchStatus>(m, "GlobalSearchStatus")
       .value("OK", GlobalSearchStatus::kOk)
-      .value("UNREACHABLE", GlobalSearchStatus::kUnreachable);
+      .value("UNREACHABLE", GlobalSearchStatus::kUnreachable)
+      .value("STOPPED", GlobalSearchStatus::kStopped);
 
   py::class_<CandidatePath>(m, "CandidatePath")
       .def_property_readonly(
@@ -317,6 +318,8 @@ void bind_planner(py::module_& m) {
       .def_readwrite("local", &PlannerOptions::local)
       .def_readwrite("optimize", &PlannerOptions::optimize)
       .def_readwrite("station_spacing", &PlannerOptions::station_spacing)
+      .def_readwrite("time_limit", &PlannerOptions::time_limit,
+                     "[s] (> 0; inf = none): the best trajectory so far, status TIME_LIMIT")
       .def_readwrite("progress", &PlannerOptions::progress,
                      "None, or a callable(PlannerProgress) -> bool; False stops the plan")
       .def("validate", &PlannerOptions::validate);
@@ -326,6 +329,7 @@ void bind_planner(py::module_& m) {
       .value("UNREACHABLE", PlannerStatus::kUnreachable)
       .value("INFEASIBLE", PlannerStatus::kInfeasible)
       .value("STOPPED", PlannerStatus::kStopped)
+      .value("TIME_LIMIT", PlannerStatus::kTimeLimit)
       .def(
           "__str__", [](PlannerStatus s) { return std::string(to_string(s)); }, py::prepend());
 

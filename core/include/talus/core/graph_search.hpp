@@ -23,6 +23,9 @@ struct ShortestPathTree {
       parent;                ///< predecessor on a best path; kNone at the source / unreached
   std::size_t expanded = 0;  ///< nodes taken off the queue
   std::size_t relaxed = 0;   ///< edges looked at
+  /// The stop check asked to stop: costs of unexpanded nodes are tentative
+  /// (upper bounds, each the cost of the real path that path_to returns).
+  bool stopped = false;
   /// Node ids from the source to `node` (empty if unreached).
   std::vector<std::uint32_t> path_to(std::uint32_t node) const {
     std::vector<std::uint32_t> path;
@@ -38,20 +41,31 @@ struct NoHeuristic {
   double operator()(std::uint32_t) const { return 0.0; }
 };
 
+/// No stop check: run to the end.
+struct NeverStop {
+  bool operator()() const { return false; }
+};
+
 /// Dijkstra from `source` over `nodes` nodes. `edges(node, emit)` calls
 /// `emit(neighbour, cost)` for each out-edge (cost >= 0; +inf edges may be
 /// skipped or emitted). With `target` != kNone the search stops when the
 /// target is expanded; with an admissible `heuristic` (a lower bound of the
 /// cost to the target) it is A*, and the tree is then complete only for the
 /// expanded nodes. Without a target it computes the whole field.
-template <typename Edges, typename Heuristic = NoHeuristic>
+/// `stop()` is polled before the first expansion and then after every
+/// `stop_interval` (>= 1) expansions; when it returns true the search ends
+/// there with `stopped` set, so at most one batch of `stop_interval`
+/// expansions follows the moment the stop was due.
+template <typename Edges, typename Heuristic = NoHeuristic, typename Stop = NeverStop>
 ShortestPathTree shortest_paths(std::size_t nodes, std::uint32_t source, Edges&& edges,
                                 std::uint32_t target = ShortestPathTree::kNone,
-                                Heuristic heuristic = {}) {
+                                Heuristic heuristic = {}, Stop stop = {},
+                                std::size_t stop_interval = 1024) {
   if (source >= nodes) throw InputError("shortest_paths: source node out of range");
   if (target != ShortestPathTree::kNone && target >= nodes) {
     throw InputError("shortest_paths: target node out of range");
   }
+  if (stop_interval < 1) throw InputError("shortest_paths: stop_interval must be >= 1");
   constexpr double kInf = std::numeric_limits<double>::infinity();
   ShortestPathTree tree;
   tree.cost.assign(nodes, kInf);
@@ -66,6 +80,10 @@ ShortestPathTree shortest_paths(std::size_t nodes, std::uint32_t source, Edges&&
     const std::uint32_t node = open.top().second;
     open.pop();
     if (closed[node]) continue;
+    if (tree.expanded % stop_interval == 0 && stop()) {
+      tree.stopped = true;
+      break;
+    }
     closed[node] = 1;
     ++tree.expanded;
     if (node == target) break;

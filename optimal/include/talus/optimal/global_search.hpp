@@ -17,13 +17,47 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
 
 namespace talus {
+
+/// How the lattice is searched (GlobalSearchOptions::resolution).
+enum class GlobalSearchResolution {
+  /// Every node of the lattice (memory and time grow with the map).
+  kFull,
+  /// Coarse to fine: the same search on a lattice coarse_factor times coarser
+  /// (the surface sampled at its nodes, edges sampled every half coarse
+  /// spacing), then the fine lattice restricted to a corridor of 16 x 16-node
+  /// tiles within corridor_width of the coarse candidates. The corridor is
+  /// doubled while the fine search finds no route in it or its best route
+  /// touches the corridor's edge (a better one may lie outside), up to the
+  /// whole map, which is then exactly the full search. Memory and time grow
+  /// with the corridor (plus the coarse lattice, 1/coarse_factor² of the map).
+  ///
+  /// Same best candidate as kFull whenever the full search's best route lies
+  /// in the final corridor (the corridor numbers its nodes in the full
+  /// lattice's order, so even ties break alike). They can differ when the
+  /// coarse lattice misjudges the terrain so that the fine optimum lies in a
+  /// corridor the coarse search did not find (a pass narrower than a coarse
+  /// cell, an obstacle the coarse edges step over), while a route inside the
+  /// corridor that keeps off its edge exists; further candidates can differ
+  /// more (only routes in the corridor are candidates; distances near its
+  /// edge are chamfer distances inside it). A coarse search that finds no
+  /// route (or whose start or goal node is untraversable at the coarse
+  /// scale) falls back to the full search. cost_from_start / cost_to_goal
+  /// are not returned (they would be map-sized).
+  kMulti,
+};
+/// "full", "multi".
+std::string_view to_string(GlobalSearchResolution resolution);
+/// Inverse of to_string; throws InputError listing the choices.
+GlobalSearchResolution parse_global_search_resolution(std::string_view name);
 
 struct GlobalSearchOptions {
   double lattice_spacing = 0.0;  ///< node spacing [m]; 0 = the terrain's cell size
@@ -47,6 +81,23 @@ struct GlobalSearchOptions {
   /// from start to goal with the admissible heuristic distance / max_speed,
   /// which evaluates only the edges it needs.
   bool cost_fields = true;
+  /// kFull (default) or kMulti (coarse to fine, see GlobalSearchResolution).
+  GlobalSearchResolution resolution = GlobalSearchResolution::kFull;
+  /// kMulti: coarse lattice spacing / fine lattice spacing (>= 2).
+  int coarse_factor = 4;
+  /// kMulti: the corridor's first half-width around the coarse candidates [m]
+  /// (>= 0); 0 = 4 coarse lattice spacings.
+  double corridor_width = 0.0;
+  /// Polled before the search starts and then every `stop_interval` node
+  /// expansions (Dijkstra / A*, each with its lazily computed edge costs),
+  /// node surface samples or candidate seeds; true cuts the search short
+  /// with status kStopped (used by the planner's time limit). So the search
+  /// runs at most one batch of stop_interval expansions past the moment
+  /// `stop` would first have said yes (in the candidate extraction, one
+  /// O(nodes) step: the sort of the seeds or one candidate's distance map).
+  /// Empty: never stops.
+  std::function<bool()> stop;
+  std::size_t stop_interval = 1024;  ///< >= 1
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -54,7 +105,14 @@ struct GlobalSearchOptions {
 enum class GlobalSearchStatus {
   kOk,           ///< at least one candidate
   kUnreachable,  ///< the goal cannot be reached from the start; see `message`
+  /// GlobalSearchOptions::stop cut the search short; `candidates` holds what
+  /// was found by then (possibly none, e.g. when it stopped before the goal
+  /// was reached; a route found by a search stopped before its end is a real,
+  /// not necessarily minimum-time, path), `message` says where it stopped.
+  kStopped,
 };
+/// "ok", "unreachable", "stopped".
+std::string_view to_string(GlobalSearchStatus status);
 
 /// One candidate path: lattice vertices from start to goal.
 struct CandidatePath {
@@ -88,7 +146,15 @@ struct GlobalSearchResult {
   std::size_t expanded = 0;         ///< nodes expanded by the two searches
   std::size_t reachable_nodes = 0;  ///< nodes reachable from the start
   double search_seconds = 0.0;      ///< total time of the global stage
-  // The lattice and the two cost-to-go fields, for plots (row-major, +inf = unreached).
+  // Multi-resolution diagnostics (resolution kMulti; nodes is then the final
+  // corridor's node count, expanded and edges_evaluated count every search).
+  GlobalSearchResolution resolution = GlobalSearchResolution::kFull;  ///< what ran
+  std::size_t coarse_nodes = 0;        ///< nodes of the coarse lattice
+  std::size_t corridor_widenings = 0;  ///< times the corridor was doubled
+  double corridor_width = 0.0;         ///< the final corridor's half-width [m]
+  bool fell_back_to_full = false;      ///< the coarse search found no route: full search
+  // The lattice and the two cost-to-go fields, for plots (row-major, +inf =
+  // unreached; empty for kMulti).
   std::size_t nx = 0, ny = 0;
   double spacing = 0.0;
   Vec2 origin = Vec2::Zero();

@@ -42,6 +42,7 @@
 ///   solver at the search stations: travel_time is that, never the NLP's own
 ///   objective (nlp_travel_time, a diagnostic).
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -111,6 +112,15 @@ struct PathOptimizerOptions {
   /// With L-BFGS phase 2 stalled on the tests' flat plane and smooth hill
   /// (1000 iterations without convergence).
   bool simultaneous_limited_memory = false;
+  /// Wall-clock limit of one optimize_path call [s] (> 0; +inf = none),
+  /// counted from its start (steady clock). Polled at every Ipopt iteration
+  /// (both formulations) and every NLopt evaluation: the solver stops there
+  /// with the best path evaluated so far (at least the initial fit) and
+  /// solver_status "time_limit". The initial fit itself is not interrupted.
+  double time_limit = std::numeric_limits<double>::infinity();
+  /// Polled with time_limit; true stops the solver likewise (the planner's
+  /// deadline on its own clock). Empty: never.
+  std::function<bool()> stop;
   ProfileOptions speeds;  ///< start and end speeds
   /// Throws InputError naming the field.
   void validate() const;

@@ -17,8 +17,22 @@
 /// 4. the fastest feasible trajectory is the result.
 ///
 /// Expected outcomes (an unreachable goal, no feasible candidate, a solver
-/// failure, a stop request) are statuses; only invalid input throws
-/// InputError.
+/// failure, a stop request, the time limit) are statuses; only invalid input
+/// throws InputError.
+///
+/// The time limit (PlannerOptions::time_limit) is checked by the global
+/// search every GlobalSearchOptions::stop_interval node expansions, before
+/// each candidate's optimisation and at every solver iteration (Ipopt) or
+/// evaluation (NLopt). On it plan() returns status kTimeLimit with the best
+/// feasible trajectory found so far: if the limit falls in the global stage
+/// after a route was found, or before any local result is feasible, the
+/// next candidate still gets its initial fit evaluated (no optimisation) until
+/// one is feasible, so a time-limited plan has a trajectory whenever the
+/// global stage found a route; if the global stage is cut before any route
+/// exists there is no trajectory (global.status kStopped). The overrun is
+/// bounded by one batch of expansions, one solver iteration and the
+/// evaluation of the candidate in hand (its initial fit and result at
+/// station_spacing).
 ///
 /// Example:
 ///   const BPatch surface = BPatch::interpolate(read_esri_ascii("dem.asc"));
@@ -27,6 +41,7 @@
 ///   std::cout << result.brief_report();
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -84,6 +99,12 @@ struct PlannerOptions {
   /// its next step (status kStopped, what was done so far kept). A step is
   /// one candidate's optimisation, bounded by local.max_evaluations.
   std::function<bool(const PlannerProgress&)> progress;
+  /// Budget of the whole plan [s] (> 0; +inf = none): see the file comment.
+  /// A generous limit changes nothing (bit-identical results).
+  double time_limit = std::numeric_limits<double>::infinity();
+  /// The clock of time_limit: seconds on any monotone scale. Empty = the
+  /// steady clock. Tests inject one to hit the limit deterministically.
+  std::function<double()> clock;
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -93,6 +114,9 @@ enum class PlannerStatus {
   kUnreachable,  ///< the global search found no route from start to goal
   kInfeasible,   ///< candidates exist, but none has a feasible trajectory
   kStopped,      ///< the progress callback asked to stop
+  /// PlannerOptions::time_limit was reached: the best feasible trajectory
+  /// found by then, if any; `message` and not_optimised say what was left.
+  kTimeLimit,
 };
 std::string_view to_string(PlannerStatus status);
 
@@ -110,7 +134,10 @@ struct CandidateOutcome {
   /// the optimiser failed), at station_spacing.
   Trajectory trajectory;
   bool kept_initial = false;  ///< trajectory is the initial fit
-  double seconds = 0.0;       ///< this candidate's local stage and evaluations [s]
+  /// The time limit stopped this candidate's optimisation (solver_status
+  /// "time_limit"), or it had passed before it began (only its initial fit).
+  bool time_limited = false;
+  double seconds = 0.0;  ///< this candidate's local stage and evaluations [s]
   bool feasible() const { return trajectory.feasible(); }
 };
 
@@ -129,6 +156,8 @@ struct PlannerResult {
   std::vector<CandidateOutcome> candidates;   ///< in the global search's order
   std::optional<std::size_t> best_candidate;  ///< the fastest feasible one
   PlannerTimings seconds;
+  /// Status kTimeLimit: global candidates the local stage never reached.
+  std::vector<std::size_t> not_optimised;
 
   /// The best trajectory; null without one.
   const Trajectory* best() const;

@@ -391,5 +391,43 @@ TEST(TimeOptimalProfile, AReusedResultIsBitIdenticalToFreshSolves) {
   EXPECT_EQ(reused.v.size(), 90u);
 }
 
+TEST(TrajectoryDefaults, SameRelativeErrorOnAOneMetreAndAFifteenKilometreGrid) {
+  // One grid of heights at 1 m cells and the same grid scaled by 15,000 in x, y and z (the Mars
+  // MOLA cell size), one path scaled with it, a vehicle limited by friction and tip-over only
+  // (no length or speed scale of its own besides the half-track, which is below both cells).
+  // The default spacing's relative error against a 16 times finer spacing must agree within a
+  // factor 2 (with an absolute spacing the 15 km copy would be 15,000 times finer and its error
+  // near zero).
+  const auto heights = [](double x, double y) {
+    return 1.2 * std::sin(0.35 * x) * std::cos(0.3 * y) + 0.4 * std::sin(0.9 * y + 0.5 * x);
+  };
+  Vehicle v = vehicle(0.7);
+  v.half_track = 0.6;
+  v.cg_height = 0.5;
+  std::vector<double> errors;
+  for (const double scale : {1.0, 15000.0}) {
+    const BPatch surface = BPatch::interpolate(grid_from_function(
+        [&](double x, double y) { return scale * heights(x / scale, y / scale); }, 0, 0, 64 * scale,
+        64 * scale, scale));
+    std::vector<Vec2> points;
+    for (const Vec2& p : {Vec2(8, 10), Vec2(25, 30), Vec2(40, 20), Vec2(56, 50)})
+      points.push_back(scale * p);
+    const Curve2 curve = Curve2::interpolate(points);
+    const double spacing = default_station_spacing(surface, v);
+    EXPECT_DOUBLE_EQ(spacing, 0.1 * scale);
+    TrajectoryOptions fine;
+    fine.station_spacing = spacing / 16.0;
+    const Trajectory coarse = evaluate_trajectory(surface, v, curve, {});
+    const Trajectory reference = evaluate_trajectory(surface, v, curve, fine);
+    ASSERT_TRUE(coarse.feasible()) << coarse.message;
+    ASSERT_TRUE(reference.feasible()) << reference.message;
+    EXPECT_EQ(coarse.limits->size(), station_count(coarse.length(), spacing));
+    errors.push_back(coarse.travel_time() / reference.travel_time() - 1.0);
+  }
+  ASSERT_GT(errors[0], 1e-5);  // the default spacing's error is measurable
+  EXPECT_LT(errors[1] / errors[0], 2.0) << errors[0] << " vs " << errors[1];
+  EXPECT_GT(errors[1] / errors[0], 0.5) << errors[0] << " vs " << errors[1];
+}
+
 }  // namespace
 }  // namespace talus

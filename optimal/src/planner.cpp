@@ -146,8 +146,9 @@ std::string_view to_string(PlannerStatus status) {
 void PlannerOptions::validate() const {
   global.validate();
   local.validate();
-  if (!(std::isfinite(station_spacing) && station_spacing > 0.0)) {
-    throw InputError("PlannerOptions.station_spacing must be a positive finite number [m]");
+  if (!(std::isfinite(station_spacing) && station_spacing >= 0.0)) {
+    throw InputError(
+        "PlannerOptions.station_spacing must be a finite number >= 0 [m] (0 = the default)");
   }
 }
 
@@ -247,7 +248,8 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   local.speeds = {problem.start_speed, problem.end_speed};
   TrajectoryOptions evaluation;
   evaluation.speeds = local.speeds;
-  evaluation.station_spacing = options.station_spacing;
+  evaluation.station_spacing =
+      resolve_station_spacing(options.station_spacing, *problem.surface, problem.vehicle);
   TimeOptimalProfileSolver workspace;
   for (std::size_t c = 0; c < result.global.candidates.size(); ++c) {
     if (!keep_going(PlannerStage::kLocalOptimisation, c)) {

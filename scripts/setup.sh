@@ -13,6 +13,11 @@ packages=(
   libopenblas-dev
   # OMPL (Reeds–Shepp curves, kinematic/); its CMake config names the Boost libraries.
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
+  # Python bindings (python/, `import talus`): pybind11, the interpreter's headers, numpy;
+  # pytest runs their tests under CTest and matplotlib draws python/examples/plan.py.
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  # mpirun for `talus sweep` across ranks and its tests (libopenmpi-dev comes with SUNDIALS).
+  openmpi-bin libopenmpi-dev
 )
 
 if ! command -v dpkg-query >/dev/null 2>&1 || ! command -v apt-get >/dev/null 2>&1; then

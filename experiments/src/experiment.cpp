@@ -8,6 +8,7 @@
 #include "hait_experiments.hpp"
 #include "optimal_profile_experiment.hpp"
 #include "shiller_gwo_experiment.hpp"
+#include "sweep_experiments.hpp"
 #include "talus/core/error.hpp"
 #include "terrain_gallery.hpp"
 #include "velocity_limits_experiment.hpp"
@@ -64,6 +65,11 @@ std::vector<Experiment> all_experiments() {
        "voxels on a 64 x 64 rough terrain (FREE voxels at four headings, voxels per level, the "
        "effect of p0), an incremental search against the whole octree, Proposition 1 sampled",
        run_dacre_wright_octree},
+      {"sweep-friction-stability",
+       "a sweep of the rover's plans over friction x stability (b/h) x roughness on a fractal "
+       "terrain: success, travel time, binding-constraint shares, and the monotonicity the "
+       "physics implies",
+       run_sweep_friction_stability},
   };
 }
 

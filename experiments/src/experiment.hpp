@@ -21,6 +21,12 @@ struct ExperimentContext {
   /// The headline numbers, written as `summary.json` after run() returns (shared so that the
   /// const context can carry it).
   std::shared_ptr<ExperimentSummary> summary = std::make_shared<ExperimentSummary>();
+  /// Runs one `talus` command line (without the program name) in this
+  /// process and returns its exit code; checks one without running it
+  /// (InputError for an unknown option). Set by the CLI, for the experiments
+  /// that run sweeps.
+  std::function<int(const std::vector<std::string>&)> run_command;
+  std::function<void(const std::vector<std::string>&)> check_command;
 };
 
 /// One registered experiment.

@@ -14,6 +14,7 @@
 #include "output_folder.hpp"
 #include "plan_command.hpp"
 #include "profile_command.hpp"
+#include "sweep_command.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/input_file.hpp"
@@ -214,8 +215,64 @@ void add_path_input_options(CLI::App& command, Request& request) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  ex::exit_cleanly_on_signals();
+/// Throws InputError if `args` (a command line without the program name)
+/// names a command or an option that `app` does not have.
+void check_command_line(CLI::App& app, const std::vector<std::string>& args) {
+  CLI::App* current = &app;
+  std::string path = "talus";
+  for (const std::string& arg : args) {
+    if (arg.rfind("--", 0) == 0) {
+      const std::string name = arg.substr(0, arg.find('='));
+      if (current->get_option_no_throw(name) == nullptr) {
+        throw InputError("`" + path + "` has no option " + talus::printable(name) + " (see talus " +
+                         path.substr(std::min<std::size_t>(path.size(), 6)) + " --help)");
+      }
+    } else {
+      for (CLI::App* sub : current->get_subcommands([](CLI::App*) { return true; })) {
+        if (sub->get_name() != arg) continue;
+        current = sub;
+        path += " " + arg;
+        break;
+      }
+    }
+  }
+}
+
+int run_cli(const std::vector<std::string>& args, bool check_only);
+
+/// `talus sweep`: runs the cases in worker processes that call run_cli().
+void add_sweep_command(CLI::App& app, ex::SweepRequest& request) {
+  CLI::App* sweep = app.add_subcommand(
+      "sweep",
+      "run a parameter sweep: CONFIG.yaml names a job (plan, profile, baseline NAME, noop) and "
+      "a design over its parameters (grid, list or seeded random samples); each case runs in "
+      "its own worker process and its result is appended to DIR/results.jsonl as it ends "
+      "(every input parameter, status, the job's key figures, seconds, attempts, host, rank). "
+      "DIR also gets results.csv (one row per case, design order), report.md with a figure "
+      "per swept parameter, and cases/ID/ with each case's files. Rerunning on DIR resumes: "
+      "finished case ids are skipped. A worker that crashes or exceeds the case time limit is "
+      "retried (config `retries`, default 2), then recorded as failed. Exit code 0 when every "
+      "case has a result (some may be failed or error: see results.csv), 1 on a bad config "
+      "(one line on stderr, before any case runs). Under mpirun each rank runs every K-th "
+      "case and writes its own results file; rank 0 writes results.csv");
+  sweep->add_option("CONFIG", request.config, "sweep configuration (YAML)")->required();
+  sweep->add_option("--out", request.output_dir, "output folder (created if needed)")->required();
+  sweep->add_option("--jobs", request.jobs, "worker processes at a time; 0 = the core count")
+      ->capture_default_str();
+  sweep->add_flag("--resume", request.resume,
+                  "resume the sweep in DIR (also the default when DIR has results)");
+  sweep->add_flag("--dry-run", request.dry_run, "list the cases (id, parameters) and stop");
+  sweep->add_option("--case-time-limit", request.case_time_limit,
+                    "seconds a case may run before its worker is killed (overrides the "
+                    "config's case_time_limit, default 600)");
+  sweep->callback([&request]() {
+    request.run_command = [](const std::vector<std::string>& args) { return run_cli(args, false); };
+    request.check_command = [](const std::vector<std::string>& args) { run_cli(args, true); };
+    std::cout << ex::sweep(request) << "\n";
+  });
+}
+
+int run_cli(const std::vector<std::string>& args, bool check_only) {
   CLI::App app{
       "Talus: time-optimal trajectory planning of ground vehicles over rough terrain.\n"
       "Units are SI; x east, y north, z up (see README, Conventions)."};
@@ -390,6 +447,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   plan->add_option("--out", plan_request.output_dir, "output folder (created if needed)")
       ->required();
+  plan->add_flag("!--no-figures", plan_request.figures,
+                 "skip plan.png and profile.png (and their gnuplot files), e.g. in sweeps");
   plan->callback([&]() {
     const ex::PlanOutcome outcome = ex::plan(plan_request);
     std::cout << outcome.summary.dump(2) << "\n";
@@ -466,6 +525,10 @@ int main(int argc, char** argv) {
       const std::filesystem::path folder = std::filesystem::path(out_dir) / e.name;
       context.data_dir = ex::find_data_dir(data_dir);
       context.quick = quick;
+      context.run_command = [](const std::vector<std::string>& args) {
+        return run_cli(args, false);
+      };
+      context.check_command = [](const std::vector<std::string>& args) { run_cli(args, true); };
       ex::OutputFolder out(folder);
       context.output_dir = out.staging();
       e.run(context);
@@ -477,8 +540,17 @@ int main(int argc, char** argv) {
     throw InputError("unknown experiment '" + experiment_name + "' (run `talus experiment list`)");
   });
 
+  ex::SweepRequest sweep_request;
+  add_sweep_command(app, sweep_request);
+
+  if (check_only) {
+    check_command_line(app, args);
+    return 0;
+  }
+  std::vector<const char*> argv = {"talus"};
+  for (const std::string& arg : args) argv.push_back(arg.c_str());
   try {
-    app.parse(argc, argv);
+    app.parse(static_cast<int>(argv.size()), argv.data());
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -498,4 +570,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   return exit_code;
+}
+
+int main(int argc, char** argv) {
+  ex::exit_cleanly_on_signals();
+  return run_cli(std::vector<std::string>(argv + 1, argv + argc), false);
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <utility>
@@ -20,6 +21,7 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/planner.hpp"
 
@@ -287,7 +289,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   write_text_file(dir / "optima.csv", optima_csv(result));
 
   const auto plots_start = Clock::now();
-  const bool plots = best != nullptr && gnuplot_available();
+  const bool plots = request.figures && best != nullptr && gnuplot_available();
   if (plots) render_plan_figures(request, grid, problem, result, dir);
   const double plots_seconds = seconds_since(plots_start);
 
@@ -303,6 +305,14 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   summary["global_travel_time"] = finite_or_null(result.global_travel_time());
   summary["improvement_percent"] = finite_or_null(result.improvement_percent());
   summary["best_candidate"] = best ? nlohmann::json(*result.best_candidate) : nullptr;
+  // What sets the speed limit along the best path: fractions of its stations.
+  const std::optional<LimitSummary> best_limits =
+      best && best->limits ? std::optional(summarise_limits(*best->limits)) : std::nullopt;
+  for (const Constraint c :
+       {Constraint::kSliding, Constraint::kTipover, Constraint::kContact, Constraint::kMaxSpeed}) {
+    summary["binding_share_" + std::string(to_string(c))] =
+        best_limits ? nlohmann::json(best_limits->upper_share(c)) : nlohmann::json(nullptr);
+  }
   // The best path itself, to rebuild it exactly: a clamped cubic on uniform
   // breakpoints in [0, 1] with these control points.
   nlohmann::json control = nlohmann::json::array();
@@ -437,6 +447,11 @@ PlanOutcome plan(const PlanRequest& request) {
   summary["status"] = reachable ? "ok" : "unreachable";
   summary["message"] = reachable ? nlohmann::json(nullptr) : nlohmann::json(result.message);
   summary["stage"] = request.stage;
+  // The best corridor's lattice travel time: monotone in the vehicle's limits
+  // (every edge's cost is), unlike the locally optimised time.
+  summary["search_cost"] = result.candidates.empty()
+                               ? nlohmann::json(nullptr)
+                               : nlohmann::json(result.candidates.front().cost_seconds);
   summary["candidates"] = std::move(candidates);
   summary["candidates_requested"] = request.candidates;
   summary["start"] = point_json(start);

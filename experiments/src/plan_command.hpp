@@ -44,6 +44,8 @@ struct PlanRequest {
   std::string formulation = "nested";
   double start_speed = 0.0;  ///< --v0 [m/s] (finite, >= 0, <= max_speed)
   double end_speed = 0.0;    ///< --v1 [m/s]
+  /// false (--no-figures): no plan.png and profile.png (sweeps draw their own).
+  bool figures = true;
 };
 
 /// The stages `--stage` accepts.

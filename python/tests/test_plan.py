@@ -1,0 +1,126 @@
+"""The planner through the bindings on a bundled DEM: bit for bit what `talus plan`
+writes and what the C++ library returns (tests/reference.cpp), results that keep
+their surface alive, the progress callback."""
+import csv
+import gc
+import json
+import weakref
+
+import numpy as np
+import pytest
+
+import talus
+from conftest import number_text
+
+START, GOAL = (557000.0, 4373500.0), (557800.0, 4374200.0)  # about 1.07 km on West Bijou
+CANDIDATES = 1
+
+
+@pytest.fixture(scope="module")
+def planned(west_bijou, rover):
+    surface = talus.BPatch.interpolate(talus.read_esri_ascii(str(west_bijou)))
+    problem = talus.PlanningProblem(surface, talus.load_vehicle(str(rover)), START, GOAL)
+    options = talus.PlannerOptions()
+    options.global_search.candidates = CANDIDATES
+    return talus.plan(problem, options)
+
+
+def test_the_plan_is_the_cli_plan_bit_for_bit(planned, cli, west_bijou, rover, tmp_path):
+    out = tmp_path / "plan"
+    code, stdout, err = cli("plan", "--terrain", west_bijou, "--vehicle", rover,
+                            "--start", ",".join(map(number_text, START)),
+                            "--goal", ",".join(map(number_text, GOAL)),
+                            "--candidates", CANDIDATES, "--out", out)
+    assert code == 0, err
+    summary = json.loads(stdout)
+    assert planned.status == talus.PlannerStatus.OK, planned.brief_report()
+    best = planned.best()
+    assert planned.travel_time() == summary["travel_time"]
+    assert planned.global_travel_time() == summary["global_travel_time"]
+    assert best.length() == summary["length_m"]
+    assert np.array_equal(best.path.curve().control_points, summary["best_control_points"])
+    assert planned.global_search.nodes == summary["nodes"]
+    assert [c.cost_seconds for c in planned.global_search.candidates] == [
+        c["cost_seconds"] for c in summary["candidates"]]
+    with open(out / "trajectory.csv") as f:
+        rows = list(csv.DictReader(f))
+    column = {k: np.array([float(r[k]) for r in rows]) for k in ("s", "x", "y", "z", "v", "t")}
+    assert np.array_equal(best.profile.s, column["s"])
+    assert np.array_equal(best.limits.points, np.stack([column[k] for k in "xyz"], axis=1))
+    assert np.array_equal(best.profile.v, column["v"])
+    assert np.array_equal(best.profile.t, column["t"])
+    assert best.profile.binding == [r["binding"] for r in rows]
+
+
+def test_the_plan_is_the_cpp_plan_bit_for_bit(planned, reference, west_bijou, rover):
+    ref = reference("plan", west_bijou, rover, *map(number_text, (*START, *GOAL)), CANDIDATES)
+    assert ref["plan.status"] == str(planned.status) == "ok"
+    assert planned.travel_time() == ref["plan.travel_time"]
+    assert planned.global_travel_time() == ref["plan.global_travel_time"]
+    control = planned.best().path.curve().control_points
+    assert np.array_equal(control.ravel(), ref["plan.control_points"])
+    for name in ("s", "v", "a", "t", "v_max"):
+        assert np.array_equal(getattr(planned.best().profile, name), ref["plan.best." + name])
+
+
+def test_the_result_reads_like_the_cpp_result(planned):
+    assert planned.brief_report().startswith("Talus plan: ok")
+    assert planned.best_candidate == 0 and planned.message == ""
+    (outcome,) = planned.candidates
+    assert outcome.feasible() and outcome.trajectory.travel_time() == planned.travel_time()
+    assert outcome.optimization.travel_time <= outcome.optimization.initial_time
+    assert planned.travel_time() <= planned.global_travel_time()
+    fields = planned.global_search
+    assert fields.cost_from_start.shape == (fields.ny, fields.nx)
+    assert planned.seconds.total >= planned.seconds.global_search
+
+
+def test_results_keep_their_surface_alive_and_let_it_go_after(west_bijou, rover):
+    grid = talus.read_esri_ascii(str(west_bijou))
+    surface = talus.BPatch.interpolate(grid)
+    alive = weakref.ref(surface)
+    problem = talus.PlanningProblem(surface, talus.load_vehicle(str(rover)), START, GOAL)
+    options = talus.PlannerOptions()
+    options.global_search.candidates = 1
+    options.optimize = False  # the global stage is enough here
+    result = talus.plan(problem, options)
+    line = talus.Curve2.interpolate(np.array([START, GOAL]))
+    trajectory = talus.evaluate_trajectory(surface, problem.vehicle, line)
+    path = trajectory.path
+    del surface, problem
+    gc.collect()
+    assert alive() is not None
+    assert path.length() == trajectory.length() > 1000.0  # reads the surface
+    del result, trajectory
+    gc.collect()
+    assert alive() is not None  # `path` still holds it
+    del path
+    gc.collect()
+    assert alive() is None
+
+
+def test_the_progress_callback_sees_the_stages_and_can_stop(west_bijou, rover):
+    surface = talus.BPatch.interpolate(talus.read_esri_ascii(str(west_bijou)))
+    problem = talus.PlanningProblem(surface, talus.load_vehicle(str(rover)), START, GOAL)
+    seen = []
+    options = talus.PlannerOptions()
+    options.progress = lambda p: seen.append(p.stage) or False
+    result = talus.plan(problem, options)
+    assert result.status == talus.PlannerStatus.STOPPED and result.best() is None
+    assert seen[0] == talus.PlannerStage.GLOBAL_SEARCH
+    assert talus.PlannerStage.LOCAL_OPTIMISATION not in seen
+
+
+def test_bad_input_raises_input_error(west_bijou, rover):
+    surface = talus.BPatch.interpolate(talus.read_esri_ascii(str(west_bijou)))
+    vehicle = talus.load_vehicle(str(rover))
+    with pytest.raises(talus.InputError):
+        talus.plan(talus.PlanningProblem(surface, vehicle, (0.0, 0.0), GOAL))
+    options = talus.PlannerOptions()
+    options.local.solver = "nlopt-bobyqa"
+    assert options.local.solver == talus.PathSolver.NLOPT_BOBYQA
+    with pytest.raises(talus.InputError, match="snopt"):
+        options.local.solver = "snopt"
+    options.global_search.connectivity = 12
+    with pytest.raises(talus.InputError, match="connectivity"):
+        talus.plan(talus.PlanningProblem(surface, vehicle, START, GOAL), options)

@@ -1,0 +1,63 @@
+"""Vehicles from dicts, YAML text and files: one reader, one set of rules."""
+import math
+
+import pytest
+
+import talus
+
+ROVER = {"model": "point_mass", "gravity": 9.81, "friction": 0.7, "cg_height": 0.5,
+         "half_track": 0.6, "max_speed": 15, "max_accel": 3, "max_decel": 6}
+FIELDS = ("model", "gravity", "friction", "cg_height", "half_track", "half_wheelbase",
+          "max_speed", "max_accel", "max_decel")
+
+
+def same(a, b):
+    return all(getattr(a, f) == getattr(b, f) for f in FIELDS)
+
+
+def test_a_dict_gives_the_vehicle_of_the_file(rover):
+    from_file = talus.load_vehicle(str(rover))
+    from_dict = talus.Vehicle.from_dict(ROVER)
+    assert same(from_file, from_dict)
+    assert from_dict.model == talus.VehicleModel.POINT_MASS and from_dict.max_accel == 3.0
+
+
+def test_to_dict_round_trips_and_omits_unlimited_limits(data_dir):
+    rigid = talus.load_vehicle(str(data_dir / "vehicles" / "rover_rigid.yaml"))
+    assert same(talus.Vehicle.from_dict(rigid.to_dict()), rigid)
+    d = talus.Vehicle.from_dict({"model": "point_mass", "friction": 0.1 + 0.2,
+                                 "cg_height": 0.5, "half_track": 0.6}).to_dict()
+    assert d["friction"] == 0.1 + 0.2  # numbers pass through their exact repr
+    assert "max_speed" not in d and "half_wheelbase" not in d
+    assert talus.Vehicle.from_dict({**d, "max_speed": math.inf}).max_speed == math.inf
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"foo": 1}, "unknown key 'foo'"),
+    ({"friction": "slippery"}, "key 'friction' must be a number"),
+    ({"friction": -1.0}, "friction"),
+    ({"model": "hovercraft"}, "key 'model' must be point_mass or rigid_body"),
+    ({"model": "rigid_body"}, "missing required key 'half_wheelbase'"),
+])
+def test_bad_dicts_raise_the_file_readers_messages(change, words):
+    with pytest.raises(talus.InputError) as raised:
+        talus.Vehicle.from_dict({**ROVER, **change}, source="my rover")
+    assert words in str(raised.value)
+    text = "".join(f"{k}: {v}\n" for k, v in {**ROVER, **change}.items())
+    with pytest.raises(talus.InputError) as from_text:
+        talus.parse_vehicle(text, "my rover")
+    assert str(from_text.value) == str(raised.value)
+
+
+def test_a_missing_key_and_a_wrong_value_type():
+    with pytest.raises(talus.InputError, match="dict: missing required key 'friction'"):
+        talus.Vehicle.from_dict({"model": "point_mass", "cg_height": 0.5, "half_track": 0.6})
+    with pytest.raises(TypeError):
+        talus.Vehicle.from_dict({**ROVER, "friction": [0.7]})
+
+
+def test_fields_are_writable_and_validate_names_the_field():
+    v = talus.Vehicle()
+    v.friction = -0.5
+    with pytest.raises(talus.InputError, match="friction"):
+        v.validate()

@@ -38,7 +38,7 @@ TEST_P(EverySolver, StraightensABentPathOnAPlane) {
   // Every solver ends within 2e-7 of the straight-line time (measured). The bound is the switch
   // steps' discretisation error at the search spacing, (0.5 m / L)^2 = 1e-4: a 1e-3 error in g
   // or mu moves the time by 5e-4.
-  const double search_step = options.station_spacing / L;
+  const double search_step = search_station_spacing(options, flat, point_mass_rover(0.5)) / L;
   EXPECT_NEAR(best.travel_time, straight, search_step * search_step * straight);
   EXPECT_GT(best.initial_time, 1.05 * straight);
   EXPECT_FALSE(best.solver_failed) << best.solver_status;
@@ -58,7 +58,7 @@ TEST_P(EverySolver, StraightensABentPathOnAPlane) {
   for (const Vec2& c : kept.curve.control_points()) EXPECT_NEAR(c.y(), 20.0, 1e-6);
   // On the straight line only the two switch steps differ from the analytic time, by at most
   // (spacing / length)^2 = 1e-4 at the search's default 0.5 m (measured 2e-5).
-  const double h = defaults.station_spacing / L;
+  const double h = search_station_spacing(defaults, flat, point_mass_rover(0.5)) / L;
   EXPECT_NEAR(kept.travel_time, straight, h * h * straight);
   EXPECT_LE(kept.travel_time, kept.initial_time);
   std::printf("%s: %.6f s (straight %.6f), %zu iterations, %zu evaluations, optimality %.2e\n",

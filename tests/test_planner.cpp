@@ -212,7 +212,7 @@ TEST(Planner, InvalidInputThrowsInputError) {
   options.global.candidates = 0;
   EXPECT_THROW(plan(PlanningProblem(surface, v, {5, 20}, {55, 20}), options), InputError);
   options = {};
-  options.station_spacing = 0.0;
+  options.station_spacing = -0.1;  // (0 means the scale-aware default)
   EXPECT_THROW(plan(PlanningProblem(surface, v, {5, 20}, {55, 20}), options), InputError);
 }
 

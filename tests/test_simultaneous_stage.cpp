@@ -57,7 +57,7 @@ TEST(SimultaneousStage, StraightLineOnAPlaneAtTheAnalyticTime) {
   EXPECT_GT(best.initial_time, 1.05 * straight);
   // The exact profile of the result at the search stations: only the two
   // switch steps differ from the closed form, by at most (spacing / L)^2.
-  const double h = options.station_spacing / L;
+  const double h = search_station_spacing(options, flat, point_mass_rover(0.5)) / L;
   EXPECT_NEAR(best.travel_time, straight, h * h * straight);
   // Straight to within 1 cm (a bend that small costs nothing measurable).
   for (const Vec2& c : best.curve.control_points()) EXPECT_NEAR(c.y(), 20.0, 1e-2);

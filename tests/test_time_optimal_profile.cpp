@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <memory>
 #include <numbers>
@@ -333,6 +334,99 @@ TEST(TimeOptimalProfile, InvariantsOnRandomFractalPaths) {
     }
   }
   EXPECT_GE(solved, 6);
+}
+
+/// Every field of two results, compared bit for bit.
+void expect_identical(const TimeOptimalProfile& a, const TimeOptimalProfile& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.message, b.message);
+  EXPECT_EQ(std::memcmp(&a.travel_time, &b.travel_time, sizeof(double)), 0);
+  EXPECT_EQ(a.s, b.s);
+  EXPECT_EQ(a.v, b.v);
+  EXPECT_EQ(a.a, b.a);
+  EXPECT_EQ(a.t, b.t);
+  EXPECT_EQ(a.v_max, b.v_max);
+  EXPECT_EQ(a.binding, b.binding);
+  EXPECT_EQ(a.control, b.control);
+  ASSERT_EQ(a.switching_points.size(), b.switching_points.size());
+  for (std::size_t k = 0; k < a.switching_points.size(); ++k) {
+    EXPECT_EQ(a.switching_points[k].station, b.switching_points[k].station);
+    EXPECT_EQ(a.switching_points[k].s, b.switching_points[k].s);
+    EXPECT_EQ(a.switching_points[k].from, b.switching_points[k].from);
+    EXPECT_EQ(a.switching_points[k].to, b.switching_points[k].to);
+  }
+  EXPECT_EQ(a.infeasible_station, b.infeasible_station);
+  EXPECT_EQ(a.infeasible_binding, b.infeasible_binding);
+  EXPECT_EQ(a.merged_stations, b.merged_stations);
+}
+
+TEST(TimeOptimalProfile, AReusedResultIsBitIdenticalToFreshSolves) {
+  // Three different solves into one result object, longest first (the later ones must not
+  // inherit tails, switching points or failure fields), against fresh solves with fresh solvers.
+  const BPatch hills = BPatch::interpolate(grid_from_function(
+      [](double x, double y) { return 1.5 * std::sin(0.2 * x) * std::cos(0.25 * y); }, 0, -10, 80,
+      10, 1.0));
+  const BPatch ridge = BPatch::interpolate(grid_from_function(
+      [](double x, double y) { return (x > 20 && x < 40) ? 0.9 * y : 0.0; }, 0, -5, 60, 5, 0.5));
+  const SurfacePath winding(hills, Curve2::interpolate({Vec2(5, 0), Vec2(25, 6), Vec2(45, -6),
+                                                        Vec2(60, 4), Vec2(75, 0)}));
+  const SurfacePath blocked(ridge, Curve2::interpolate({Vec2(5, 0), Vec2(55, 0)}));
+  const SurfacePath short_one(hills, Curve2::interpolate({Vec2(10, -2), Vec2(30, 3)}));
+  const Vehicle v = vehicle(0.7, 3.0, 5.0, 12.0);
+  const VelocityLimits first(v, winding, 1500), second(vehicle(0.6), blocked, 201),
+      third(v, short_one, 90);
+  const ProfileOptions rest{}, moving{2.0, 1.0};
+  TimeOptimalProfileSolver reused_solver;
+  TimeOptimalProfile reused;
+  reused_solver.solve(first, rest, reused);
+  expect_identical(reused, TimeOptimalProfileSolver().solve(first, rest));
+  EXPECT_EQ(reused.status, ProfileStatus::kOk);
+  EXPECT_FALSE(reused.switching_points.empty());
+  reused_solver.solve(second, rest, reused);
+  expect_identical(reused, TimeOptimalProfileSolver().solve(second, rest));
+  EXPECT_EQ(reused.status, ProfileStatus::kInfeasible);
+  reused_solver.solve(third, moving, reused);
+  expect_identical(reused, TimeOptimalProfileSolver().solve(third, moving));
+  EXPECT_EQ(reused.status, ProfileStatus::kOk);
+  EXPECT_EQ(reused.v.size(), 90u);
+}
+
+TEST(TrajectoryDefaults, SameRelativeErrorOnAOneMetreAndAFifteenKilometreGrid) {
+  // One grid of heights at 1 m cells and the same grid scaled by 15,000 in x, y and z (the Mars
+  // MOLA cell size), one path scaled with it, a vehicle limited by friction and tip-over only
+  // (no length or speed scale of its own besides the half-track, which is below both cells).
+  // The default spacing's relative error against a 16 times finer spacing must agree within a
+  // factor 2 (with an absolute spacing the 15 km copy would be 15,000 times finer and its error
+  // near zero).
+  const auto heights = [](double x, double y) {
+    return 1.2 * std::sin(0.35 * x) * std::cos(0.3 * y) + 0.4 * std::sin(0.9 * y + 0.5 * x);
+  };
+  Vehicle v = vehicle(0.7);
+  v.half_track = 0.6;
+  v.cg_height = 0.5;
+  std::vector<double> errors;
+  for (const double scale : {1.0, 15000.0}) {
+    const BPatch surface = BPatch::interpolate(grid_from_function(
+        [&](double x, double y) { return scale * heights(x / scale, y / scale); }, 0, 0, 64 * scale,
+        64 * scale, scale));
+    std::vector<Vec2> points;
+    for (const Vec2& p : {Vec2(8, 10), Vec2(25, 30), Vec2(40, 20), Vec2(56, 50)})
+      points.push_back(scale * p);
+    const Curve2 curve = Curve2::interpolate(points);
+    const double spacing = default_station_spacing(surface, v);
+    EXPECT_DOUBLE_EQ(spacing, 0.1 * scale);
+    TrajectoryOptions fine;
+    fine.station_spacing = spacing / 16.0;
+    const Trajectory coarse = evaluate_trajectory(surface, v, curve, {});
+    const Trajectory reference = evaluate_trajectory(surface, v, curve, fine);
+    ASSERT_TRUE(coarse.feasible()) << coarse.message;
+    ASSERT_TRUE(reference.feasible()) << reference.message;
+    EXPECT_EQ(coarse.limits->size(), station_count(coarse.length(), spacing));
+    errors.push_back(coarse.travel_time() / reference.travel_time() - 1.0);
+  }
+  ASSERT_GT(errors[0], 1e-5);  // the default spacing's error is measurable
+  EXPECT_LT(errors[1] / errors[0], 2.0) << errors[0] << " vs " << errors[1];
+  EXPECT_GT(errors[1] / errors[0], 0.5) << errors[0] << " vs " << errors[1];
 }
 
 }  // namespace

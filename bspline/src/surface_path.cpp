@@ -31,17 +31,67 @@ PathFrame lift_to_surface(const Vec2& position, const SurfacePoint& surface, con
 
 namespace {
 
+/// Parameters in (a, b) where the planar curve crosses a grid line of the
+/// surface (x = x_min + i h or y = y_min + j h), appended to `out`. The span
+/// is scanned at steps of at most h / 8 of planar length and each change of
+/// cell index is bracketed and solved (safeguarded regula falsi); a curve that
+/// dips across a line and back within one step is not seen, which only
+/// costs the arc-length table a few extra refinements there.
+void add_cell_crossings(const BPatch& surface, const Curve2& curve, double a, double b,
+                        double planar, std::vector<double>& out) {
+  const double h = surface.cellsize();
+  const int steps = std::max(8, static_cast<int>(std::ceil(8.0 * planar / h)));
+  const auto cell = [&](double value, double origin) {
+    return static_cast<long>(std::floor((value - origin) / h));
+  };
+  const auto solve = [&](int axis, double line, double lo, double hi) {
+    double g_lo = curve.evaluate(lo)[axis] - line, g_hi = curve.evaluate(hi)[axis] - line;
+    for (int iteration = 0; iteration < 100 && hi - lo > 1e-15 * (std::abs(lo) + std::abs(hi));
+         ++iteration) {
+      // Regula falsi, falling back to bisection when it does not shrink the bracket.
+      double mid = (g_hi != g_lo) ? lo - g_lo * (hi - lo) / (g_hi - g_lo) : 0.5 * (lo + hi);
+      if (!(mid > lo + 0.01 * (hi - lo) && mid < hi - 0.01 * (hi - lo))) mid = 0.5 * (lo + hi);
+      const double g = curve.evaluate(mid)[axis] - line;
+      if (g == 0.0) return mid;
+      if ((g < 0.0) == (g_lo < 0.0)) {
+        lo = mid;
+        g_lo = g;
+      } else {
+        hi = mid;
+        g_hi = g;
+      }
+    }
+    return 0.5 * (lo + hi);
+  };
+  const double origin[2] = {surface.x_min(), surface.y_min()};
+  double previous_sigma = a;
+  Vec2 previous = curve.evaluate(a);
+  for (int m = 1; m <= steps; ++m) {
+    const double sigma = (m == steps) ? b : a + (b - a) * m / steps;
+    const Vec2 p = curve.evaluate(sigma);
+    for (int axis = 0; axis < 2; ++axis) {
+      const long c0 = cell(previous[axis], origin[axis]), c1 = cell(p[axis], origin[axis]);
+      for (long line = std::min(c0, c1) + 1; line <= std::max(c0, c1); ++line)
+        out.push_back(
+            solve(axis, origin[axis] + h * static_cast<double>(line), previous_sigma, sigma));
+    }
+    previous_sigma = sigma;
+    previous = p;
+  }
+}
+
 ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
-  // Quadrature pieces end at the curve's knots and are at most half a terrain
-  // cell long: the speed |P'| is smooth inside a curve span only as long as
-  // the point stays inside one bicubic cell, and Gauss–Legendre loses its
-  // order across a cell edge (8 pieces per span left 3e-6 m errors at 1 m cells).
+  // Breakpoints where the speed |P'| is not analytic: the curve's knots and
+  // the surface's cell edges (the bicubic pieces meet with a jump in the
+  // third derivative). Between them the table's Chebyshev series converge
+  // geometrically and it refines each piece to about 1e-14 relative.
   std::vector<double> knots;
   for (double k : curve.knots().knots()) {
     if (k < curve.parameter_begin() || k > curve.parameter_end()) continue;
     if (knots.empty() || k > knots.back()) knots.push_back(k);
   }
   std::vector<double> breaks{knots.front()};
+  std::vector<double> crossings;
   for (std::size_t i = 1; i < knots.size(); ++i) {
     const double a = knots[i - 1], b = knots[i];
     double planar = 0.0;  // polyline length over the span, a cheap bound on its extent
@@ -51,8 +101,13 @@ ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
       planar += (p - previous).norm();
       previous = p;
     }
-    const int pieces = std::max(4, static_cast<int>(std::ceil(2.0 * planar / surface.cellsize())));
-    for (int m = 1; m < pieces; ++m) breaks.push_back(a + (b - a) * m / pieces);
+    crossings.clear();
+    add_cell_crossings(surface, curve, a, b, planar, crossings);
+    std::sort(crossings.begin(), crossings.end());
+    const double min_gap = 1e-9 * (b - a);
+    for (const double c : crossings) {
+      if (c - breaks.back() > min_gap && b - c > min_gap) breaks.push_back(c);
+    }
     breaks.push_back(b);
   }
   const auto speed = [&surface, &curve](double sigma) {
@@ -76,13 +131,6 @@ ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
 SurfacePath::SurfacePath(const BPatch& surface, Curve2 curve)
     : surface_(&surface), curve_(std::move(curve)), arc_length_(make_table(surface, curve_)) {}
 
-double SurfacePath::speed(double sigma) const {
-  Curve2::Derivatives d;
-  curve_.derivatives(sigma, 1, d);
-  const Vec2 d1 = d.col(1);
-  return std::hypot(d1.x(), d1.y(), surface_->evaluate(d.col(0)).gradient.dot(d1));
-}
-
 namespace {
 
 /// Frame at σ without its arc length.
@@ -98,13 +146,12 @@ PathFrame frame_without_arc_length(const BPatch& surface, const Curve2& curve, d
 
 PathFrame SurfacePath::frame_at_parameter(double sigma) const {
   PathFrame f = frame_without_arc_length(*surface_, curve_, sigma);
-  f.s = arc_length_.arc_length(sigma, speed_function());
+  f.s = arc_length_.arc_length(sigma);
   return f;
 }
 
 PathFrame SurfacePath::frame_at_arc_length(double s) const {
-  PathFrame f =
-      frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s, speed_function()));
+  PathFrame f = frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s));
   f.s = s;
   return f;
 }
@@ -115,21 +162,14 @@ void SurfacePath::sample_uniform_parameter(std::size_t stations,
   frames.resize(stations);
   const double begin = curve_.parameter_begin(), end = curve_.parameter_end();
   const double step = (end - begin) / static_cast<double>(stations - 1);
-  // Coarser than the arc-length table: the table's quadrature is the accurate choice.
-  const bool coarse = stations - 1 < arc_length_.pieces();
+  // s from the arc-length table's series: one Clenshaw sum per station, the
+  // piece found from the previous station's.
+  std::size_t piece = 0;
   for (std::size_t k = 0; k < stations; ++k) {
     const double sigma = (k + 1 == stations) ? end : begin + step * static_cast<double>(k);
     PathFrame& f = frames[k];
     f = frame_without_arc_length(*surface_, curve_, sigma);
-    if (k == 0) {
-      f.s = 0.0;
-    } else if (coarse || k + 1 == stations) {
-      f.s = arc_length_.arc_length(sigma, speed_function());
-    } else {
-      const PathFrame& prev = frames[k - 1];
-      f.s = prev.s + 0.5 * step * (prev.speed + f.speed) +
-            step * step / 12.0 * (prev.speed_rate - f.speed_rate);
-    }
+    f.s = (k == 0) ? 0.0 : arc_length_.arc_length(sigma, piece);
   }
 }
 
@@ -138,9 +178,12 @@ std::vector<PathFrame> SurfacePath::sample(std::size_t stations) const {
   std::vector<PathFrame> frames;
   frames.reserve(stations);
   const double total = length();
+  std::size_t piece = 0;  // the inverse map's bracket, carried from station to station
   for (std::size_t k = 0; k < stations; ++k) {
     const double s = (k + 1 == stations) ? total : total * static_cast<double>(k) / (stations - 1);
-    frames.push_back(frame_at_arc_length(s));
+    PathFrame f = frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s, piece));
+    f.s = s;
+    frames.push_back(f);
   }
   return frames;
 }

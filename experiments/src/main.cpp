@@ -428,11 +428,12 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "[{cost_seconds, length_m, vertices}], nodes, edges_evaluated, expanded, "
       "reachable_nodes, search_seconds, start_node, goal_node ([x, y] of the snapped lattice "
       "nodes), lattice_spacing, connectivity, ... --stage full also writes trajectory.csv "
-      "(s,x,y,z,v,a,t,v_max,binding of the best trajectory, profile recomputed every 0.1 m, as "
+      "(s,x,y,z,v,a,t,v_max,binding of the best trajectory, profile recomputed at "
+      "--station-spacing, as "
       "`talus profile`), optima.csv (candidate,s,x,y,v: every optimised candidate's profile, "
       "at most about 2000 rows each), plan.png and profile.png (gnuplot scripts and data "
       "beside them), and adds travel_time [s] (the best), global_travel_time (the best "
-      "candidate's initial B-spline fit, same 0.1 m stations), improvement_percent, optima "
+      "candidate's initial B-spline fit, same stations), improvement_percent, optima "
       "[{travel_time, initial_time, solver, solver_status, formulation, converged, phase, "
       "nlp_travel_time, iterations, evaluations, "
       "optimality (projected-gradient norm [s/m]), ...}] and seconds {fit, global, local, "
@@ -473,6 +474,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->capture_default_str();
   plan->add_option("--lattice-spacing", plan_request.lattice_spacing,
                    "lattice node spacing [m]; 0 = the terrain's cell size")
+      ->capture_default_str();
+  plan->add_option("--station-spacing", plan_request.station_spacing,
+                   "station spacing of the final profiles [m]; 0 = max(cell size, the vehicle's "
+                   "half_track) / 10 (0.1 m at 1 m cells for the rover, 1.5 km on 15 km cells)")
       ->capture_default_str();
   plan->add_option("--connectivity", plan_request.connectivity,
                    "neighbours per lattice node: 8, 16 or 32")

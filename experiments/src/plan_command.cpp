@@ -73,6 +73,12 @@ void check_plan_options(const PlanRequest& request) {
         "cell size), got " +
         format_number(request.lattice_spacing));
   }
+  if (!(std::isfinite(request.station_spacing) && request.station_spacing >= 0.0)) {
+    throw InputError(
+        "--station-spacing must be a finite number >= 0 [m] (0 = max(cell size, half-track) / "
+        "10), got " +
+        format_number(request.station_spacing));
+  }
   if (request.connectivity != 8 && request.connectivity != 16 && request.connectivity != 32) {
     throw InputError("--connectivity must be 8, 16 or 32, got " +
                      std::to_string(request.connectivity));
@@ -344,8 +350,10 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   summary["control_points"] = request.control_points;
   summary["start_speed"] = request.start_speed;
   summary["end_speed"] = request.end_speed;
-  summary["station_spacing"] = options.station_spacing;
-  summary["search_station_spacing"] = options.local.station_spacing;
+  summary["station_spacing"] =
+      resolve_station_spacing(options.station_spacing, *problem.surface, problem.vehicle);
+  summary["search_station_spacing"] =
+      search_station_spacing(options.local, *problem.surface, problem.vehicle);
   summary["max_evaluations"] = options.local.max_evaluations;
   summary["files"]["trajectory"] = out.final_path("trajectory.csv").string();
   summary["files"]["optima"] = out.final_path("optima.csv").string();
@@ -362,6 +370,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
 PlannerOptions planner_options(const PlanRequest& request) {
   PlannerOptions options;
   options.global.lattice_spacing = request.lattice_spacing;
+  options.station_spacing = request.station_spacing;
   options.global.connectivity = request.connectivity;
   options.global.candidates = static_cast<std::size_t>(request.candidates);
   options.global.cost_fields = true;  // fields.csv

@@ -34,7 +34,9 @@ struct PlanRequest {
   std::string output_dir;          ///< --out: created if needed
   long long candidates = 3;        ///< distinct candidates wanted (>= 1)
   double lattice_spacing = 0.0;    ///< [m]; 0 = the terrain's cell size
-  int connectivity = 16;           ///< 8, 16 or 32
+  /// Final profile's station spacing [m]; 0 = default_station_spacing(surface, vehicle).
+  double station_spacing = 0.0;
+  int connectivity = 16;  ///< 8, 16 or 32
   /// The global search's GlobalSearchOptions::resolution: "full" or "multi".
   std::string resolution = "full";
   /// PlannerOptions::time_limit [s] (> 0; +inf = none).

@@ -12,6 +12,7 @@
 #include "talus/bspline/curve_fit.hpp"
 #include "talus/core/error.hpp"
 #include "talus/optimal/path_time_objective.hpp"
+#include "talus/optimal/trajectory.hpp"
 
 namespace talus {
 namespace {
@@ -191,10 +192,17 @@ PathSolver parse_path_solver(std::string_view name) {
                    "': choose ipopt, nlopt-lbfgs or nlopt-bobyqa");
 }
 
+double search_station_spacing(const PathOptimizerOptions& options, const BPatch& terrain,
+                              const Vehicle& vehicle) {
+  return options.station_spacing > 0.0
+             ? options.station_spacing
+             : kSearchSpacingFactor * default_station_spacing(terrain, vehicle);
+}
+
 void PathOptimizerOptions::validate() const {
   if (control_points < 4) throw InputError("PathOptimizerOptions.control_points must be >= 4");
-  if (!(station_spacing > 0.0) || !std::isfinite(station_spacing)) {
-    throw InputError("PathOptimizerOptions.station_spacing must be positive");
+  if (!(station_spacing >= 0.0) || !std::isfinite(station_spacing)) {
+    throw InputError("PathOptimizerOptions.station_spacing must be >= 0 (0 = the default)");
   }
   if (max_control_points < control_points)
     throw InputError("PathOptimizerOptions.max_control_points must be >= control_points");
@@ -231,6 +239,7 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   std::size_t stations = 0;
   double initial_time = std::numeric_limits<double>::infinity();
   std::string failure;
+  const double search_spacing = search_station_spacing(options, terrain, vehicle);
   const bool simultaneous = options.formulation == PathFormulation::kSimultaneous;
   bool on_data = false;
   while (true) {
@@ -243,9 +252,8 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
     // multiple of the spacing.
     try {
       const double length = SurfacePath(terrain, *initial).length();
-      stations =
-          std::clamp<std::size_t>(static_cast<std::size_t>(length / options.station_spacing) + 1, 8,
-                                  options.max_search_stations);
+      stations = std::clamp<std::size_t>(static_cast<std::size_t>(length / search_spacing) + 1, 8,
+                                         options.max_search_stations);
       objective.emplace(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),
                         control_points, stations, options.speeds);
       initial_time = objective->evaluate(objective->variables(initial->control_points()));

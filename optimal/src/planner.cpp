@@ -146,8 +146,9 @@ std::string_view to_string(PlannerStatus status) {
 void PlannerOptions::validate() const {
   global.validate();
   local.validate();
-  if (!(std::isfinite(station_spacing) && station_spacing > 0.0)) {
-    throw InputError("PlannerOptions.station_spacing must be a positive finite number [m]");
+  if (!(std::isfinite(station_spacing) && station_spacing >= 0.0)) {
+    throw InputError(
+        "PlannerOptions.station_spacing must be a finite number >= 0 [m] (0 = the default)");
   }
   if (!(time_limit > 0.0)) {
     throw InputError("PlannerOptions.time_limit must be > 0 [s] (+inf = none)");
@@ -304,7 +305,8 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   }
   TrajectoryOptions evaluation;
   evaluation.speeds = local.speeds;
-  evaluation.station_spacing = options.station_spacing;
+  evaluation.station_spacing =
+      resolve_station_spacing(options.station_spacing, *problem.surface, problem.vehicle);
   TimeOptimalProfileSolver workspace;
   std::vector<std::size_t> cut_short;
   for (std::size_t c = 0; c < result.global.candidates.size(); ++c) {

@@ -99,7 +99,15 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
   if (n < 2) throw InputError("a velocity profile needs at least 2 stations");
   const AdmissibleSet& constants = limits.admissible_set();
 
-  out = TimeOptimalProfile{};
+  // Reset in place: a reused result keeps its vectors' storage (no allocation
+  // once it has held a profile this long).
+  out.status = ProfileStatus::kInfeasible;
+  out.message.clear();
+  out.travel_time = kInfinity;
+  out.switching_points.clear();
+  out.infeasible_station = 0;
+  out.infeasible_binding = Constraint::kNone;
+  out.merged_stations = 0;
   out.s.resize(n);
   out.v.assign(n, 0.0);
   out.a.assign(n, 0.0);
@@ -166,6 +174,9 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
   lower_.assign(m, 0.0);
   upper_.assign(m, 0.0);
   lower_[m - 1] = upper_[m - 1] = options.end_speed * options.end_speed;
+  constexpr std::size_t kNoStation = static_cast<std::size_t>(-1);
+  std::size_t stand_station = kNoStation;  // station whose can-stand answer is kept
+  bool stand_value = false;
   for (std::size_t jj = m - 1; jj-- > 0;) {
     const std::size_t i0 = kept_[jj], i1 = kept_[jj + 1];
     const Step step{constants, limits.geometry(i0), limits.geometry(i1), out.s[i1] - out.s[i0]};
@@ -175,44 +186,79 @@ void TimeOptimalProfileSolver::solve(const VelocityLimits& limits, const Profile
     const auto feasible = [&](double x) { return step.feasible(x, next_lo, next_hi); };
 
     // Upper end: the speed limit itself if it can reach K_{j+1}; otherwise the
-    // closed-form braking state from the top (or bottom) of K_{j+1}.
+    // closed-form braking state from the top (or bottom) of K_{j+1}. The
+    // braking state from the top is computed first because it decides most
+    // steps alone: when it lies below the speed limit and nothing above it is
+    // feasible it is the answer, and the speed limit need not be tried.
     double hi = -kInfinity;
-    if (std::isfinite(x_max) && feasible(x_max)) {
-      hi = x_max;
-    } else {
-      for (const double target : {next_hi, next_lo}) {
-        const ControlInterval u = step.backward(target, x_min, x_max);
-        if (u.empty() || !std::isfinite(u.lower)) continue;
-        double candidate = std::max(target - 2.0 * step.length * u.lower, x_min);
-        // The closed-form state sits on the boundary: nudge it inside if rounding put it out.
-        if (!feasible(candidate)) candidate = std::max(candidate * (1.0 - 1e-9) - 1e-12, x_min);
-        if (!feasible(candidate)) continue;
-        hi = candidate;
-        const double probe = candidate * (1.0 + 1e-9) + 1e-12;
-        if (probe < x_max && feasible(probe)) {
-          double top = std::isfinite(x_max) ? x_max : 2.0 * probe + 1.0;
-          while (!std::isfinite(x_max) && feasible(top)) top *= 2.0;
-          hi = bisect_boundary(probe, top, feasible);
-        }
-        break;
-      }
-      // Last resort: the feasible states form an interval; if its bottom is
-      // feasible, bisect up to its top.
-      if (hi == -kInfinity && feasible(x_min)) {
-        double top = std::isfinite(x_max) ? x_max : 2.0 * x_min + 1.0;
+    const auto braking_state = [&](double target, double& candidate) {
+      const ControlInterval u = step.backward(target, x_min, x_max);
+      if (u.empty() || !std::isfinite(u.lower)) return false;
+      candidate = std::max(target - 2.0 * step.length * u.lower, x_min);
+      return true;
+    };
+    // From a feasible closed-form candidate: the largest feasible state.
+    const auto settle_upper = [&](double candidate) {
+      const double probe = candidate * (1.0 + 1e-9) + 1e-12;
+      if (probe < x_max && feasible(probe)) {
+        if (std::isfinite(x_max) && feasible(x_max)) return x_max;
+        double top = std::isfinite(x_max) ? x_max : 2.0 * probe + 1.0;
         while (!std::isfinite(x_max) && feasible(top)) top *= 2.0;
-        hi = bisect_boundary(x_min, top, feasible);
+        return bisect_boundary(probe, top, feasible);
+      }
+      return candidate;
+    };
+    double top_candidate = kInfinity;
+    const bool from_top = braking_state(next_hi, top_candidate);
+    if (from_top && top_candidate < x_max * (1.0 - 1e-12)) {
+      double candidate = top_candidate;
+      // The closed-form state sits on the boundary: nudge it inside if rounding put it out.
+      if (!feasible(candidate)) candidate = std::max(candidate * (1.0 - 1e-9) - 1e-12, x_min);
+      if (feasible(candidate)) hi = settle_upper(candidate);
+    }
+    if (hi == -kInfinity) {
+      if (std::isfinite(x_max) && feasible(x_max)) {
+        hi = x_max;
+      } else {
+        for (const double target : {next_hi, next_lo}) {
+          double candidate = 0.0;
+          if (target == next_hi) {
+            if (!from_top) continue;
+            candidate = top_candidate;
+          } else if (!braking_state(target, candidate)) {
+            continue;
+          }
+          if (!feasible(candidate)) candidate = std::max(candidate * (1.0 - 1e-9) - 1e-12, x_min);
+          if (!feasible(candidate)) continue;
+          hi = settle_upper(candidate);
+          break;
+        }
+        // Last resort: the feasible states form an interval; if its bottom is
+        // feasible, bisect up to its top.
+        if (hi == -kInfinity && feasible(x_min)) {
+          double top = std::isfinite(x_max) ? x_max : 2.0 * x_min + 1.0;
+          while (!std::isfinite(x_max) && feasible(top)) top *= 2.0;
+          hi = bisect_boundary(x_min, top, feasible);
+        }
       }
     }
     // Lower end, symmetrically.
     double lo = kInfinity;
     // Common case first: standing still at both ends is admissible and K_{j+1}
     // reaches down to rest, so u = 0 from rest stays at rest (two cheap checks).
+    // (The answer at the later station is kept from the previous step.)
     const auto can_stand = [&](const StationGeometry& g) {
       const ControlInterval u = detail::known_state_controls(constants, g, 0.0);
       return u.lower <= 0.0 && u.upper >= 0.0;
     };
-    if (x_min == 0.0 && next_lo == 0.0 && can_stand(step.from) && can_stand(step.to)) {
+    bool standing = false;
+    if (x_min == 0.0 && next_lo == 0.0) {
+      const bool stand_to = (stand_station == i1) ? stand_value : can_stand(step.to);
+      standing = stand_to && can_stand(step.from);
+      stand_station = stand_to ? i0 : kNoStation;
+      stand_value = standing;
+    }
+    if (standing) {
       lo = 0.0;
     } else if (feasible(x_min)) {
       lo = x_min;

@@ -30,10 +30,20 @@ std::size_t station_count(double length, double spacing) {
   return std::max<std::size_t>(2, static_cast<std::size_t>(n));
 }
 
+double default_station_spacing(const BPatch& surface, const Vehicle& vehicle) {
+  const double b = std::isfinite(vehicle.half_track) ? std::max(vehicle.half_track, 0.0) : 0.0;
+  return std::max(surface.cellsize(), b) / kStationsPerFeature;
+}
+
+double resolve_station_spacing(double requested, const BPatch& surface, const Vehicle& vehicle) {
+  return requested > 0.0 ? requested : default_station_spacing(surface, vehicle);
+}
+
 void TrajectoryOptions::validate() const {
   speeds.validate();
-  if (!(std::isfinite(station_spacing) && station_spacing > 0.0)) {
-    throw InputError("TrajectoryOptions.station_spacing must be a positive finite number [m]");
+  if (!(std::isfinite(station_spacing) && station_spacing >= 0.0)) {
+    throw InputError(
+        "TrajectoryOptions.station_spacing must be a finite number >= 0 [m] (0 = the default)");
   }
 }
 
@@ -56,7 +66,9 @@ Trajectory evaluate_trajectory(const BPatch& surface, const Vehicle& vehicle, co
   try {
     auto path = std::make_shared<const SurfacePath>(surface, curve);
     trajectory.limits = std::make_shared<const VelocityLimits>(
-        vehicle, *path, station_count(path->length(), options.station_spacing));
+        vehicle, *path,
+        station_count(path->length(),
+                      resolve_station_spacing(options.station_spacing, surface, vehicle)));
     trajectory.path = std::move(path);
     // A start or end speed above the limit there is a property of this path
     // (the solver reports it as an InputError): the path is infeasible.

@@ -82,7 +82,9 @@ struct PathOptimizerOptions {
   /// (it starts from a fit without an admissible profile).
   bool adaptive_control_points = true;
   std::size_t max_control_points = 48;
-  double station_spacing = 0.5;  ///< profile stations during the search [m] (> 0)
+  /// Profile stations during the search [m] (>= 0); 0 = kSearchSpacingFactor
+  /// (5) times default_station_spacing(terrain, vehicle): 0.5 m at 1 m cells.
+  double station_spacing = 0.0;
   /// At most this many stations during the search (>= 8): long paths get a
   /// coarser search spacing; callers re-evaluate the result at their own.
   std::size_t max_search_stations = 3000;
@@ -127,6 +129,13 @@ struct PathOptimizerOptions {
 };
 
 /// A locally optimised path with the solver's diagnostics.
+/// The search's default spacing in units of default_station_spacing().
+inline constexpr double kSearchSpacingFactor = 5.0;
+/// `options.station_spacing` when > 0, else kSearchSpacingFactor ×
+/// default_station_spacing(terrain, vehicle) [m].
+double search_station_spacing(const PathOptimizerOptions& options, const BPatch& terrain,
+                              const Vehicle& vehicle);
+
 struct OptimizedPath {
   explicit OptimizedPath(Curve2 path) : curve(path), initial_curve(std::move(path)) {}
   Curve2 curve;                    ///< the best path found (never slower than the initial one)

@@ -93,8 +93,10 @@ struct PlannerOptions {
   /// false: stop after the global stage (no trajectories; status kOk when the
   /// goal is reachable).
   bool optimize = true;
-  /// Station spacing [m] of the final evaluation of every path (> 0).
-  double station_spacing = kDefaultStationSpacing;
+  /// Station spacing [m] of the final evaluation of every path (>= 0);
+  /// 0 = default_station_spacing(surface, vehicle) (trajectory.hpp), one
+  /// tenth of the larger of the cell size and the vehicle's half-track.
+  double station_spacing = 0.0;
   /// Called at each PlannerProgress; returning false stops the plan before
   /// its next step (status kStopped, what was done so far kept). A step is
   /// one candidate's optimisation, bounded by local.max_evaluations.

@@ -113,6 +113,9 @@ void bind_profile(py::module_& m) {
 
   m.def("station_count", &station_count, py::arg("length"),
         py::arg("spacing") = kDefaultStationSpacing);
+  m.def("default_station_spacing", &default_station_spacing, py::arg("surface"),
+        py::arg("vehicle"),
+        "max(cell size, vehicle half-track) / 10 [m]: the spacing a station_spacing of 0 selects");
 
   py::class_<TrajectoryOptions>(m, "TrajectoryOptions")
       .def(py::init([](double start_speed, double end_speed, double station_spacing) {
@@ -122,7 +125,7 @@ void bind_profile(py::module_& m) {
              return o;
            }),
            py::arg("start_speed") = 0.0, py::arg("end_speed") = 0.0,
-           py::arg("station_spacing") = kDefaultStationSpacing)
+           py::arg("station_spacing") = 0.0)
       .def_readwrite("speeds", &TrajectoryOptions::speeds)
       .def_readwrite("station_spacing", &TrajectoryOptions::station_spacing)
       .def("validate", &TrajectoryOptions::validate);

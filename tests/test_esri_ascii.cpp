@@ -92,8 +92,10 @@ TEST(EsriAscii, RejectsNonNumericAndNonFiniteValues) {
   expect_error_at_line(std::string(kHeader) + "1 2 3\n4 5.5.5 6\n", 8, "not a number");
   expect_error_at_line(std::string(kHeader) + "1 nan 3\n4 5 6\n", 7, "not finite");
   expect_error_at_line(std::string(kHeader) + "1 2 3\n4 5 inf\n", 8, "not finite");
-  expect_error_at_line(std::string(kHeader) + "1 2 3\n4 5 1e999\n", 8, "out of the range of a double");
-  expect_error_at_line(std::string(kHeader) + "1 2 3\n4 5 1e-400\n", 8, "out of the range of a double");
+  expect_error_at_line(std::string(kHeader) + "1 2 3\n4 5 1e999\n", 8,
+                       "out of the range of a double");
+  expect_error_at_line(std::string(kHeader) + "1 2 3\n4 5 1e-400\n", 8,
+                       "out of the range of a double");
   expect_error_at_line(std::string(kHeader) + "1 2 3\n4 5 abc\n", 8, "not a number");
 }
 

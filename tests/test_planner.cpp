@@ -57,8 +57,8 @@ TEST(Planner, FlatPlaneStraightRunMatchesTheAnalyticRestToRestTime) {
   // mu g and v by 10 m/s; accelerate at mu g, cruise, brake at mu g.
   const BPatch surface = surface_of([](double, double) { return 0.0; });
   const Vehicle v = point_mass_rover(0.7);
-  const PlannerResult result = plan(PlanningProblem(surface, v, {5, 20}, {55, 20}),
-                                    quick_options(1));
+  const PlannerResult result =
+      plan(PlanningProblem(surface, v, {5, 20}, {55, 20}), quick_options(1));
   ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
   const double a = 0.7 * v.gravity, ramp = v.max_speed * v.max_speed / a;
   const double analytic = 2.0 * v.max_speed / a + (50.0 - ramp) / v.max_speed;
@@ -89,10 +89,10 @@ TEST(Planner, AroundAHillTheBestIsTheFastestCandidateAndNoneIsSlowerThanItsFit) 
   EXPECT_EQ(result.best()->travel_time(),
             result.candidates[*result.best_candidate].trajectory.travel_time());
   EXPECT_LE(result.travel_time(), result.global_travel_time());
-  EXPECT_NEAR(result.improvement_percent(),
-              100.0 * (result.global_travel_time() - result.travel_time()) /
-                  result.global_travel_time(),
-              1e-12);
+  EXPECT_NEAR(
+      result.improvement_percent(),
+      100.0 * (result.global_travel_time() - result.travel_time()) / result.global_travel_time(),
+      1e-12);
   // Slower than the straight run: the hill is out of reach at mu = 0.4.
   EXPECT_GT(result.travel_time(), 50.0 / 10.0);
 

@@ -46,7 +46,9 @@ void write_manifest(const fs::path& dir, const std::vector<std::string>& names) 
   fs::rename(temporary, dir / kManifestName);
 }
 
-extern "C" void exit_on_signal(int signal_number) { ::_exit(128 + signal_number); }
+extern "C" void exit_on_signal(int signal_number) {
+  ::_exit(128 + signal_number);
+}
 
 }  // namespace
 

@@ -113,8 +113,7 @@ void bind_profile(py::module_& m) {
 
   m.def("station_count", &station_count, py::arg("length"),
         py::arg("spacing") = kDefaultStationSpacing);
-  m.def("default_station_spacing", &default_station_spacing, py::arg("surface"),
-        py::arg("vehicle"),
+  m.def("default_station_spacing", &default_station_spacing, py::arg("surface"), py::arg("vehicle"),
         "max(cell size, vehicle half-track) / 10 [m]: the spacing a station_spacing of 0 selects");
 
   py::class_<TrajectoryOptions>(m, "TrajectoryOptions")

@@ -33,10 +33,13 @@ std::size_t iterations() {
 
 /// Tokens that readers treat specially, spliced in by the mutator.
 const std::vector<std::string> kDictionary = {
-    "ncols",  "nrows", "xllcorner", "yllcenter", "cellsize", "NODATA_value", "-9999", "nan",
-    "inf",    "-inf",  "1e308",     "1e-400",    "0",        "-1",           "99999999999",
-    "\xEF\xBB\xBF", ",", "\n", "x,y", ":", "---", "{", "[", "&a", "*a", "friction", "model",
-    "point_mass", "\"", "'", "\t", "\r\n", "\x00", "\xff"};
+    "ncols",        "nrows",  "xllcorner",  "yllcenter", "cellsize",
+    "NODATA_value", "-9999",  "nan",        "inf",       "-inf",
+    "1e308",        "1e-400", "0",          "-1",        "99999999999",
+    "\xEF\xBB\xBF", ",",      "\n",         "x,y",       ":",
+    "---",          "{",      "[",          "&a",        "*a",
+    "friction",     "model",  "point_mass", "\"",        "'",
+    "\t",           "\r\n",   "\x00",       "\xff"};
 
 /// One random edit: flip, insert, delete, duplicate a span, or splice a token.
 std::string mutate(std::string text, std::mt19937_64& rng) {
@@ -93,14 +96,15 @@ std::size_t fuzz(const std::vector<std::string>& seeds,
       slowest_input = input;
     }
   }
-  std::printf("%zu of %zu mutants accepted; slowest %.3f s: %s\n", accepted, iterations(),
-              slowest, printable(slowest_input, 120).c_str());
+  std::printf("%zu of %zu mutants accepted; slowest %.3f s: %s\n", accepted, iterations(), slowest,
+              printable(slowest_input, 120).c_str());
   return accepted;
 }
 
 TEST(FuzzReaders, EsriAsciiAcceptsOrRefusesWithInputError) {
   const std::vector<std::string> seeds = {
-      "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n1 2 3\n4 -9999 6\n",
+      "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n1 2 3\n4 -9999 "
+      "6\n",
       "NCOLS 2\nNROWS 2\nXLLCENTER 5.5\nYLLCENTER -3\nCELLSIZE 0.25\n1.5e2 2\n3 4\n"};
   const std::size_t accepted = fuzz(
       seeds,
@@ -114,7 +118,8 @@ TEST(FuzzReaders, EsriAsciiAcceptsOrRefusesWithInputError) {
 }
 
 TEST(FuzzReaders, PathCsvAcceptsOrRefusesWithInputError) {
-  const std::vector<std::string> seeds = {"x,y\n0,0\n10.5,2\n20,-3e1\n", "x,y\r\n1,2\r\n3,4\r\n\r\n"};
+  const std::vector<std::string> seeds = {"x,y\n0,0\n10.5,2\n20,-3e1\n",
+                                          "x,y\r\n1,2\r\n3,4\r\n\r\n"};
   const std::size_t accepted = fuzz(
       seeds,
       [](const std::string& text) {

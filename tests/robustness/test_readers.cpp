@@ -57,8 +57,7 @@ TEST(RobustReaders, RefuseWhatIsNotARegularFile) {
   const std::string fifo = scratch("fifo");
   std::filesystem::remove(fifo);
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_NE(error_of([&] { read_esri_ascii(fifo); }).find("not a regular file"),
-            std::string::npos);
+  EXPECT_NE(error_of([&] { read_esri_ascii(fifo); }).find("not a regular file"), std::string::npos);
   EXPECT_NE(error_of([] { read_esri_ascii("/no/such/file.asc"); }).find("cannot open"),
             std::string::npos);
 }
@@ -76,25 +75,25 @@ TEST(RobustReaders, RefuseFilesAndStreamsAboveTheirLimit) {
 TEST(RobustReaders, AHeaderClaimingMoreThanTheFileHoldsAllocatesNothing) {
   // 100 bytes claiming 4e8 nodes: refused from the value count, before the
   // 3.5 GB grid (the suite's address-space cap would turn that into bad_alloc).
-  const std::string path =
-      write("claims.asc", "ncols 20000\nnrows 20000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n");
+  const std::string path = write(
+      "claims.asc", "ncols 20000\nnrows 20000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n");
   const std::string what = error_of([&] { read_esri_ascii(path); });
   EXPECT_NE(what.find("file ends after 3 values"), std::string::npos) << what;
-  EXPECT_NE(error_of([] {
-              ElevationGrid(1'000'000, 1'000'000, 1.0, 0.0, 0.0);
-            }).find("memory budget"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([] { ElevationGrid(1'000'000, 1'000'000, 1.0, 0.0, 0.0); }).find("memory budget"),
+      std::string::npos);
 }
 
 TEST(RobustReaders, MisleadingHeadersGetMessagesThatSayWhatIsWrong) {
   const std::string tail = "xllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n";
   EXPECT_EQ(read_esri_ascii(write("bom.asc", "\xEF\xBB\xBFncols 2\nnrows 2\n" + tail)).ncols(), 2u);
-  EXPECT_NE(error_of([&] { read_esri_ascii(write("n44.asc", "ncols 2 2\nnrows 2\n" + tail)); })
-                .find("'ncols' has more than one value"),
+  EXPECT_NE(error_of([&] {
+              read_esri_ascii(write("n44.asc", "ncols 2 2\nnrows 2\n" + tail));
+            }).find("'ncols' has more than one value"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { read_esri_ascii(write("inf.asc", "inf 2\n")); })
-                .find("the header is missing"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { read_esri_ascii(write("inf.asc", "inf 2\n")); }).find("the header is missing"),
+      std::string::npos);
   // An escape sequence in a key is shown escaped, never sent to the terminal.
   const std::string what =
       error_of([&] { read_esri_ascii(write("esc.asc", "n\x1b[2Jcols 2\n" + tail)); });

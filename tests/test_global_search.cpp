@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 
+#include "global_search_test_support.hpp"
 #include "talus/core/error.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "terrain_test_support.hpp"
@@ -11,6 +12,8 @@
 namespace talus {
 namespace {
 
+using global_search_test::bumps;
+using global_search_test::hill;
 using terrain_test::grid_from_function;
 
 using vehicle_test::point_mass_rover;
@@ -72,16 +75,6 @@ TEST(GlobalSearch, DiagonalOnFlatTerrainUsesKnightMovesWith16Neighbours) {
   options.connectivity = 8;
   const GlobalSearchResult r8 = global_search(flat, point_mass_rover(), {5, 5}, {45, 25}, options);
   EXPECT_GT(r8.candidates[0].cost_seconds, r.candidates[0].cost_seconds * 1.01);
-}
-
-/// A Gaussian hill between start and goal.
-BPatch hill(double height, double sigma) {
-  return BPatch::interpolate(grid_from_function(
-      [&](double x, double y) {
-        return height *
-               std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * sigma * sigma));
-      },
-      0, 0, 80, 60, 1.0));
 }
 
 TEST(GlobalSearch, HighFrictionCrossesTheHillLowFrictionGoesAround) {
@@ -310,21 +303,6 @@ TEST(GlobalSearch, FinerLatticeKeepsTheStraightLineCost) {
   const GlobalSearchResult r = global_search(flat, point_mass_rover(), {6, 5}, {46, 25}, options);
   EXPECT_NEAR(r.candidates[0].cost_seconds, std::hypot(40.0, 20.0) / 10.0,
               1e-12 * std::hypot(40.0, 20.0) / 10.0);
-}
-
-/// Bumpy terrain with many near-equal routes, for the candidate options.
-BPatch bumps() {
-  return BPatch::interpolate(grid_from_function(
-      [](double x, double y) {
-        double z = 0.0;
-        for (int i = 0; i < 4; ++i)
-          for (int j = 0; j < 3; ++j) {
-            const double cx = 18.0 + 14.0 * i + 3.0 * (j % 2), cy = 12.0 + 16.0 * j;
-            z += 6.0 * std::exp(-((x - cx) * (x - cx) + (y - cy) * (y - cy)) / 18.0);
-          }
-        return z;
-      },
-      0, 0, 80, 60, 1.0));
 }
 
 /// Euclidean distance from p to the nearest vertex of c.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "global_search_test_support.hpp"
 #include "talus/core/error.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "terrain_test_support.hpp"
@@ -15,6 +16,8 @@
 namespace talus {
 namespace {
 
+using global_search_test::bumps;
+using global_search_test::hill;
 using terrain_test::grid_from_function;
 using vehicle_test::point_mass_rover;
 
@@ -30,29 +33,6 @@ struct Case {
 BPatch flat(double z, double w, double h) {
   return BPatch::interpolate(
       grid_from_function([z](double, double) { return z; }, 0, 0, w, h, 1.0));
-}
-
-BPatch hill(double height, double sigma) {
-  return BPatch::interpolate(grid_from_function(
-      [&](double x, double y) {
-        return height *
-               std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * sigma * sigma));
-      },
-      0, 0, 80, 60, 1.0));
-}
-
-BPatch bumps() {
-  return BPatch::interpolate(grid_from_function(
-      [](double x, double y) {
-        double z = 0.0;
-        for (int i = 0; i < 4; ++i)
-          for (int j = 0; j < 3; ++j) {
-            const double cx = 18.0 + 14.0 * i + 3.0 * (j % 2), cy = 12.0 + 16.0 * j;
-            z += 6.0 * std::exp(-((x - cx) * (x - cx) + (y - cy) * (y - cy)) / 18.0);
-          }
-        return z;
-      },
-      0, 0, 80, 60, 1.0));
 }
 
 GlobalSearchOptions with(std::size_t candidates, int connectivity = 16, double lattice = 0.0,

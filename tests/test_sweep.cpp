@@ -203,9 +203,11 @@ std::string plane_config() {
                           "  candidates: 1\n  no_figures: true\n");
 }
 
-/// Starts `talus ARGS` in its own process group; returns its pid.
-pid_t start_talus(const std::string& args) {
-  const std::string command = std::string("exec '") + TALUS_CLI + "' " + args + " >/dev/null 2>&1";
+/// Starts `talus ARGS` (after `launcher`, e.g. mpirun, if given) in its own
+/// process group, output discarded; returns its pid.
+pid_t start_talus(const std::string& args, const std::string& launcher = "") {
+  const std::string command =
+      "exec " + launcher + "'" + std::string(TALUS_CLI) + "' " + args + " >/dev/null 2>&1";
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
@@ -291,16 +293,8 @@ void kill_and_resume(const std::string& launcher, const std::string& name) {
           .exit_code,
       0);
 
-  const std::string talus = std::string("'") + TALUS_CLI + "'";
-  const std::string command = "exec " + launcher + talus + " sweep " + quoted(config) + " --out " +
-                              quoted(dir.string()) + " --jobs 2 >/dev/null 2>&1";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    setpgid(0, 0);
-    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  setpgid(pid, pid);
+  const pid_t pid = start_talus(
+      "sweep " + quoted(config) + " --out " + quoted(dir.string()) + " --jobs 2", launcher);
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (records_in(dir) < 2 && std::chrono::steady_clock::now() < give_up) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));

@@ -1,0 +1,39 @@
+// The terrains of the global-search tests (test_global_search.cpp) that the
+// multi-resolution tests (test_global_search_multi.cpp) rerun, in one place.
+#pragma once
+
+#include <cmath>
+
+#include "talus/bspline/bpatch.hpp"
+#include "terrain_test_support.hpp"
+
+namespace talus::global_search_test {
+
+/// A Gaussian hill of `height` and standard deviation `sigma` [m] at (40, 30)
+/// on an 80 m x 60 m grid of 1 m cells: between the tests' start and goal.
+inline BPatch hill(double height, double sigma) {
+  return BPatch::interpolate(terrain_test::grid_from_function(
+      [&](double x, double y) {
+        return height *
+               std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * sigma * sigma));
+      },
+      0, 0, 80, 60, 1.0));
+}
+
+/// Twelve 6 m bumps on the same grid: many near-equal routes, for the
+/// candidate options.
+inline BPatch bumps() {
+  return BPatch::interpolate(terrain_test::grid_from_function(
+      [](double x, double y) {
+        double z = 0.0;
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const double cx = 18.0 + 14.0 * i + 3.0 * (j % 2), cy = 12.0 + 16.0 * j;
+            z += 6.0 * std::exp(-((x - cx) * (x - cx) + (y - cy) * (y - cy)) / 18.0);
+          }
+        return z;
+      },
+      0, 0, 80, 60, 1.0));
+}
+
+}  // namespace talus::global_search_test

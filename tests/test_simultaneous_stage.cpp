@@ -122,10 +122,15 @@ TEST(SimultaneousStage, StartsFromAnInfeasibleFitAndEndsFeasible) {
   PathOptimizerOptions nested;
   nested.adaptive_control_points = false;
   EXPECT_THROW(optimize_path(terrain, v, over, nested), InputError);
-  const OptimizedPath best = optimize_path(terrain, v, over, simultaneous_options());
+  // Feasibility is the claim here, not convergence (which the smooth hill
+  // tests): how many iterations Ipopt needs after restoration differs with
+  // the BLAS kernels of the CPU (it converges on some machines and stops at
+  // 600 iterations on others), so the budget is capped.
+  PathOptimizerOptions options = simultaneous_options();
+  options.simultaneous_max_iterations = 150;
+  const OptimizedPath best = optimize_path(terrain, v, over, options);
   EXPECT_FALSE(std::isfinite(best.initial_time));
-  ASSERT_TRUE(std::isfinite(best.travel_time));
-  EXPECT_TRUE(converged_by_ipopt(best)) << best.solver_status;
+  ASSERT_TRUE(std::isfinite(best.travel_time)) << best.solver_status;
   // Re-evaluated from scratch at the plan's spacing, and checked by
   // verify_profile against its own admissible sets.
   const Trajectory initial = evaluate_trajectory(terrain, v, best.initial_curve, {});

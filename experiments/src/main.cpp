@@ -510,6 +510,13 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
   plan->add_option("--time-limit", plan_request.time_limit,
                    "wall-clock budget of the plan [s] (> 0; default none): returns the best "
                    "feasible trajectory so far with status time_limit");
+  plan->add_option("--feedback-rounds", plan_request.feedback_rounds,
+                   "--stage full: how many times the global search may be re-run with the "
+                   "stretches excluded where a candidate's initial fit has no admissible profile "
+                   "(a disc of two lattice spacings round the failing station; 0 = off); "
+                   "summary: feedback_rounds, excluded_regions, optima[].followable")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
   plan->add_option("--v0", plan_request.start_speed, "speed at the start [m/s], >= 0, --stage full")
       ->capture_default_str();
   plan->add_option("--v1", plan_request.end_speed, "speed at the goal [m/s], >= 0, --stage full")

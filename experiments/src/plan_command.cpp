@@ -218,6 +218,7 @@ nlohmann::json optimum_json(const CandidateOutcome& c, const std::string& solver
   entry["travel_time_search_spacing"] = finite_or_null(o ? o->travel_time : kNaN);
   entry["initial_time_search_spacing"] = finite_or_null(o ? o->initial_time : kNaN);
   entry["kept_initial"] = c.kept_initial;
+  entry["followable"] = c.followable;
   entry["solver"] = solver;
   entry["solver_status"] = o ? nlohmann::json(o->solver_status) : nlohmann::json(nullptr);
   entry["solver_failed"] = o ? o->solver_failed : false;
@@ -317,6 +318,13 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
     summary["message"] = result.message;
   }
   summary["not_optimised"] = result.not_optimised;
+  summary["feedback_rounds"] = result.feedback_rounds;
+  nlohmann::json excluded = nlohmann::json::array();
+  for (const ExcludedRegion& region : result.excluded) {
+    excluded.push_back(
+        {{"x", region.centre.x()}, {"y", region.centre.y()}, {"radius", region.radius}});
+  }
+  summary["excluded_regions"] = std::move(excluded);
   summary["travel_time"] = finite_or_null(best ? best->travel_time() : NAN);
   summary["global_travel_time"] = finite_or_null(result.global_travel_time());
   summary["improvement_percent"] = finite_or_null(result.improvement_percent());
@@ -376,6 +384,7 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.global.cost_fields = true;  // fields.csv
   options.global.resolution = parse_global_search_resolution(request.resolution);
   options.time_limit = request.time_limit;
+  options.feedback_rounds = static_cast<std::size_t>(request.feedback_rounds);
   options.optimize = request.stage == kPlanStageFull;
   options.local.solver = parse_path_solver(request.solver);
   options.local.formulation = parse_path_formulation(request.formulation);

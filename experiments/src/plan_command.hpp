@@ -41,6 +41,8 @@ struct PlanRequest {
   std::string resolution = "full";
   /// PlannerOptions::time_limit [s] (> 0; +inf = none).
   double time_limit = std::numeric_limits<double>::infinity();
+  /// PlannerOptions::feedback_rounds (>= 0).
+  int feedback_rounds = 8;
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
   // The local stage (--stage full only).

@@ -199,6 +199,28 @@ class Lattice {
     return true;
   }
 
+  /// Marks every node within `regions` as off the data (so every edge at it
+  /// is untraversable), except the nodes `keep_a` and `keep_b`.
+  void exclude(const std::vector<ExcludedRegion>& regions, std::uint32_t keep_a,
+               std::uint32_t keep_b) {
+    for (const ExcludedRegion& region : regions) {
+      const Vec2 lo =
+          (region.centre - origin_) / spacing_ - Vec2::Constant(region.radius / spacing_);
+      const Vec2 hi =
+          (region.centre - origin_) / spacing_ + Vec2::Constant(region.radius / spacing_);
+      for (long j = std::max(0L, static_cast<long>(std::ceil(lo.y())));
+           j <= std::min(static_cast<long>(ny_) - 1, static_cast<long>(std::floor(hi.y()))); ++j) {
+        for (long i = std::max(0L, static_cast<long>(std::ceil(lo.x())));
+             i <= std::min(static_cast<long>(nx_) - 1, static_cast<long>(std::floor(hi.x())));
+             ++i) {
+          const std::uint32_t n = node_at(i, j);
+          if (n == kNoNode || n == keep_a || n == keep_b) continue;
+          if ((position(n) - region.centre).norm() <= region.radius) on_data_[n] = 0;
+        }
+      }
+    }
+  }
+
   std::size_t size() const { return size_; }
   std::size_t nx() const { return nx_; }
   std::size_t ny() const { return ny_; }
@@ -380,6 +402,13 @@ std::vector<float> chamfer_distance(const std::vector<std::uint32_t>& sources,
 }  // namespace
 
 void GlobalSearchOptions::validate() const {
+  for (const ExcludedRegion& region : excluded) {
+    if (!(region.centre.allFinite() && std::isfinite(region.radius) && region.radius > 0.0)) {
+      throw InputError(
+          "GlobalSearchOptions.excluded: every region needs a finite centre and a finite radius "
+          "> 0 [m]");
+    }
+  }
   if (!(lattice_spacing >= 0.0) || !std::isfinite(lattice_spacing)) {
     throw InputError("GlobalSearchOptions.lattice_spacing must be >= 0 (0 = cell size), got " +
                      std::to_string(lattice_spacing));
@@ -491,6 +520,7 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
   result.start_node = lattice.position(s);
   result.goal_node = lattice.position(g);
   if (!lattice.sample(stop, options.stop_interval)) return stopped("sampling the surface");
+  lattice.exclude(options.excluded, s, g);
   for (const auto& [which, node] : {std::pair{"start", s}, std::pair{"goal", g}}) {
     bool any = false;
     for (std::size_t k = 0; k < lattice.offsets() && !any; ++k) {

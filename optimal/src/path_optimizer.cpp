@@ -224,55 +224,89 @@ void PathOptimizerOptions::validate() const {
   speeds.validate();
 }
 
+std::size_t control_point_limit(const PathOptimizerOptions& options, std::size_t vertices) {
+  return std::max(options.max_control_points, std::min(vertices / 2, kMaxCorridorControlPoints));
+}
+
+InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
+                             const std::vector<Vec2>& polyline, const PathOptimizerOptions& options,
+                             bool stop_on_data) {
+  options.validate();
+  if (polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
+  const double search_spacing = search_station_spacing(options, terrain, vehicle);
+  const std::size_t limit = control_point_limit(options, polyline.size());
+  std::size_t control_points = options.control_points;
+  while (true) {
+    InitialPath out;
+    out.control_points = control_points;
+    out.curve.emplace(fit_clamped_cubic(
+        resample_polyline(polyline, std::max<std::size_t>(10 * control_points, polyline.size())),
+        control_points));
+    // The station count is fixed for the whole search, from the initial
+    // path's length: the objective must not jump when the length crosses a
+    // multiple of the spacing.
+    try {
+      const double length = SurfacePath(terrain, *out.curve).length();
+      out.stations = std::clamp<std::size_t>(static_cast<std::size_t>(length / search_spacing) + 1,
+                                             8, options.max_search_stations);
+      PathTimeObjective objective(terrain, vehicle, polyline.front(), polyline.back(),
+                                  control_points, out.stations, options.speeds);
+      out.travel_time = objective.evaluate(objective.variables(out.curve->control_points()));
+      out.failure = objective.profile().message;
+      out.on_data = stays_on_data(terrain, *out.curve, out.stations);
+      if (!out.admissible()) {
+        std::size_t k = std::min(objective.profile().infeasible_station, out.stations - 1);
+        // A start or end speed the path cannot connect to (reported at its
+        // end) is caused where the vehicle must keep its speed up: the
+        // station of the largest lower speed bound.
+        const VelocityLimits& limits = objective.limits();
+        if ((k == 0 || k + 1 == out.stations) && limits.size() == out.stations) {
+          double largest = 0.0;
+          for (std::size_t j = 0; j < limits.size(); ++j) {
+            if (limits.limits(j).v_min > largest) {
+              largest = limits.limits(j).v_min;
+              k = j;
+            }
+          }
+        }
+        out.failure_point =
+            out.curve->evaluate(static_cast<double>(k) / static_cast<double>(out.stations - 1));
+      }
+    } catch (const InputError& e) {
+      out.travel_time = std::numeric_limits<double>::infinity();
+      out.failure = e.what();
+    }
+    if (out.admissible() || (stop_on_data && out.on_data)) return out;
+    if (!options.adaptive_control_points || control_points >= limit) return out;
+    control_points = std::min(limit, control_points + control_points / 2);
+  }
+}
+
 OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                             const std::vector<Vec2>& initial_polyline,
                             const PathOptimizerOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   if (initial_polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
-  // The initial path: a least-squares fit to the candidate. A winding
-  // candidate can need more control points than asked for before its fit
-  // stays on traversable ground; grow M by half until it does.
-  std::size_t control_points = options.control_points;
-  std::optional<Curve2> initial;
-  std::optional<PathTimeObjective> objective;
-  std::size_t stations = 0;
-  double initial_time = std::numeric_limits<double>::infinity();
-  std::string failure;
-  const double search_spacing = search_station_spacing(options, terrain, vehicle);
+  // The initial path: a least-squares fit to the candidate, grown while a
+  // winding candidate needs more control points (fit_initial_path).
   const bool simultaneous = options.formulation == PathFormulation::kSimultaneous;
-  bool on_data = false;
-  while (true) {
-    initial.emplace(fit_clamped_cubic(
-        resample_polyline(initial_polyline,
-                          std::max<std::size_t>(10 * control_points, initial_polyline.size())),
-        control_points));
-    // The station count is fixed for the whole search, from the initial
-    // path's length: the objective must not jump when the length crosses a
-    // multiple of the spacing.
-    try {
-      const double length = SurfacePath(terrain, *initial).length();
-      stations = std::clamp<std::size_t>(static_cast<std::size_t>(length / search_spacing) + 1, 8,
-                                         options.max_search_stations);
-      objective.emplace(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),
-                        control_points, stations, options.speeds);
-      initial_time = objective->evaluate(objective->variables(initial->control_points()));
-      failure = objective->profile().message;
-      on_data = stays_on_data(terrain, *initial, stations);
-    } catch (const InputError& e) {
-      failure = e.what();
-    }
-    if (std::isfinite(initial_time)) break;
-    // The simultaneous NLP starts from an infeasible profile (restoration).
-    if (simultaneous && on_data) break;
-    if (!options.adaptive_control_points || control_points >= options.max_control_points) {
-      throw InputError("the initial path (" + std::to_string(control_points) +
-                       " control points) leaves the map or the measured data or has no "
-                       "admissible profile" +
-                       (failure.empty() ? std::string() : ": " + failure));
-    }
-    control_points = std::min(options.max_control_points, control_points + control_points / 2);
+  const InitialPath fit =
+      fit_initial_path(terrain, vehicle, initial_polyline, options, simultaneous);
+  // The simultaneous NLP starts from an infeasible profile (restoration).
+  if (!(fit.admissible() || (simultaneous && fit.on_data))) {
+    throw InputError("the initial path (" + std::to_string(fit.control_points) +
+                     " control points) leaves the map or the measured data or has no "
+                     "admissible profile" +
+                     (fit.failure.empty() ? std::string() : ": " + fit.failure));
   }
+  const std::size_t control_points = fit.control_points;
+  const std::size_t stations = fit.stations;
+  const std::optional<Curve2>& initial = fit.curve;
+  std::optional<PathTimeObjective> objective;
+  objective.emplace(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),
+                    control_points, stations, options.speeds);
+  double initial_time = objective->evaluate(objective->variables(initial->control_points()));
 
   detail::BoxProblem problem;
   problem.start = objective->variables(initial->control_points());

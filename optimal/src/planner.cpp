@@ -34,6 +34,32 @@ Curve2 initial_fit(const std::vector<Vec2>& polyline, std::size_t control_points
       control_points);
 }
 
+/// Candidate `c` from the exact start to the exact goal (both snap to the
+/// same node when they share a lattice cell: then the straight segment).
+std::vector<Vec2> candidate_polyline(const PlanningProblem& problem,
+                                     const GlobalSearchResult& global, std::size_t c) {
+  std::vector<Vec2> polyline = global.candidates[c].vertices;
+  if (polyline.size() < 2) polyline = {problem.start, problem.goal};
+  polyline.front() = problem.start;
+  polyline.back() = problem.goal;
+  return polyline;
+}
+
+/// The followability check of the file comment for one candidate: the
+/// optimiser's own initial path (fit_initial_path: grown while needed) has
+/// an admissible profile at the search's stations; if not, where it fails
+/// (absent when the fit leaves the data).
+struct Followability {
+  bool followable = false;
+  std::optional<Vec2> failure;
+};
+
+Followability check_followable(const PlanningProblem& problem, const PathOptimizerOptions& local,
+                               const std::vector<Vec2>& polyline) {
+  const InitialPath fit = fit_initial_path(*problem.surface, problem.vehicle, polyline, local);
+  return {fit.admissible(), fit.failure_point};
+}
+
 /// Optimises candidate `c` and evaluates the optimum and its initial fit.
 CandidateOutcome optimise_candidate(const PlanningProblem& problem,
                                     const PathOptimizerOptions& local,
@@ -43,12 +69,7 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
   const auto started = Clock::now();
   CandidateOutcome outcome;
   outcome.candidate = c;
-  // The candidate from the exact start to the exact goal (both snap to the
-  // same node when they share a lattice cell: then the straight segment).
-  std::vector<Vec2> polyline = global.candidates[c].vertices;
-  if (polyline.size() < 2) polyline = {problem.start, problem.goal};
-  polyline.front() = problem.start;
-  polyline.back() = problem.goal;
+  const std::vector<Vec2> polyline = candidate_polyline(problem, global, c);
   try {
     outcome.optimization.emplace(optimize_path(*problem.surface, problem.vehicle, polyline, local));
   } catch (const InputError& error) {
@@ -153,6 +174,11 @@ void PlannerOptions::validate() const {
   if (!(time_limit > 0.0)) {
     throw InputError("PlannerOptions.time_limit must be > 0 [s] (+inf = none)");
   }
+  if (!(std::isfinite(feedback_radius) && feedback_radius >= 0.0)) {
+    throw InputError(
+        "PlannerOptions.feedback_radius must be a finite number >= 0 [m] (0 = two lattice "
+        "spacings)");
+  }
 }
 
 const Trajectory* PlannerResult::best() const {
@@ -192,6 +218,11 @@ std::string PlannerResult::brief_report() const {
   }
   report << "  global search: " << global.candidates.size() << " candidates, " << global.nodes
          << " nodes, " << global.edges_evaluated << " edges\n";
+  if (feedback_rounds > 0) {
+    report << "  feedback: " << feedback_rounds << " global search"
+           << (feedback_rounds == 1 ? "" : "es") << " re-run, " << excluded.size() << " region"
+           << (excluded.size() == 1 ? "" : "s") << " excluded\n";
+  }
   for (const CandidateOutcome& c : candidates) {
     report << "  candidate " << c.candidate << ": ";
     if (c.feasible()) {
@@ -231,6 +262,106 @@ std::string list_text(const std::vector<std::size_t>& items) {
     text << items[k];
   }
   return text.str();
+}
+
+/// The followability of every candidate of `global`.
+std::vector<bool> check_candidates(const PlanningProblem& problem,
+                                   const PathOptimizerOptions& local,
+                                   const GlobalSearchResult& global,
+                                   std::vector<std::optional<Vec2>>* failures) {
+  std::vector<bool> followable;
+  failures->clear();
+  for (std::size_t c = 0; c < global.candidates.size(); ++c) {
+    const Followability f =
+        check_followable(problem, local, candidate_polyline(problem, global, c));
+    followable.push_back(f.followable);
+    failures->push_back(f.failure);
+  }
+  return followable;
+}
+
+/// The feedback loop of the file comment, from the first global search in
+/// result.global: re-runs the search with the failing stretches excluded
+/// while some candidate is not followable and the budget lasts, keeps the
+/// round with the most followable candidates in result.global (its
+/// exclusions in result.excluded) and returns their followability.
+std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerOptions& options,
+                                  const PathOptimizerOptions& local, GlobalSearchOptions global,
+                                  PlannerResult& result) {
+  const double spacing =
+      result.global.spacing > 0.0 ? result.global.spacing : problem.surface->cellsize();
+  const double radius = options.feedback_radius > 0.0 ? options.feedback_radius : 2.0 * spacing;
+  std::vector<std::optional<Vec2>> failures;
+  std::vector<bool> followable = check_candidates(problem, local, result.global, &failures);
+  const auto count = [](const std::vector<bool>& f) {
+    return static_cast<std::size_t>(std::count(f.begin(), f.end(), true));
+  };
+  GlobalSearchResult kept_global = result.global;
+  std::vector<bool> kept = followable;
+  std::vector<ExcludedRegion> kept_excluded = global.excluded;
+  while (count(followable) < followable.size() &&
+         result.feedback_rounds < options.feedback_rounds) {
+    // A disc round each failure; near the start or the goal (whose nodes
+    // are kept, and whose approach a disc would cut off) only the
+    // candidate's own vertices near it, so that it must come another way.
+    std::vector<ExcludedRegion> added;
+    const auto inside = [](const Vec2& q, const std::vector<ExcludedRegion>& regions) {
+      return std::any_of(regions.begin(), regions.end(), [&](const ExcludedRegion& e) {
+        return (q - e.centre).norm() <= e.radius;
+      });
+    };
+    const auto add = [&](const Vec2& centre, double r) {
+      if (!inside(centre, global.excluded) && !inside(centre, added)) added.push_back({centre, r});
+    };
+    for (std::size_t c = 0; c < failures.size(); ++c) {
+      if (!failures[c]) continue;
+      const Vec2 p = *failures[c];
+      const double margin = radius + spacing;
+      if ((p - problem.start).norm() > margin && (p - problem.goal).norm() > margin) {
+        add(p, radius);
+        continue;
+      }
+      // Those within the radius, and at least the nearest (the last edge
+      // into the goal can be longer than the radius).
+      const std::vector<Vec2>& vertices = result.global.candidates[c].vertices;
+      std::size_t nearest = 0;
+      for (std::size_t v = 1; v + 1 < vertices.size(); ++v) {
+        if ((vertices[v] - p).norm() <= radius) add(vertices[v], 0.5 * spacing);
+        if (nearest == 0 || (vertices[v] - p).norm() < (vertices[nearest] - p).norm()) nearest = v;
+      }
+      if (nearest != 0) add(vertices[nearest], 0.5 * spacing);
+    }
+    if (added.empty()) break;
+    global.excluded.insert(global.excluded.end(), added.begin(), added.end());
+    ++result.feedback_rounds;
+    GlobalSearchResult next =
+        global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global);
+    if (next.status == GlobalSearchStatus::kUnreachable) {
+      // The new discs closed the last corridor (a pass narrower than they
+      // are): exclude only the node nearest to each failure instead.
+      bool shrunk = false;
+      for (auto r = global.excluded.end() - static_cast<long>(added.size());
+           r != global.excluded.end(); ++r) {
+        shrunk = shrunk || r->radius > 0.5 * spacing;
+        r->radius = std::min(r->radius, 0.5 * spacing);
+      }
+      if (shrunk) {
+        next =
+            global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global);
+      }
+    }
+    if (next.status != GlobalSearchStatus::kOk) break;  // no corridor left, or stopped
+    followable = check_candidates(problem, local, next, &failures);
+    if (count(followable) >= count(kept)) {
+      kept_global = next;
+      kept = followable;
+      kept_excluded = global.excluded;
+    }
+    result.global = std::move(next);
+  }
+  result.global = std::move(kept_global);
+  result.excluded = std::move(kept_excluded);
+  return kept;
 }
 
 }  // namespace
@@ -276,6 +407,17 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   }
   result.global =
       global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global);
+
+  PathOptimizerOptions local = options.local;
+  local.speeds = {problem.start_speed, problem.end_speed};
+  if (limited) {
+    local.stop = [&expired, user = options.local.stop] { return (user && user()) || expired(); };
+  }
+  TimeOptimalProfileSolver workspace;
+  std::vector<bool> followable;
+  if (options.optimize && result.global.status == GlobalSearchStatus::kOk) {
+    followable = feedback_rounds(problem, options, local, global, result);
+  }
   result.seconds.global = seconds_since(global_started);
   bool global_cut = false;
   if (result.global.status == GlobalSearchStatus::kStopped) {
@@ -298,16 +440,10 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     return finish(PlannerStatus::kOk, "");
   }
 
-  PathOptimizerOptions local = options.local;
-  local.speeds = {problem.start_speed, problem.end_speed};
-  if (limited) {
-    local.stop = [&expired, user = options.local.stop] { return (user && user()) || expired(); };
-  }
   TrajectoryOptions evaluation;
   evaluation.speeds = local.speeds;
   evaluation.station_spacing =
       resolve_station_spacing(options.station_spacing, *problem.surface, problem.vehicle);
-  TimeOptimalProfileSolver workspace;
   std::vector<std::size_t> cut_short;
   for (std::size_t c = 0; c < result.global.candidates.size(); ++c) {
     // Past the limit, only until one trajectory is feasible (its fit alone).
@@ -324,6 +460,7 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     result.candidates.push_back(optimise_candidate(problem, local, evaluation, result.global, c,
                                                    workspace, result.seconds));
     CandidateOutcome& outcome = result.candidates.back();
+    outcome.followable = c < followable.size() && followable[c];
     outcome.time_limited =
         late || (outcome.optimization && outcome.optimization->solver_status == "time_limit");
     if (outcome.time_limited) cut_short.push_back(c);
@@ -350,8 +487,13 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     return finish(PlannerStatus::kTimeLimit, message);
   }
   if (!result.best_candidate) {
-    return finish(PlannerStatus::kInfeasible,
-                  "no candidate has a feasible trajectory (see each candidate's message)");
+    std::string message = "no candidate has a feasible trajectory (see each candidate's message)";
+    if (result.feedback_rounds > 0) {
+      message += "; the global search ran " + std::to_string(result.feedback_rounds + 1) +
+                 " times, excluding " + std::to_string(result.excluded.size()) +
+                 " stretches that could not be driven, and no drivable corridor remained";
+    }
+    return finish(PlannerStatus::kInfeasible, message);
   }
   return finish(PlannerStatus::kOk, "");
 }

@@ -59,6 +59,13 @@ std::string_view to_string(GlobalSearchResolution resolution);
 /// Inverse of to_string; throws InputError listing the choices.
 GlobalSearchResolution parse_global_search_resolution(std::string_view name);
 
+/// A disc of the plane whose lattice nodes the search must not use
+/// (GlobalSearchOptions::excluded).
+struct ExcludedRegion {
+  Vec2 centre = Vec2::Zero();  ///< [m]
+  double radius = 0.0;         ///< [m], > 0
+};
+
 struct GlobalSearchOptions {
   double lattice_spacing = 0.0;  ///< node spacing [m]; 0 = the terrain's cell size
   int connectivity = 16;         ///< 8, 16 or 32 neighbours per node
@@ -98,6 +105,12 @@ struct GlobalSearchOptions {
   /// Empty: never stops.
   std::function<bool()> stop;
   std::size_t stop_interval = 1024;  ///< >= 1
+  /// Lattice nodes within any of these discs are untraversable (every edge
+  /// at them is), except the snapped start and goal nodes, which are always
+  /// kept. The planner's feedback from the local stage
+  /// (PlannerOptions::feedback_rounds) puts here the stretches of a
+  /// candidate that no continuous profile can drive. Empty by default.
+  std::vector<ExcludedRegion> excluded;
   /// Throws InputError naming the field.
   void validate() const;
 };

@@ -44,6 +44,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -81,6 +82,10 @@ struct PathOptimizerOptions {
   /// Simultaneous formulation: only while the fit leaves the measured data
   /// (it starts from a fit without an admissible profile).
   bool adaptive_control_points = true;
+  /// The growth limit (>= control_points), raised for long candidates to
+  /// half their vertex count (at most kMaxCorridorControlPoints), so that a
+  /// fit to a long winding corridor can follow it (see
+  /// control_point_limit()).
   std::size_t max_control_points = 48;
   /// Profile stations during the search [m] (>= 0); 0 = kSearchSpacingFactor
   /// (5) times default_station_spacing(terrain, vehicle): 0.5 m at 1 m cells.
@@ -170,6 +175,43 @@ struct OptimizedPath {
   std::size_t stations = 0;  ///< profile stations used during the search
   double seconds = 0.0;      ///< wall time of this optimisation
 };
+
+/// The most control points a long candidate's fit may grow to.
+inline constexpr std::size_t kMaxCorridorControlPoints = 256;
+
+/// How far the initial fit to a polyline of `vertices` vertices may grow:
+/// max(options.max_control_points, min(vertices / 2, kMaxCorridorControlPoints)).
+/// One control point per two lattice edges rounds the candidate's corners
+/// over about two cells (a fit with as many control points as vertices would
+/// reproduce the lattice's kinks, with their unbounded curvature) while
+/// keeping it in the corridor.
+std::size_t control_point_limit(const PathOptimizerOptions& options, std::size_t vertices);
+
+/// The optimiser's initial path for a candidate polyline: the clamped cubic
+/// least-squares fit (to the polyline resampled at 10 points per control
+/// point, ends exact) with options.control_points, grown by half up to
+/// control_point_limit() (when adaptive_control_points) while its profile
+/// at the search's stations is not admissible.
+struct InitialPath {
+  std::optional<Curve2> curve;     ///< the last fit tried; empty if none was lifted
+  std::size_t control_points = 0;  ///< its M
+  std::size_t stations = 0;        ///< search stations (fixed from its length)
+  double travel_time = std::numeric_limits<double>::infinity();  ///< [s]; +inf: not admissible
+  bool on_data = false;  ///< every station lies on the measured data
+  std::string failure;   ///< why the last fit has no admissible profile
+  /// Where the last fit's profile fails (its failing station) [m]; empty when
+  /// admissible or when the fit could not be lifted.
+  std::optional<Vec2> failure_point;
+  bool admissible() const { return std::isfinite(travel_time); }
+};
+
+/// The initial path of optimize_path(); growth stops early at the first fit
+/// on the data when `stop_on_data` (the simultaneous formulation starts from
+/// a fit without an admissible profile). Throws InputError for invalid
+/// options or a polyline of fewer than 2 vertices.
+InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
+                             const std::vector<Vec2>& polyline, const PathOptimizerOptions& options,
+                             bool stop_on_data = false);
 
 /// Fits the initial path to `initial_polyline` (fit_clamped_cubic to the
 /// polyline resampled at 10 points per control point, ends exact) and

@@ -59,6 +59,9 @@ class PathTimeObjective {
 
   /// The profile of the last evaluate() that reached the solver.
   const TimeOptimalProfile& profile() const { return profile_; }
+  /// The speed limits at the stations of the last evaluation that reached the
+  /// profile (empty before one).
+  const VelocityLimits& limits() const { return limits_; }
   std::size_t evaluations() const { return evaluations_; }
   std::size_t gradient_evaluations() const { return gradient_evaluations_; }
   std::size_t finite_difference_fallbacks() const { return fallbacks_; }

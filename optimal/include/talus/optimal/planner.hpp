@@ -16,6 +16,20 @@
 ///    slower than where it started;
 /// 4. the fastest feasible trajectory is the result.
 ///
+/// Stages that agree (feedback from the local stage to the global one): the
+/// lattice judges each straight edge alone, so it can accept a corridor that
+/// no continuous path drives — a hairpin on a steep slope, a stretch only
+/// traversable at a speed the vehicle cannot reach or shed in time. Before
+/// the local stage every candidate's followability is checked: the
+/// optimiser's own initial path (fit_initial_path(), grown while needed, up
+/// to control_point_limit()) must have an admissible profile at the search's
+/// stations. While some candidate fails and the budget
+/// (feedback_rounds) lasts, a disc of feedback_radius round the station where
+/// its profile fails is excluded from the lattice (GlobalSearchOptions::
+/// excluded) and the global search runs again. The round with the most
+/// followable candidates is kept (the last of equals); the result reports
+/// the rounds run and the regions excluded.
+///
 /// Expected outcomes (an unreachable goal, no feasible candidate, a solver
 /// failure, a stop request, the time limit) are statuses; only invalid input
 /// throws InputError.
@@ -91,8 +105,14 @@ struct PlannerOptions {
   /// speeds are used.
   PathOptimizerOptions local;
   /// false: stop after the global stage (no trajectories; status kOk when the
-  /// goal is reachable).
+  /// goal is reachable; no feedback rounds).
   bool optimize = true;
+  /// Feedback rounds (>= 0): how many times the global search may be re-run
+  /// with the stretches where candidates cannot be followed excluded (see
+  /// the file comment); 0 = the global stage's candidates as they are.
+  std::size_t feedback_rounds = 8;
+  /// Radius of each excluded disc [m] (>= 0); 0 = two lattice spacings.
+  double feedback_radius = 0.0;
   /// Station spacing [m] of the final evaluation of every path (>= 0);
   /// 0 = default_station_spacing(surface, vehicle) (trajectory.hpp), one
   /// tenth of the larger of the cell size and the vehicle's half-track.
@@ -136,6 +156,9 @@ struct CandidateOutcome {
   /// the optimiser failed), at station_spacing.
   Trajectory trajectory;
   bool kept_initial = false;  ///< trajectory is the initial fit
+  /// The followability check passed: the optimiser's initial path
+  /// (fit_initial_path) has an admissible profile at the search's stations.
+  bool followable = false;
   /// The time limit stopped this candidate's optimisation (solver_status
   /// "time_limit"), or it had passed before it began (only its initial fit).
   bool time_limited = false;
@@ -160,6 +183,11 @@ struct PlannerResult {
   PlannerTimings seconds;
   /// Status kTimeLimit: global candidates the local stage never reached.
   std::vector<std::size_t> not_optimised;
+  /// Global searches re-run because some candidate could not be followed
+  /// (0 when every first candidate was followable or feedback_rounds = 0).
+  std::size_t feedback_rounds = 0;
+  /// The regions the kept global search excluded (its options' `excluded`).
+  std::vector<ExcludedRegion> excluded;
 
   /// The best trajectory; null without one.
   const Trajectory* best() const;

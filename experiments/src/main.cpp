@@ -9,6 +9,7 @@
 #include <string>
 
 #include "baseline_command.hpp"
+#include "baseline_profile.hpp"
 #include "experiment.hpp"
 #include "limits_command.hpp"
 #include "placement_command.hpp"
@@ -554,6 +555,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
         ->required();
     sub->add_option("--goal", f.request.goal, "goal configuration X,Y,THETA [m, m, rad]")
         ->required();
+    sub->add_option("--vehicle", f.request.vehicle, ex::kBaselineVehicleHelp);
     for (const BaselineOptionSpec& spec : entry.options) {
       const std::string flag = "--" + spec.key;
       if (spec.flag) {

@@ -1,0 +1,27 @@
+#include "baseline_profile.hpp"
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/optimal/driven_path_time.hpp"
+
+namespace talus::experiments {
+
+void add_baseline_profile(nlohmann::json& summary, const ElevationGrid& grid,
+                          const std::vector<SE2Pose>& path, bool found, const Vehicle& vehicle,
+                          const std::string& vehicle_file) {
+  summary["vehicle"] = vehicle_file;
+  summary["profile_status"] = "no_path";
+  summary["profile_travel_time"] = nullptr;
+  summary["profile_length_m"] = nullptr;
+  summary["profile_pieces"] = 0;
+  summary["profile_seconds"] = 0.0;
+  if (!found || path.size() < 2) return;
+  const BPatch surface = BPatch::interpolate(grid);
+  const DrivenPathResult driven = driven_path_time(surface, vehicle, path);
+  summary["profile_status"] = to_string(driven.status);
+  if (driven.status == DrivenPathStatus::kOk) summary["profile_travel_time"] = driven.travel_time;
+  summary["profile_length_m"] = driven.length;
+  summary["profile_pieces"] = driven.pieces.size();
+  summary["profile_seconds"] = driven.seconds;
+}
+
+}  // namespace talus::experiments

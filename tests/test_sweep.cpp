@@ -149,6 +149,21 @@ TEST(SweepConfig, BadConfigsNameTheProblem) {
   }
 }
 
+TEST(SweepConfig, RobotFileIsTheBaselinesRobotTakenFromTheBaseFolder) {
+  SweepConfig config = parse_sweep_config(
+      "job: baseline hait\nparameters:\n  robot.file: robots/r.yaml\n  start: \"1,1,0\"\n",
+      "robot.yaml");
+  config.base_dir = "/base";
+  const talus::PreparedCase prepared =
+      talus::prepare_case(config, config.cases.front(), "/cases/one");
+  ASSERT_EQ(prepared.commands.size(), 1u);
+  const std::vector<std::string> expected = {"baseline", "hait",  "--robot", "/base/robots/r.yaml",
+                                             "--start",  "1,1,0", "--out",   "/cases/one/out"};
+  EXPECT_EQ(prepared.commands.front(), expected);
+  config = parse_sweep_config("job: baseline hait\nparameters:\n  robot.mass: 3\n", "r.yaml");
+  EXPECT_THROW(talus::prepare_case(config, config.cases.front(), "/cases/one"), InputError);
+}
+
 // --- end to end -------------------------------------------------------------
 
 /// A fresh scratch folder for one sweep.

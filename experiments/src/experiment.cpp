@@ -70,6 +70,10 @@ std::vector<Experiment> all_experiments() {
        "terrain: success, travel time, binding-constraint shares, and the monotonicity the "
        "physics implies",
        run_sweep_friction_stability},
+      {"sweep-dynamic-vs-kinematic",
+       "a sweep of the Hait-Simeon-Taix path at its own time-optimal profile against Talus's "
+       "plan over terrain roughness x friction: time ratio, planning-time ratio, invariants",
+       run_sweep_dynamic_vs_kinematic},
   };
 }
 

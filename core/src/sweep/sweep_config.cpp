@@ -347,6 +347,12 @@ PreparedCase prepare_case(const SweepConfig& config, const SweepCase& c,
     } else if (key.rfind("terrain.", 0) == 0) {
       generate.push_back(option_name(key.substr(8)));
       generate.push_back(text);
+    } else if (key == "robot.file") {
+      job_args.push_back("--robot");
+      job_args.push_back(absolute_text(config.base_dir, text));
+    } else if (key.rfind("robot.", 0) == 0) {
+      throw InputError(config.source + ": parameter '" + printable(key) +
+                       "': robot.file is the only robot.* key (robot files take no overrides)");
     } else if (key == "vehicle.file") {
       vehicle_file = absolute_text(config.base_dir, text);
     } else if (key.rfind("vehicle.", 0) == 0) {

@@ -28,7 +28,8 @@
 /// Parameter keys: `terrain.file` (a grid), or `terrain.generator` (a kind of
 /// `talus terrain generate`) with `terrain.*` its options (ncols, seed,
 /// fractal_dimension, …); `vehicle.file` and `vehicle.*` overriding keys of
-/// that vehicle file; any other key is an option of the job's command
+/// that vehicle file; `robot.file`, the robot file of a baseline job
+/// (`--robot`); any other key is an option of the job's command
 /// (`--key value`; `true` is a bare flag, `false` leaves it out; `_` may
 /// stand for `-`). Relative paths are taken from the working directory.
 ///
@@ -67,7 +68,7 @@ struct SweepConfig {
   int retries = 2;
   double case_time_limit = 600.0;  ///< [s]
   std::string source;              ///< the file, for messages
-  /// Relative file parameters (terrain.file, vehicle.file) are taken from
+  /// Relative file parameters (terrain.file, vehicle.file, robot.file) are taken from
   /// here; empty = the working directory.
   std::filesystem::path base_dir;
 };

@@ -146,6 +146,16 @@ TEST(DrivenPathTime, RepeatedConfigurationsCountAsOneAndAStandingPathTakesNoTime
   EXPECT_TRUE(s.pieces.empty());
 }
 
+TEST(DrivenPathTime, APathThatMovesSidewaysHasNoDrivingDirection) {
+  // Facing north-east while moving east: no segment or arc along the heading joins these.
+  const DrivenPathResult r =
+      driven_path_time(flat(), slow_rover(), along_x(-5.0, 5.0, 0.25 * std::numbers::pi));
+  EXPECT_EQ(r.status, DrivenPathStatus::kNotTangent);
+  EXPECT_TRUE(std::isinf(r.travel_time));
+  EXPECT_TRUE(r.pieces.empty());
+  EXPECT_NE(r.message.find("configuration 0 to 1"), std::string::npos) << r.message;
+}
+
 TEST(DrivenPathTime, BadInputIsAnInputError) {
   const BPatch surface = flat();
   const std::vector<SE2Pose> one = {{0.0, 0.0, 0.0}};

@@ -11,7 +11,6 @@
 
 #include "baseline_profile.hpp"
 #include "cli_values.hpp"
-#include "dacre_wright_outputs.hpp"
 #include "hait_figures.hpp"
 #include "limits_command.hpp"
 #include "talus/core/error.hpp"
@@ -23,6 +22,7 @@
 #include "talus/core/stopwatch.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
+#include "talus/kinematic/dacre_wright/dacre_wright_outputs.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {

@@ -14,7 +14,6 @@
 
 #include "cli_values.hpp"
 #include "limits_command.hpp"
-#include "plan_figures.hpp"
 #include "plan_rasters.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
@@ -24,6 +23,7 @@
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/vehicle.hpp"
+#include "talus/optimal/plan_figures.hpp"
 #include "talus/optimal/planner.hpp"
 #include "terrain_input.hpp"
 

@@ -17,11 +17,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kRepeated = 1e-9;   ///< [m] configurations closer than this count as one
 constexpr double kStraight = 1e-12;  ///< [rad] a step turning less than this is straight
 
+constexpr double kTangent = 1e-6;  ///< [rad] how far a chord may stray from its arc's
+
 /// The geometry of the step from a to b (file comment).
 struct Step {
   int direction = 1;
   double length = 0.0;     ///< l [m]
   double turn_rate = 0.0;  ///< κ = dθ/dl [rad/m]
+  bool tangent = true;     ///< the chord is that of an arc tangent to both headings
 };
 
 Step step_between(const SE2Pose& a, const SE2Pose& b) {
@@ -30,6 +33,14 @@ Step step_between(const SE2Pose& a, const SE2Pose& b) {
   const double c = chord.norm();
   const double turn = std::remainder(b.theta - a.theta, 2.0 * std::numbers::pi);
   step.direction = chord.dot(Vec2(std::cos(a.theta), std::sin(a.theta))) < 0.0 ? -1 : 1;
+  if (c > kRepeated) {
+    // An arc tangent to the heading at both ends has its chord along θ₀ + Δθ/2 (forward) or
+    // the opposite way (reverse).
+    const double along = std::atan2(chord.y(), chord.x()) - (a.theta + 0.5 * turn);
+    const double off = std::remainder(step.direction > 0 ? along : along - std::numbers::pi,
+                                      2.0 * std::numbers::pi);
+    step.tangent = std::abs(off) <= kTangent;
+  }
   if (std::abs(turn) < kStraight) {
     step.length = c;
   } else {
@@ -53,6 +64,8 @@ std::string_view to_string(DrivenPathStatus status) {
       return "ok";
     case DrivenPathStatus::kInfeasible:
       return "infeasible";
+    case DrivenPathStatus::kNotTangent:
+      return "not_tangent";
   }
   return "unknown";
 }
@@ -93,6 +106,18 @@ DrivenPathResult driven_path_time(const BPatch& surface, const Vehicle& vehicle,
     steps.push_back(step);
   }
   DrivenPathResult result;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    if (steps[k].tangent) continue;
+    result.status = DrivenPathStatus::kNotTangent;
+    result.travel_time = kInf;
+    result.message = "the step from configuration " + std::to_string(kept[k]) + " to " +
+                     std::to_string(kept[k + 1]) +
+                     " is neither a segment nor an arc along the heading (the path moves "
+                     "sideways or turns on the spot)";
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+  }
   std::size_t begin = 0;  // first step of the current piece
   while (begin < steps.size()) {
     std::size_t end = begin + 1;  // one past its last step

@@ -18,7 +18,8 @@
 /// reverse otherwise; a cusp is where that direction changes. At a station
 /// the step of larger |κ| of the two it joins (within its piece) sets the
 /// curvature, the outgoing one on a tie. Consecutive configurations less than
-/// 1e-9 m apart count as one.
+/// 1e-9 m apart count as one. A step whose chord is not along θ₀ + Δθ/2 (or the
+/// opposite way) belongs to no such arc: the status says so.
 #include <cstddef>
 #include <span>
 #include <string>
@@ -45,6 +46,11 @@ struct DrivenPathOptions {
 enum class DrivenPathStatus {
   kOk,          ///< every piece has an admissible profile; `travel_time` is finite
   kInfeasible,  ///< some piece has none (see `message`, `pieces`); `travel_time` = ∞
+  /// A step's chord is not that of a segment or arc along the heading (to 1e-6 rad): the path
+  /// moves sideways or turns on the spot, so it has no driving direction to profile (`message`
+  /// names the step; no pieces; `travel_time` = ∞). Fit a curve to it instead
+  /// (polyline_travel_time).
+  kNotTangent,
 };
 std::string_view to_string(DrivenPathStatus status);
 

@@ -1,4 +1,4 @@
-#include "dacre_wright_outputs.hpp"
+#include "talus/kinematic/dacre_wright/dacre_wright_outputs.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "talus/core/report/number_format.hpp"
 #include "talus/core/report/plot.hpp"
 
-namespace talus::experiments {
+namespace talus {
 namespace {
 
 /// "x_centre y_centre x_half y_half", the columns of gnuplot's boxxyerror.
@@ -117,4 +117,4 @@ void render_octree_slices(const std::filesystem::path& dir, const std::string& s
   run_gnuplot(dir / (stem + ".gp"));
 }
 
-}  // namespace talus::experiments
+}  // namespace talus

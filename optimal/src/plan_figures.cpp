@@ -1,4 +1,4 @@
-#include "plan_figures.hpp"
+#include "talus/optimal/plan_figures.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "talus/core/report/number_format.hpp"
 #include "talus/core/report/plot.hpp"
 
-namespace talus::experiments {
+namespace talus {
 namespace {
 
 void write_polyline(std::ofstream& out, const std::vector<Vec2>& points, const Vec2& origin) {
@@ -100,4 +100,4 @@ void render_plan_profile(const std::filesystem::path& dir, const PlanProfileData
       .render();
 }
 
-}  // namespace talus::experiments
+}  // namespace talus

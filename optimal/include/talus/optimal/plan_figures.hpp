@@ -11,7 +11,7 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/types.hpp"
 
-namespace talus::experiments {
+namespace talus {
 
 /// What plan.png shows. Positions are in the terrain's frame [m]; the map is
 /// drawn in offsets from `origin` (the grid's south-west node).
@@ -41,4 +41,4 @@ struct PlanProfileData {
 /// Writes plan_profile.dat, plan_switching.dat and profile.gp in `dir` and renders profile.png.
 void render_plan_profile(const std::filesystem::path& dir, const PlanProfileData& data);
 
-}  // namespace talus::experiments
+}  // namespace talus

@@ -15,7 +15,7 @@
 #include "talus/kinematic/configuration_space.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_planner.hpp"
 
-namespace talus::experiments {
+namespace talus {
 
 /// The columns of DIR/voxels.csv.
 inline constexpr const char* kDacreWrightVoxelsCsvHeader =
@@ -60,4 +60,4 @@ OctreeSliceFigure octree_slice_figure(const DacreWrightResult& result);
 void render_octree_slices(const std::filesystem::path& dir, const std::string& stem,
                           const OctreeSliceFigure& figure);
 
-}  // namespace talus::experiments
+}  // namespace talus

@@ -13,6 +13,7 @@
 #include "talus/core/error.hpp"
 #include "talus/optimal/driven_path_time.hpp"
 #include "terrain_test_support.hpp"
+#include "vehicle_test_support.hpp"
 
 namespace {
 
@@ -24,10 +25,7 @@ using talus::terrain_test::grid_around_origin;
 /// ground takes L / 2 + 2 s (2 s and 2 m to reach 2 m/s, the same to stop: 1 s more than
 /// covering those 4 m at the top speed, twice).
 Vehicle slow_rover(double mu = 0.7) {
-  Vehicle v;
-  v.friction = mu;
-  v.cg_height = 0.5;
-  v.half_track = 0.6;
+  Vehicle v = talus::vehicle_test::point_mass_rover(mu);
   v.max_speed = 2.0;
   v.max_accel = 1.0;
   v.max_decel = 1.0;

@@ -412,6 +412,39 @@ FigureLink ratio_figure(const std::vector<Comparison>& all, const std::filesyste
   return {label + " against friction", plot.name(".png")};
 }
 
+/// What a family of comparisons amounts to.
+struct FamilyStats {
+  std::vector<double> time_ratios, planning_ratios;  ///< of the compared cases
+  /// Smallest time ÷ (length ÷ top speed) of the compared cases' kinematic paths and plans.
+  double kinematic_over_top_speed = kInf, talus_over_top_speed = kInf;
+  std::size_t found = 0, planned = 0;  ///< kinematic paths found, Talus plans
+};
+
+FamilyStats family_stats(const std::vector<Comparison>& all, double max_speed) {
+  FamilyStats f;
+  for (const Comparison& c : all) {
+    f.found += std::isfinite(c.hait_length) ? 1 : 0;
+    f.planned += std::isfinite(c.talus_time) ? 1 : 0;
+    if (!c.compared()) continue;
+    f.time_ratios.push_back(c.time_ratio());
+    f.planning_ratios.push_back(c.planning_ratio());
+    f.kinematic_over_top_speed =
+        std::min(f.kinematic_over_top_speed, c.hait_time / (c.hait_length / max_speed));
+    f.talus_over_top_speed =
+        std::min(f.talus_over_top_speed, c.talus_time / (c.talus_length / max_speed));
+  }
+  return f;
+}
+
+/// The top speed of the point mass matched to the chassis, which both halves drive.
+double matched_max_speed(const ExperimentContext& context) {
+  return load_vehicle(context.data_dir / "vehicles" / "marsokhod_point_mass.yaml").max_speed;
+}
+
+double median_or_nan(const std::vector<double>& values) {
+  return values.empty() ? std::numeric_limits<double>::quiet_NaN() : upper_median(values);
+}
+
 }  // namespace
 
 void run_sweep_dynamic_vs_kinematic(const ExperimentContext& context) {
@@ -428,21 +461,12 @@ void run_sweep_dynamic_vs_kinematic(const ExperimentContext& context) {
   const std::vector<Comparison> all = comparisons(kinematic, talus, kinematic_dir, talus_dir);
   const KinematicInvariants invariants = kinematic_invariants(all);
 
-  std::vector<double> time_ratios, planning_ratios;
-  double hait_over_top_speed = kInf, talus_over_top_speed = kInf;
-  const double max_speed =
-      load_vehicle(context.data_dir / "vehicles" / "marsokhod_point_mass.yaml").max_speed;
-  std::size_t hait_found = 0, talus_planned = 0;
-  for (const Comparison& c : all) {
-    hait_found += std::isfinite(c.hait_length) ? 1 : 0;
-    talus_planned += std::isfinite(c.talus_time) ? 1 : 0;
-    if (!c.compared()) continue;
-    time_ratios.push_back(c.time_ratio());
-    planning_ratios.push_back(c.planning_ratio());
-    hait_over_top_speed = std::min(hait_over_top_speed, c.hait_time / (c.hait_length / max_speed));
-    talus_over_top_speed =
-        std::min(talus_over_top_speed, c.talus_time / (c.talus_length / max_speed));
-  }
+  const FamilyStats stats = family_stats(all, matched_max_speed(context));
+  const std::vector<double>& time_ratios = stats.time_ratios;
+  const std::vector<double>& planning_ratios = stats.planning_ratios;
+  const double hait_over_top_speed = stats.kinematic_over_top_speed;
+  const double talus_over_top_speed = stats.talus_over_top_speed;
+  const std::size_t hait_found = stats.found, talus_planned = stats.planned;
 
   Report report("Sweep: the kinematic path at its own profile against Talus's plan");
   report.paragraph(
@@ -529,9 +553,6 @@ void run_sweep_dynamic_vs_kinematic(const ExperimentContext& context) {
   summary.set("compared_cases", static_cast<double>(time_ratios.size()), "cases");
   summary.set("failed_cases", static_cast<double>(kinematic_result.failed + talus_result.failed),
               "cases");
-  const auto median_or_nan = [](const std::vector<double>& v) {
-    return v.empty() ? std::numeric_limits<double>::quiet_NaN() : upper_median(v);
-  };
   summary.set("time_ratio_median", median_or_nan(time_ratios), "1",
               "kinematic path at its own profile ÷ Talus's plan");
   summary.set(
@@ -552,6 +573,79 @@ void run_sweep_dynamic_vs_kinematic(const ExperimentContext& context) {
               ">= 1: no profile beats its own length at the top speed");
   summary.set("talus_time_over_length_at_max_speed_min", talus_over_top_speed, "1",
               ">= 1: no profile beats its own length at the top speed");
+}
+
+void run_sweep_baselines(const ExperimentContext& context) {
+  if (!context.run_command) throw Error("sweep-baselines needs the CLI's command runner");
+  require_gnuplot();
+  const SweepConfig talus = load_experiment_sweep(context, "sweep-dynamic-vs-kinematic-talus");
+  const std::filesystem::path talus_dir = context.output_dir / "talus";
+  const SweepResult talus_result = run_experiment_sweep(context, talus, talus_dir);
+  const double max_speed = matched_max_speed(context);
+  // Every registered baseline with a sweep of its own on the same terrains and frictions.
+  const std::vector<std::pair<std::string, std::string>> baselines = {
+      {"hait", "sweep-dynamic-vs-kinematic"}, {"dacre-wright", "sweep-baselines-dacre-wright"}};
+
+  Report report("Sweep: Talus against every kinematic baseline");
+  report.paragraph(
+      "Each registered kinematic baseline plans on the terrains and frictions of "
+      "`sweep-dynamic-vs-kinematic` (seeded fractal terrains of 10 m × 10 m, roughness × μ) and "
+      "its path is driven at its time-optimal profile by the point mass matched to the chassis "
+      "(`talus baseline NAME --vehicle`): along its own segments and arcs when it has a driving "
+      "direction (Haït–Siméon–Taïx), along a clamped cubic fitted to its positions when it "
+      "moves sideways (Dacre-Wright–Siméon: `profile_method` fitted_cubic). Talus plans the "
+      "same queries once (`talus/`). Time ratio = the baseline path's time ÷ Talus's; "
+      "planning-time ratio = the baseline's planning seconds ÷ Talus's whole planner (one "
+      "machine, one run)" +
+      std::string(context.quick ? "; quick mode: the configurations' `quick:` values" : "") + ".");
+  report.bullet("Talus: " + talus_result.brief_report());
+  Table overview({"baseline", "cases", "paths found", "compared", "median time ratio",
+                  "median planning-time ratio", "failed cases"});
+  ExperimentSummary& summary = *context.summary;
+  summary.set("cases", static_cast<double>(talus.cases.size()), "cases");
+  summary.set("talus_failed_cases", static_cast<double>(talus_result.failed), "cases");
+  for (const auto& [name, config_name] : baselines) {
+    const SweepConfig config = load_experiment_sweep(context, config_name);
+    const std::filesystem::path dir = context.output_dir / name;
+    const SweepResult result = run_experiment_sweep(context, config, dir);
+    const std::vector<Comparison> all = comparisons(config, talus, dir, talus_dir);
+    const FamilyStats stats = family_stats(all, max_speed);
+    const KinematicInvariants invariants = kinematic_invariants(all);
+    overview.row({name, std::to_string(all.size()), std::to_string(stats.found),
+                  std::to_string(stats.time_ratios.size()),
+                  ratio_text(median_or_nan(stats.time_ratios)),
+                  ratio_text(median_or_nan(stats.planning_ratios)), std::to_string(result.failed)});
+    report.heading("`" + name + "`")
+        .bullet(result.brief_report())
+        .bullet("its path does not change with μ (largest length spread " +
+                fmt("%.3g", invariants.length_spread) +
+                " m) and its profile never slows with more friction: " +
+                std::to_string(invariants.violations) + " violations over " +
+                std::to_string(invariants.pairs) + " pairs")
+        .table(ratio_table(all, "height scale [m]", &Comparison::roughness));
+    std::string key = name;
+    std::replace(key.begin(), key.end(), '-', '_');
+    if (!stats.time_ratios.empty()) {  // gnuplot refuses a figure with no point at all
+      const FigureLink figure =
+          ratio_figure(all, context.output_dir, "time_ratio_" + key, &Comparison::time_ratio,
+                       "time ratio (" + name + " / Talus)");
+      report.figure(figure.caption, figure.file);
+    }
+    summary.set(key + "_paths_found", static_cast<double>(stats.found), "cases");
+    summary.set(key + "_compared_cases", static_cast<double>(stats.time_ratios.size()), "cases");
+    summary.set(key + "_failed_cases", static_cast<double>(result.failed), "cases");
+    summary.set(key + "_time_ratio_median", median_or_nan(stats.time_ratios), "1",
+                "the baseline's path at its profile ÷ Talus's plan");
+    summary.set(key + "_planning_ratio_median", median_or_nan(stats.planning_ratios), "1");
+    summary.set(key + "_length_spread_across_friction_m", invariants.length_spread, "m",
+                "0: the baseline never sees the vehicle");
+    summary.set(key + "_friction_monotonicity_violations",
+                static_cast<double>(invariants.violations), "pairs",
+                "0: more friction never slows the profile along one path");
+    summary.set(key + "_time_over_length_at_max_speed_min", stats.kinematic_over_top_speed, "1");
+  }
+  report.heading("Overview").table(overview);
+  report.write(context.output_dir);
 }
 
 }  // namespace talus::experiments

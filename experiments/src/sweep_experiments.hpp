@@ -21,4 +21,11 @@ void run_sweep_friction_stability(const ExperimentContext& context);
 /// with more friction.
 void run_sweep_dynamic_vs_kinematic(const ExperimentContext& context);
 
+/// `sweep-baselines`: Talus's plans (the Talus half of sweep-dynamic-vs-kinematic) against
+/// every registered kinematic baseline's path at its time-optimal profile (hait: the
+/// sweep-dynamic-vs-kinematic configuration; dacre-wright: sweep-baselines-dacre-wright.yaml,
+/// whose sideways-moving paths are driven along a fitted cubic), per baseline: paths found,
+/// time ratio and planning-time ratio by roughness, and the same invariants.
+void run_sweep_baselines(const ExperimentContext& context);
+
 }  // namespace talus::experiments

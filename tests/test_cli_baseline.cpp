@@ -99,6 +99,41 @@ TEST(CliBaseline, StraightPathOnFlatGroundWritesTheContract) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/path.png"));
 }
 
+TEST(CliBaseline, VehicleDrivesThePathAtItsTimeOptimalProfile) {
+  // marsokhod_point_mass.yaml: top speed 2 m/s, drive and brake 1 m/s^2. On flat ground the
+  // straight 8 m path takes 8 / 2 + 2 = 6 s from rest to rest (2 s to reach 2 m/s over 2 m, the
+  // same to stop), up to the first-order discretisation when the switches fall between stations.
+  const std::string terrain = flat_map();
+  const std::string vehicle = data_file("vehicles/marsokhod_point_mass.yaml");
+  const std::string dir = scratch_file("baseline_vehicle");
+  const nlohmann::json j = run_baseline(
+      "--terrain " + quoted(terrain) + " --robot " + quoted(chassis()) +
+          " --start 2,6,0 --goal 10,6,0 --heuristic euclidean --vehicle " + quoted(vehicle),
+      dir, 0);
+  EXPECT_EQ(j.value("vehicle", ""), vehicle);
+  EXPECT_EQ(j.value("profile_status", ""), "ok") << j.dump();
+  EXPECT_EQ(j.value("profile_pieces", 0), 1);
+  EXPECT_NEAR(j.value("profile_length_m", 0.0), 8.0, 1e-6);
+  EXPECT_GE(j.value("profile_travel_time", 0.0), 6.0 - 1e-9);
+  EXPECT_LE(j.value("profile_travel_time", 0.0), 6.05);
+  // No path, no profile: the summary says so.
+  const std::string ring = ring_map();
+  const nlohmann::json none =
+      run_baseline("--terrain " + quoted(ring) + " --robot " + quoted(wheeled()) +
+                       " --start 1.5,1.5,0 --goal 6,6,0 --vehicle " + quoted(vehicle),
+                   scratch_file("baseline_vehicle_none"), 2);
+  EXPECT_EQ(none.value("profile_status", ""), "no_path");
+  EXPECT_TRUE(none.at("profile_travel_time").is_null());
+  // A bad vehicle file is bad input: exit 1, one line, before any planning.
+  const RunResult bad = run_talus("baseline hait --terrain " + quoted(terrain) + " --robot " +
+                                  quoted(chassis()) + " --start 2,6,0 --goal 10,6,0 --vehicle " +
+                                  quoted(scratch_file("no_such_vehicle.yaml")) + " --out " +
+                                  quoted(scratch_file("baseline_vehicle_bad")));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.err.rfind("talus: error: ", 0), 0u) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(scratch_file("baseline_vehicle_bad") + "/summary.json"));
+}
+
 TEST(CliBaseline, SmoothingAndUncertaintyOptionsReachTheSummary) {
   const std::string terrain = flat_map();
   const std::string dir = scratch_file("baseline_options");

@@ -12,14 +12,14 @@
 #include <thread>
 
 #include "cli_test_support.hpp"
-#include "sweep_config.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/sweep/sweep_config.hpp"
 
 namespace {
 
 using talus::InputError;
-using talus::experiments::parse_sweep_config;
-using talus::experiments::SweepConfig;
+using talus::parse_sweep_config;
+using talus::SweepConfig;
 using namespace talus::cli_test;
 namespace fs = std::filesystem;
 
@@ -147,6 +147,21 @@ TEST(SweepConfig, BadConfigsNameTheProblem) {
       EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " not in " << message;
     }
   }
+}
+
+TEST(SweepConfig, RobotFileIsTheBaselinesRobotTakenFromTheBaseFolder) {
+  SweepConfig config = parse_sweep_config(
+      "job: baseline hait\nparameters:\n  robot.file: robots/r.yaml\n  start: \"1,1,0\"\n",
+      "robot.yaml");
+  config.base_dir = "/base";
+  const talus::PreparedCase prepared =
+      talus::prepare_case(config, config.cases.front(), "/cases/one");
+  ASSERT_EQ(prepared.commands.size(), 1u);
+  const std::vector<std::string> expected = {"baseline", "hait",  "--robot", "/base/robots/r.yaml",
+                                             "--start",  "1,1,0", "--out",   "/cases/one/out"};
+  EXPECT_EQ(prepared.commands.front(), expected);
+  config = parse_sweep_config("job: baseline hait\nparameters:\n  robot.mass: 3\n", "r.yaml");
+  EXPECT_THROW(talus::prepare_case(config, config.cases.front(), "/cases/one"), InputError);
 }
 
 // --- end to end -------------------------------------------------------------

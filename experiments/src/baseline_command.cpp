@@ -9,19 +9,20 @@
 #include <system_error>
 #include <variant>
 
+#include "baseline_profile.hpp"
 #include "cli_values.hpp"
-#include "dacre_wright_outputs.hpp"
 #include "hait_figures.hpp"
 #include "limits_command.hpp"
-#include "number_format.hpp"
-#include "output_folder.hpp"
-#include "plot.hpp"
-#include "stopwatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/output_folder.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
 #include "talus/core/ruled_terrain.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
+#include "talus/kinematic/dacre_wright/dacre_wright_outputs.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {
@@ -95,6 +96,8 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
       !std::filesystem::is_directory(request.output_dir, error)) {
     throw InputError("--out " + request.output_dir + " exists and is not a folder");
   }
+  std::optional<Vehicle> vehicle;  // --vehicle: read before the long work
+  if (!request.vehicle.empty()) vehicle = load_vehicle(request.vehicle);
   OutputFolder out(request.output_dir);  // locked for the whole run
   const RuledTerrain terrain(load_terrain(request.terrain, request.reproject).grid);
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
@@ -162,6 +165,8 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   summary["length_m"] = found ? nlohmann::json(result.length_m) : nlohmann::json(nullptr);
   summary["path_points"] = result.path.size();
   if (octree) add_dacre_wright_summary(summary, *octree);
+  if (vehicle)
+    add_baseline_profile(summary, terrain.grid(), result.path, found, *vehicle, request.vehicle);
   for (const BaselineSetting& s : planner->settings()) {
     std::visit([&](const auto& v) { summary[s.section][s.key] = v; }, s.value);
   }

@@ -23,6 +23,7 @@ struct BaselineRequest {
   std::string goal;                ///< "X,Y,THETA"
   std::string output_dir;          ///< --out: created if needed
   BaselineOptions options;         ///< the baseline's options given on the command line
+  std::string vehicle;  ///< --vehicle: drive the path at its profile (baseline_profile.hpp)
 };
 
 /// Exit code of `talus baseline NAME` when no path was found: none exists,

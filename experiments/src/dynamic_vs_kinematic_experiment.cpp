@@ -12,19 +12,20 @@
 
 #include "hait_figures.hpp"
 #include "hait_scenarios.hpp"
-#include "number_format.hpp"
-#include "plot.hpp"
-#include "report.hpp"
-#include "stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
 #include "talus/core/ruled_terrain.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/kinematic/configuration_space.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "talus/optimal/driven_path_time.hpp"
 #include "talus/optimal/planner.hpp"
 #include "talus/optimal/polyline_travel_time.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
@@ -34,82 +35,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// The point mass matched to marsokhod_chassis.yaml: half track = the axle
-/// half width l, centre of mass 0.35 m up, rover-like drive and speed limits.
-Vehicle matched_vehicle() {
-  Vehicle v;
-  v.model = VehicleModel::kPointMass;
-  v.friction = 0.7;
-  v.cg_height = 0.35;
-  v.half_track = 0.45;
-  v.max_speed = 2.0;
-  v.max_accel = 1.0;
-  v.max_decel = 1.0;
-  return v;
-}
-
-/// One driving piece of a kinematic path: configurations between two cusps,
-/// and the control of the step from each to the next.
-struct ArcPiece {
-  std::vector<SE2Pose> poses;
-  std::vector<Control> steps;  ///< steps[k]: the control from poses[k] to poses[k + 1]
-  int direction = 0;           ///< +1 forward, −1 reverse
-};
-
-/// Splits a planned path (each point with the control reaching it) where the
-/// sign of v changes.
-std::vector<ArcPiece> arc_pieces(const std::vector<PathPoint>& path) {
-  std::vector<ArcPiece> pieces;
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    const Control u = path[k].control;
-    if (pieces.empty() || pieces.back().direction != u.v) {
-      pieces.push_back({{path[k - 1].pose}, {}, u.v});
-    }
-    pieces.back().poses.push_back(path[k].pose);
-    pieces.back().steps.push_back(u);
-  }
-  return pieces;
-}
-
-/// Rest-to-rest time-optimal travel time [s] along one piece's own geometry:
-/// a station at every configuration, its frame lifted from the exact planar
-/// derivatives of the segments and arcs of radius `radius` (d1 = the unit
-/// direction of travel, d2 = its rate of turn v ω / R times the left normal),
-/// no curve fitted. Where the control changes at a station, the turning one
-/// of the two steps sets the curvature there (the larger |κ|). +∞ if no
-/// profile is admissible.
-double arc_piece_time(const BPatch& surface, const Vehicle& vehicle, const ArcPiece& piece,
-                      double radius, TimeOptimalProfileSolver& solver) {
-  std::vector<PathFrame> frames;
-  double sigma = 0.0, s = 0.0;
-  for (std::size_t m = 0; m < piece.poses.size(); ++m) {
-    const SE2Pose& q = piece.poses[m];
-    if (m > 0) {
-      const Control& u = piece.steps[m - 1];
-      const SE2Pose& p = piece.poses[m - 1];
-      const double step = u.omega != 0 ? radius * std::abs(wrap_angle(q.theta - p.theta))
-                                       : std::hypot(q.x - p.x, q.y - p.y);
-      if (step < 1e-9) continue;  // a repeated configuration
-      sigma += step;
-    }
-    Control u = m < piece.steps.size() ? piece.steps[m] : piece.steps[m - 1];
-    if (u.omega == 0 && m > 0 && piece.steps[m - 1].omega != 0) u = piece.steps[m - 1];
-    const double v = piece.direction;
-    const Vec2 heading(std::cos(q.theta), std::sin(q.theta));
-    const Vec2 left(-std::sin(q.theta), std::cos(q.theta));
-    const Vec2 d1 = v * heading;
-    const Vec2 d2 = (v * u.omega / radius) * left;
-    PathFrame f = lift_to_surface(q.position(), surface.evaluate(q.position()), d1, d2);
-    if (!frames.empty())
-      s += 0.5 * (frames.back().speed + f.speed) * (sigma - frames.back().parameter);
-    f.parameter = sigma;
-    f.s = s;
-    frames.push_back(f);
-  }
-  if (frames.size() < 2) return 0.0;
-  VelocityLimits limits(vehicle);
-  limits.compute(frames);
-  return solver.solve(limits, ProfileOptions{}).travel_time;
+/// The point mass matched to marsokhod_chassis.yaml (data/vehicles/marsokhod_point_mass.yaml):
+/// half track = the axle half width l, centre of mass 0.35 m up, rover-like drive and speed
+/// limits.
+Vehicle matched_vehicle(const std::filesystem::path& data_dir) {
+  return load_vehicle((data_dir / "vehicles" / "marsokhod_point_mass.yaml").string());
 }
 
 /// One kinematic plan and its evaluation.
@@ -133,15 +63,18 @@ KinematicRun run_kinematic(const HaitScenario& s, const Robot& robot, const Hait
   if (run.plan.status != HaitStatus::kFound) {
     throw SolverError(name + ": no kinematic path (" + run.plan.message + ")");
   }
-  run.time = 0.0;
+  // Its profile along its own arcs, piece by piece between cusps, rest to rest.
+  std::vector<SE2Pose> poses;
+  for (const PathPoint& p : run.plan.path) poses.push_back(p.pose);
+  const DrivenPathResult driven = driven_path_time(surface, vehicle, poses, {}, &solver);
+  run.time = driven.travel_time;
   run.time_cubic = 0.0;
-  for (const ArcPiece& piece : arc_pieces(run.plan.path)) {
-    run.time += arc_piece_time(surface, vehicle, piece, options.turning_radius, solver);
+  for (const DrivenPiece& piece : driven.pieces) {
     std::vector<Vec2> points;
-    for (const SE2Pose& q : piece.poses) points.push_back(q.position());
+    for (std::size_t k = piece.first; k <= piece.last; ++k) points.push_back(poses[k].position());
     run.time_cubic += polyline_travel_time(surface, vehicle, points, {}, &solver);
-    ++run.pieces;
   }
+  run.pieces = driven.pieces.size();
   for (const PathPoint& p : run.plan.path) run.invalid += model.check(p.pose).valid ? 0 : 1;
   return run;
 }
@@ -217,7 +150,7 @@ Row compare(const std::string& name, const HaitScenario& s, const Robot& robot,
 void run_dynamic_vs_kinematic(const ExperimentContext& context) {
   require_gnuplot();
   const Robot robot = load_hait_chassis(context.data_dir);
-  const Vehicle vehicle = matched_vehicle();
+  const Vehicle vehicle = matched_vehicle(context.data_dir);
   std::vector<std::pair<std::string, HaitScenario>> scenarios{
       {"crescent", hait_heuristics_scenario(context.quick)},
       {"gorge", hait_gorge_scenario(context.quick)}};

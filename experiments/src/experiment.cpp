@@ -70,6 +70,15 @@ std::vector<Experiment> all_experiments() {
        "terrain: success, travel time, binding-constraint shares, and the monotonicity the "
        "physics implies",
        run_sweep_friction_stability},
+      {"sweep-dynamic-vs-kinematic",
+       "a sweep of the Hait-Simeon-Taix path at its own time-optimal profile against Talus's "
+       "plan over terrain roughness x friction: time ratio, planning-time ratio, invariants",
+       run_sweep_dynamic_vs_kinematic},
+      {"sweep-baselines",
+       "a sweep of Talus's plans against every registered kinematic baseline's path at its "
+       "time-optimal profile over roughness x friction: paths found, time and planning-time "
+       "ratios, invariants",
+       run_sweep_baselines},
   };
 }
 

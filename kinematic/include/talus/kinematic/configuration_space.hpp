@@ -12,18 +12,12 @@
 #include <span>
 #include <string>
 
+#include "talus/core/se2_pose.hpp"
 #include "talus/core/types.hpp"
 
 namespace talus {
 
-/// A configuration q = (x, y, θ): position [m] and heading [rad] (θ = 0 faces
-/// east, counter-clockwise positive).
-struct SE2Pose {
-  double x = 0.0;      ///< [m]
-  double y = 0.0;      ///< [m]
-  double theta = 0.0;  ///< heading [rad], any value (compared modulo 2π)
-  Vec2 position() const { return {x, y}; }
-};
+// SE2Pose, the configuration (x, y, θ), is in talus/core/se2_pose.hpp.
 
 /// An elementary control as the signs of (v, ω): v = +1 forward, −1 reverse;
 /// ω = +1 heading increasing (counter-clockwise), 0 straight, −1 decreasing.

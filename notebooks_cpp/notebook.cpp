@@ -13,6 +13,7 @@
 #include "plot.hpp"
 #include "relief_raster.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/esri_ascii.hpp"
 
 namespace talus::notebooks {
 
@@ -70,7 +71,8 @@ bool Notebook::check(bool holds, std::string_view fact) {
 }
 
 std::string Notebook::plot(const std::string& stem, std::string_view title, std::string_view xlabel,
-                           std::string_view ylabel, const std::vector<Series>& series) {
+                           std::string_view ylabel, const std::vector<Series>& series,
+                           std::string_view settings) {
   GnuplotFigure figure(dir_, stem);
   const fs::path data = figure.file(".dat");
   std::ofstream out = experiments::open_output_file(data);
@@ -91,7 +93,8 @@ std::string Notebook::plot(const std::string& stem, std::string_view title, std:
   figure.describe(title, figure.name(".dat")).canvas(1000, 500);
   figure.title(title) << "set xlabel " << gnuplot_string(xlabel) << "\nset ylabel "
                       << gnuplot_string(ylabel)
-                      << "\nset grid\nset key outside bottom center horizontal samplen 2\n";
+                      << "\nset grid\nset key outside bottom center horizontal samplen 2\n"
+                      << settings;
   figure.plot(items).render();
   return stem + ".png";
 }
@@ -143,6 +146,19 @@ int Notebook::finish() {
   std::printf("\n%zu of %zu checks held; page: %s\n", checks_ - failures_, checks_,
               (dir_ / "report.md").string().c_str());
   return failures_ == 0 ? 0 : 1;
+}
+
+ElevationGrid west_bijou_at_rover_scale(const Notebook& nb) {
+  const ElevationGrid dem =
+      read_esri_ascii(nb.data("terrain/west_bijou_escarpment_nasadem25m.asc"));
+  ElevationGrid grid(dem.ncols(), dem.nrows(), 1.0, 0.0, 0.0);
+  for (std::size_t j = 0; j < dem.nrows(); ++j)
+    for (std::size_t i = 0; i < dem.ncols(); ++i) grid.at(i, j) = dem.at(i, j) / 25.0;
+  return grid;
+}
+
+std::vector<Vec2> rover_path_points() {
+  return {Vec2(8, 12), Vec2(28, 40), Vec2(48, 18), Vec2(76, 30), Vec2(92, 66), Vec2(112, 60)};
 }
 
 std::string num(const char* format, double value) {

@@ -21,19 +21,22 @@
 
 #include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
+#include "talus/core/elevation_grid.hpp"
 #include "talus/core/types.hpp"
 
 namespace talus::notebooks {
 
 /// One curve of a line plot: y(x) drawn with a gnuplot style such as
-/// "lines lw 2 lc rgb '#2c7fb8'" or "points pt 7".
+/// "lines lw 2 lc rgb '#2c7fb8'" or "points pt 7". The title is gnuplot
+/// enhanced text: write v_{max} for a subscript.
 struct Series {
   std::string title;
   std::vector<double> x, y;
   std::string style = "lines lw 2";
 };
 
-/// One route of a map: planar positions [m] in the terrain's frame.
+/// One route of a map: planar positions [m] in the terrain's frame; the
+/// title is enhanced text as in Series.
 struct Route {
   std::string title;
   std::vector<Vec2> points;
@@ -63,9 +66,11 @@ class Notebook {
   /// on stdout; any failed check makes finish() return 1.
   bool check(bool holds, std::string_view fact);
 
-  /// A line plot `stem`.png of the series; returns its file name.
+  /// A line plot `stem`.png of the series; returns its file name. `settings`:
+  /// further gnuplot lines, e.g. "set logscale xy\n".
   std::string plot(const std::string& stem, std::string_view title, std::string_view xlabel,
-                   std::string_view ylabel, const std::vector<Series>& series);
+                   std::string_view ylabel, const std::vector<Series>& series,
+                   std::string_view settings = "");
   /// A map `stem`.png of `surface` as shaded relief with the routes over it
   /// (and start/goal markers at the first route's ends); returns its file name.
   std::string map(const std::string& stem, std::string_view title, const BPatch& surface,
@@ -83,6 +88,15 @@ class Notebook {
   experiments::Report report_;
   std::size_t checks_ = 0, failures_ = 0;
 };
+
+/// The West Bijou DEM (25 m cells) scaled by 1/25 in x, y and z, with its
+/// south-west node at the origin: 1 m cells and unchanged slopes, so that a
+/// rover's limits bind (data/terrain/README.md, "Rover-scale use"). 121 × 81 m.
+ElevationGrid west_bijou_at_rover_scale(const Notebook& nb);
+
+/// Way points [m] of the path notebooks 02 and 03 drive on that terrain:
+/// across the escarpment with four turns.
+std::vector<Vec2> rover_path_points();
 
 /// `value` with printf conversion `format` (one double), for narration.
 std::string num(const char* format, double value);

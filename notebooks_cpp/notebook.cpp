@@ -119,9 +119,9 @@ std::string Notebook::map(const std::string& stem, std::string_view title, const
                     " using " + frame.xy() + " with " + routes[k].style + " title " +
                     gnuplot_string(routes[k].title));
   }
-  if (!routes.empty() && !routes[0].points.empty()) {
-    out << experiments::offset_row(routes[0].points.front(), frame.origin()) << '\n'
-        << experiments::offset_row(routes[0].points.back(), frame.origin()) << '\n';
+  if (!routes.empty() && !routes.back().points.empty()) {
+    out << experiments::offset_row(routes.back().points.front(), frame.origin()) << '\n'
+        << experiments::offset_row(routes.back().points.back(), frame.origin()) << '\n';
     items.push_back(frame.endpoint_items(figure.name("_routes.dat"), routes.size()));
   }
   experiments::close_output_file(out, data);

@@ -22,6 +22,7 @@
 #include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
+#include "talus/core/error.hpp"
 #include "talus/core/types.hpp"
 
 namespace talus::notebooks {
@@ -72,7 +73,7 @@ class Notebook {
                    std::string_view ylabel, const std::vector<Series>& series,
                    std::string_view settings = "");
   /// A map `stem`.png of `surface` as shaded relief with the routes over it
-  /// (and start/goal markers at the first route's ends); returns its file name.
+  /// in order (and start/goal markers at the last route's ends); returns its file name.
   std::string map(const std::string& stem, std::string_view title, const BPatch& surface,
                   const std::vector<Route>& routes);
   /// Adds a figure (from plot() or map()) to the page.

@@ -5,6 +5,10 @@ include(CMakeFindDependencyMacro)
 
 find_dependency(Eigen3 3.4 NO_MODULE)
 
+# nlohmann_json (header-only): summary.json and the sweep engine's parameters and records
+# (talus::core's public headers under report/ and sweep/).
+find_dependency(nlohmann_json 3.11 CONFIG)
+
 # SuiteSparse 5.12 (Debian 12) ships neither CMake configs nor .pc files.
 if(NOT TARGET SuiteSparse::CHOLMOD)
   find_path(SUITESPARSE_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "plot.hpp"
-#include "relief.hpp"
+#include "talus/bspline/relief.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/report/plot.hpp"
 
 namespace talus::experiments {
 namespace {

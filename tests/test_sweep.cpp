@@ -12,14 +12,14 @@
 #include <thread>
 
 #include "cli_test_support.hpp"
-#include "sweep_config.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/sweep/sweep_config.hpp"
 
 namespace {
 
 using talus::InputError;
-using talus::experiments::parse_sweep_config;
-using talus::experiments::SweepConfig;
+using talus::parse_sweep_config;
+using talus::SweepConfig;
 using namespace talus::cli_test;
 namespace fs = std::filesystem;
 

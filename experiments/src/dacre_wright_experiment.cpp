@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "dacre_wright_outputs.hpp"
-#include "number_format.hpp"
-#include "plot.hpp"
-#include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/dacre_wright/channel_region.hpp"
 #include "talus/kinematic/dacre_wright/configuration_octree.hpp"

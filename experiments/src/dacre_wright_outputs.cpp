@@ -5,8 +5,8 @@
 #include <fstream>
 #include <numbers>
 
-#include "number_format.hpp"
-#include "plot.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "experiment_summary.hpp"
+#include "talus/core/report/experiment_summary.hpp"
 
 namespace talus::experiments {
 

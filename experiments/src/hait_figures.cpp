@@ -5,12 +5,12 @@
 #include <fstream>
 #include <utility>
 
-#include "figure.hpp"
-#include "map_frame.hpp"
-#include "number_format.hpp"
-#include "plot.hpp"
-#include "relief_raster.hpp"
 #include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/map_frame.hpp"
+#include "talus/bspline/relief_raster.hpp"
+#include "talus/core/report/figure.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
 
 namespace talus::experiments {
 namespace {

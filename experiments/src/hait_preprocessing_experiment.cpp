@@ -10,15 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "figure.hpp"
 #include "hait_experiments.hpp"
 #include "hait_scenarios.hpp"
-#include "number_format.hpp"
-#include "plot.hpp"
-#include "report.hpp"
-#include "stopwatch.hpp"
+#include "talus/core/report/figure.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/sample_statistics.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 #include "talus/kinematic/hait/potential_bitmap.hpp"

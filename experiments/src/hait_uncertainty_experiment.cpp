@@ -11,17 +11,17 @@
 #include <string>
 #include <vector>
 
-#include "experiment_summary.hpp"
 #include "hait_experiments.hpp"
 #include "hait_figures.hpp"
 #include "hait_scenarios.hpp"
-#include "number_format.hpp"
-#include "plot.hpp"
-#include "report.hpp"
-#include "stopwatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/report/experiment_summary.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
 #include "talus/core/ruled_terrain.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 

@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "cli_values.hpp"
-#include "plot.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/bspline/surface_path_from_points.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/path_csv.hpp"
+#include "talus/core/report/plot.hpp"
 #include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"

@@ -11,7 +11,6 @@
 #include "baseline_command.hpp"
 #include "experiment.hpp"
 #include "limits_command.hpp"
-#include "output_folder.hpp"
 #include "placement_command.hpp"
 #include "plan_command.hpp"
 #include "profile_command.hpp"
@@ -19,6 +18,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/input_file.hpp"
+#include "talus/core/output_folder.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "terrain_commands.hpp"
@@ -618,7 +618,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
         return run_cli(args, false);
       };
       context.check_command = [](const std::vector<std::string>& args) { run_cli(args, true); };
-      ex::OutputFolder out(folder);
+      talus::OutputFolder out(folder);
       context.output_dir = out.staging();
       e.run(context);
       context.summary->write(context.output_dir / "summary.json", e.name, quick);
@@ -662,6 +662,6 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
 }
 
 int main(int argc, char** argv) {
-  ex::exit_cleanly_on_signals();
+  talus::exit_cleanly_on_signals();
   return run_cli(std::vector<std::string>(argv + 1, argv + argc), false);
 }

@@ -9,9 +9,9 @@
 
 #include "cli_values.hpp"
 #include "limits_command.hpp"
-#include "plot.hpp"
-#include "stopwatch.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"

@@ -8,13 +8,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "figure.hpp"
-#include "number_format.hpp"
 #include "plan_command.hpp"
-#include "plot.hpp"
-#include "report.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/report/figure.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/optimal/local_stage_summary.hpp"
 

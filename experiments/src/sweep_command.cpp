@@ -3,12 +3,17 @@
 #include <iostream>
 #include <sstream>
 
-#include "mpi_session.hpp"
-#include "sweep_config.hpp"
-#include "sweep_runner.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/sweep/mpi_session.hpp"
+#include "talus/core/sweep/sweep_config.hpp"
+#include "talus/core/sweep/sweep_runner.hpp"
+#include "talus/dynamics/vehicle.hpp"
 
 namespace talus::experiments {
+
+void check_sweep_vehicle(const std::string& text, const std::string& source) {
+  parse_vehicle(text, source);
+}
 
 std::string sweep(const SweepRequest& request) {
   const MpiSession mpi;
@@ -23,6 +28,7 @@ std::string sweep(const SweepRequest& request) {
   options.progress = mpi.rank() == 0;
   options.run_command = request.run_command;
   options.check_command = request.check_command;
+  options.check_vehicle = check_sweep_vehicle;
   bool agreed = false;
   options.all_ranks_agree = [&mpi, &agreed](bool mine) {
     agreed = true;

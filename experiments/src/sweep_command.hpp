@@ -20,6 +20,10 @@ struct SweepRequest {
   std::function<void(const std::vector<std::string>&)> check_command;
 };
 
+/// The sweep's vehicle check (SweepOptions::check_vehicle): parses the text
+/// as a vehicle file, InputError naming `source` if it is not one.
+void check_sweep_vehicle(const std::string& text, const std::string& source);
+
 /// Runs the sweep; returns the lines to print (the brief report, or the
 /// cases of a dry run). InputError for a bad config or DIR.
 std::string sweep(const SweepRequest& request);

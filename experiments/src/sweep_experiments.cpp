@@ -1,5 +1,7 @@
 #include "sweep_experiments.hpp"
 
+#include "sweep_command.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,13 +9,13 @@
 #include <set>
 #include <tuple>
 
-#include "figure.hpp"
-#include "number_format.hpp"
-#include "plot.hpp"
-#include "report.hpp"
-#include "sweep_config.hpp"
-#include "sweep_runner.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/report/figure.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
+#include "talus/core/sweep/sweep_config.hpp"
+#include "talus/core/sweep/sweep_runner.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -166,6 +168,7 @@ void run_sweep_friction_stability(const ExperimentContext& context) {
   options.output_dir = context.output_dir / "sweep";
   options.run_command = context.run_command;
   options.check_command = context.check_command;
+  options.check_vehicle = check_sweep_vehicle;
   const SweepResult result = run_sweep(config, options);
   write_sweep_report(config, options.output_dir);
   const std::vector<Outcome> all = outcomes(config, options.output_dir);

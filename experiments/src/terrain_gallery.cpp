@@ -15,18 +15,18 @@
 #include <system_error>
 #include <vector>
 
-#include "figure.hpp"
-#include "map_frame.hpp"
-#include "number_format.hpp"
-#include "plot.hpp"
-#include "relief.hpp"
-#include "relief_raster.hpp"
-#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/fit_residuals.hpp"
+#include "talus/bspline/map_frame.hpp"
+#include "talus/bspline/relief.hpp"
+#include "talus/bspline/relief_raster.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/report/figure.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
 #include "talus/core/terrain_generators.hpp"
 
 namespace talus::experiments {

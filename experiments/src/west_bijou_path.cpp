@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "number_format.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/report/number_format.hpp"
 
 namespace talus::experiments {
 

@@ -1,0 +1,523 @@
+#include "talus/core/sweep/sweep_runner.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/file.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <thread>
+#include <tuple>
+
+#include "talus/core/error.hpp"
+#include "talus/core/input_file.hpp"
+#include "talus/core/report/plot.hpp"
+
+namespace talus {
+namespace {
+
+using Json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+constexpr int kInputErrorExit = 1;  ///< `talus` exit code for bad input: not retried
+constexpr int kNoResultExit = 2;    ///< plan/profile/baseline: a result saying "no path"
+
+std::string results_file_name(int rank) {
+  return rank == 0 ? "results.jsonl" : "results.rank-" + std::to_string(rank) + ".jsonl";
+}
+
+std::string host_name() {
+  char name[256] = {};
+  if (gethostname(name, sizeof name - 1) != 0) return "unknown";
+  return name;
+}
+
+/// The lines of a results file; a last line without its newline is torn
+/// (the writer died in the middle of it) and left out. With `repair` the
+/// file is cut back to its last complete line, so appends start cleanly.
+std::vector<Json> read_records_file(const fs::path& path, bool repair) {
+  std::vector<Json> records;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return records;
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const std::size_t complete = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
+  std::size_t begin = 0;
+  while (begin < complete) {
+    const std::size_t end = text.find('\n', begin);
+    const std::string line = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (line.empty()) continue;
+    Json record = Json::parse(line, nullptr, /*allow_exceptions=*/false);
+    if (record.is_object() && record.contains("case_id")) records.push_back(std::move(record));
+  }
+  if (repair && complete < text.size()) {
+    std::error_code ignored;
+    fs::resize_file(path, complete, ignored);
+    if (ignored) throw Error("cannot repair the torn last line of " + path.string());
+  }
+  return records;
+}
+
+/// Holds DIR's lock for the sweep's lifetime.
+class SweepLock {
+ public:
+  SweepLock(const fs::path& dir, int rank) {
+    const fs::path path = dir / (rank == 0 ? std::string(".talus-sweep.lock")
+                                           : ".talus-sweep.rank-" + std::to_string(rank) + ".lock");
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw InputError("--out: cannot create the lock " + path.string());
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      throw InputError("--out: " + dir.string() + " is in use by another sweep");
+    }
+  }
+  ~SweepLock() { ::close(fd_); }
+  SweepLock(const SweepLock&) = delete;
+  SweepLock& operator=(const SweepLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+/// Appends whole lines to a results file, each with one write().
+class RecordWriter {
+ public:
+  explicit RecordWriter(const fs::path& path) : path_(path) {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw InputError("--out: cannot write " + path.string());
+  }
+  ~RecordWriter() { ::close(fd_); }
+  RecordWriter(const RecordWriter&) = delete;
+  RecordWriter& operator=(const RecordWriter&) = delete;
+  void append(const Json& record) {
+    const std::string line = record.dump() + "\n";
+    std::size_t written = 0;
+    while (written < line.size()) {
+      const ssize_t n = ::write(fd_, line.data() + written, line.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) throw Error("cannot append to " + path_.string() + ": " + std::strerror(errno));
+      written += static_cast<std::size_t>(n);
+    }
+    // No fdatasync: one write() puts the whole line in the kernel, so a
+    // killed sweep loses nothing; only a machine crash can lose the last
+    // lines, whose cases are then simply redone (fdatasync cost 5 ms a case here).
+  }
+
+ private:
+  fs::path path_;
+  int fd_ = -1;
+};
+
+/// The first JSON object a job printed (the CLI's commands print one).
+Json job_output(const fs::path& stdout_file) {
+  std::ifstream in(stdout_file, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const std::size_t brace = text.find('{');
+  if (brace == std::string::npos) return Json::object();
+  Json parsed = Json::parse(text.substr(brace), nullptr, false);
+  return parsed.is_object() ? parsed : Json::object();
+}
+
+std::string first_line(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  const std::string prefix = "talus: error: ";
+  if (line.rfind(prefix, 0) == 0) line = line.substr(prefix.size());
+  return line;
+}
+
+/// The job's key figures: its scalar output fields, timings left out (they
+/// are the only ones that change from run to run).
+Json key_figures(const Json& output) {
+  Json figures = Json::object();
+  for (const auto& [key, value] : output.items()) {
+    if (key == "status" || key.find("seconds") != std::string::npos) continue;
+    if (value.is_primitive()) figures[key] = value;
+  }
+  return figures;
+}
+
+/// The noop job: a worker that sleeps, crashes or prints a value, for
+/// testing the sweep machinery and measuring its overhead per case.
+int run_noop(const SweepCase& c) {
+  const Json& p = c.parameters;
+  if (p.contains("sleep") && p.at("sleep").is_number()) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(p.at("sleep").get<double>()));
+  }
+  if (p.contains("crash") && p.at("crash") == true) std::abort();
+  Json out = {{"status", "ok"}};
+  if (p.contains("value")) out["value"] = p.at("value");
+  std::cout << out.dump() << "\n";
+  return 0;
+}
+
+/// In the worker process: run the case's commands, stop at the first that fails.
+int run_case(const SweepConfig& config, const SweepCase& c, const PreparedCase& prepared,
+             const SweepOptions& options) {
+  try {
+    if (config.job == "noop") return run_noop(c);
+    int code = 0;
+    for (const std::vector<std::string>& command : prepared.commands) {
+      code = options.run_command(command);
+      if (code != 0) break;
+    }
+    return code;
+  } catch (const std::exception& e) {
+    std::cerr << "talus: error: " << e.what() << "\n";
+    return kInputErrorExit;
+  }
+}
+
+struct Worker {
+  pid_t pid = -1;
+  int done_fd = -1;  ///< read end of a pipe the worker holds open until it exits
+  std::size_t case_index = 0;
+  int attempt = 1;
+  Clock::time_point start, deadline;
+};
+
+/// How a worker ended.
+struct Ending {
+  bool retry = false;  ///< crashed or hung
+  int exit_code = -1;
+  std::string reason;
+};
+
+Ending ending_of(int wait_status, bool timed_out, double limit) {
+  Ending e;
+  if (timed_out) {
+    e.retry = true;
+    std::ostringstream text;
+    text << "ran longer than the case time limit of " << limit << " s and was killed";
+    e.reason = text.str();
+  } else if (WIFSIGNALED(wait_status)) {
+    e.retry = true;
+    const int sig = WTERMSIG(wait_status);
+    e.reason = "worker killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
+  } else if (WIFEXITED(wait_status)) {
+    e.exit_code = WEXITSTATUS(wait_status);
+    if (e.exit_code != 0 && e.exit_code != kInputErrorExit && e.exit_code != kNoResultExit) {
+      e.retry = true;
+      e.reason = "worker exited with code " + std::to_string(e.exit_code);
+    }
+  }
+  return e;
+}
+
+class Progress {
+ public:
+  Progress(bool on, std::size_t total) : on_(on), tty_(on && ::isatty(2)), total_(total) {}
+  void update(std::size_t done, std::size_t failed, std::size_t running, const std::string& note) {
+    if (!on_) return;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
+    std::ostringstream line;
+    line << "sweep: " << done << "/" << total_ << " done, " << failed << " failed, " << running
+         << " running";
+    if (rate > 0) {
+      line.precision(3);
+      line << ", " << rate << " cases/s, ETA "
+           << std::lround(static_cast<double>(total_ - done) / rate) << " s";
+    }
+    if (tty_) {
+      std::cerr << "\r" << line.str() << "\033[K" << std::flush;
+    } else if (!note.empty()) {
+      std::cerr << line.str() << " (" << note << ")\n";
+    }
+  }
+  void finish() {
+    if (tty_) std::cerr << "\n";
+  }
+
+ private:
+  bool on_, tty_;
+  std::size_t total_;
+  Clock::time_point start_ = Clock::now();
+};
+
+}  // namespace
+
+std::string_view to_string(SweepStatus status) {
+  switch (status) {
+    case SweepStatus::kComplete:
+      return "complete";
+    case SweepStatus::kDryRun:
+      return "dry_run";
+  }
+  return "unknown";
+}
+
+void SweepOptions::validate() const {
+  if (output_dir.empty()) throw InputError("--out: an output folder is required");
+  if (ranks < 1 || rank < 0 || rank >= ranks) throw InputError("sweep: rank outside [0, ranks)");
+  if (!(case_time_limit >= 0.0) || !std::isfinite(case_time_limit)) {
+    throw InputError("--case-time-limit: must be a number of seconds > 0");
+  }
+  if (!run_command) throw InputError("sweep: no command runner");
+}
+
+std::string SweepResult::brief_report() const {
+  std::ostringstream out;
+  out << "sweep " << to_string(status) << ": " << cases << " cases";
+  if (mine != cases) out << " (" << mine << " on this rank)";
+  out << ", " << skipped << " already done, " << ran << " ran: " << ok << " ok, " << no_result
+      << " without a result (exit code 2), " << errors << " input errors, " << failed << " failed; "
+      << retries << " retries; " << seconds << " s";
+  return out.str();
+}
+
+std::vector<Json> read_sweep_records(const fs::path& dir) {
+  std::vector<Json> all;
+  std::error_code ec;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("results", 0) == 0 && entry.path().extension() == ".jsonl") {
+      files.push_back(entry.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  std::map<std::string, std::size_t> position;
+  for (const fs::path& file : files) {
+    for (Json& record : read_records_file(file, false)) {
+      const std::string id = record.at("case_id").get<std::string>();
+      if (auto it = position.find(id); it != position.end()) {
+        all[it->second] = std::move(record);
+      } else {
+        position[id] = all.size();
+        all.push_back(std::move(record));
+      }
+    }
+  }
+  return all;
+}
+
+SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
+  options.validate();
+  const auto started = Clock::now();
+  const double limit =
+      options.case_time_limit > 0.0 ? options.case_time_limit : config.case_time_limit;
+  const fs::path dir = options.output_dir;
+  const fs::path cases_dir = dir / "cases";
+
+  // Everything a case needs is resolved and checked before the first runs.
+  std::vector<std::size_t> mine;
+  std::vector<PreparedCase> prepared(config.cases.size());
+  for (const SweepCase& c : config.cases) {
+    prepared[c.index] = prepare_case(config, c, cases_dir / c.id, options.check_vehicle);
+    if (options.check_command) {
+      for (const auto& command : prepared[c.index].commands) options.check_command(command);
+    }
+    if (static_cast<int>(c.index % static_cast<std::size_t>(options.ranks)) == options.rank) {
+      mine.push_back(c.index);
+    }
+  }
+  SweepResult result;
+  result.cases = config.cases.size();
+  result.mine = mine.size();
+  if (options.dry_run) {
+    result.status = SweepStatus::kDryRun;
+    for (std::size_t i : mine) {
+      result.dry_run_lines.push_back(config.cases[i].id + "  " + config.cases[i].parameters.dump());
+    }
+    return result;
+  }
+
+  std::error_code ec;
+  fs::create_directories(cases_dir, ec);
+  if (ec || !fs::is_directory(dir)) {
+    throw InputError("--out: cannot create the folder " + dir.string());
+  }
+  std::optional<SweepLock> lock;
+  std::string lock_error;
+  try {
+    lock.emplace(dir, options.rank);
+  } catch (const InputError& e) {
+    lock_error = e.what();
+  }
+  const bool everyone =
+      options.all_ranks_agree ? options.all_ranks_agree(lock.has_value()) : lock.has_value();
+  if (!lock) throw InputError(lock_error);
+  if (!everyone) throw InputError("--out: another rank could not lock " + dir.string());
+  const fs::path results_path = dir / results_file_name(options.rank);
+  read_records_file(results_path, /*repair=*/true);
+  std::set<std::string> done;
+  for (const Json& record : read_sweep_records(dir))
+    done.insert(record.at("case_id").get<std::string>());
+
+  std::vector<std::size_t> queue;
+  for (std::size_t i : mine) {
+    if (done.count(config.cases[i].id) != 0) {
+      ++result.skipped;
+    } else {
+      queue.push_back(i);
+    }
+  }
+  std::reverse(queue.begin(), queue.end());  // pop_back() takes them in design order
+  RecordWriter writer(results_path);
+  const std::size_t jobs =
+      options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+  const std::string host = host_name();
+  std::map<std::size_t, int> attempts;
+  std::vector<Worker> running;
+  Progress progress(options.progress, mine.size());
+  std::size_t finished = result.skipped;
+  std::cout.flush();
+  std::cerr.flush();
+
+  const auto launch = [&](std::size_t index) {
+    const SweepCase& c = config.cases[index];
+    const fs::path case_dir = cases_dir / c.id;
+    fs::remove_all(case_dir, ec);
+    fs::create_directories(case_dir, ec);
+    if (ec) throw Error("cannot create " + case_dir.string());
+    for (const auto& [name, text] : prepared[index].files) write_text_file(case_dir / name, text);
+    int pipe_fds[2];
+    if (::pipe2(pipe_fds, O_CLOEXEC) != 0) throw Error("sweep: cannot create a pipe");
+    const pid_t parent = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid < 0) throw Error("sweep: cannot start a worker process (fork failed)");
+    if (pid == 0) {
+      ::close(pipe_fds[0]);
+      ::setpgid(0, 0);
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed sweep takes its workers with it
+      if (::getppid() != parent) ::_exit(137);
+      const int out = ::open((case_dir / "stdout.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int err = ::open((case_dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (out < 0 || err < 0) ::_exit(kInputErrorExit);
+      ::dup2(out, 1);
+      ::dup2(err, 2);
+      const int code = run_case(config, c, prepared[index], options);
+      std::cout.flush();
+      std::cerr.flush();
+      std::fflush(nullptr);
+      ::_exit(code);
+    }
+    ::setpgid(pid, pid);
+    ::close(pipe_fds[1]);
+    Worker w;
+    w.pid = pid;
+    w.done_fd = pipe_fds[0];
+    w.case_index = index;
+    w.attempt = ++attempts[index];
+    w.start = Clock::now();
+    w.deadline =
+        w.start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
+    running.push_back(w);
+  };
+
+  const auto conclude = [&](const Worker& w, int wait_status, bool timed_out) {
+    const SweepCase& c = config.cases[w.case_index];
+    const fs::path case_dir = cases_dir / c.id;
+    const Ending ending = ending_of(wait_status, timed_out, limit);
+    ++result.ran;
+    if (ending.retry && w.attempt <= config.retries) {
+      ++result.retries;
+      --result.ran;
+      queue.push_back(w.case_index);  // next, before the cases not yet started
+      progress.update(finished, result.failed, running.size(), c.id + " retried: " + ending.reason);
+      return;
+    }
+    Json record = Json::object();
+    record["case_id"] = c.id;
+    record["index"] = c.index;
+    record["job"] = config.job;
+    record["parameters"] = c.parameters;
+    const Json output = ending.retry ? Json::object() : job_output(case_dir / "stdout.txt");
+    std::string status;
+    if (ending.retry) {
+      status = "failed";
+      ++result.failed;
+    } else if (ending.exit_code == kInputErrorExit) {
+      status = "error";
+      ++result.errors;
+    } else {
+      status = output.contains("status") && output.at("status").is_string()
+                   ? output.at("status").get<std::string>()
+                   : (ending.exit_code == 0 ? "ok" : "no_result");
+      ++(ending.exit_code == 0 ? result.ok : result.no_result);
+    }
+    record["status"] = status;
+    record["reason"] = ending.retry                          ? ending.reason
+                       : ending.exit_code == kInputErrorExit ? first_line(case_dir / "stderr.txt")
+                                                             : std::string();
+    record["exit_code"] = ending.exit_code;
+    record["figures"] = key_figures(output);
+    record["seconds"] = std::chrono::duration<double>(Clock::now() - w.start).count();
+    record["attempts"] = w.attempt;
+    record["host"] = host;
+    record["rank"] = options.rank;
+    writer.append(record);
+    ++finished;
+    progress.update(finished, result.failed, running.size(), c.id + " " + status);
+  };
+
+  while (!queue.empty() || !running.empty()) {
+    while (running.size() < jobs && !queue.empty()) {
+      const std::size_t next = queue.back();
+      queue.pop_back();
+      launch(next);
+    }
+    auto wait_until = Clock::now() + std::chrono::seconds(1);
+    std::vector<pollfd> fds;
+    for (const Worker& w : running) {
+      fds.push_back({w.done_fd, POLLIN, 0});
+      wait_until = std::min(wait_until, w.deadline);
+    }
+    const auto wait_ms =
+        std::chrono::duration_cast<std::chrono::milliseconds>(wait_until - Clock::now()).count();
+    ::poll(fds.data(), fds.size(), static_cast<int>(std::max<long long>(0, wait_ms) + 1));
+    std::vector<Worker> still;
+    std::vector<std::tuple<Worker, int, bool>> ended_workers;
+    const auto now = Clock::now();
+    for (std::size_t k = 0; k < running.size(); ++k) {
+      const Worker& w = running[k];
+      bool ended = false, timed_out = false;
+      if (fds[k].revents != 0) {
+        char sink[256];
+        ended = ::read(w.done_fd, sink, sizeof sink) <= 0;
+      }
+      if (!ended && now >= w.deadline) {
+        ::kill(-w.pid, SIGKILL);
+        ended = timed_out = true;
+      }
+      if (!ended) {
+        still.push_back(w);
+        continue;
+      }
+      int wait_status = 0;
+      while (::waitpid(w.pid, &wait_status, 0) < 0 && errno == EINTR) {
+      }
+      if (!timed_out) ::kill(-w.pid, SIGKILL);  // anything the worker left running
+      ::close(w.done_fd);
+      ended_workers.emplace_back(w, wait_status, timed_out);
+    }
+    running = std::move(still);
+    for (const auto& [w, wait_status, timed_out] : ended_workers)
+      conclude(w, wait_status, timed_out);
+  }
+  progress.finish();
+  result.seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  return result;
+}
+
+}  // namespace talus

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
         "A DEM that stores whole metres has steps the interpolant turns into curvature "
         "spikes; smoothing removes them at the price of node error.");
     const BPatch exact = BPatch::interpolate(grid);
-    experiments::Table fits({"fit", "max node residual [m]", "RMS residual [m]"});
+    Table fits({"fit", "max node residual [m]", "RMS residual [m]"});
     const BPatchFitReport re = exact.residuals(grid);
     fits.row({"interpolating", num("%.1e", re.max_node_residual), num("%.1e", re.rms_residual)});
     double previous_rms = re.rms_residual;

@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
              "(re-evaluated here from each constraint alone)");
 
     const LimitSummary summary = summarise_limits(limits);
-    experiments::Table shares({"what sets v_max", "share of stations"});
+    Table shares({"what sets v_max", "share of stations"});
     for (const Constraint c :
          {Constraint::kSliding, Constraint::kTipover, Constraint::kContact, Constraint::kMaxSpeed})
       shares.row({std::string(to_string(c)), num("%.1f", 100.0 * summary.upper_share(c)) + " %"});

@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
            " s — the global search's cost (notebook 04) — but no vehicle can: it must start and "
            "stop, and brake before each slow spot.");
 
-    experiments::Table first({"s [m]", "from", "to"});
+    Table first({"s [m]", "from", "to"});
     for (std::size_t k = 0; k < std::min<std::size_t>(p.switching_points.size(), 6); ++k) {
       const SwitchingPoint& sp = p.switching_points[k];
       first.row(
@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
                    : std::vector<std::size_t>{100, 200, 400, 800, 1600, 3200, 6400, 12800};
     const SurfacePath path(terrain, curve);
     const ProfileConvergence c = profile_convergence(rover, path, study);
-    experiments::Table levels({"stations", "spacing [m]", "travel time [s]", "vs finest"});
+    Table levels({"stations", "spacing [m]", "travel time [s]", "vs finest"});
     Series error{"|relative error|", {}, {}, "linespoints lw 2 pt 7 lc rgb '#2c7fb8'"};
     bool shrinking = true;
     for (std::size_t k = 0; k < c.levels.size(); ++k) {

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
            " nodes, " + std::to_string(result.edges_evaluated) + " edges evaluated, " +
            num("%.2f", result.search_seconds) + " s.");
 
-    experiments::Table table({"candidate", "J [s]", "length [m]", "lattice vertices"});
+    Table table({"candidate", "J [s]", "length [m]", "lattice vertices"});
     std::vector<Route> routes;
     const char* colours[] = {"#e6550d", "#2c7fb8", "#31a354", "#756bb1"};
     bool ordered = true, within_ratio = true, optimistic = true;
@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
     multi.candidates = 1;
     multi.resolution = GlobalSearchResolution::kMulti;
     const GlobalSearchResult coarse = global_search(terrain, rover, start, goal, multi);
-    experiments::Table modes({"search", "best J [s]", "edges evaluated", "seconds"});
+    Table modes({"search", "best J [s]", "edges evaluated", "seconds"});
     modes.row({"Dijkstra, both fields", num("%.4f", result.candidates[0].cost_seconds),
                std::to_string(result.edges_evaluated), num("%.3f", result.search_seconds)});
     modes.row({"A*, one candidate", num("%.4f", one.candidates.at(0).cost_seconds),

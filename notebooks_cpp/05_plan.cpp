@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     const Trajectory& best = *result.best();
 
     nb.section("Candidates before and after");
-    experiments::Table table(
+    Table table(
         {"candidate", "J [s]", "initial fit [s]", "optimised [s]", "solver", "kept the fit"});
     std::vector<Route> routes;
     bool never_slower = true;

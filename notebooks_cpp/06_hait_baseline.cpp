@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
         "Talus implements the kinematic planners of the literature as baselines. Each is "
         "a `BaselinePlanner` configured from text options and queried with plan(terrain, "
         "start, goal); the registry finds them by name, as `talus baseline NAME` does.");
-    experiments::Table names({"name", "what it is"});
+    Table names({"name", "what it is"});
     for (const std::string& name : registry.names())
       names.row({name, registry.entry(name).summary});
     nb.table(names);
@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
                        "lines lw 3 lc rgb '#2c7fb8'"},
                       {"Talus: " + num("%.1f", best.travel_time()) + " s", talus_points,
                        "lines lw 3 lc rgb '#e6550d'"}}));
-    experiments::Table compare({"planner", "length [m]", "travel time [s]", "planning [s]"});
+    Table compare({"planner", "length [m]", "travel time [s]", "planning [s]"});
     compare.row({"Haït et al., then its profile", num("%.1f", kinematic.length_m),
                  num("%.2f", kinematic_time),
                  num("%.2f", kinematic.preprocessing_seconds + kinematic.search_seconds)});

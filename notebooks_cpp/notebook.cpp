@@ -7,19 +7,17 @@
 #include <fstream>
 #include <iostream>
 
-#include "figure.hpp"
-#include "map_frame.hpp"
-#include "number_format.hpp"
-#include "plot.hpp"
-#include "relief_raster.hpp"
+#include "talus/bspline/map_frame.hpp"
+#include "talus/bspline/relief_raster.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/report/figure.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
 
 namespace talus::notebooks {
 
 namespace fs = std::filesystem;
-using experiments::gnuplot_string;
-using experiments::GnuplotFigure;
 
 Notebook::Notebook(int argc, char** argv, std::string name, std::string_view title)
     : name_(std::move(name)), data_dir_(TALUS_DATA_DIR), report_(title) {
@@ -36,7 +34,7 @@ Notebook::Notebook(int argc, char** argv, std::string name, std::string_view tit
   }
   dir_ = out / name_;
   fs::create_directories(dir_);
-  experiments::require_gnuplot();
+  require_gnuplot();
   std::printf("# %.*s%s\n", static_cast<int>(title.size()), title.data(), quick_ ? " (quick)" : "");
   report_.paragraph(std::string("[All notebooks](../index.md)") +
                     (quick_ ? " · rendered in quick mode (small grids)" : ""));
@@ -56,7 +54,7 @@ void Notebook::say(std::string_view text) {
   std::printf("%.*s\n", static_cast<int>(text.size()), text.data());
 }
 
-void Notebook::table(const experiments::Table& table) {
+void Notebook::table(const Table& table) {
   report_.table(table);
   std::cout << table.markdown();
 }
@@ -75,21 +73,20 @@ std::string Notebook::plot(const std::string& stem, std::string_view title, std:
                            std::string_view settings) {
   GnuplotFigure figure(dir_, stem);
   const fs::path data = figure.file(".dat");
-  std::ofstream out = experiments::open_output_file(data);
+  std::ofstream out = open_output_file(data);
   out << "# x y, one block per series\n";
-  experiments::PlotItems items;
+  PlotItems items;
   for (std::size_t k = 0; k < series.size(); ++k) {
     const Series& s = series[k];
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      out << experiments::csv_number(s.x[i], 9) << ' ' << experiments::csv_number(s.y[i], 9)
-          << '\n';
+      out << csv_number(s.x[i], 9) << ' ' << csv_number(s.y[i], 9) << '\n';
     }
     if (s.x.empty()) out << "NaN NaN\n";  // gnuplot refuses an empty block
     out << "\n\n";
     items.push_back(gnuplot_string(figure.name(".dat")) + " index " + std::to_string(k) +
                     " using 1:2 with " + s.style + " title " + gnuplot_string(s.title));
   }
-  experiments::close_output_file(out, data);
+  close_output_file(out, data);
   figure.describe(title, figure.name(".dat")).canvas(1000, 500);
   figure.title(title) << "set xlabel " << gnuplot_string(xlabel) << "\nset ylabel "
                       << gnuplot_string(ylabel)
@@ -101,18 +98,17 @@ std::string Notebook::plot(const std::string& stem, std::string_view title, std:
 
 std::string Notebook::map(const std::string& stem, std::string_view title, const BPatch& surface,
                           const std::vector<Route>& routes) {
-  const experiments::MapFrame frame = experiments::MapFrame::of(surface);
+  const MapFrame frame = MapFrame::of(surface);
   GnuplotFigure figure(dir_, stem);
-  experiments::write_relief_image(surface, frame, "fitted B-patch", figure.file("_relief.rgb"),
-                                  quick_ ? 250 : 500);
+  write_relief_image(surface, frame, "fitted B-patch", figure.file("_relief.rgb"),
+                     quick_ ? 250 : 500);
   const fs::path data = figure.file("_routes.dat");
-  std::ofstream out = experiments::open_output_file(data);
+  std::ofstream out = open_output_file(data);
   out << "# x - x_min [m], y - y_min [m]; one block per route, then start and goal\n";
-  experiments::PlotItems items{gnuplot_string(figure.name("_relief.rgb")) + " using " + frame.xy() +
-                               ":3:4:5 with rgbimage notitle"};
+  PlotItems items{gnuplot_string(figure.name("_relief.rgb")) + " using " + frame.xy() +
+                  ":3:4:5 with rgbimage notitle"};
   for (std::size_t k = 0; k < routes.size(); ++k) {
-    for (const Vec2& p : routes[k].points)
-      out << experiments::offset_row(p, frame.origin()) << '\n';
+    for (const Vec2& p : routes[k].points) out << offset_row(p, frame.origin()) << '\n';
     if (routes[k].points.empty()) out << "NaN NaN\n";
     out << "\n\n";
     items.push_back(gnuplot_string(figure.name("_routes.dat")) + " index " + std::to_string(k) +
@@ -120,11 +116,11 @@ std::string Notebook::map(const std::string& stem, std::string_view title, const
                     gnuplot_string(routes[k].title));
   }
   if (!routes.empty() && !routes.back().points.empty()) {
-    out << experiments::offset_row(routes.back().points.front(), frame.origin()) << '\n'
-        << experiments::offset_row(routes.back().points.back(), frame.origin()) << '\n';
+    out << offset_row(routes.back().points.front(), frame.origin()) << '\n'
+        << offset_row(routes.back().points.back(), frame.origin()) << '\n';
     items.push_back(frame.endpoint_items(figure.name("_routes.dat"), routes.size()));
   }
-  experiments::close_output_file(out, data);
+  close_output_file(out, data);
   figure.describe(title, figure.name("_relief.rgb") + ", " + figure.name("_routes.dat"))
       .canvas(900, frame.canvas_height(900, 60));
   figure << frame.axes() << "set key outside bottom center horizontal samplen 2\n";
@@ -162,7 +158,7 @@ std::vector<Vec2> rover_path_points() {
 }
 
 std::string num(const char* format, double value) {
-  return experiments::fmt(format, value);
+  return fmt(format, value);
 }
 
 int run(const std::function<int()>& body) {

@@ -19,10 +19,10 @@
 #include <string_view>
 #include <vector>
 
-#include "report.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/report/report.hpp"
 #include "talus/core/types.hpp"
 
 namespace talus::notebooks {
@@ -62,7 +62,7 @@ class Notebook {
   /// A paragraph of narration (Markdown), also printed.
   void say(std::string_view text);
   /// A table, also printed.
-  void table(const experiments::Table& table);
+  void table(const Table& table);
   /// Records a fact this run must show: "✔ fact" or "✘ fact" on the page and
   /// on stdout; any failed check makes finish() return 1.
   bool check(bool holds, std::string_view fact);
@@ -86,7 +86,7 @@ class Notebook {
   std::string name_;
   bool quick_ = false;
   std::filesystem::path data_dir_, dir_;
-  experiments::Report report_;
+  Report report_;
   std::size_t checks_ = 0, failures_ = 0;
 };
 

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "plot.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/report/plot.hpp"
 
 namespace {
 
@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
       md << " (source: `notebooks_cpp/" << p.folder << ".cpp`)\n";
       std::printf("%-26s %s\n", p.folder, exists ? checks.c_str() : "MISSING");
     }
-    talus::experiments::write_text_file(out / "index.md", md.str());
+    talus::write_text_file(out / "index.md", md.str());
     std::printf("index: %s\n", (out / "index.md").string().c_str());
     return missing == 0 ? 0 : 1;
   } catch (const std::exception& e) {

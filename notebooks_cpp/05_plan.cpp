@@ -88,6 +88,11 @@ int main(int argc, char** argv) {
            " s, an improvement of " + num("%.1f", result.improvement_percent()) +
            " %. Its J (time at the limit along the lattice path) is lower still, because J "
            "ignores acceleration and braking.");
+    if (*result.best_candidate != 0) {
+      nb.say("The winner is candidate " + std::to_string(*result.best_candidate) +
+             ", not the one with the lowest J: J cannot see how much braking a corridor "
+             "will need, which is why the planner optimises several candidates, not one.");
+    }
 
     Series v{"v(s), time-optimal", {}, {}, "lines lw 2.5 lc rgb '#2c7fb8'"};
     Series v_max{"v_{max}(s)", {}, {}, "lines lw 1.5 lc rgb '#d73027'"};

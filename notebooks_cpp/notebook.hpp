@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The small frame every notebook shares: its command line, its Markdown page
-/// (the experiments' Report) with the narration also echoed to stdout, the
+/// (talus::Report, core/report) with the narration also echoed to stdout, the
 /// facts it checks (a failed check makes the program exit 1, so its CTest
 /// fails), and two figure kinds drawn with the project's gnuplot layer: line
 /// plots of curves along s, and maps of routes over shaded relief.

@@ -66,6 +66,10 @@ for experiment in optimal-profile global-search terrain-gallery; do
   "$talus" experiment "$experiment" --out "$out_dir"
 done
 
+# 4. The narrated notebooks (notebooks_cpp/): one Markdown page with figures
+#    each, linked from notebooks/index.md (about 15 s once built).
+bash scripts/notebooks.sh "$out_dir/notebooks"
+
 echo
 echo "Results are in: $out_dir"
 find "$out_dir" -type f \( -name '*.png' -o -name 'report.md' -o -name 'summary.json' -o -name 'trajectory.csv' \) | sort | sed 's/^/  /'

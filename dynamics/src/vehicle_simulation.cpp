@@ -72,7 +72,7 @@ Mat3 euler_rotation(double roll, double pitch, double yaw) {
 /// What one evaluation of the model gives besides the derivative.
 struct Evaluation {
   std::array<WheelContact, 4> wheels;
-  std::array<double, 4> contact_measure{};  ///< min(e, e + (c/k) ė): < 0 once the load is gone
+  std::array<double, 4> contact_measure{};  ///< e: < 0 off the ground, suspension fully extended
   double total_load = 0.0;
   double lateral_load_ratio = 0.0;
   double roll_sin = 0.0;       ///< body y · terrain normal under the c.g.
@@ -149,7 +149,7 @@ class Model {
       wc = WheelContact{};
       wc.compression = e;
       wc.normal_load = e > 0.0 ? std::max(0.0, k * e + c * e_dot) : 0.0;
-      out.contact_measure[i] = std::min(e, e + c / k * e_dot);
+      out.contact_measure[i] = e;
       if (e > 0.0) out.energy += 0.5 * k * e * e;
       out.total_load += wc.normal_load;
       normal[i] = n;
@@ -348,7 +348,13 @@ VehicleState resting_state(const BPatch& surface, const Vehicle& vehicle, const 
   const Vec3 x = (heading - heading.dot(n) * n).normalized();
   const Vec3 y = n.cross(x);
   VehicleState s;
-  s.position = Vec3(xy.x(), xy.y(), sp.z) + vehicle.cg_height * n;
+  // Each wheel carries m g n_z / 4 (the weight's share normal to the ground):
+  // its compression is δ_s n_z, which lifts the c.g. by δ_s (1 − n_z).
+  double lift = 0.0;
+  if (vehicle.body)
+    lift = vehicle.body->mass * vehicle.gravity / (4.0 * vehicle.body->suspension_stiffness) *
+           (1.0 - n.z());
+  s.position = Vec3(xy.x(), xy.y(), sp.z) + (vehicle.cg_height + lift) * n;
   // Z-Y-X Euler angles of R = [x y n].
   s.pitch = -std::asin(std::clamp(x.z(), -1.0, 1.0));
   s.roll = std::atan2(y.z(), n.z());
@@ -575,9 +581,22 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
         std::ostringstream msg;
         msg << std::fixed;
         msg.precision(4);
-        if (found[kRootAllLift]) {
+        // One side lifting while the other carries (almost) nothing is the
+        // vehicle leaving the ground, not tipping over.
+        const double weight = vehicle.body->mass * vehicle.gravity;
+        const auto& w = now.wheels;
+        const double other_side =
+            found[kRootLeftLift] ? std::max(w[kFrontRight].compression, w[kRearRight].compression)
+                                 : std::max(w[kFrontLeft].compression, w[kRearLeft].compression);
+        const bool airborne =
+            (found[kRootLeftLift] || found[kRootRightLift]) &&
+            (w[0].normal_load + w[1].normal_load + w[2].normal_load + w[3].normal_load <
+                 0.01 * weight ||
+             other_side < 0.01 * model.static_deflection());
+        if (found[kRootAllLift] || airborne) {
           result.status = SimulationStatus::kLossOfContact;
-          msg << "all four wheels left the ground at t = " << t << " s";
+          msg << (found[kRootAllLift] ? "all four wheels" : "the vehicle")
+              << " left the ground at t = " << t << " s";
         } else if (found[kRootRoll] || found[kRootPitch] || found[kRootLeftLift] ||
                    found[kRootRightLift]) {
           result.status = SimulationStatus::kRollover;

@@ -48,9 +48,15 @@
 ///   relative to the terrain normal under the c.g. beyond Options::roll_limit,
 ///   or both wheels of one side off the ground), excessive side slip (body
 ///   |v_y| > tan(side_slip_limit) sqrt(v_x² + side_slip_min_speed²)), loss of
-///   contact (all four wheels off), stall (forward speed below stall_speed
+///   contact (all four wheels off, or one side off while the four carry less
+///   than 1 % of the weight or the other side's compression is below 1 % of
+///   the static deflection: airborne, not tipping), stall (forward speed below stall_speed
 ///   while driving forward, after it had been above twice that), and a wheel
-///   leaving the terrain's domain. A CVODE error is a status, never a crash.
+///   leaving the terrain's domain. A wheel is "off the ground" when e < 0: the
+///   suspension fully extended and still clear of it (a wheel whose load is
+///   momentarily zero while its damper extends, e > 0, is wheel hop, not an
+///   event; it shows in the minimum normal load). A CVODE error is a status,
+///   never a crash.
 #include <array>
 #include <cstddef>
 #include <functional>
@@ -76,9 +82,10 @@ struct VehicleState {
   Mat3 rotation() const;
 };
 
-/// A vehicle standing on `surface` at `xy` (c.g. h above the ground along the
-/// terrain normal there, body z along that normal, heading `yaw` projected on
-/// the tangent plane, wheels at their static compression) moving forward at
+/// A vehicle standing on `surface` at `xy` (body z along the terrain normal n
+/// there, heading `yaw` projected on the tangent plane, each wheel compressed
+/// by its static share of the weight's normal component, δ_s n_z, so the c.g.
+/// is h + δ_s (1 − n_z) above the ground along n) moving forward at
 /// `speed` [m/s]. InputError if `xy` is off the domain.
 VehicleState resting_state(const BPatch& surface, const Vehicle& vehicle, const Vec2& xy,
                            double yaw, double speed = 0.0);

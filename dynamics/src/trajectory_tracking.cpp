@@ -51,6 +51,13 @@ class Polyline {
     return speed_[k] + u * (speed_[k + 1] - speed_[k]);
   }
 
+  /// dv/ds of the planned speed on the segment containing s [1/s].
+  double speed_slope(double s) const {
+    s = std::clamp(s, 0.0, length());
+    const std::size_t k = segment(s);
+    return (speed_[k + 1] - speed_[k]) / (s_[k + 1] - s_[k]);
+  }
+
   /// Nearest point of the polyline to p among the segments meeting
   /// [s_from, s_to]: its arc length and signed distance (> 0 left).
   std::pair<double, double> project(const Vec2& p, double s_from, double s_to) const {
@@ -240,7 +247,13 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
     driver->last_t = t;
     driver->integral = std::clamp(driver->integral + options.speed_ki * error * dt,
                                   -options.integral_limit, options.integral_limit);
-    c.drive_force = m * (g * forward3.z() + options.speed_kp * error + driver->integral);
+    // The planned acceleration v dv/ds at the desired speed (zero on the floor).
+    const double planned = options.speed_scale * path.speed(driver->s);
+    const double feed_forward = planned > options.min_speed
+                                    ? planned * options.speed_scale * path.speed_slope(driver->s)
+                                    : 0.0;
+    c.drive_force =
+        m * (g * forward3.z() + feed_forward + options.speed_kp * error + driver->integral);
     return c;
   };
 

@@ -426,12 +426,12 @@ std::string VehicleSimulationResult::brief_report() const {
       "simulation: %s at t = %.4g s; peak |LTR| %.3f, min normal load %.4g N (%.3f of "
       "static), peak slip angle %.2f deg, peak side slip %.2f deg, peak speed %.3g m/s%s%s\n"
       "  CVODE BDF: %ld steps, %ld RHS, %ld Jacobians, %ld error-test and %ld Newton "
-      "failures; %zu controller calls; %.3g s wall (%.3g x real time)",
+      "failures; %ld restarts, %zu controller calls; %.3g s wall (%.3g x real time)",
       std::string(to_string(status)).c_str(), end_time, d.peak_lateral_load_ratio,
       d.min_normal_load, d.min_normal_load_ratio, degrees(d.peak_slip_angle),
       degrees(d.peak_side_slip), d.peak_speed, message.empty() ? "" : "; ", message.c_str(),
       d.steps, d.rhs_evaluations, d.jacobian_evaluations, d.error_test_failures,
-      d.nonlinear_failures, d.controller_calls, seconds, real_time_factor());
+      d.nonlinear_failures, d.restarts, d.controller_calls, seconds, real_time_factor());
   return line;
 }
 
@@ -524,6 +524,18 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
     unpack(state, s);
     ++diag.controller_calls;
     model.set_controls(controller(t, s));
+  };
+
+  // CVodeReInit zeroes CVODE's counters: add them up before each restart.
+  const auto accumulate_counters = [&] {
+    long value = 0;
+    if (CVodeGetNumRhsEvals(mem.get(), &value) == CV_SUCCESS) diag.rhs_evaluations += value;
+    if (CVodeGetNumLinRhsEvals(mem.get(), &value) == CV_SUCCESS) diag.rhs_evaluations += value;
+    if (CVodeGetNumJacEvals(mem.get(), &value) == CV_SUCCESS) diag.jacobian_evaluations += value;
+    if (CVodeGetNumGEvals(mem.get(), &value) == CV_SUCCESS) diag.root_evaluations += value;
+    if (CVodeGetNumErrTestFails(mem.get(), &value) == CV_SUCCESS) diag.error_test_failures += value;
+    if (CVodeGetNumNonlinSolvConvFails(mem.get(), &value) == CV_SUCCESS)
+      diag.nonlinear_failures += value;
   };
 
   double t = 0.0;
@@ -631,7 +643,18 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
       result.trace.push_back(make_sample(t, yv));
       break;
     }
+    const VehicleControls before = model.controls();
     call_controller(t, yv);
+    // The right-hand side jumps with the controls: restart the BDF history
+    // there (its predictor would otherwise carry the old derivative, and the
+    // error test would cut the step to nothing at a large jump).
+    if (model.controls().steering != before.steering ||
+        model.controls().drive_force != before.drive_force) {
+      accumulate_counters();
+      if (CVodeReInit(mem.get(), t, y.get()) != CV_SUCCESS)
+        throw SolverError("CVodeReInit failed at a control tick");
+      ++diag.restarts;
+    }
     if (model.controls().stop) {
       result.status = SimulationStatus::kStopped;
       std::ostringstream msg;
@@ -644,14 +667,7 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
 
   result.end_time = t;
   result.final = result.trace.back();
-  long value = 0;
-  if (CVodeGetNumRhsEvals(mem.get(), &value) == CV_SUCCESS) diag.rhs_evaluations = value;
-  if (CVodeGetNumLinRhsEvals(mem.get(), &value) == CV_SUCCESS) diag.rhs_evaluations += value;
-  if (CVodeGetNumJacEvals(mem.get(), &value) == CV_SUCCESS) diag.jacobian_evaluations = value;
-  if (CVodeGetNumGEvals(mem.get(), &value) == CV_SUCCESS) diag.root_evaluations = value;
-  if (CVodeGetNumErrTestFails(mem.get(), &value) == CV_SUCCESS) diag.error_test_failures = value;
-  if (CVodeGetNumNonlinSolvConvFails(mem.get(), &value) == CV_SUCCESS)
-    diag.nonlinear_failures = value;
+  accumulate_counters();
   if (!std::isfinite(diag.min_normal_load)) diag.min_normal_load = 0.0;
   diag.min_normal_load_ratio = diag.min_normal_load / static_load;
   result.seconds =

@@ -13,8 +13,10 @@
 ///   clipped to ±max_steering.
 /// - speed: PI on the error e = v_des − v_x, v_des = speed_scale · v_ref(s)
 ///   (at least min_speed until the goal), plus feed-forward of the weight's
-///   component along the chassis (m g sin of its pitch-up, an IMU's reading):
-///   F = m (g sin θ_up + kp e + ki ∫e), the integral clamped to
+///   component along the chassis (m g sin of its pitch-up, an IMU's reading)
+///   and of the planned acceleration a_p = v_p dv_p/ds (v_p = speed_scale ·
+///   v_ref, 0 while v_p is below the floor):
+///   F = m (g sin θ_up + a_p + kp e + ki ∫e), the integral clamped to
 ///   ±integral_limit (anti-windup). The simulation clips F to the vehicle's
 ///   drive and brake limits.
 /// The projection s is the arc length along the reference polyline in the

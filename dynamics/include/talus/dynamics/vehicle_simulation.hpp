@@ -36,7 +36,8 @@
 ///   acts at the contact point c_i − d n.
 /// - Inputs: VehicleControls (steering angle, drive/brake force), from a
 ///   controller called at every control tick and held in between (zero-order
-///   hold, as a digital controller).
+///   hold, as a digital controller). Where they change, the right-hand side
+///   jumps, and CVODE is restarted there (CVodeReInit).
 /// - Integration: CVODE BDF with Newton iterations on a dense difference-
 ///   quotient Jacobian. BDF because the system is stiff: the regularised tyre
 ///   forces at low speed act as dampers with time constants m v_ε / (C_α m g)
@@ -176,6 +177,7 @@ struct VehicleSimulationDiagnostics {
   long error_test_failures = 0;
   long nonlinear_failures = 0;
   int cvode_flag = 0;  ///< the last CVODE return flag (0 = CV_SUCCESS)
+  long restarts = 0;   ///< CVodeReInit calls at control ticks whose controls changed
   /// Peaks and minima over every internal step and trace sample.
   double peak_lateral_load_ratio = 0.0;  ///< max |LTR|
   double min_normal_load = 0.0;          ///< min over wheels and time [N]

@@ -545,13 +545,15 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->add_option("--trajectory", simulate_request.trajectory,
                    "trajectory CSV naming the columns x, y, v (trajectory.csv of talus plan)")
       ->required();
-  simulate->add_option("--speed-scale", simulate_request.speed_scale,
-                       "drive at this multiple of the planned speed (> 0)")
+  simulate
+      ->add_option("--speed-scale", simulate_request.speed_scale,
+                   "drive at this multiple of the planned speed (> 0)")
       ->capture_default_str();
   simulate->add_option("--smoothing", simulate_request.smoothing,
                        "lambda of the smoothing fit (use the plan's); default interpolating fit");
-  simulate->add_option("--trace-interval", simulate_request.trace_interval,
-                       "trace.csv sample interval [s]")
+  simulate
+      ->add_option("--trace-interval", simulate_request.trace_interval,
+                   "trace.csv sample interval [s]")
       ->capture_default_str();
   simulate->add_option("--out", simulate_request.output_dir, "output folder (created if needed)")
       ->required();

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <limits>
 #include <memory>
@@ -567,8 +568,11 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
       if (flag < 0) {
         result.status = SimulationStatus::kSolverFailure;
         std::ostringstream msg;
-        msg << "CVODE failed at t = " << t << " s (flag " << flag << ", "
-            << CVodeGetReturnFlagName(flag) << ")";
+        // CVodeGetReturnFlagName returns a malloc'ed string the caller frees.
+        char* name = CVodeGetReturnFlagName(flag);
+        msg << "CVODE failed at t = " << t << " s (flag " << flag << ", " << (name ? name : "?")
+            << ")";
+        std::free(name);
         if (!cvode_message.empty()) msg << ": " << cvode_message;
         if (!model.callback_error.empty()) msg << "; model: " << model.callback_error;
         result.message = msg.str();

@@ -355,5 +355,35 @@ TEST(VehicleSimulation, IsDeterministic) {
   EXPECT_EQ(a.status, b.status);
 }
 
+// Full drive up a slope the drive limit cannot climb (g sin 25 deg = 4.1 m/s^2
+// > max_accel 3 m/s^2): the vehicle slows from 1.5 m/s and stalls where the
+// kinematics say, v0^2 / (2 (g sin a - a_max)) up the slope.
+TEST(VehicleSimulation, StallsOnASlopeBeyondTheDriveLimit) {
+  const Vehicle v = ugv();
+  const double slope = std::tan(25.0 * kPi / 180.0);
+  const BPatch ramp = surface_of([slope](double x, double) { return slope * x; }, 4.0, 0.5);
+  VehicleSimulationOptions o;
+  o.end_time = 5.0;
+  const VehicleSimulationResult r = simulate_vehicle(
+      ramp, v, resting_state(ramp, v, Vec2(-2.0, 0.0), 0.0, 1.5), constant(0.0, 1e3), o);
+  ASSERT_EQ(r.status, SimulationStatus::kStall) << r.message;
+  const double decel = v.gravity * std::sin(25.0 * kPi / 180.0) - v.max_accel;
+  const double travelled = (r.final.state.position.x() + 2.0) / std::cos(25.0 * kPi / 180.0);
+  const double expected = (1.5 * 1.5 - o.stall_speed * o.stall_speed) / (2.0 * decel);
+  std::cout << "stall after " << travelled << " m up the slope (kinematics " << expected
+            << " m) at t = " << r.end_time << " s\n";
+  EXPECT_NEAR(travelled, expected, 0.05 * expected);
+}
+
+TEST(VehicleSimulation, DrivingOffTheMapIsLeftTerrain) {
+  const BPatch flat = surface_of([](double, double) { return 0.0; }, 3.0, 0.5);
+  const Vehicle v = ugv();
+  const VehicleSimulationResult r = simulate_vehicle(
+      flat, v, resting_state(flat, v, Vec2(0.0, 0.0), 0.0, 2.0), constant(0.0, 0.0));
+  ASSERT_EQ(r.status, SimulationStatus::kLeftTerrain) << r.message;
+  // The front wheels' centres reach x = 3 m: the c.g. is half a wheelbase behind.
+  EXPECT_NEAR(r.final.state.position.x(), 3.0 - v.half_wheelbase, 1e-3);
+}
+
 }  // namespace
 }  // namespace talus

@@ -258,7 +258,7 @@ TEST(CliLimits, BadInputGivesOneLineOnStderrAndExitCodeOne) {
   const std::string unknown_key = scratch_file("unknown_key.yaml");
   write_text(unknown_key,
              "model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n"
-             "wheel_radius: 0.3\n");
+             "wheel_count: 4\n");
   // A grid with one NODATA node, under the second way point.
   talus::ElevationGrid grid(21, 21, 1.0, 0.0, 0.0, 5.0);
   grid.set_void(10, 10);
@@ -278,7 +278,7 @@ TEST(CliLimits, BadInputGivesOneLineOnStderrAndExitCodeOne) {
       {"--terrain " + terrain + " --path " + quoted(no_header) + " --vehicle " + rover + common,
        "no_header.csv:1: "},
       {"--terrain " + terrain + " --path " + path + " --vehicle " + quoted(unknown_key) + common,
-       "unknown key 'wheel_radius'"},
+       "unknown key 'wheel_count'"},
       {"--terrain " + terrain + " --path " + path + " --vehicle " + rover + " --stations 1" +
            common,
        "--stations must be at least 2, got 1"},

@@ -33,7 +33,49 @@ double read_number(const YAML::Node& node, const std::string& key, const std::st
   }
 }
 
+void require_non_negative(const char* field, double value) {
+  if (!(value >= 0.0 && std::isfinite(value))) {
+    std::ostringstream msg;
+    msg << "VehicleBody." << field << " must be a finite number >= 0, got " << value;
+    throw InputError(msg.str());
+  }
+}
+
 }  // namespace
+
+void VehicleBody::validate() const {
+  const auto positive = [](const char* field, double value) {
+    if (!(value > 0.0 && std::isfinite(value))) {
+      std::ostringstream msg;
+      msg << "VehicleBody." << field << " must be a positive finite number, got " << value;
+      throw InputError(msg.str());
+    }
+  };
+  positive("mass", mass);
+  positive("inertia_roll", inertia_roll);
+  positive("inertia_pitch", inertia_pitch);
+  positive("inertia_yaw", inertia_yaw);
+  positive("wheel_radius", wheel_radius);
+  positive("suspension_stiffness", suspension_stiffness);
+  require_non_negative("suspension_damping", suspension_damping);
+  positive("cornering_stiffness", cornering_stiffness);
+}
+
+VehicleBody default_vehicle_body(double mass, double half_wheelbase, double half_track,
+                                 double cg_height) {
+  VehicleBody b;
+  b.mass = mass;
+  const double length = 2.0 * half_wheelbase, width = 2.0 * half_track, height = 2.0 * cg_height;
+  b.inertia_roll = mass * (width * width + height * height) / 12.0;
+  b.inertia_pitch = mass * (length * length + height * height) / 12.0;
+  b.inertia_yaw = mass * (length * length + width * width) / 12.0;
+  b.wheel_radius = 0.5 * cg_height;
+  const double omega = 2.0 * 3.14159265358979323846 * 3.0;  // 3 Hz ride frequency
+  b.suspension_stiffness = 0.25 * mass * omega * omega;
+  b.suspension_damping = 2.0 * 0.4 * std::sqrt(b.suspension_stiffness * 0.25 * mass);
+  b.cornering_stiffness = 8.0;
+  return b;
+}
 
 void Vehicle::validate() const {
   require_positive("gravity", gravity);
@@ -44,6 +86,7 @@ void Vehicle::validate() const {
   require_positive("max_speed", max_speed, true);
   require_positive("max_accel", max_accel, true);
   require_positive("max_decel", max_decel, true);
+  if (body) body->validate();
 }
 
 Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
@@ -51,16 +94,36 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   if (!root.IsMap())
     throw InputError(source + ": a vehicle file must be a mapping of keys to values");
 
-  static const std::set<std::string> kKnown = {"model",     "gravity",    "friction",
-                                               "cg_height", "half_track", "half_wheelbase",
-                                               "max_speed", "max_accel",  "max_decel"};
+  static const std::set<std::string> kKnown = {"model",
+                                               "gravity",
+                                               "friction",
+                                               "cg_height",
+                                               "half_track",
+                                               "half_wheelbase",
+                                               "max_speed",
+                                               "max_accel",
+                                               "max_decel",
+                                               "mass",
+                                               "inertia_roll",
+                                               "inertia_pitch",
+                                               "inertia_yaw",
+                                               "wheel_radius",
+                                               "suspension_stiffness",
+                                               "suspension_damping",
+                                               "cornering_stiffness"};
+  static const std::set<std::string> kBodyKeys = {
+      "inertia_roll",         "inertia_pitch",      "inertia_yaw",        "wheel_radius",
+      "suspension_stiffness", "suspension_damping", "cornering_stiffness"};
   std::set<std::string> seen;
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>("");
     if (!kKnown.count(key)) {
-      throw InputError(source + ": unknown key '" + printable(key) +
-                       "' (known: model, gravity, friction, cg_height, half_track, "
-                       "half_wheelbase, max_speed, max_accel, max_decel)");
+      throw InputError(
+          source + ": unknown key '" + printable(key) +
+          "' (known: model, gravity, friction, cg_height, half_track, "
+          "half_wheelbase, max_speed, max_accel, max_decel; and for the simulation mass, "
+          "inertia_roll, inertia_pitch, inertia_yaw, wheel_radius, "
+          "suspension_stiffness, suspension_damping, cornering_stiffness)");
     }
     seen.insert(key);
   }
@@ -94,6 +157,31 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   number("max_speed", v.max_speed);
   number("max_accel", v.max_accel);
   number("max_decel", v.max_decel);
+  if (seen.count("mass")) {
+    double mass = 0.0;
+    number("mass", mass);
+    if (!(mass > 0.0 && std::isfinite(mass)))
+      throw InputError(source + ": key 'mass' must be a positive finite number, got " +
+                       std::to_string(mass));
+    VehicleBody body = default_vehicle_body(mass, v.half_wheelbase, v.half_track, v.cg_height);
+    number("inertia_roll", body.inertia_roll);
+    number("inertia_pitch", body.inertia_pitch);
+    number("inertia_yaw", body.inertia_yaw);
+    number("wheel_radius", body.wheel_radius);
+    number("suspension_stiffness", body.suspension_stiffness);
+    if (seen.count("suspension_stiffness") && !seen.count("suspension_damping") &&
+        body.suspension_stiffness > 0.0)
+      body.suspension_damping = 2.0 * 0.4 * std::sqrt(body.suspension_stiffness * 0.25 * mass);
+    number("suspension_damping", body.suspension_damping);
+    number("cornering_stiffness", body.cornering_stiffness);
+    v.body = body;
+  } else {
+    for (const std::string& key : kBodyKeys) {
+      if (seen.count(key))
+        throw InputError(source + ": key '" + key +
+                         "' describes the simulated body and needs 'mass' as well");
+    }
+  }
   try {
     v.validate();
   } catch (const InputError& e) {

@@ -15,6 +15,7 @@
 #include "placement_command.hpp"
 #include "plan_command.hpp"
 #include "profile_command.hpp"
+#include "simulate_command.hpp"
 #include "sweep_command.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
@@ -530,6 +531,44 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
     const ex::PlanOutcome outcome = ex::plan(plan_request);
     std::cout << outcome.summary.dump(2) << "\n";
     if (!outcome.reachable) exit_code = ex::kUnreachableExitCode;
+  });
+
+  ex::SimulateRequest simulate_request;
+  CLI::App* simulate = app.add_subcommand(
+      "simulate",
+      "drive a planned trajectory (the trajectory.csv of `talus plan`) with the rigid-body "
+      "vehicle simulation (4 spring-damper wheels, Dugoff tyres, CVODE BDF; pure pursuit and "
+      "speed PI) and report the margins it kept (peak lateral load ratio, minimum normal load, "
+      "peak slip) and any failure (rollover, side_slip, loss_of_contact, stall). Writes "
+      "DIR/trace.csv and DIR/summary.json; exit code 2 when the goal was not reached");
+  simulate->add_option("--terrain", simulate_request.terrain, ex::kTerrainHelp)->required();
+  simulate->add_option("--reproject", simulate_request.reproject, ex::kReprojectHelp)
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+      ->capture_default_str();
+  simulate
+      ->add_option("--vehicle", simulate_request.vehicle,
+                   "vehicle YAML with a body (mass, ...; data/vehicles/README.md)")
+      ->required();
+  simulate
+      ->add_option("--trajectory", simulate_request.trajectory,
+                   "trajectory CSV naming the columns x, y, v (trajectory.csv of talus plan)")
+      ->required();
+  simulate
+      ->add_option("--speed-scale", simulate_request.speed_scale,
+                   "drive at this multiple of the planned speed (> 0)")
+      ->capture_default_str();
+  simulate->add_option("--smoothing", simulate_request.smoothing,
+                       "lambda of the smoothing fit (use the plan's); default interpolating fit");
+  simulate
+      ->add_option("--trace-interval", simulate_request.trace_interval,
+                   "trace.csv sample interval [s]")
+      ->capture_default_str();
+  simulate->add_option("--out", simulate_request.output_dir, "output folder (created if needed)")
+      ->required();
+  simulate->callback([&]() {
+    const ex::SimulateOutcome outcome = ex::simulate(simulate_request);
+    std::cout << outcome.summary.dump(2) << "\n";
+    if (!outcome.reached) exit_code = ex::kSimulateNotReachedExitCode;
   });
 
   CLI::App* baseline = app.add_subcommand(

@@ -4,6 +4,7 @@
 /// are derived from, loaded from YAML (or JSON) with strict validation.
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace talus {
@@ -17,6 +18,39 @@ enum class VehicleModel {
 /// each is in vehicle_physics.hpp.
 inline constexpr std::array<VehicleModel, 2> kVehicleModels = {VehicleModel::kPointMass,
                                                                VehicleModel::kRigidBody};
+
+/// The mass, inertia, suspension and tyres of a vehicle: what the rigid-body
+/// simulation (vehicle_simulation.hpp) needs beyond the speed-limit models.
+/// Optional in a vehicle file: present when the file has `mass`; the other
+/// keys then default as documented (data/vehicles/README.md).
+struct VehicleBody {
+  double mass = 1.0;  ///< [mass] m [kg] (> 0)
+  /// [inertia_roll], [inertia_pitch], [inertia_yaw] principal moments about the
+  /// body axes through the centre of mass [kg m^2] (> 0); default: a uniform
+  /// box of 2 half_wheelbase × 2 half_track × 2 cg_height, I_xx = m (w² + H²)/12 etc.
+  double inertia_roll = 1.0;
+  double inertia_pitch = 1.0;
+  double inertia_yaw = 1.0;
+  /// [wheel_radius] r [m] (> 0); default 0.5 cg_height. Sets where the
+  /// wheel centres sit (r above the contact points at static load).
+  double wheel_radius = 0.25;
+  /// [suspension_stiffness] k per wheel [N/m] (> 0); default (m/4)(2π·3 Hz)²,
+  /// a 3 Hz ride frequency. It lumps spring and tyre radial compliance.
+  double suspension_stiffness = 1.0;
+  /// [suspension_damping] c per wheel [N s/m] (>= 0); default 2·0.4·sqrt(k m/4),
+  /// a damping ratio of 0.4.
+  double suspension_damping = 0.0;
+  /// [cornering_stiffness] C_α / N, the tyre's cornering stiffness per unit
+  /// normal load [1/rad] (> 0); default 8 (Dugoff's model: F_y = C_α tan α
+  /// in the linear range).
+  double cornering_stiffness = 8.0;
+  /// Throws InputError naming the field.
+  void validate() const;
+};
+
+/// The defaults above for a vehicle of this mass and geometry.
+VehicleBody default_vehicle_body(double mass, double half_wheelbase, double half_track,
+                                 double cg_height);
 
 /// A ground vehicle, SI units. Every field has its YAML key in brackets.
 struct Vehicle {
@@ -38,6 +72,10 @@ struct Vehicle {
   /// [max_decel] brake limit [m/s^2] (> 0, a positive number); omitted =
   /// unlimited. Bounds f_t >= -max_decel, the braking force per unit mass.
   double max_decel = std::numeric_limits<double>::infinity();
+  /// Mass, inertia, suspension and tyres (the keys of VehicleBody); empty when
+  /// the file has no `mass`. Only the simulation needs it; the speed limits
+  /// ignore it.
+  std::optional<VehicleBody> body;
 
   /// Throws InputError naming the field, its value and what is expected.
   void validate() const;

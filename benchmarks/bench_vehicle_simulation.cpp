@@ -1,0 +1,108 @@
+// Speed of the vehicle simulation (vehicle_simulation.hpp) as a real-time
+// factor (simulated seconds per wall second, the "real_time_factor" counter),
+// for the paper's UGV: coasting on level ground (smooth, no control changes),
+// constant-steer cornering near the friction limit, and tracking a slalom with
+// pure pursuit at 100 Hz over a rough surface (a control change, hence a CVODE
+// restart, every tick). The machine is shared: compare the cases of one run.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <string>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/core/elevation_grid.hpp"
+#include "talus/dynamics/trajectory_tracking.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/dynamics/vehicle_simulation.hpp"
+
+namespace {
+
+using namespace talus;
+
+Vehicle ugv() {
+  return load_vehicle(std::string(TALUS_DATA_DIR) + "/vehicles/iagnemma_ugv.yaml");
+}
+
+BPatch surface(double amplitude) {
+  ElevationGrid grid(121, 61, 0.25, -15.0, -7.5);
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      const Vec2 p = grid.node_position(i, j);
+      grid.set(i, j, amplitude * std::sin(0.9 * p.x()) * std::cos(1.3 * p.y()));
+    }
+  return BPatch::interpolate(grid);
+}
+
+void report(benchmark::State& state, double simulated, double wall, long steps) {
+  state.counters["real_time_factor"] = simulated / wall;  // wall clock: inflated by load
+  // Simulated seconds per CPU second of the benchmark (kIsRate divides by it).
+  state.counters["sim_s_per_cpu_s"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
+  state.counters["steps_per_sim_s"] = static_cast<double>(steps) / simulated;
+}
+
+void BM_Coasting(benchmark::State& state) {
+  const BPatch flat = surface(0.0);
+  const Vehicle v = ugv();
+  VehicleSimulationOptions o;
+  o.end_time = 5.0;
+  const VehicleState s = resting_state(flat, v, Vec2(-12.0, 0.0), 0.0, 2.0);
+  const VehicleController c = [](double, const VehicleState&) { return VehicleControls{}; };
+  double simulated = 0.0, wall = 0.0;
+  long steps = 0;
+  for (auto _ : state) {
+    const VehicleSimulationResult r = simulate_vehicle(flat, v, s, c, o);
+    simulated += r.end_time;
+    wall += r.seconds;
+    steps += r.diagnostics.steps;
+    benchmark::DoNotOptimize(r.final.state.position);
+  }
+  report(state, simulated, wall, steps);
+}
+BENCHMARK(BM_Coasting)->Unit(benchmark::kMillisecond);
+
+void BM_CorneringNearTheLimit(benchmark::State& state) {
+  const BPatch flat = surface(0.0);
+  const Vehicle v = ugv();
+  VehicleSimulationOptions o;
+  o.end_time = 3.0;
+  const VehicleState s = resting_state(flat, v, Vec2(0.0, -2.7), 0.0, 3.8);
+  const double m = v.body->mass;
+  const VehicleController c = [m](double, const VehicleState& x) {
+    return VehicleControls{0.1, m * 10.0 * (3.8 - x.velocity.x()), false};
+  };
+  double simulated = 0.0, wall = 0.0;
+  long steps = 0;
+  for (auto _ : state) {
+    const VehicleSimulationResult r = simulate_vehicle(flat, v, s, c, o);
+    simulated += r.end_time;
+    wall += r.seconds;
+    steps += r.diagnostics.steps;
+    benchmark::DoNotOptimize(r.final.state.position);
+  }
+  report(state, simulated, wall, steps);
+}
+BENCHMARK(BM_CorneringNearTheLimit)->Unit(benchmark::kMillisecond);
+
+void BM_TrackingASlalomOnRoughGround(benchmark::State& state) {
+  const BPatch rough = surface(0.05);
+  const Vehicle v = ugv();
+  ReferenceTrajectory path;
+  for (int i = 0; i <= 200; ++i) {
+    const double x = -12.0 + 24.0 * i / 200.0;
+    path.points.emplace_back(x, 1.5 * std::sin(0.5 * x));
+    path.speed.push_back(3.0);
+  }
+  double simulated = 0.0, wall = 0.0;
+  long steps = 0;
+  for (auto _ : state) {
+    const TrackingResult r = track_trajectory(rough, v, path);
+    simulated += r.travel_time;
+    wall += r.simulation.seconds;
+    steps += r.simulation.diagnostics.steps;
+    benchmark::DoNotOptimize(r.max_cross_track);
+  }
+  report(state, simulated, wall, steps);
+}
+BENCHMARK(BM_TrackingASlalomOnRoughGround)->Unit(benchmark::kMillisecond);
+
+}  // namespace

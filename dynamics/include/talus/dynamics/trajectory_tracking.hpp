@@ -1,0 +1,112 @@
+#pragma once
+/// @file
+/// track_trajectory: drive a planned trajectory (a planar path with a speed
+/// at each point, e.g. the trajectory.csv of `talus plan`) with the simulated
+/// vehicle (vehicle_simulation.hpp) and report the margins it kept.
+///
+/// The driver, called every control period, has two loops:
+/// - steering: pure pursuit (Coulter 1992). The look-ahead point lies on the
+///   reference path a distance L_d = max(min_lookahead, lookahead_time · v)
+///   ahead of the vehicle's projection on the path; with α the angle from the
+///   chassis heading to the line rear axle → look-ahead point (both on the
+///   horizontal plane) and L the wheelbase, δ = atan(2 L sin α / L_d),
+///   clipped to ±max_steering.
+/// - speed: PI on the error e = v_des − v_x, v_des = speed_scale · v_ref(s)
+///   (at least min_speed until the goal), plus feed-forward of the weight's
+///   component along the chassis (m g sin of its pitch-up, an IMU's reading)
+///   and of the planned acceleration a_p = v_p dv_p/ds (v_p = speed_scale ·
+///   v_ref, 0 while v_p is below the floor):
+///   F = m (g sin θ_up + a_p + kp e + ki ∫e), the integral clamped to
+///   ±integral_limit (anti-windup). The simulation clips F to the vehicle's
+///   drive and brake limits.
+/// The projection s is the arc length along the reference polyline in the
+/// plane, searched forward from the last one (a window of 2 L_d + 1 m), so
+/// that a path that crosses itself is followed in order. The run ends when
+/// s reaches the end minus goal_tolerance (kReachedGoal), at the time limit
+/// (kTimeout) or at a failure of the simulation.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/core/types.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/dynamics/vehicle_simulation.hpp"
+
+namespace talus {
+
+/// A planned trajectory: planar points and the planned speed at each.
+struct ReferenceTrajectory {
+  std::vector<Vec2> points;   ///< (x, y) [m], at least 2, consecutive points distinct
+  std::vector<double> speed;  ///< planned speed at each point [m/s] (finite, >= 0)
+  /// Throws InputError naming what is wrong.
+  void validate() const;
+};
+
+struct TrackingOptions {
+  double speed_scale = 1.0;     ///< multiplies the planned speed (> 0): 0.9, 1.0, 1.1, ...
+  double lookahead_time = 0.4;  ///< L_d per unit speed [s] (>= 0)
+  double min_lookahead = 0.0;   ///< [m] (>= 0); 0 = 4 half_wheelbase (two wheelbases)
+  double max_steering = 0.6;    ///< [rad] (0, π/2)
+  double speed_kp = 4.0;        ///< [1/s] (>= 0)
+  double speed_ki = 1.0;        ///< [1/s²] (>= 0)
+  double integral_limit = 2.0;  ///< bound on ki ∫e [m/s²] (>= 0)
+  double min_speed = 0.3;       ///< v_des floor before the goal [m/s] (> 0)
+  double goal_tolerance = 0.0;  ///< [m] (>= 0); 0 = 2 half_wheelbase
+  /// Time limit: time_factor × the planned travel time (at speed_scale, with
+  /// the min_speed floor) + time_margin [s]. time_factor >= 1, time_margin >= 0.
+  double time_factor = 2.0;
+  double time_margin = 5.0;
+  /// Integration, events and trace; its end_time is replaced by the time limit.
+  VehicleSimulationOptions simulation;
+  /// Throws InputError naming the field.
+  void validate() const;
+};
+
+enum class TrackingStatus {
+  kReachedGoal,  ///< the projection reached the end of the path
+  kTimeout,      ///< the time limit came first
+  kRollover,     ///< the simulation's failures, as SimulationStatus
+  kSideSlip,
+  kLossOfContact,
+  kStall,
+  kLeftTerrain,
+  kSolverFailure,
+};
+/// "reached_goal", "timeout", then as SimulationStatus.
+std::string_view to_string(TrackingStatus status);
+
+/// One trace sample's tracking quantities (parallel to simulation.trace).
+struct TrackingSample {
+  double s = 0.0;              ///< projection on the reference path [m]
+  double cross_track = 0.0;    ///< signed distance to it, > 0 left of the path [m]
+  double desired_speed = 0.0;  ///< v_des at that instant [m/s]
+};
+
+struct TrackingResult {
+  TrackingStatus status = TrackingStatus::kTimeout;
+  std::string message;
+  VehicleSimulationResult simulation;    ///< trace, margins, CVODE counters
+  std::vector<TrackingSample> tracking;  ///< one per simulation.trace sample
+  double path_length = 0.0;              ///< of the reference polyline [m]
+  double progress = 0.0;                 ///< s reached / path_length [-]
+  double travel_time = 0.0;              ///< simulated time at the end [s]
+  double planned_time = 0.0;             ///< Σ ds / v_ref on the polyline at speed_scale [s]
+  double max_cross_track = 0.0;          ///< [m]
+  double rms_cross_track = 0.0;          ///< over the trace [m]
+  double max_speed_excess = 0.0;         ///< max (v − v_des) over the trace [m/s]
+  double seconds = 0.0;                  ///< wall time [s]
+  /// A few lines: status, progress, times, tracking errors, the simulation's report.
+  std::string brief_report() const;
+};
+
+/// Drives `reference` on `surface` with `vehicle` (which needs a body),
+/// starting at rest-compression at the first point, heading along the first
+/// segment, at the first point's planned speed × speed_scale. InputError for
+/// invalid input (reference, options, a vehicle without body, a start off
+/// the domain); the run's failures are statuses.
+TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
+                                const ReferenceTrajectory& reference,
+                                const TrackingOptions& options = {});
+
+}  // namespace talus

@@ -1,0 +1,216 @@
+#pragma once
+/// @file
+/// simulate_vehicle: a 6-DOF rigid chassis on four spring–damper wheels
+/// driving over a B-patch terrain, integrated with SUNDIALS CVODE.
+///
+/// Model (SI units; world frame x east, y north, z up; body frame x forward,
+/// y left, z up, origin at the centre of mass):
+/// - State (12): c.g. position p (world), Z-Y-X Euler angles yaw ψ, pitch θ,
+///   roll φ (R = Rz(ψ) Ry(θ) Rx(φ) maps body to world), body-frame velocity v
+///   and angular velocity ω. Newton–Euler: m (v̇ + ω × v) = F, I ω̇ + ω × Iω = M,
+///   I = diag(inertia_roll, inertia_pitch, inertia_yaw).
+/// - Wheels: massless, at body points c_i = (±l, ±b, r − δ_s − h) (l
+///   half_wheelbase, b half_track, h cg_height, r wheel_radius, δ_s = m g /(4k)
+///   the static deflection), so that at rest on level ground the c.g. is h
+///   above it. The suspension (spring k, damper c, lumping tyre radial
+///   compliance) acts along the terrain normal n at the wheel: with d the
+///   distance of c_i from the terrain's tangent plane below it (d = Δz n_z,
+///   Δz its height above z(x, y)), the compression is e = r − d and the normal
+///   load N = max(0, k e + c ė) while e > 0 (ė = −n·v_c, exact on a plane);
+///   a wheel with e <= 0 is off the ground. On a plane without damping and
+///   friction this is a conservative force, so energy is conserved.
+/// - Tyres: the wheel's heading (body x, the front pair turned by the steering
+///   angle δ; no Ackermann geometry) projected on the tangent plane gives the
+///   tyre frame (t_x, t_y = n × t_x). The contact point's velocity there gives
+///   the slip angle α with tan α = v_y / sqrt(v_x² + v_ε²) (v_ε = the low-speed
+///   regularisation, Options::tyre_min_speed). Wheels are force-controlled
+///   (ideal traction and brake control): the drive force command F_d is shared
+///   between the wheels in proportion to their normal loads, F_x = F_d N_i / ΣN
+///   (a brake command also times v_x / sqrt(v_x² + v_ε²), so that it stops the
+///   vehicle and does not reverse it), clipped to μ N. The lateral force is
+///   Dugoff's (Dugoff, Fancher, Segel 1970, pure side slip): F_y = −C_α tan α
+///   f(λ), C_α = cornering_stiffness · N, λ = F_max / (2 C_α |tan α|),
+///   f = 1 for λ >= 1 and λ (2 − λ) below, where F_max = sqrt((μN)² − F_x²)
+///   is what the friction circle leaves beside F_x (longitudinal priority), so
+///   that |(F_x, F_y)| <= μ N always. The contact force N n + F_x t_x + F_y t_y
+///   acts at the contact point c_i − d n.
+/// - Inputs: VehicleControls (steering angle, drive/brake force), from a
+///   controller called at every control tick and held in between (zero-order
+///   hold, as a digital controller). Where they change, the right-hand side
+///   jumps, and CVODE is restarted there (CVodeReInit).
+/// - Integration: CVODE BDF with Newton iterations on a dense difference-
+///   quotient Jacobian. BDF because the system is stiff: the regularised tyre
+///   forces at low speed act as dampers with time constants m v_ε / (C_α m g)
+///   of a fraction of a millisecond, the suspension's are a few milliseconds,
+///   while the motion of interest takes seconds; an explicit method would be
+///   held to the fastest of them by stability, not accuracy.
+/// - Failures are CVODE root-finding events (located to the integrator's
+///   precision, the run ends there): rollover (the chassis's roll or pitch
+///   relative to the terrain normal under the c.g. beyond Options::roll_limit,
+///   or both wheels of one side off the ground), excessive side slip (body
+///   |v_y| > tan(side_slip_limit) sqrt(v_x² + side_slip_min_speed²)), loss of
+///   contact (all four wheels off, or one side off while the four carry less
+///   than 1 % of the weight or the other side's compression is below 1 % of
+///   the static deflection: airborne, not tipping), stall (forward speed below stall_speed
+///   while driving forward, after it had been above twice that), and a wheel
+///   leaving the terrain's domain. A wheel is "off the ground" when e < 0: the
+///   suspension fully extended and still clear of it (a wheel whose load is
+///   momentarily zero while its damper extends, e > 0, is wheel hop, not an
+///   event; it shows in the minimum normal load). A CVODE error is a status,
+///   never a crash.
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/core/types.hpp"
+#include "talus/dynamics/vehicle.hpp"
+
+namespace talus {
+
+/// The integrated state of the chassis.
+struct VehicleState {
+  Vec3 position = Vec3::Zero();  ///< centre of mass, world [m]
+  double roll = 0.0;             ///< φ [rad] (Z-Y-X Euler angles)
+  double pitch = 0.0;            ///< θ [rad]; > 0 nose down (right-handed about body y, left)
+  double yaw = 0.0;              ///< ψ [rad], CCW from east
+  Vec3 velocity = Vec3::Zero();  ///< c.g. velocity in the body frame [m/s]
+  Vec3 angular_velocity = Vec3::Zero();  ///< body frame [rad/s]
+  /// Body-to-world rotation R = Rz(ψ) Ry(θ) Rx(φ).
+  Mat3 rotation() const;
+};
+
+/// A vehicle standing on `surface` at `xy` (body z along the terrain normal n
+/// there, heading `yaw` projected on the tangent plane, each wheel compressed
+/// by its static share of the weight's normal component, δ_s n_z, so the c.g.
+/// is h + δ_s (1 − n_z) above the ground along n) moving forward at
+/// `speed` [m/s]. InputError if `xy` is off the domain.
+VehicleState resting_state(const BPatch& surface, const Vehicle& vehicle, const Vec2& xy,
+                           double yaw, double speed = 0.0);
+
+/// The driver's inputs, held for one control period.
+struct VehicleControls {
+  double steering = 0.0;     ///< front-wheel steering angle δ [rad], > 0 turns left
+  double drive_force = 0.0;  ///< total drive (> 0) or brake (< 0) force [N]
+  bool stop = false;         ///< true ends the run (status kStopped), e.g. at a goal
+};
+
+/// The controller: called at t = 0 and every control period with the state.
+using VehicleController = std::function<VehicleControls(double t, const VehicleState& state)>;
+
+/// Wheel order in every per-wheel array.
+enum WheelIndex : std::size_t { kFrontLeft = 0, kFrontRight = 1, kRearLeft = 2, kRearRight = 3 };
+
+/// One wheel's contact at one instant.
+struct WheelContact {
+  double normal_load = 0.0;           ///< N [N]
+  double compression = 0.0;           ///< e = r − d [m]; <= 0 off the ground
+  double slip_angle = 0.0;            ///< α [rad]
+  double longitudinal_force = 0.0;    ///< F_x [N]
+  double lateral_force = 0.0;         ///< F_y [N]
+  Vec3 contact_point = Vec3::Zero();  ///< c_i − d n, world [m]
+  Vec3 normal = Vec3::UnitZ();        ///< terrain normal there
+};
+
+/// A recorded instant.
+struct VehicleSample {
+  double t = 0.0;  ///< [s]
+  VehicleState state;
+  VehicleControls controls;
+  std::array<WheelContact, 4> wheels;
+  /// (N_right − N_left) / ΣN; ±1 when one side carries everything; 0 airborne.
+  double lateral_load_ratio = 0.0;
+  double side_slip = 0.0;  ///< body side-slip angle atan2(v_y, |v_x|) [rad]
+  double speed = 0.0;      ///< |velocity| [m/s]
+  /// Kinetic + gravitational (m g z) + spring energy [J].
+  double energy = 0.0;
+};
+
+struct VehicleSimulationOptions {
+  double end_time = 10.0;        ///< simulated time [s] (> 0, finite)
+  double control_period = 0.01;  ///< controller call interval [s] (> 0)
+  /// Trace interval [s] (>= 0): a sample at every multiple of it (CVODE's
+  /// interpolant, so the steps are not shortened), plus the first and the
+  /// last. 0 = only the first and the last.
+  double output_interval = 0.01;
+  double relative_tolerance = 1e-6;  ///< CVODE reltol (> 0)
+  double absolute_tolerance = 1e-8;  ///< CVODE abstol, every component (> 0)
+  /// Most internal CVODE steps in the whole run (>= 1); more is status kSolverFailure.
+  long max_steps = 2'000'000;
+  double max_step = 0.0;        ///< CVODE hmax [s] (>= 0; 0 = none)
+  double tyre_min_speed = 0.1;  ///< v_ε of the slip regularisation [m/s] (> 0)
+  /// Rollover when |roll| or |pitch| relative to the terrain exceeds this [rad] (0, π/2).
+  double roll_limit = 0.7853981633974483;
+  /// Rollover also when both wheels of one side leave the ground.
+  bool side_lift_is_rollover = true;
+  double side_slip_limit = 0.5;      ///< [rad] (0, π/2)
+  double side_slip_min_speed = 0.5;  ///< below about this speed side slip is not judged [m/s] (> 0)
+  double stall_speed = 0.05;         ///< [m/s] (> 0)
+  /// Throws InputError naming the field.
+  void validate() const;
+};
+
+enum class SimulationStatus {
+  kReachedEndTime,  ///< ran to end_time without a failure
+  kStopped,         ///< the controller asked to stop (VehicleControls::stop)
+  kRollover,        ///< roll/pitch beyond roll_limit, or one side's wheels off the ground
+  kSideSlip,        ///< body side slip beyond side_slip_limit
+  kLossOfContact,   ///< all four wheels off the ground
+  kStall,           ///< forward speed fell below stall_speed while driving forward
+  kLeftTerrain,     ///< a wheel left the terrain's domain
+  kSolverFailure,   ///< CVODE failed (message has its flag and text) or max_steps
+};
+/// "reached_end_time", "stopped", "rollover", "side_slip", "loss_of_contact",
+/// "stall", "left_terrain", "solver_failure".
+std::string_view to_string(SimulationStatus status);
+/// True for the vehicle's failures (rollover, side slip, loss of contact, stall).
+bool is_vehicle_failure(SimulationStatus status);
+
+struct VehicleSimulationDiagnostics {
+  long steps = 0;            ///< CVODE internal steps
+  long rhs_evaluations = 0;  ///< right-hand sides (including the Jacobian's)
+  long jacobian_evaluations = 0;
+  long root_evaluations = 0;
+  long error_test_failures = 0;
+  long nonlinear_failures = 0;
+  int cvode_flag = 0;  ///< the last CVODE return flag (0 = CV_SUCCESS)
+  long restarts = 0;   ///< CVodeReInit calls at control ticks whose controls changed
+  /// Peaks and minima over every internal step and trace sample.
+  double peak_lateral_load_ratio = 0.0;  ///< max |LTR|
+  double min_normal_load = 0.0;          ///< min over wheels and time [N]
+  /// min_normal_load / (m g / 4) [-].
+  double min_normal_load_ratio = 0.0;
+  double peak_slip_angle = 0.0;  ///< max |α| over wheels on the ground [rad]
+  double peak_side_slip = 0.0;   ///< max |side slip| above side_slip_min_speed [rad]
+  double peak_speed = 0.0;       ///< [m/s]
+  double peak_roll = 0.0;        ///< max |roll relative to the terrain| [rad]
+  std::size_t controller_calls = 0;
+};
+
+struct VehicleSimulationResult {
+  SimulationStatus status = SimulationStatus::kReachedEndTime;
+  std::string message;               ///< what happened, where and when; empty for kReachedEndTime
+  double end_time = 0.0;             ///< simulated time reached [s] (the event's time on a failure)
+  VehicleSample final;               ///< the state at end_time
+  std::vector<VehicleSample> trace;  ///< every output_interval, the first and the last
+  VehicleSimulationDiagnostics diagnostics;
+  double seconds = 0.0;  ///< wall time [s]
+  /// Simulated per wall second (end_time / seconds).
+  double real_time_factor() const;
+  /// Two lines: status, time, margins; CVODE counters and the wall time.
+  std::string brief_report() const;
+};
+
+/// Simulates `vehicle` (which needs a body: InputError otherwise) from
+/// `initial` on `surface` under `controller`. The drive force is clipped to
+/// [−m max_decel, m max_accel]. InputError for invalid options or vehicle,
+/// or an initial c.g. off the domain; every failure during the run is a status.
+VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& vehicle,
+                                         const VehicleState& initial,
+                                         const VehicleController& controller,
+                                         const VehicleSimulationOptions& options = {});
+
+}  // namespace talus

@@ -1,0 +1,217 @@
+#include "talus/dynamics/potential_field_navigation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <sstream>
+
+#include "talus/core/error.hpp"
+
+namespace talus {
+namespace {
+
+void require(bool ok, const char* field, double value, const char* expected) {
+  if (ok) return;
+  std::ostringstream msg;
+  msg << "PotentialFieldNavigationOptions." << field << " must be " << expected << ", got "
+      << value;
+  throw InputError(msg.str());
+}
+
+/// Curvature of the arc tangent to the x axis at the origin through (x, y).
+double arc_curvature(const Vec2& p) {
+  return 2.0 * p.y() / p.squaredNorm();
+}
+
+}  // namespace
+
+void PotentialFieldNavigationOptions::validate() const {
+  const double inf = std::numeric_limits<double>::infinity();
+  require(velocity_unit > 0.0 && velocity_unit < inf, "velocity_unit", velocity_unit, "positive");
+  descent.validate();
+  require(max_steering > 0.0 && max_steering < std::numbers::pi / 2, "max_steering", max_steering,
+          "in (0, pi/2)");
+  require(waypoint_radius > 0.0 && waypoint_radius < inf, "waypoint_radius", waypoint_radius,
+          "positive");
+  require(sensor_radius > 0.0 && sensor_radius < inf, "sensor_radius", sensor_radius, "positive");
+  require(speed_kp >= 0.0 && speed_kp < inf, "speed_kp", speed_kp, ">= 0");
+  require(speed_kd >= 0.0 && speed_kd < inf, "speed_kd", speed_kd, ">= 0");
+  require(time_limit > 0.0 && time_limit < inf, "time_limit", time_limit, "positive");
+  simulation.validate();
+}
+
+std::string PotentialFieldNavigationResult::brief_report() const {
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "potential-field navigation: %s in %.4g s, %zu waypoints reached, hazard "
+                "clearance %.3g m%s%s\n",
+                std::string(to_string(status)).c_str(), navigation_time, waypoints_reached,
+                min_hazard_clearance, message.empty() ? "" : "; ", message.c_str());
+  return line + simulation.brief_report();
+}
+
+PotentialFieldNavigationResult navigate_potential_field(
+    const BPatch& surface, const Vehicle& vehicle, const Vec2& start, double yaw,
+    const ReferenceTrajectory& waypoints, const std::vector<DiscHazard>& hazards,
+    const PotentialFieldNavigationOptions& options) {
+  options.validate();
+  vehicle.validate();
+  if (!vehicle.body) throw InputError("navigate_potential_field: the vehicle has no body");
+  if (waypoints.points.empty() || waypoints.speed.size() != waypoints.points.size())
+    throw InputError("navigate_potential_field: needs waypoints, each with a speed");
+  for (std::size_t i = 0; i < waypoints.points.size(); ++i) {
+    if (!waypoints.points[i].allFinite() ||
+        !(waypoints.speed[i] >= 0.0 && std::isfinite(waypoints.speed[i])))
+      throw InputError("navigate_potential_field: waypoint " + std::to_string(i) +
+                       " is not finite, or its speed is not >= 0");
+  }
+  for (const DiscHazard& h : hazards) {
+    if (!h.centre.allFinite() || !(h.radius > 0.0 && std::isfinite(h.radius)))
+      throw InputError("navigate_potential_field: a hazard needs a finite centre and radius > 0");
+  }
+  if (!std::isfinite(yaw)) throw InputError("navigate_potential_field: yaw must be finite");
+
+  const double wheelbase = 2.0 * vehicle.half_wheelbase;
+  const double m = vehicle.body->mass, g = vehicle.gravity;
+  TrajectorySpaceInputs base;
+  base.friction = vehicle.friction;
+  base.half_track = vehicle.half_track;
+  base.cg_height = vehicle.cg_height;
+  base.max_curvature = std::tan(options.max_steering) / wheelbase;
+  base.max_speed = std::isfinite(vehicle.max_speed) ? vehicle.max_speed : 1e3;
+  base.velocity_unit = options.velocity_unit;
+  base.gains = options.gains;
+
+  PotentialFieldNavigationResult result;
+  struct Driver {
+    std::size_t waypoint = 0;
+    TrajectoryPoint command;
+    double last_t = 0.0, last_v = 0.0;
+    std::mt19937_64 rng;
+  };
+  auto driver = std::make_shared<Driver>();
+  driver->rng.seed(options.seed);
+  const auto goal_index = waypoints.points.size() - 1;
+
+  const VehicleController controller = [&, driver](double t, const VehicleState& s) {
+    VehicleControls c;
+    const Mat3 rot = s.rotation();
+    const Vec2 cg(s.position.x(), s.position.y());
+    while (driver->waypoint < goal_index &&
+           (waypoints.points[driver->waypoint] - cg).norm() < options.waypoint_radius)
+      ++driver->waypoint;
+    const Vec2 target = waypoints.points[driver->waypoint];
+    if (driver->waypoint == goal_index && (target - cg).norm() < options.waypoint_radius) {
+      result.waypoints_reached = waypoints.points.size();
+      c.stop = true;
+      return c;
+    }
+    result.waypoints_reached = driver->waypoint;
+    // Body-frame planar coordinates of a world point (heading frame on the plane).
+    const Vec3 fx = rot.col(0);
+    const Vec2 forward = Vec2(fx.x(), fx.y()).normalized();
+    const Vec2 left(-forward.y(), forward.x());
+    const auto local = [&](const Vec2& p) {
+      return Vec2((p - cg).dot(forward), (p - cg).dot(left));
+    };
+    TrajectorySpaceInputs in = base;
+    const Vec2 to_target = local(target);
+    const double bearing = std::atan2(to_target.y(), to_target.x());
+    in.desired_curvature =
+        std::clamp(arc_curvature(to_target), -in.max_curvature, in.max_curvature);
+    in.desired_speed = waypoints.speed[driver->waypoint];
+    const Vec3 gravity_body = rot.transpose() * Vec3(0.0, 0.0, -g);
+    in.gravity_lateral = gravity_body.y();
+    in.gravity_normal = std::max(1e-6, -gravity_body.z());
+    for (const DiscHazard& h : hazards) {
+      const Vec2 c_local = local(h.centre);
+      const double distance = c_local.norm() - h.radius;
+      if (distance > options.sensor_radius) continue;
+      TrajectorySpaceHazard th;
+      th.distance = std::max(0.0, distance);
+      th.waypoint_angle = std::abs(bearing);
+      if (distance <= 0.0) {
+        th.kappa_min = -in.max_curvature;
+        th.kappa_max = in.max_curvature;
+      } else {
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        bool ahead = false;
+        for (int k = -1; k < 64; ++k) {
+          const double a = 2.0 * std::numbers::pi * k / 64.0;
+          const Vec2 p = k < 0 ? c_local : c_local + h.radius * Vec2(std::cos(a), std::sin(a));
+          if (p.x() <= 0.0) continue;
+          ahead = true;
+          const double kappa = arc_curvature(p);
+          lo = std::min(lo, kappa);
+          hi = std::max(hi, kappa);
+        }
+        if (!ahead || hi <= lo) continue;
+        th.kappa_min = lo;
+        th.kappa_max = hi;
+      }
+      in.hazards.push_back(th);
+    }
+    if (t == 0.0) driver->command = TrajectoryPoint{std::max(0.0, s.velocity.x()), 0.0};
+    driver->command = descend(in, driver->command, driver->rng, options.descent);
+    result.commands.push_back(driver->command);
+    c.steering = std::clamp(std::atan(wheelbase * driver->command.curvature), -options.max_steering,
+                            options.max_steering);
+    const double dt = t - driver->last_t;
+    const double accel = dt > 0.0 ? (s.velocity.x() - driver->last_v) / dt : 0.0;
+    driver->last_t = t;
+    driver->last_v = s.velocity.x();
+    c.drive_force = m * (g * fx.z() + options.speed_kp * (driver->command.speed - s.velocity.x()) -
+                         options.speed_kd * accel);
+    return c;
+  };
+
+  VehicleSimulationOptions sim = options.simulation;
+  sim.end_time = options.time_limit;
+  const VehicleState initial = resting_state(surface, vehicle, start, yaw, 0.0);
+  result.simulation = simulate_vehicle(surface, vehicle, initial, controller, sim);
+  const VehicleSimulationResult& r = result.simulation;
+  switch (r.status) {
+    case SimulationStatus::kStopped:
+      result.status = TrackingStatus::kReachedGoal;
+      break;
+    case SimulationStatus::kReachedEndTime:
+      result.status = TrackingStatus::kTimeout;
+      result.message = "the time limit came before the goal";
+      break;
+    case SimulationStatus::kRollover:
+      result.status = TrackingStatus::kRollover;
+      break;
+    case SimulationStatus::kSideSlip:
+      result.status = TrackingStatus::kSideSlip;
+      break;
+    case SimulationStatus::kLossOfContact:
+      result.status = TrackingStatus::kLossOfContact;
+      break;
+    case SimulationStatus::kStall:
+      result.status = TrackingStatus::kStall;
+      break;
+    case SimulationStatus::kLeftTerrain:
+      result.status = TrackingStatus::kLeftTerrain;
+      break;
+    case SimulationStatus::kSolverFailure:
+      result.status = TrackingStatus::kSolverFailure;
+      break;
+  }
+  if (result.status != TrackingStatus::kReachedGoal && result.status != TrackingStatus::kTimeout)
+    result.message = r.message;
+  result.navigation_time = r.end_time;
+  result.min_hazard_clearance = std::numeric_limits<double>::infinity();
+  for (const VehicleSample& k : r.trace) {
+    const Vec2 cg(k.state.position.x(), k.state.position.y());
+    for (const DiscHazard& h : hazards)
+      result.min_hazard_clearance =
+          std::min(result.min_hazard_clearance, (cg - h.centre).norm() - h.radius);
+  }
+  return result;
+}
+
+}  // namespace talus

@@ -1,0 +1,300 @@
+#include "talus/dynamics/trajectory_tracking.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "talus/core/error.hpp"
+
+namespace talus {
+namespace {
+
+void require(bool ok, const char* field, double value, const char* expected) {
+  if (ok) return;
+  std::ostringstream msg;
+  msg << "TrackingOptions." << field << " must be " << expected << ", got " << value;
+  throw InputError(msg.str());
+}
+
+/// The reference polyline with its cumulative planar arc length.
+class Polyline {
+ public:
+  explicit Polyline(const ReferenceTrajectory& r) : points_(r.points), speed_(r.speed) {
+    s_.resize(points_.size(), 0.0);
+    for (std::size_t i = 1; i < points_.size(); ++i)
+      s_[i] = s_[i - 1] + (points_[i] - points_[i - 1]).norm();
+  }
+  double length() const { return s_.back(); }
+  std::size_t size() const { return points_.size(); }
+
+  /// Segment index containing arc length s.
+  std::size_t segment(double s) const {
+    const auto it = std::upper_bound(s_.begin(), s_.end(), s);
+    const auto k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, it - s_.begin() - 1));
+    return std::min(k, points_.size() - 2);
+  }
+  Vec2 point(double s) const {
+    s = std::clamp(s, 0.0, length());
+    const std::size_t k = segment(s);
+    const double u = (s - s_[k]) / (s_[k + 1] - s_[k]);
+    return points_[k] + u * (points_[k + 1] - points_[k]);
+  }
+  double speed(double s) const {
+    s = std::clamp(s, 0.0, length());
+    const std::size_t k = segment(s);
+    const double u = (s - s_[k]) / (s_[k + 1] - s_[k]);
+    return speed_[k] + u * (speed_[k + 1] - speed_[k]);
+  }
+
+  /// dv/ds of the planned speed on the segment containing s [1/s].
+  double speed_slope(double s) const {
+    s = std::clamp(s, 0.0, length());
+    const std::size_t k = segment(s);
+    return (speed_[k + 1] - speed_[k]) / (s_[k + 1] - s_[k]);
+  }
+
+  /// Nearest point of the polyline to p among the segments meeting
+  /// [s_from, s_to]: its arc length and signed distance (> 0 left).
+  std::pair<double, double> project(const Vec2& p, double s_from, double s_to) const {
+    const std::size_t k0 = segment(std::max(0.0, s_from));
+    const std::size_t k1 = segment(std::min(length(), s_to));
+    double best_d2 = std::numeric_limits<double>::infinity(), best_s = s_from, best_side = 0.0;
+    for (std::size_t k = k0; k <= k1; ++k) {
+      const Vec2 a = points_[k], d = points_[k + 1] - a;
+      const double len2 = d.squaredNorm();
+      const double u = std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
+      const Vec2 q = a + u * d;
+      const double d2 = (p - q).squaredNorm();
+      if (d2 < best_d2) {
+        best_d2 = d2;
+        best_s = s_[k] + u * std::sqrt(len2);
+        const double cross = d.x() * (p - a).y() - d.y() * (p - a).x();
+        best_side = cross >= 0.0 ? 1.0 : -1.0;
+      }
+    }
+    return {best_s, best_side * std::sqrt(best_d2)};
+  }
+
+ private:
+  std::vector<Vec2> points_;
+  std::vector<double> speed_;
+  std::vector<double> s_;
+};
+
+TrackingStatus from_simulation(SimulationStatus s) {
+  switch (s) {
+    case SimulationStatus::kRollover:
+      return TrackingStatus::kRollover;
+    case SimulationStatus::kSideSlip:
+      return TrackingStatus::kSideSlip;
+    case SimulationStatus::kLossOfContact:
+      return TrackingStatus::kLossOfContact;
+    case SimulationStatus::kStall:
+      return TrackingStatus::kStall;
+    case SimulationStatus::kLeftTerrain:
+      return TrackingStatus::kLeftTerrain;
+    case SimulationStatus::kSolverFailure:
+      return TrackingStatus::kSolverFailure;
+    case SimulationStatus::kStopped:
+      return TrackingStatus::kReachedGoal;
+    case SimulationStatus::kReachedEndTime:
+      return TrackingStatus::kTimeout;
+  }
+  return TrackingStatus::kSolverFailure;
+}
+
+}  // namespace
+
+void ReferenceTrajectory::validate() const {
+  if (points.size() < 2)
+    throw InputError("ReferenceTrajectory: needs at least 2 points, got " +
+                     std::to_string(points.size()));
+  if (speed.size() != points.size())
+    throw InputError("ReferenceTrajectory: " + std::to_string(speed.size()) + " speeds for " +
+                     std::to_string(points.size()) + " points");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite())
+      throw InputError("ReferenceTrajectory: point " + std::to_string(i) + " is not finite");
+    if (!(speed[i] >= 0.0 && std::isfinite(speed[i])))
+      throw InputError("ReferenceTrajectory: speed " + std::to_string(i) +
+                       " must be finite and >= 0");
+    if (i > 0 && points[i] == points[i - 1])
+      throw InputError("ReferenceTrajectory: points " + std::to_string(i - 1) + " and " +
+                       std::to_string(i) + " coincide");
+  }
+}
+
+void TrackingOptions::validate() const {
+  const double inf = std::numeric_limits<double>::infinity();
+  require(speed_scale > 0.0 && speed_scale < inf, "speed_scale", speed_scale, "positive");
+  require(lookahead_time >= 0.0 && lookahead_time < inf, "lookahead_time", lookahead_time, ">= 0");
+  require(min_lookahead >= 0.0 && min_lookahead < inf, "min_lookahead", min_lookahead, ">= 0");
+  require(max_steering > 0.0 && max_steering < std::numbers::pi / 2, "max_steering", max_steering,
+          "in (0, pi/2)");
+  require(speed_kp >= 0.0 && speed_kp < inf, "speed_kp", speed_kp, ">= 0");
+  require(speed_ki >= 0.0 && speed_ki < inf, "speed_ki", speed_ki, ">= 0");
+  require(integral_limit >= 0.0 && integral_limit < inf, "integral_limit", integral_limit, ">= 0");
+  require(min_speed > 0.0 && min_speed < inf, "min_speed", min_speed, "positive");
+  require(goal_tolerance >= 0.0 && goal_tolerance < inf, "goal_tolerance", goal_tolerance, ">= 0");
+  require(time_factor >= 1.0 && time_factor < inf, "time_factor", time_factor, ">= 1");
+  require(time_margin >= 0.0 && time_margin < inf, "time_margin", time_margin, ">= 0");
+  simulation.validate();
+}
+
+std::string_view to_string(TrackingStatus status) {
+  switch (status) {
+    case TrackingStatus::kReachedGoal:
+      return "reached_goal";
+    case TrackingStatus::kTimeout:
+      return "timeout";
+    case TrackingStatus::kRollover:
+      return "rollover";
+    case TrackingStatus::kSideSlip:
+      return "side_slip";
+    case TrackingStatus::kLossOfContact:
+      return "loss_of_contact";
+    case TrackingStatus::kStall:
+      return "stall";
+    case TrackingStatus::kLeftTerrain:
+      return "left_terrain";
+    case TrackingStatus::kSolverFailure:
+      return "solver_failure";
+  }
+  return "unknown";
+}
+
+std::string TrackingResult::brief_report() const {
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "tracking: %s, %.1f %% of %.4g m in %.4g s (planned %.4g s); cross-track max "
+                "%.3g m, rms %.3g m; speed above desired by up to %.3g m/s%s%s\n",
+                std::string(to_string(status)).c_str(), 100.0 * progress, path_length, travel_time,
+                planned_time, max_cross_track, rms_cross_track, max_speed_excess,
+                message.empty() ? "" : "; ", message.c_str());
+  return line + simulation.brief_report();
+}
+
+TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
+                                const ReferenceTrajectory& reference,
+                                const TrackingOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  reference.validate();
+  options.validate();
+  vehicle.validate();
+  if (!vehicle.body)
+    throw InputError(
+        "track_trajectory: the vehicle has no body (a vehicle file needs 'mass', see "
+        "data/vehicles/README.md)");
+  if (!surface.contains(reference.points.front()))
+    throw InputError("track_trajectory: the trajectory's first point is off the terrain");
+
+  const Polyline path(reference);
+  const double wheelbase = 2.0 * vehicle.half_wheelbase;
+  const double min_lookahead =
+      options.min_lookahead > 0.0 ? options.min_lookahead : 2.0 * wheelbase;
+  const double goal_tolerance = options.goal_tolerance > 0.0 ? options.goal_tolerance : wheelbase;
+  const double m = vehicle.body->mass, g = vehicle.gravity;
+
+  TrackingResult result;
+  result.path_length = path.length();
+  const auto desired = [&](double s) {
+    return std::max(options.min_speed, options.speed_scale * path.speed(s));
+  };
+  for (std::size_t i = 1; i < reference.points.size(); ++i) {
+    const double ds = (reference.points[i] - reference.points[i - 1]).norm();
+    const double v0 = std::max(options.min_speed, options.speed_scale * reference.speed[i - 1]);
+    const double v1 = std::max(options.min_speed, options.speed_scale * reference.speed[i]);
+    result.planned_time += 2.0 * ds / (v0 + v1);
+  }
+
+  // Controller state (the controller is called in time order by the simulation).
+  struct DriverState {
+    double s = 0.0;
+    double integral = 0.0;
+    double last_t = 0.0;
+  };
+  auto driver = std::make_shared<DriverState>();
+  const VehicleController controller = [&, driver](double t, const VehicleState& state) {
+    const Mat3 rot = state.rotation();
+    const Vec3 forward3 = rot.col(0);
+    const Vec2 forward = Vec2(forward3.x(), forward3.y()).normalized();
+    const Vec2 cg(state.position.x(), state.position.y());
+    const double v = state.velocity.x();
+    const double lookahead = std::max(min_lookahead, options.lookahead_time * std::abs(v));
+    driver->s = path.project(cg, driver->s - 0.5, driver->s + 2.0 * lookahead + 1.0).first;
+    VehicleControls c;
+    if (driver->s >= path.length() - goal_tolerance) {
+      c.stop = true;
+      return c;
+    }
+    // Pure pursuit from the rear axle.
+    const Vec2 rear = cg - vehicle.half_wheelbase * forward;
+    const Vec2 target = path.point(driver->s + lookahead);
+    const Vec2 to_target = target - rear;
+    const double alpha = std::atan2(forward.x() * to_target.y() - forward.y() * to_target.x(),
+                                    forward.dot(to_target));
+    const double distance = std::max(to_target.norm(), 1e-6);
+    c.steering = std::clamp(std::atan(2.0 * wheelbase * std::sin(alpha) / distance),
+                            -options.max_steering, options.max_steering);
+    // Speed PI with the weight's feed-forward.
+    const double error = desired(driver->s) - v;
+    const double dt = std::max(0.0, t - driver->last_t);
+    driver->last_t = t;
+    driver->integral = std::clamp(driver->integral + options.speed_ki * error * dt,
+                                  -options.integral_limit, options.integral_limit);
+    // The planned acceleration v dv/ds at the desired speed (zero on the floor).
+    const double planned = options.speed_scale * path.speed(driver->s);
+    const double feed_forward = planned > options.min_speed
+                                    ? planned * options.speed_scale * path.speed_slope(driver->s)
+                                    : 0.0;
+    c.drive_force =
+        m * (g * forward3.z() + feed_forward + options.speed_kp * error + driver->integral);
+    return c;
+  };
+
+  VehicleSimulationOptions sim = options.simulation;
+  sim.end_time = options.time_factor * result.planned_time + options.time_margin;
+  const Vec2 heading = reference.points[1] - reference.points[0];
+  const VehicleState start = resting_state(surface, vehicle, reference.points.front(),
+                                           std::atan2(heading.y(), heading.x()),
+                                           options.speed_scale * reference.speed.front());
+  result.simulation = simulate_vehicle(surface, vehicle, start, controller, sim);
+  const VehicleSimulationResult& r = result.simulation;
+  result.status = from_simulation(r.status);
+  result.message = r.status == SimulationStatus::kStopped ? "" : r.message;
+  if (result.status == TrackingStatus::kTimeout)
+    result.message =
+        "the time limit of " + std::to_string(sim.end_time) + " s came before the goal";
+
+  // Tracking quantities along the trace (an independent forward projection).
+  double s = 0.0, sum2 = 0.0;
+  result.tracking.reserve(r.trace.size());
+  for (const VehicleSample& k : r.trace) {
+    const Vec2 cg(k.state.position.x(), k.state.position.y());
+    const double window = 2.0 * std::max(min_lookahead, options.lookahead_time * k.speed) + 1.0;
+    const auto [sk, dk] = path.project(cg, s - 0.5, s + window);
+    s = sk;
+    TrackingSample t;
+    t.s = sk;
+    t.cross_track = dk;
+    t.desired_speed = desired(sk);
+    result.tracking.push_back(t);
+    result.max_cross_track = std::max(result.max_cross_track, std::abs(dk));
+    sum2 += dk * dk;
+    result.max_speed_excess = std::max(result.max_speed_excess, k.speed - t.desired_speed);
+  }
+  if (!r.trace.empty())
+    result.rms_cross_track = std::sqrt(sum2 / static_cast<double>(r.trace.size()));
+  result.progress = std::clamp(s / path.length(), 0.0, 1.0);
+  result.travel_time = r.end_time;
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return result;
+}
+
+}  // namespace talus

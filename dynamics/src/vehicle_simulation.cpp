@@ -1,0 +1,682 @@
+#include "talus/dynamics/vehicle_simulation.hpp"
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <type_traits>
+
+#include "talus/core/error.hpp"
+
+namespace talus {
+namespace {
+
+constexpr int kStates = 12;
+constexpr int kRoots = 8;
+enum RootIndex {
+  kRootRoll = 0,
+  kRootPitch,
+  kRootLeftLift,
+  kRootRightLift,
+  kRootAllLift,
+  kRootSideSlip,
+  kRootStall,
+  kRootDomain
+};
+
+// RAII owners for the SUNDIALS C objects (destroyed in reverse order of declaration).
+struct ContextDeleter {
+  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
+};
+struct VectorDeleter {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct MatrixDeleter {
+  void operator()(SUNMatrix a) const { SUNMatDestroy(a); }
+};
+struct LinearSolverDeleter {
+  void operator()(SUNLinearSolver ls) const { SUNLinSolFree(ls); }
+};
+struct CvodeDeleter {
+  void operator()(void* mem) const { CVodeFree(&mem); }
+};
+using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
+using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
+using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
+using LinearSolverPtr =
+    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
+
+Mat3 euler_rotation(double roll, double pitch, double yaw) {
+  const double cf = std::cos(roll), sf = std::sin(roll);
+  const double ct = std::cos(pitch), st = std::sin(pitch);
+  const double cp = std::cos(yaw), sp = std::sin(yaw);
+  Mat3 r;
+  r << cp * ct, cp * st * sf - sp * cf, cp * st * cf + sp * sf,  //
+      sp * ct, sp * st * sf + cp * cf, sp * st * cf - cp * sf,   //
+      -st, ct * sf, ct * cf;
+  return r;
+}
+
+/// What one evaluation of the model gives besides the derivative.
+struct Evaluation {
+  std::array<WheelContact, 4> wheels;
+  std::array<double, 4> contact_measure{};  ///< e: < 0 off the ground, suspension fully extended
+  double total_load = 0.0;
+  double lateral_load_ratio = 0.0;
+  double roll_sin = 0.0;       ///< body y · terrain normal under the c.g.
+  double pitch_sin = 0.0;      ///< body x · the same
+  double domain_margin = 0.0;  ///< smallest distance of a wheel inside the domain [m]
+  double energy = 0.0;
+};
+
+/// The vehicle model: parameters, the terrain and the held controls.
+class Model {
+ public:
+  Model(const BPatch& surface, const Vehicle& vehicle, const VehicleSimulationOptions& options)
+      : surface_(surface), vehicle_(vehicle), body_(*vehicle.body), options_(options) {
+    const double m = body_.mass, g = vehicle.gravity;
+    static_deflection_ = m * g / (4.0 * body_.suspension_stiffness);
+    const double z = body_.wheel_radius - static_deflection_ - vehicle.cg_height;
+    const double l = vehicle.half_wheelbase, b = vehicle.half_track;
+    corners_ = {Vec3(l, b, z), Vec3(l, -b, z), Vec3(-l, b, z), Vec3(-l, -b, z)};
+    max_drive_ = m * vehicle.max_accel;
+    max_brake_ = m * vehicle.max_decel;
+  }
+
+  void set_controls(const VehicleControls& c) {
+    controls_ = c;
+    controls_.drive_force = std::clamp(c.drive_force, -max_brake_, max_drive_);
+    if (!std::isfinite(controls_.steering)) controls_.steering = 0.0;
+    if (std::isnan(controls_.drive_force)) controls_.drive_force = 0.0;
+  }
+  const VehicleControls& controls() const { return controls_; }
+  double static_deflection() const { return static_deflection_; }
+  bool stall_armed = false;
+
+  /// Evaluates the model at y; writes the derivative to ydot when not null.
+  /// Returns false where the Euler angles are singular (pitch ±90°).
+  bool evaluate(const double* y, double* ydot, Evaluation& out) const {
+    const Vec3 p(y[0], y[1], y[2]);
+    const double roll = y[3], pitch = y[4], yaw = y[5];
+    const Vec3 v(y[6], y[7], y[8]);
+    const Vec3 w(y[9], y[10], y[11]);
+    const double cos_pitch = std::cos(pitch);
+    if (std::abs(cos_pitch) < 1e-6) return false;
+    const Mat3 rot = euler_rotation(roll, pitch, yaw);
+    const Vec3 v_world = rot * v, w_world = rot * w;
+    const double m = body_.mass, g = vehicle_.gravity, mu = vehicle_.friction;
+    const double k = body_.suspension_stiffness, c = body_.suspension_damping;
+    const double r = body_.wheel_radius, ve = options_.tyre_min_speed;
+
+    std::array<Vec3, 4> normal, arm, tx, ty;
+    std::array<Vec2, 4> contact_velocity;
+    out.domain_margin = std::numeric_limits<double>::infinity();
+    out.total_load = 0.0;
+    out.energy = 0.5 * m * v.squaredNorm() +
+                 0.5 * (body_.inertia_roll * w.x() * w.x() + body_.inertia_pitch * w.y() * w.y() +
+                        body_.inertia_yaw * w.z() * w.z()) +
+                 m * g * p.z();
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Vec3 rc = rot * corners_[i];
+      const Vec3 centre = p + rc;
+      const Vec2 xy(centre.x(), centre.y());
+      out.domain_margin =
+          std::min({out.domain_margin, xy.x() - surface_.x_min(), surface_.x_max() - xy.x(),
+                    xy.y() - surface_.y_min(), surface_.y_max() - xy.y()});
+      const Vec2 q(std::clamp(xy.x(), surface_.x_min(), surface_.x_max()),
+                   std::clamp(xy.y(), surface_.y_min(), surface_.y_max()));
+      const SurfacePoint sp = surface_.evaluate(q);
+      const Vec3 n = Vec3(-sp.gradient.x(), -sp.gradient.y(), 1.0).normalized();
+      // Height above the tangent plane at q (the plane's extension off the domain).
+      const double dz = centre.z() - (sp.z + sp.gradient.dot(xy - q));
+      const double d = dz * n.z();
+      const double e = r - d;
+      const Vec3 v_centre = v_world + w_world.cross(rc);
+      const double e_dot = -n.dot(v_centre);
+      WheelContact& wc = out.wheels[i];
+      wc = WheelContact{};
+      wc.compression = e;
+      wc.normal_load = e > 0.0 ? std::max(0.0, k * e + c * e_dot) : 0.0;
+      out.contact_measure[i] = e;
+      if (e > 0.0) out.energy += 0.5 * k * e * e;
+      out.total_load += wc.normal_load;
+      normal[i] = n;
+      arm[i] = rc - d * n;
+      wc.contact_point = p + arm[i];
+      wc.normal = n;
+      // Tyre frame: the wheel's heading on the tangent plane.
+      const double steer = i < 2 ? controls_.steering : 0.0;
+      const Vec3 heading = rot * Vec3(std::cos(steer), std::sin(steer), 0.0);
+      Vec3 t = heading - heading.dot(n) * n;
+      const double t_norm = t.norm();
+      t = t_norm > 1e-9 ? Vec3(t / t_norm) : Vec3(n.unitOrthogonal());
+      tx[i] = t;
+      ty[i] = n.cross(t);
+      const Vec3 v_contact = v_world + w_world.cross(arm[i]);
+      contact_velocity[i] = Vec2(v_contact.dot(tx[i]), v_contact.dot(ty[i]));
+    }
+
+    Vec3 force(0.0, 0.0, -m * g), moment = Vec3::Zero();
+    double left = 0.0, right = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      WheelContact& wc = out.wheels[i];
+      const double load = wc.normal_load;
+      (i % 2 == 0 ? left : right) += load;
+      const double vx = contact_velocity[i].x(), vy = contact_velocity[i].y();
+      const double vreg = std::sqrt(vx * vx + ve * ve);
+      wc.slip_angle = std::atan2(vy, vreg);
+      if (load <= 0.0) continue;
+      const double limit = mu * load;
+      double fx = controls_.drive_force * load / out.total_load;
+      if (controls_.drive_force < 0.0) fx *= vx / vreg;
+      fx = std::clamp(fx, -limit, limit);
+      const double f_max = std::sqrt(std::max(0.0, limit * limit - fx * fx));
+      const double tan_alpha = vy / vreg;
+      const double ca = body_.cornering_stiffness * load;
+      double fy = -ca * tan_alpha;
+      const double linear = 2.0 * ca * std::abs(tan_alpha);
+      if (linear > f_max) {
+        const double lambda = f_max / linear;
+        fy = -std::copysign(f_max * (1.0 - 0.5 * lambda), tan_alpha);
+      }
+      wc.longitudinal_force = fx;
+      wc.lateral_force = fy;
+      const Vec3 f = load * normal[i] + fx * tx[i] + fy * ty[i];
+      force += f;
+      moment += arm[i].cross(f);
+    }
+    out.lateral_load_ratio = out.total_load > 0.0 ? (right - left) / out.total_load : 0.0;
+    const Vec2 cg(std::clamp(p.x(), surface_.x_min(), surface_.x_max()),
+                  std::clamp(p.y(), surface_.y_min(), surface_.y_max()));
+    const SurfacePoint under = surface_.evaluate(cg);
+    const Vec3 n_cg = Vec3(-under.gradient.x(), -under.gradient.y(), 1.0).normalized();
+    out.roll_sin = rot.col(1).dot(n_cg);
+    out.pitch_sin = rot.col(0).dot(n_cg);
+
+    if (ydot == nullptr) return true;
+    const Vec3 f_body = rot.transpose() * force;
+    const Vec3 m_body = rot.transpose() * moment;
+    const Vec3 inertia(body_.inertia_roll, body_.inertia_pitch, body_.inertia_yaw);
+    const Vec3 vdot = f_body / m - w.cross(v);
+    const Vec3 iw = inertia.cwiseProduct(w);
+    const Vec3 wdot = (m_body - w.cross(iw)).cwiseQuotient(inertia);
+    const double sf = std::sin(roll), cf = std::cos(roll);
+    ydot[0] = v_world.x();
+    ydot[1] = v_world.y();
+    ydot[2] = v_world.z();
+    ydot[3] = w.x() + (w.y() * sf + w.z() * cf) * std::tan(pitch);
+    ydot[4] = w.y() * cf - w.z() * sf;
+    ydot[5] = (w.y() * sf + w.z() * cf) / cos_pitch;
+    for (int j = 0; j < 3; ++j) {
+      ydot[6 + j] = vdot[j];
+      ydot[9 + j] = wdot[j];
+    }
+    return true;
+  }
+
+  /// The root functions (RootIndex order); each decreases through 0 at its event.
+  void roots(const double* y, const Evaluation& ev, double* g) const {
+    const double sin_limit = std::sin(options_.roll_limit);
+    g[kRootRoll] = sin_limit - std::abs(ev.roll_sin);
+    g[kRootPitch] = sin_limit - std::abs(ev.pitch_sin);
+    const auto& cm = ev.contact_measure;
+    g[kRootLeftLift] =
+        options_.side_lift_is_rollover ? std::max(cm[kFrontLeft], cm[kRearLeft]) : 1.0;
+    g[kRootRightLift] =
+        options_.side_lift_is_rollover ? std::max(cm[kFrontRight], cm[kRearRight]) : 1.0;
+    g[kRootAllLift] = std::max({cm[0], cm[1], cm[2], cm[3]});
+    const double vx = y[6], vy = y[7];
+    g[kRootSideSlip] =
+        std::tan(options_.side_slip_limit) *
+            std::sqrt(vx * vx + options_.side_slip_min_speed * options_.side_slip_min_speed) -
+        std::abs(vy);
+    g[kRootStall] = stall_armed && controls_.drive_force > 0.0 ? vx - options_.stall_speed : 1.0;
+    g[kRootDomain] = ev.domain_margin;
+  }
+
+  /// Set by the callbacks when they catch an exception.
+  mutable std::string callback_error;
+
+ private:
+  const BPatch& surface_;
+  const Vehicle& vehicle_;
+  const VehicleBody& body_;
+  const VehicleSimulationOptions& options_;
+  std::array<Vec3, 4> corners_;
+  double static_deflection_ = 0.0;
+  double max_drive_ = 0.0, max_brake_ = 0.0;
+  VehicleControls controls_;
+};
+
+int rhs_callback(sunrealtype /*t*/, N_Vector y, N_Vector ydot, void* user_data) {
+  auto* model = static_cast<Model*>(user_data);
+  const double* state = N_VGetArrayPointer(y);
+  for (int i = 0; i < kStates; ++i) {
+    if (!std::isfinite(state[i])) return 1;  // recoverable: CVODE retries a smaller step
+  }
+  try {
+    Evaluation ev;
+    return model->evaluate(state, N_VGetArrayPointer(ydot), ev) ? 0 : 1;
+  } catch (const std::exception& e) {
+    model->callback_error = e.what();
+    return -1;
+  }
+}
+
+int root_callback(sunrealtype /*t*/, N_Vector y, sunrealtype* g, void* user_data) {
+  auto* model = static_cast<Model*>(user_data);
+  const double* state = N_VGetArrayPointer(y);
+  try {
+    Evaluation ev;
+    if (!model->evaluate(state, nullptr, ev)) return 1;
+    model->roots(state, ev, g);
+    return 0;
+  } catch (const std::exception& e) {
+    model->callback_error = e.what();
+    return -1;
+  }
+}
+
+void error_callback(int error_code, const char* module, const char* function, char* msg,
+                    void* user_data) {
+  auto* text = static_cast<std::string*>(user_data);
+  std::ostringstream s;
+  s << (module ? module : "CVODE") << " " << (function ? function : "") << " (flag " << error_code
+    << "): " << (msg ? msg : "");
+  *text = s.str();
+}
+
+void unpack(const double* y, VehicleState& s) {
+  s.position = Vec3(y[0], y[1], y[2]);
+  s.roll = y[3];
+  s.pitch = y[4];
+  s.yaw = y[5];
+  s.velocity = Vec3(y[6], y[7], y[8]);
+  s.angular_velocity = Vec3(y[9], y[10], y[11]);
+}
+
+void pack(const VehicleState& s, double* y) {
+  for (int j = 0; j < 3; ++j) {
+    y[j] = s.position[j];
+    y[6 + j] = s.velocity[j];
+    y[9 + j] = s.angular_velocity[j];
+  }
+  y[3] = s.roll;
+  y[4] = s.pitch;
+  y[5] = s.yaw;
+}
+
+void require(bool ok, const char* field, double value, const char* expected) {
+  if (ok) return;
+  std::ostringstream msg;
+  msg << "VehicleSimulationOptions." << field << " must be " << expected << ", got " << value;
+  throw InputError(msg.str());
+}
+
+double degrees(double rad) {
+  return rad * 180.0 / std::numbers::pi;
+}
+
+}  // namespace
+
+Mat3 VehicleState::rotation() const {
+  return euler_rotation(roll, pitch, yaw);
+}
+
+VehicleState resting_state(const BPatch& surface, const Vehicle& vehicle, const Vec2& xy,
+                           double yaw, double speed) {
+  if (!surface.contains(xy)) {
+    std::ostringstream msg;
+    msg << "resting_state: (" << xy.x() << ", " << xy.y() << ") is off the terrain's domain";
+    throw InputError(msg.str());
+  }
+  const SurfacePoint sp = surface.evaluate(xy);
+  const Vec3 n = Vec3(-sp.gradient.x(), -sp.gradient.y(), 1.0).normalized();
+  const Vec3 heading(std::cos(yaw), std::sin(yaw), 0.0);
+  const Vec3 x = (heading - heading.dot(n) * n).normalized();
+  const Vec3 y = n.cross(x);
+  VehicleState s;
+  // Each wheel carries m g n_z / 4 (the weight's share normal to the ground):
+  // its compression is δ_s n_z, which lifts the c.g. by δ_s (1 − n_z).
+  double lift = 0.0;
+  if (vehicle.body)
+    lift = vehicle.body->mass * vehicle.gravity / (4.0 * vehicle.body->suspension_stiffness) *
+           (1.0 - n.z());
+  s.position = Vec3(xy.x(), xy.y(), sp.z) + (vehicle.cg_height + lift) * n;
+  // Z-Y-X Euler angles of R = [x y n].
+  s.pitch = -std::asin(std::clamp(x.z(), -1.0, 1.0));
+  s.roll = std::atan2(y.z(), n.z());
+  s.yaw = std::atan2(x.y(), x.x());
+  s.velocity = Vec3(speed, 0.0, 0.0);
+  return s;
+}
+
+void VehicleSimulationOptions::validate() const {
+  const double inf = std::numeric_limits<double>::infinity();
+  require(end_time > 0.0 && end_time < inf, "end_time", end_time, "a positive finite time");
+  require(control_period > 0.0 && control_period < inf, "control_period", control_period,
+          "a positive finite time");
+  require(output_interval >= 0.0 && output_interval < inf, "output_interval", output_interval,
+          "finite and >= 0");
+  require(relative_tolerance > 0.0 && relative_tolerance < inf, "relative_tolerance",
+          relative_tolerance, "positive");
+  require(absolute_tolerance > 0.0 && absolute_tolerance < inf, "absolute_tolerance",
+          absolute_tolerance, "positive");
+  require(max_steps >= 1, "max_steps", static_cast<double>(max_steps), ">= 1");
+  require(max_step >= 0.0 && max_step < inf, "max_step", max_step, "finite and >= 0");
+  require(tyre_min_speed > 0.0 && tyre_min_speed < inf, "tyre_min_speed", tyre_min_speed,
+          "positive");
+  require(roll_limit > 0.0 && roll_limit < std::numbers::pi / 2, "roll_limit", roll_limit,
+          "in (0, pi/2)");
+  require(side_slip_limit > 0.0 && side_slip_limit < std::numbers::pi / 2, "side_slip_limit",
+          side_slip_limit, "in (0, pi/2)");
+  require(side_slip_min_speed > 0.0 && side_slip_min_speed < inf, "side_slip_min_speed",
+          side_slip_min_speed, "positive");
+  require(stall_speed > 0.0 && stall_speed < inf, "stall_speed", stall_speed, "positive");
+}
+
+std::string_view to_string(SimulationStatus status) {
+  switch (status) {
+    case SimulationStatus::kReachedEndTime:
+      return "reached_end_time";
+    case SimulationStatus::kStopped:
+      return "stopped";
+    case SimulationStatus::kRollover:
+      return "rollover";
+    case SimulationStatus::kSideSlip:
+      return "side_slip";
+    case SimulationStatus::kLossOfContact:
+      return "loss_of_contact";
+    case SimulationStatus::kStall:
+      return "stall";
+    case SimulationStatus::kLeftTerrain:
+      return "left_terrain";
+    case SimulationStatus::kSolverFailure:
+      return "solver_failure";
+  }
+  return "unknown";
+}
+
+bool is_vehicle_failure(SimulationStatus status) {
+  return status == SimulationStatus::kRollover || status == SimulationStatus::kSideSlip ||
+         status == SimulationStatus::kLossOfContact || status == SimulationStatus::kStall;
+}
+
+double VehicleSimulationResult::real_time_factor() const {
+  return seconds > 0.0 ? end_time / seconds : std::numeric_limits<double>::infinity();
+}
+
+std::string VehicleSimulationResult::brief_report() const {
+  const VehicleSimulationDiagnostics& d = diagnostics;
+  char line[512];
+  std::snprintf(
+      line, sizeof line,
+      "simulation: %s at t = %.4g s; peak |LTR| %.3f, min normal load %.4g N (%.3f of "
+      "static), peak slip angle %.2f deg, peak side slip %.2f deg, peak speed %.3g m/s%s%s\n"
+      "  CVODE BDF: %ld steps, %ld RHS, %ld Jacobians, %ld error-test and %ld Newton "
+      "failures; %ld restarts, %zu controller calls; %.3g s wall (%.3g x real time)",
+      std::string(to_string(status)).c_str(), end_time, d.peak_lateral_load_ratio,
+      d.min_normal_load, d.min_normal_load_ratio, degrees(d.peak_slip_angle),
+      degrees(d.peak_side_slip), d.peak_speed, message.empty() ? "" : "; ", message.c_str(),
+      d.steps, d.rhs_evaluations, d.jacobian_evaluations, d.error_test_failures,
+      d.nonlinear_failures, d.restarts, d.controller_calls, seconds, real_time_factor());
+  return line;
+}
+
+VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& vehicle,
+                                         const VehicleState& initial,
+                                         const VehicleController& controller,
+                                         const VehicleSimulationOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  options.validate();
+  vehicle.validate();
+  if (!vehicle.body)
+    throw InputError(
+        "simulate_vehicle: the vehicle has no body (a vehicle file needs 'mass', see "
+        "data/vehicles/README.md)");
+  if (!controller) throw InputError("simulate_vehicle: the controller is empty");
+  if (!surface.contains(Vec2(initial.position.x(), initial.position.y())))
+    throw InputError("simulate_vehicle: the initial centre of mass is off the terrain's domain");
+
+  Model model(surface, vehicle, options);
+  VehicleSimulationResult result;
+  VehicleSimulationDiagnostics& diag = result.diagnostics;
+  const double static_load = vehicle.body->mass * vehicle.gravity / 4.0;
+  diag.min_normal_load = std::numeric_limits<double>::infinity();
+
+  std::string cvode_message;
+  ContextPtr ctx;
+  {
+    SUNContext raw = nullptr;
+    if (SUNContext_Create(nullptr, &raw) != 0) throw SolverError("SUNContext_Create failed");
+    ctx.reset(raw);
+  }
+  VectorPtr y(N_VNew_Serial(kStates, ctx.get()));
+  VectorPtr y_out(N_VNew_Serial(kStates, ctx.get()));
+  MatrixPtr jac(SUNDenseMatrix(kStates, kStates, ctx.get()));
+  if (!y || !y_out || !jac) throw SolverError("SUNDIALS could not allocate its vectors");
+  LinearSolverPtr solver(SUNLinSol_Dense(y.get(), jac.get(), ctx.get()));
+  CvodePtr mem(CVodeCreate(CV_BDF, ctx.get()));
+  if (!solver || !mem) throw SolverError("CVODE could not be created");
+  double* yv = N_VGetArrayPointer(y.get());
+  pack(initial, yv);
+
+  const auto cvode_check = [&](int flag, const char* what) {
+    if (flag < 0) throw SolverError(std::string("CVODE setup failed in ") + what);
+  };
+  cvode_check(CVodeSetErrHandlerFn(mem.get(), error_callback, &cvode_message), "ErrHandler");
+  cvode_check(CVodeInit(mem.get(), rhs_callback, 0.0, y.get()), "CVodeInit");
+  cvode_check(CVodeSStolerances(mem.get(), options.relative_tolerance, options.absolute_tolerance),
+              "CVodeSStolerances");
+  cvode_check(CVodeSetUserData(mem.get(), &model), "CVodeSetUserData");
+  cvode_check(CVodeSetLinearSolver(mem.get(), solver.get(), jac.get()), "CVodeSetLinearSolver");
+  cvode_check(CVodeSetMaxNumSteps(mem.get(), -1), "CVodeSetMaxNumSteps");  // we count ourselves
+  if (options.max_step > 0.0) cvode_check(CVodeSetMaxStep(mem.get(), options.max_step), "hmax");
+  cvode_check(CVodeRootInit(mem.get(), kRoots, root_callback), "CVodeRootInit");
+  std::array<int, kRoots> directions;
+  directions.fill(-1);
+  cvode_check(CVodeSetRootDirection(mem.get(), directions.data()), "CVodeSetRootDirection");
+  cvode_check(CVodeSetNoInactiveRootWarn(mem.get()), "CVodeSetNoInactiveRootWarn");
+
+  const auto make_sample = [&](double t, const double* state) {
+    VehicleSample s;
+    s.t = t;
+    unpack(state, s.state);
+    s.controls = model.controls();
+    Evaluation ev;
+    if (!model.evaluate(state, nullptr, ev)) return s;
+    s.wheels = ev.wheels;
+    s.lateral_load_ratio = ev.lateral_load_ratio;
+    s.speed = s.state.velocity.norm();
+    s.side_slip = std::atan2(s.state.velocity.y(), std::abs(s.state.velocity.x()));
+    s.energy = ev.energy;
+    // Diagnostics.
+    if (ev.total_load > 0.0)
+      diag.peak_lateral_load_ratio =
+          std::max(diag.peak_lateral_load_ratio, std::abs(ev.lateral_load_ratio));
+    for (const WheelContact& w : ev.wheels) {
+      diag.min_normal_load = std::min(diag.min_normal_load, w.normal_load);
+      if (w.normal_load > 0.0)
+        diag.peak_slip_angle = std::max(diag.peak_slip_angle, std::abs(w.slip_angle));
+    }
+    if (std::hypot(s.state.velocity.x(), s.state.velocity.y()) > options.side_slip_min_speed)
+      diag.peak_side_slip = std::max(diag.peak_side_slip, std::abs(s.side_slip));
+    diag.peak_speed = std::max(diag.peak_speed, s.speed);
+    diag.peak_roll = std::max(diag.peak_roll, std::asin(std::min(1.0, std::abs(ev.roll_sin))));
+    if (s.state.velocity.x() > 2.0 * options.stall_speed) model.stall_armed = true;
+    return s;
+  };
+
+  const auto call_controller = [&](double t, const double* state) {
+    VehicleState s;
+    unpack(state, s);
+    ++diag.controller_calls;
+    model.set_controls(controller(t, s));
+  };
+
+  // CVodeReInit zeroes CVODE's counters: add them up before each restart.
+  const auto accumulate_counters = [&] {
+    long value = 0;
+    if (CVodeGetNumRhsEvals(mem.get(), &value) == CV_SUCCESS) diag.rhs_evaluations += value;
+    if (CVodeGetNumLinRhsEvals(mem.get(), &value) == CV_SUCCESS) diag.rhs_evaluations += value;
+    if (CVodeGetNumJacEvals(mem.get(), &value) == CV_SUCCESS) diag.jacobian_evaluations += value;
+    if (CVodeGetNumGEvals(mem.get(), &value) == CV_SUCCESS) diag.root_evaluations += value;
+    if (CVodeGetNumErrTestFails(mem.get(), &value) == CV_SUCCESS) diag.error_test_failures += value;
+    if (CVodeGetNumNonlinSolvConvFails(mem.get(), &value) == CV_SUCCESS)
+      diag.nonlinear_failures += value;
+  };
+
+  double t = 0.0;
+  call_controller(0.0, yv);
+  result.trace.push_back(make_sample(0.0, yv));
+  bool done = model.controls().stop;
+  if (done) {
+    result.status = SimulationStatus::kStopped;
+    result.message = "the controller stopped the run at t = 0";
+  }
+  std::size_t next_output = 1;
+  long tick = 0;
+  while (!done) {
+    ++tick;
+    const double t_tick =
+        std::min(options.end_time, static_cast<double>(tick) * options.control_period);
+    CVodeSetStopTime(mem.get(), t_tick);
+    while (t < t_tick && !done) {
+      if (diag.steps >= options.max_steps) {
+        result.status = SimulationStatus::kSolverFailure;
+        std::ostringstream msg;
+        msg << "CVODE took max_steps = " << options.max_steps << " steps before t = " << t << " s";
+        result.message = msg.str();
+        done = true;
+        break;
+      }
+      const int flag = CVode(mem.get(), t_tick, y.get(), &t, CV_ONE_STEP);
+      diag.cvode_flag = flag;
+      if (flag < 0) {
+        result.status = SimulationStatus::kSolverFailure;
+        std::ostringstream msg;
+        // CVodeGetReturnFlagName returns a malloc'ed string the caller frees.
+        char* name = CVodeGetReturnFlagName(flag);
+        msg << "CVODE failed at t = " << t << " s (flag " << flag << ", " << (name ? name : "?")
+            << ")";
+        std::free(name);
+        if (!cvode_message.empty()) msg << ": " << cvode_message;
+        if (!model.callback_error.empty()) msg << "; model: " << model.callback_error;
+        result.message = msg.str();
+        done = true;
+        break;
+      }
+      ++diag.steps;
+      // Trace samples inside the step just taken.
+      if (options.output_interval > 0.0) {
+        while (static_cast<double>(next_output) * options.output_interval <= t &&
+               static_cast<double>(next_output) * options.output_interval < options.end_time) {
+          const double t_out = static_cast<double>(next_output) * options.output_interval;
+          if (CVodeGetDky(mem.get(), t_out, 0, y_out.get()) == CV_SUCCESS)
+            result.trace.push_back(make_sample(t_out, N_VGetArrayPointer(y_out.get())));
+          ++next_output;
+        }
+      }
+      VehicleSample now = make_sample(t, yv);
+      if (flag == CV_ROOT_RETURN) {
+        std::array<int, kRoots> found{};
+        CVodeGetRootInfo(mem.get(), found.data());
+        std::ostringstream msg;
+        msg << std::fixed;
+        msg.precision(4);
+        // One side lifting while the other carries (almost) nothing is the
+        // vehicle leaving the ground, not tipping over.
+        const double weight = vehicle.body->mass * vehicle.gravity;
+        const auto& w = now.wheels;
+        const double other_side =
+            found[kRootLeftLift] ? std::max(w[kFrontRight].compression, w[kRearRight].compression)
+                                 : std::max(w[kFrontLeft].compression, w[kRearLeft].compression);
+        const bool airborne =
+            (found[kRootLeftLift] || found[kRootRightLift]) &&
+            (w[0].normal_load + w[1].normal_load + w[2].normal_load + w[3].normal_load <
+                 0.01 * weight ||
+             other_side < 0.01 * model.static_deflection());
+        if (found[kRootAllLift] || airborne) {
+          result.status = SimulationStatus::kLossOfContact;
+          msg << (found[kRootAllLift] ? "all four wheels" : "the vehicle")
+              << " left the ground at t = " << t << " s";
+        } else if (found[kRootRoll] || found[kRootPitch] || found[kRootLeftLift] ||
+                   found[kRootRightLift]) {
+          result.status = SimulationStatus::kRollover;
+          if (found[kRootLeftLift] || found[kRootRightLift])
+            msg << "both " << (found[kRootLeftLift] ? "left" : "right")
+                << " wheels left the ground at t = " << t << " s";
+          else
+            msg << (found[kRootRoll] ? "roll" : "pitch") << " relative to the terrain reached "
+                << degrees(options.roll_limit) << " deg at t = " << t << " s";
+        } else if (found[kRootSideSlip]) {
+          result.status = SimulationStatus::kSideSlip;
+          msg << "side slip reached " << degrees(options.side_slip_limit) << " deg at t = " << t
+              << " s";
+        } else if (found[kRootStall]) {
+          result.status = SimulationStatus::kStall;
+          msg << "stalled (forward speed below " << options.stall_speed
+              << " m/s while driving) at t = " << t << " s";
+        } else {
+          result.status = SimulationStatus::kLeftTerrain;
+          msg << "a wheel left the terrain's domain at t = " << t << " s";
+        }
+        msg << ", c.g. at (" << yv[0] << ", " << yv[1] << ", " << yv[2] << ") m, speed "
+            << now.speed << " m/s";
+        result.message = msg.str();
+        done = true;
+      }
+      if (done) result.trace.push_back(now);
+    }
+    if (done) break;
+    if (t >= options.end_time) {
+      result.status = SimulationStatus::kReachedEndTime;
+      result.trace.push_back(make_sample(t, yv));
+      break;
+    }
+    const VehicleControls before = model.controls();
+    call_controller(t, yv);
+    // The right-hand side jumps with the controls: restart the BDF history
+    // there (its predictor would otherwise carry the old derivative, and the
+    // error test would cut the step to nothing at a large jump).
+    if (model.controls().steering != before.steering ||
+        model.controls().drive_force != before.drive_force) {
+      accumulate_counters();
+      if (CVodeReInit(mem.get(), t, y.get()) != CV_SUCCESS)
+        throw SolverError("CVodeReInit failed at a control tick");
+      ++diag.restarts;
+    }
+    if (model.controls().stop) {
+      result.status = SimulationStatus::kStopped;
+      std::ostringstream msg;
+      msg << "the controller stopped the run at t = " << t << " s";
+      result.message = msg.str();
+      result.trace.push_back(make_sample(t, yv));
+      done = true;
+    }
+  }
+
+  result.end_time = t;
+  result.final = result.trace.back();
+  accumulate_counters();
+  if (!std::isfinite(diag.min_normal_load)) diag.min_normal_load = 0.0;
+  diag.min_normal_load_ratio = diag.min_normal_load / static_load;
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return result;
+}
+
+}  // namespace talus

@@ -25,7 +25,7 @@ BaselineStatus baseline_status(EldershawYimStatus s) {
 }
 
 std::vector<BaselineOptionSpec> option_specs() {
-  const EldershawYimOptions d;
+  const EldershawYimPlannerOptions d;
   return {
       {"robot", "",
        "robot YAML: a legged vehicle (type: legged; legs with range and reach, under-carriage, "
@@ -51,7 +51,7 @@ std::vector<BaselineOptionSpec> option_specs() {
 
 std::unique_ptr<BaselinePlanner> make(const BaselineOptions& text) {
   const BaselineOptionReader reader(option_specs(), text);
-  EldershawYimOptions o;
+  EldershawYimPlannerOptions o;
   const double slices = reader.number("theta-slices", 1, 1024);
   if (slices != static_cast<int>(slices) || (slices > 1 && slices < 8))
     throw BaselineOptionError("theta-slices", "must be 1 or a whole number in 8..1024");
@@ -72,7 +72,7 @@ std::unique_ptr<BaselinePlanner> make(const BaselineOptions& text) {
 
 }  // namespace
 
-EldershawYimBaseline::EldershawYimBaseline(LeggedRobot robot, EldershawYimOptions options,
+EldershawYimBaseline::EldershawYimBaseline(LeggedRobot robot, EldershawYimPlannerOptions options,
                                            std::string robot_file)
     : robot_(std::move(robot)), options_(std::move(options)), robot_file_(std::move(robot_file)) {
   options_.validate();

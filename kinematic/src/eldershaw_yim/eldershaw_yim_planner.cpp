@@ -26,7 +26,7 @@ std::size_t uniform_index(std::mt19937_64& rng, std::size_t n) {
 
 }  // namespace
 
-void EldershawYimOptions::validate() const {
+void EldershawYimPlannerOptions::validate() const {
   if (!(theta_slices == 1 || (theta_slices >= 8 && theta_slices <= 1024)))
     throw InputError("theta_slices must be 1 or 8..1024, got " + std::to_string(theta_slices));
   if (!(std::isfinite(connect_radius) && connect_radius >= 0))
@@ -84,7 +84,7 @@ std::vector<SE2Pose> cg_path_poses(const CgLattice& lattice, const std::vector<C
 
 EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedRobot& robot,
                                       const SE2Pose& start, const SE2Pose& goal,
-                                      const EldershawYimOptions& options) {
+                                      const EldershawYimPlannerOptions& options) {
   options.validate();
   robot.validate();
   for (const SE2Pose* q : {&start, &goal}) {

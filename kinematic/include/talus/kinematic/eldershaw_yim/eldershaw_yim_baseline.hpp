@@ -35,14 +35,15 @@ namespace talus {
 class EldershawYimBaseline final : public BaselinePlanner {
  public:
   /// Throws InputError for an invalid robot or invalid options.
-  EldershawYimBaseline(LeggedRobot robot, EldershawYimOptions options, std::string robot_file = "");
+  EldershawYimBaseline(LeggedRobot robot, EldershawYimPlannerOptions options,
+                       std::string robot_file = "");
 
   std::string name() const override { return "eldershaw-yim"; }
   std::vector<BaselineSetting> settings() const override;
   ValidityFunction validity(const RuledTerrain& terrain) const override;
 
   const LeggedRobot& robot() const { return robot_; }
-  const EldershawYimOptions& options() const { return options_; }
+  const EldershawYimPlannerOptions& options() const { return options_; }
   /// The full result (cells, PRM points and edges), for the CLI.
   EldershawYimResult plan_full(const RuledTerrain& terrain, const SE2Pose& start,
                                const SE2Pose& goal) const;
@@ -53,7 +54,7 @@ class EldershawYimBaseline final : public BaselinePlanner {
 
  private:
   LeggedRobot robot_;
-  EldershawYimOptions options_;
+  EldershawYimPlannerOptions options_;
   std::string robot_file_;
 };
 

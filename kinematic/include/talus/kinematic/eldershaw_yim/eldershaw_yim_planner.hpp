@@ -39,7 +39,7 @@
 namespace talus {
 
 /// Options of plan_eldershaw_yim.
-struct EldershawYimOptions {
+struct EldershawYimPlannerOptions {
   int theta_slices = 16;             ///< n_θ: 1 (no rotation) or 8..1024
   bool direct = false;               ///< one A* over the whole CGspace instead of the tree-PRM
   std::size_t prm_points = 200;      ///< random points of the tree-PRM (>= 0)
@@ -99,7 +99,7 @@ struct EldershawYimResult {
 /// for invalid options). Start and goal must lie on the terrain.
 EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedRobot& robot,
                                       const SE2Pose& start, const SE2Pose& goal,
-                                      const EldershawYimOptions& options = {});
+                                      const EldershawYimPlannerOptions& options = {});
 
 /// Poses of a CG cell path (file comment): `start`, the inner cells' centres, `goal`.
 std::vector<SE2Pose> cg_path_poses(const CgLattice& lattice, const std::vector<CgCell>& cells,

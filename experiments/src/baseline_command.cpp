@@ -11,6 +11,7 @@
 
 #include "cli_values.hpp"
 #include "dacre_wright_outputs.hpp"
+#include "eldershaw_yim_outputs.hpp"
 #include "hait_figures.hpp"
 #include "limits_command.hpp"
 #include "number_format.hpp"
@@ -22,6 +23,7 @@
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
+#include "talus/kinematic/eldershaw_yim/eldershaw_yim_baseline.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {
@@ -105,10 +107,16 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
 
   // The Dacre-Wright baseline's full result (voxels, channel) feeds its own outputs.
   std::optional<DacreWrightResult> octree;
+  // The Eldershaw-Yim baseline's full result (PRM points and edges) feeds its own outputs.
+  const auto* ey = dynamic_cast<const EldershawYimBaseline*>(planner.get());
+  std::optional<EldershawYimResult> legged;
   BaselineResult result;
   if (const auto* dw = dynamic_cast<const DacreWrightBaseline*>(planner.get())) {
     octree = dw->plan_full(terrain, start, goal);
     result = to_baseline_result(*octree, dw->options().full);
+  } else if (ey) {
+    legged = ey->plan_full(terrain, start, goal);
+    result = to_baseline_result(*legged, ey->options().direct);
   } else {
     result = planner->plan(terrain, start, goal);
   }
@@ -119,6 +127,21 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   if (octree) {
     write_text_file(dir / "voxels.csv", dacre_wright_voxels_csv(*octree));
     write_text_file(dir / "channel.csv", dacre_wright_channel_csv(*octree));
+  }
+  // The footmap and the CGmap of the start's heading slice (figures 4 and 6 of the paper).
+  std::optional<Footmap> footmap;
+  std::optional<CgLattice> lattice;
+  std::vector<CgState> cg_slice;
+  int cg_slice_index = 0;
+  if (legged) {
+    footmap.emplace(terrain, ey->robot());
+    lattice.emplace(terrain.grid(), ey->robot().foot_print, ey->options().theta_slices);
+    cg_slice_index = lattice->cell_of(start).it;
+    // One whole slice is evaluated for the figure, up to a million cells.
+    if (static_cast<double>(lattice->nx()) * lattice->ny() <= 1e6)
+      cg_slice = evaluate_cg_slice(*footmap, ey->robot(), *lattice, cg_slice_index);
+    write_text_file(dir / "prm_points.csv", eldershaw_yim_points_csv(*legged, *lattice));
+    write_text_file(dir / "prm_edges.csv", eldershaw_yim_edges_csv(*legged));
   }
 
   const auto plot_start = Clock::now();
@@ -149,6 +172,18 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
       render_octree_slices(dir, "octree", figure);
     }
   }
+  const bool cg_plot = legged && !cg_slice.empty() && gnuplot_available();
+  if (cg_plot) {
+    CgMapFigure figure;
+    figure.footmap = &*footmap;
+    figure.lattice = &*lattice;
+    figure.slice = cg_slice;
+    figure.it = cg_slice_index;
+    figure.path = result.path;
+    for (const CgCell& c : legged->prm_points) figure.prm_points.push_back(lattice->centre(c));
+    figure.title = "talus baseline eldershaw-yim: footmap and CGmap, " + ey->robot().name;
+    render_cg_map(dir, "cgmap", figure);
+  }
 
   nlohmann::json summary;
   summary["baseline"] = planner->name();
@@ -162,6 +197,13 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   summary["length_m"] = found ? nlohmann::json(result.length_m) : nlohmann::json(nullptr);
   summary["path_points"] = result.path.size();
   if (octree) add_dacre_wright_summary(summary, *octree);
+  if (legged) {
+    summary["footmap_invalid_nodes"] = footmap->invalid_count();
+    summary["footmap_nodes"] = footmap->ncols() * footmap->nrows();
+    summary["cgmap_theta"] = lattice->heading(cg_slice_index);
+    summary["cgmap_cells"] = cg_slice.empty() ? nlohmann::json(nullptr) : cg_slice_counts(cg_slice);
+    summary["eldershaw_yim_status"] = to_string(legged->status);
+  }
   for (const BaselineSetting& s : planner->settings()) {
     std::visit([&](const auto& v) { summary[s.section][s.key] = v; }, s.value);
   }
@@ -181,6 +223,12 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
     summary["files"]["channel"] = out.final_path("channel.csv").string();
     summary["files"]["octree_png"] =
         plots ? nlohmann::json(out.final_path("octree.png").string()) : nullptr;
+  }
+  if (legged) {
+    summary["files"]["prm_points"] = out.final_path("prm_points.csv").string();
+    summary["files"]["prm_edges"] = out.final_path("prm_edges.csv").string();
+    summary["files"]["cgmap_png"] =
+        cg_plot ? nlohmann::json(out.final_path("cgmap.png").string()) : nullptr;
   }
   summary["plot_seconds"] = seconds_since(plot_start);
   summary["seconds"] = seconds_since(start_time);

@@ -167,6 +167,19 @@ CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const
   return CgState::kTooShort;
 }
 
+std::vector<CgState> evaluate_cg_slice(const Footmap& footmap, const LeggedRobot& robot,
+                                       const CgLattice& lattice, int it) {
+  if (it < 0 || it >= lattice.ntheta())
+    throw InputError("evaluate_cg_slice: slice " + std::to_string(it) + " is not in 0.." +
+                     std::to_string(lattice.ntheta() - 1));
+  std::vector<CgState> out;
+  out.reserve(static_cast<std::size_t>(lattice.nx()) * static_cast<std::size_t>(lattice.ny()));
+  for (int iy = 0; iy < lattice.ny(); ++iy)
+    for (int ix = 0; ix < lattice.nx(); ++ix)
+      out.push_back(evaluate_cg_pose(footmap, robot, lattice.centre({ix, iy, it})));
+  return out;
+}
+
 CgSpace::CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_slices, int block_side)
     : footmap_(&footmap),
       robot_(&robot),

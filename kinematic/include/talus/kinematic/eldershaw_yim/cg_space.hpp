@@ -90,6 +90,12 @@ class CgLattice {
 /// The CG-cell rule at one pose (the file comment), without caching.
 CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const SE2Pose& q);
 
+/// One heading slice `it` of the lattice evaluated cell by cell (no cache):
+/// the CGmap of the paper's figures 4 and 6, indexed iy * nx + ix. Throws
+/// InputError for a slice outside 0 .. n_θ-1.
+std::vector<CgState> evaluate_cg_slice(const Footmap& footmap, const LeggedRobot& robot,
+                                       const CgLattice& lattice, int it);
+
 /// CGspace of one robot on one terrain: a CgLattice whose cells are
 /// evaluated a block at a time (block_side × block_side cells in x, y and
 /// every heading) the first time any of them is asked for, and kept. Not

@@ -286,12 +286,13 @@ LeggedRobot parse_legged_robot(std::string_view yaml_text, const std::string& so
   const Reader rd(source);
   if (!root.IsMap())
     throw InputError(source + ": a robot file must be a mapping of keys to values");
+  const YAML::Node type = root["type"];
+  if (!type || !type.IsScalar() || type.as<std::string>() != "legged")
+    throw InputError(source + ": key 'type' must be legged, got '" +
+                     printable(type ? type.as<std::string>("<not a scalar>") : "<missing>", 60) +
+                     "'");
   rd.keys(root, "", {"type", "name", "legs", "under_carriage", "max_traction_slope", "foot_print"},
           {"type", "legs", "under_carriage", "max_traction_slope", "foot_print"});
-  const YAML::Node type = root["type"];
-  if (!type.IsScalar() || type.as<std::string>() != "legged")
-    throw InputError(source + ": key 'type' must be legged, got '" +
-                     printable(type.as<std::string>("<not a scalar>"), 60) + "'");
   LeggedRobot r;
   if (root["name"]) {
     if (!root["name"].IsScalar()) throw InputError(source + ": key 'name' must be a string");

@@ -85,7 +85,8 @@ SE2Pose CgLattice::centre(const CgCell& c) const {
   return {x0_ + c.ix * f_, y0_ + c.iy * f_, heading(c.it)};
 }
 
-CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const SE2Pose& q) {
+std::optional<double> cg_min_height(const Footmap& footmap, const LeggedRobot& robot,
+                                    const SE2Pose& q) {
   const RuledTerrain& terrain = footmap.terrain();
   const ElevationGrid& g = terrain.grid();
   const double h = g.cellsize();
@@ -121,7 +122,7 @@ CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const
     for (std::size_t i = 0; i < depth.nu; ++i) {
       const Vec2 p = to_world({ua + static_cast<double>(i) * depth.spacing,
                                va + static_cast<double>(k) * depth.spacing});
-      if (!terrain.has_data(p)) return CgState::kOffData;
+      if (!terrain.has_data(p)) return std::nullopt;
       min_height = std::max(min_height, terrain.elevation(p) + depth.values[k * depth.nu + i]);
     }
   }
@@ -133,11 +134,44 @@ CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const
         const auto iu = static_cast<std::size_t>(i), ju = static_cast<std::size_t>(j);
         const Vec2 uv = to_body(g.node_position(iu, ju));
         if (!depth.covers(uv)) continue;
-        if (!g.valid(iu, ju)) return CgState::kOffData;
+        if (!g.valid(iu, ju)) return std::nullopt;
         min_height = std::max(min_height, g.at(iu, ju) + depth.at(uv));
       }
     }
   }
+
+  return min_height;
+}
+
+CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const SE2Pose& q) {
+  const RuledTerrain& terrain = footmap.terrain();
+  const ElevationGrid& g = terrain.grid();
+  const double h = g.cellsize();
+  const double c = std::cos(q.theta), s = std::sin(q.theta);
+  const Vec2 cg(q.x, q.y);
+  auto to_world = [&](const Vec2& uv) {
+    return Vec2(cg.x() + c * uv.x() - s * uv.y(), cg.y() + s * uv.x() + c * uv.y());
+  };
+  auto to_body = [&](const Vec2& p) {
+    const Vec2 d = p - cg;
+    return Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+  };
+  auto world_box = [&](const std::vector<Vec2>& body_pts, long& i0, long& i1, long& j0, long& j1) {
+    double xa = std::numeric_limits<double>::infinity(), xb = -xa, ya = xa, yb = -xa;
+    for (const Vec2& uv : body_pts) {
+      const Vec2 p = to_world(uv);
+      xa = std::min(xa, p.x());
+      xb = std::max(xb, p.x());
+      ya = std::min(ya, p.y());
+      yb = std::max(yb, p.y());
+    }
+    node_span(xa, xb, g.x_min(), h, g.ncols(), i0, i1);
+    node_span(ya, yb, g.y_min(), h, g.nrows(), j0, j1);
+  };
+
+  const std::optional<double> mh = cg_min_height(footmap, robot, q);
+  if (!mh) return CgState::kOffData;
+  const double min_height = *mh;
 
   // Rules (a) and (b): a reaching valid foot position in every quadrant.
   bool support[4] = {false, false, false, false};

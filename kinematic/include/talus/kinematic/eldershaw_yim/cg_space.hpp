@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -86,6 +87,12 @@ class CgLattice {
   double x0_ = 0, y0_ = 0, f_ = 1;
   int nx_ = 0, ny_ = 0, nt_ = 1;
 };
+
+/// MinHeight at pose `q` (the file comment): the lowest height of the body's
+/// zero plane [m] that keeps the under-carriage off the ground; nullopt when
+/// the under-carriage leaves the terrain's data.
+std::optional<double> cg_min_height(const Footmap& footmap, const LeggedRobot& robot,
+                                    const SE2Pose& q);
 
 /// The CG-cell rule at one pose (the file comment), without caching.
 CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const SE2Pose& q);

@@ -87,7 +87,7 @@ TEST(EldershawYimRobot, BundledRobotsLoad) {
   const LeggedRobot& s = spider();
   EXPECT_EQ(s.legs.size(), 8u);
   EXPECT_EQ(s.foot_print, 0.25);
-  EXPECT_NEAR(s.outer_radius(), 0.85, 1e-3);
+  EXPECT_NEAR(s.outer_radius(), 0.9, 1e-3);
   // Two legs' ranges in each body quadrant.
   int per_quadrant[4] = {0, 0, 0, 0};
   for (const Leg& leg : s.legs) {

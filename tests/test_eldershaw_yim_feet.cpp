@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "talus/core/error.hpp"
 #include "talus/kinematic/eldershaw_yim/eldershaw_yim_planner.hpp"
 #include "talus/kinematic/eldershaw_yim/foot_planner.hpp"
 #include "terrain_test_support.hpp"
@@ -122,6 +123,91 @@ TEST(EldershawYimFeet, FlatGroundEveryStanceIsStableForBothRobots) {
     const CgLattice L(flat.grid(), robot.foot_print, 8);
     const FootPlan plan = plan_footsteps(fm, robot, L, r.cells);
     expect_sound_plan(fm, robot, L, r.cells, plan);
+  }
+}
+
+TEST(EldershawYimFeet, TheSpiderWalksOverAHillAndTheReachingRobotOverTheRidge) {
+  const LeggedRobot spider = load_legged_robot(TALUS_DATA_DIR "/robots/eldershaw_spider.yaml");
+  // A Gaussian hill 0.4 m high (sigma 1.5 m) in the way: feet stand at many heights.
+  const RuledTerrain hill(grid_from_function(
+      [](double x, double y) {
+        return 0.4 * std::exp(-((x - 6) * (x - 6) + (y - 6.3) * (y - 6.3)) / 4.5);
+      },
+      0, 0, 12, 12, 0.125));
+  EldershawYimPlannerOptions o;
+  o.direct = true;
+  o.theta_slices = 16;
+  const EldershawYimResult r = plan_eldershaw_yim(hill, spider, {2, 6, 0}, {10, 6, 0}, o);
+  ASSERT_TRUE(r.found()) << r.brief_report();
+  const Footmap fm(hill, spider);
+  const CgLattice L(hill.grid(), 0.25, 16);
+  const FootPlan plan = plan_footsteps(fm, spider, L, r.cells);
+  expect_sound_plan(fm, spider, L, r.cells, plan);
+  double z_max = 0.0;
+  for (const FootStep& st : plan.steps)
+    for (const FootState& f : st.feet) z_max = std::max(z_max, foot_position(fm, f).z());
+  EXPECT_GT(z_max, 0.3);  // it walked over the hill's top
+
+  // A ridge 0.3 m high and 0.25 m wide across the map; eight legs reaching 0.5 m with feet
+  // 0.3..1.0 m fore and aft: it steps over without touching the ridge's flanks.
+  const RuledTerrain ridge(grid_from_function(
+      [](double x, double) { return std::abs(x - 6) <= 0.125 + 1e-9 ? 0.3 : 0.0; }, 0, 0, 12, 8,
+      0.125));
+  LeggedRobot box;
+  box.max_traction_slope = 0.6;
+  box.foot_print = 0.25;
+  // Two legs per quadrant: under the quadrant rule a foot can only be lifted while another
+  // holds its quadrant, so one leg per quadrant could never step.
+  for (int su : {1, 1, -1, -1}) {
+    for (int sv : {1, -1}) {
+      Leg leg;
+      std::vector<Vec2> b{
+          {0.3 * su, 0.05 * sv}, {1.0 * su, 0.05 * sv}, {1.0 * su, 0.4 * sv}, {0.3 * su, 0.4 * sv}};
+      if (su * sv < 0) std::reverse(b.begin(), b.end());
+      leg.range = b;
+      leg.reach.constant = 0.5;
+      box.legs.push_back(leg);
+    }
+  }
+  box.under_carriage.depth = {0.0, Vec2(-0.25, -0.25), 0.25, 3, 3, std::vector<double>(9, 0.1)};
+  o.theta_slices = 1;
+  const EldershawYimResult rr = plan_eldershaw_yim(ridge, box, {3, 4, 0}, {9, 4, 0}, o);
+  ASSERT_TRUE(rr.found()) << rr.brief_report();
+  const Footmap fr(ridge, box);
+  const CgLattice Lr(ridge.grid(), 0.25, 1);
+  const FootPlan pr = plan_footsteps(fr, box, Lr, rr.cells);
+  expect_sound_plan(fr, box, Lr, rr.cells, pr);
+}
+
+TEST(EldershawYimFeet, BudgetAndOptions) {
+  const LeggedRobot spider = load_legged_robot(TALUS_DATA_DIR "/robots/eldershaw_spider.yaml");
+  const RuledTerrain flat(
+      grid_from_function([](double, double) { return 0.0; }, 0, 0, 8, 8, 0.125));
+  EldershawYimPlannerOptions o;
+  o.direct = true;
+  o.theta_slices = 8;
+  const EldershawYimResult r = plan_eldershaw_yim(flat, spider, {2, 4, 0}, {6, 4, 0}, o);
+  ASSERT_TRUE(r.found());
+  const Footmap fm(flat, spider);
+  const CgLattice L(flat.grid(), 0.25, 8);
+  FootPlannerOptions f;
+  f.budget = 3;
+  const FootPlan p = plan_footsteps(fm, spider, L, r.cells, f);
+  EXPECT_EQ(p.status, FootPlanStatus::kBudgetExceeded) << p.message;
+  EXPECT_EQ(p.nodes, 3u);
+  f.budget = 0;
+  EXPECT_THROW(plan_footsteps(fm, spider, L, r.cells, f), InputError);
+  // Reruns are identical.
+  const FootPlan a = plan_footsteps(fm, spider, L, r.cells),
+                 b = plan_footsteps(fm, spider, L, r.cells);
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  for (std::size_t k = 0; k < a.steps.size(); ++k) {
+    EXPECT_EQ(a.steps[k].move, b.steps[k].move);
+    EXPECT_EQ(a.steps[k].leg, b.steps[k].leg);
+    for (std::size_t l = 0; l < a.steps[k].feet.size(); ++l) {
+      EXPECT_EQ(a.steps[k].feet[l].i, b.steps[k].feet[l].i);
+      EXPECT_EQ(a.steps[k].feet[l].j, b.steps[k].feet[l].j);
+    }
   }
 }
 

@@ -135,6 +135,7 @@ class Search {
       std::vector<FootState> rest = f.feet;
       rest[static_cast<std::size_t>(l)].contact = false;
       for (const Candidate& c : candidates(l, k, rest, want_quadrant, quadrant_index)) {
+        if (c.score == 0 && next < poses_.size()) continue;  // useless for the next CG move
         std::vector<FootState> after = rest;
         after[static_cast<std::size_t>(l)] = {true, c.i, c.j};
         if (!stable(after, k)) continue;

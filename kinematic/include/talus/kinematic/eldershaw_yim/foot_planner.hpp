@@ -24,7 +24,10 @@
 /// (up to `lookahead`) they stay feasible for, most first (the paper: "if
 /// motion of the CG continued in its current direction"; we follow the
 /// path's next cells), ties to the lower node index; at most
-/// `placements_per_leg` of them are tried.
+/// `placements_per_leg` of them are tried, and only placements that are
+/// still feasible at the next path cell (others cannot help the next CG
+/// move), so a foot "about to become infeasible" is lifted (move 4) when no
+/// node feasible now and at the next cell is free for it.
 ///
 /// Choices left open by the paper: feet stand on terrain nodes; the initial
 /// stance is chosen greedily (a foot per quadrant first, by the same

@@ -342,6 +342,7 @@ TEST(EldershawYimPlanner, ACliffHigherThanEveryReachIsGoneRound) {
   EldershawYimPlannerOptions o;
   o.direct = true;
   o.theta_slices = 8;
+  o.plan_feet = false;  // the CG level only (test_eldershaw_yim_feet.cpp plans feet)
   // The spider: reach 0.3 m < cliff 1 m + under-carriage 0.1 m. The only way up is the ramp.
   const EldershawYimResult r = plan_eldershaw_yim(t, spider(), start, goal, o);
   ASSERT_TRUE(r.found()) << r.brief_report();
@@ -408,6 +409,7 @@ TEST(EldershawYimPlanner, TreePrmIsAForestAndASeedReproducesItBitForBit) {
   o.prm_points = 300;
   o.connect_radius = 5.0;
   o.seed = 7;
+  o.feet.budget = 2000;
   const EldershawYimResult a = plan_eldershaw_yim(t, spider(), start, goal, o);
   ASSERT_TRUE(a.found()) << a.brief_report();
   // Each edge joined two trees: edges = points - trees.
@@ -426,6 +428,10 @@ TEST(EldershawYimPlanner, TreePrmIsAForestAndASeedReproducesItBitForBit) {
   EXPECT_EQ(b.local_planner_calls, a.local_planner_calls);
   EXPECT_EQ(b.expansions, a.expansions);
   EXPECT_EQ(b.cells_materialised, a.cells_materialised);
+  EXPECT_TRUE(a.feet_planned);
+  EXPECT_EQ(b.foot_plan.status, a.foot_plan.status);
+  EXPECT_EQ(b.foot_plan.nodes, a.foot_plan.nodes);
+  EXPECT_EQ(b.foot_plan.steps.size(), a.foot_plan.steps.size());
   ASSERT_EQ(b.path.size(), a.path.size());
   for (std::size_t k = 0; k < a.path.size(); ++k) {
     EXPECT_EQ(b.path[k].x, a.path[k].x);

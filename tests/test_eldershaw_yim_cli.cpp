@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -30,7 +31,8 @@ const std::string& terrain_file() {
 
 std::string run_args(const std::string& out, const std::string& extra = "") {
   return "baseline eldershaw-yim --terrain " + quoted(terrain_file()) + " --robot " +
-         quoted(spider_file()) + " --start 1,1,0 --goal 9,9,0 --out " + quoted(out) + " " + extra;
+         quoted(spider_file()) + " --start 1,1,0 --goal 9,9,0 --out " + quoted(out) +
+         " --foot-budget 3000 " + extra;
 }
 
 std::string slurp(const std::string& file) {
@@ -82,11 +84,47 @@ TEST(EldershawYimCli, WritesAPathOfValidCgCellsAndTheRoadmap) {
                 cells["no_support"].get<std::size_t>() + cells["too_short"].get<std::size_t>(),
             static_cast<std::size_t>(lattice.nx() * lattice.ny()));
 
-  // The same seed again: the same files, byte for byte.
-  const std::string again = scratch_file("ey_prm_again");
-  ASSERT_EQ(run_talus(run_args(again, "--seed 5")).exit_code, 0);
-  for (const char* f : {"/path.csv", "/prm_points.csv", "/prm_edges.csv"})
-    EXPECT_EQ(slurp(again + f), slurp(out + f)) << f;
+  // steps.csv: one row per foot-plan step, every leg's four columns.
+  std::string header = "step,move,cg_x,cg_y,cg_theta";
+  for (int l = 0; l < 8; ++l)
+    for (const char* c : {",foot_x_", ",foot_y_", ",foot_z_", ",contact_"})
+      header += c + std::to_string(l);
+  const auto steps = read_csv(out + "/steps.csv", header);
+  EXPECT_EQ(steps.size(), s["foot_plan_steps"].get<std::size_t>());
+  EXPECT_EQ(s["options"]["foot_budget"], 3000);
+  EXPECT_LE(s["foot_planner_nodes"].get<std::size_t>(), 3000u);
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const std::string& move = steps[k][1];
+    EXPECT_TRUE(k == 0 ? move == "start"
+                       : (move == "advance_cg" || move == "move_foot" || move == "lift_foot"))
+        << k << " " << move;
+    std::size_t contacts = 0;
+    for (int l = 0; l < 8; ++l) contacts += steps[k][8 + 4 * l] == "1" ? 1 : 0;
+    EXPECT_GE(contacts, 4u) << k;  // one per quadrant at least
+  }
+  if (s["foot_plan_status"] == "found") {
+    EXPECT_EQ(parse_number(steps.back()[2]), 9.0);
+    EXPECT_EQ(parse_number(steps.back()[3]), 9.0);
+  }
+}
+
+TEST(EldershawYimCli, ASeedReproducesEveryFileByteForByte) {
+  // Without gnuplot on the PATH (no figures: the CSV files are what is compared, and the
+  // runs are faster); /bin/sh itself is called by its full path.
+  auto run_plain = [](const std::string& out, const std::string& seed) {
+    const std::string cmd = "PATH=/nonexistent '" + std::string(TALUS_CLI) + "' " +
+                            run_args(out, "--seed " + seed) + " >/dev/null 2>&1";
+    return std::system(cmd.c_str());
+  };
+  const std::string a = scratch_file("ey_seed_a"), b = scratch_file("ey_seed_b"),
+                    c = scratch_file("ey_seed_c");
+  ASSERT_EQ(run_plain(a, "11"), 0);
+  ASSERT_EQ(run_plain(b, "11"), 0);
+  ASSERT_EQ(run_plain(c, "12"), 0);
+  for (const char* f : {"/path.csv", "/prm_points.csv", "/prm_edges.csv", "/steps.csv"})
+    EXPECT_EQ(slurp(b + f), slurp(a + f)) << f;
+  EXPECT_NE(slurp(c + "/prm_points.csv"), slurp(a + "/prm_points.csv"));
+  EXPECT_FALSE(std::filesystem::exists(a + "/cgmap.png"));
 }
 
 TEST(EldershawYimCli, DirectModeIsOneLocalPlannerCall) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <system_error>
 #include <variant>
 
@@ -142,6 +143,8 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
       cg_slice = evaluate_cg_slice(*footmap, ey->robot(), *lattice, cg_slice_index);
     write_text_file(dir / "prm_points.csv", eldershaw_yim_points_csv(*legged, *lattice));
     write_text_file(dir / "prm_edges.csv", eldershaw_yim_edges_csv(*legged));
+    write_text_file(dir / "steps.csv",
+                    eldershaw_yim_steps_csv(*legged, *footmap, ey->robot().legs.size()));
   }
 
   const auto plot_start = Clock::now();
@@ -181,6 +184,13 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
     figure.it = cg_slice_index;
     figure.path = result.path;
     for (const CgCell& c : legged->prm_points) figure.prm_points.push_back(lattice->centre(c));
+    if (legged->feet_planned) {
+      std::set<std::pair<std::size_t, std::size_t>> seen;
+      for (const FootStep& st : legged->foot_plan.steps)
+        for (const FootState& f : st.feet)
+          if (f.contact && seen.insert({f.i, f.j}).second)
+            figure.footprints.push_back(foot_position(*footmap, f).head<2>());
+    }
     figure.title = "talus baseline eldershaw-yim: footmap and CGmap, " + ey->robot().name;
     render_cg_map(dir, "cgmap", figure);
   }
@@ -203,6 +213,11 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
     summary["cgmap_theta"] = lattice->heading(cg_slice_index);
     summary["cgmap_cells"] = cg_slice.empty() ? nlohmann::json(nullptr) : cg_slice_counts(cg_slice);
     summary["eldershaw_yim_status"] = to_string(legged->status);
+    summary["foot_plan_status"] =
+        legged->feet_planned ? nlohmann::json(to_string(legged->foot_plan.status)) : nullptr;
+    summary["foot_plan_message"] = legged->foot_plan.message;
+    summary["foot_plan_furthest_cell"] = legged->foot_plan.furthest_index;
+    summary["feedback_events"] = 0;  // §3.3 feedback is not implemented
   }
   for (const BaselineSetting& s : planner->settings()) {
     std::visit([&](const auto& v) { summary[s.section][s.key] = v; }, s.value);
@@ -227,6 +242,7 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   if (legged) {
     summary["files"]["prm_points"] = out.final_path("prm_points.csv").string();
     summary["files"]["prm_edges"] = out.final_path("prm_edges.csv").string();
+    summary["files"]["steps"] = out.final_path("steps.csv").string();
     summary["files"]["cgmap_png"] =
         cg_plot ? nlohmann::json(out.final_path("cgmap.png").string()) : nullptr;
   }

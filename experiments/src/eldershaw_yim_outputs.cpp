@@ -28,6 +28,41 @@ std::string eldershaw_yim_edges_csv(const EldershawYimResult& result) {
   return csv;
 }
 
+std::string eldershaw_yim_steps_csv(const EldershawYimResult& result, const Footmap& footmap,
+                                    std::size_t legs) {
+  std::string csv = "step,move,cg_x,cg_y,cg_theta";
+  for (std::size_t l = 0; l < legs; ++l) {
+    for (const char* column : {",foot_x_", ",foot_y_", ",foot_z_", ",contact_"}) {
+      csv.append(column);
+      csv.append(std::to_string(l));
+    }
+  }
+  csv.push_back('\n');
+  if (!result.feet_planned) return csv;
+  auto number = [&csv](double v) {
+    csv.push_back(',');
+    csv.append(csv_number(v, 17));
+  };
+  for (std::size_t k = 0; k < result.foot_plan.steps.size(); ++k) {
+    const FootStep& st = result.foot_plan.steps[k];
+    csv.append(std::to_string(k));
+    csv.push_back(',');
+    csv.append(to_string(st.move));
+    number(st.cg.x);
+    number(st.cg.y);
+    number(st.cg.theta);
+    for (const FootState& f : st.feet) {
+      const Vec3 p = foot_position(footmap, f);
+      number(p.x());
+      number(p.y());
+      number(p.z());
+      csv.append(f.contact ? ",1" : ",0");
+    }
+    csv.push_back('\n');
+  }
+  return csv;
+}
+
 nlohmann::json cg_slice_counts(const std::vector<CgState>& slice) {
   nlohmann::json out = {{"valid", 0}, {"off_data", 0}, {"no_support", 0}, {"too_short", 0}};
   for (CgState s : slice) {
@@ -72,6 +107,14 @@ void render_cg_map(const std::filesystem::path& dir, const std::string& stem,
       }
     close_output_file(out, file);
   }
+  {
+    const std::filesystem::path file = dir / (stem + "_steps.dat");
+    std::ofstream out = open_output_file(file);
+    out << fmt("%.9g", far) << " 0\n";
+    for (const Vec2& p : fig.footprints)
+      out << fmt("%.9g", p.x()) << ' ' << fmt("%.9g", p.y()) << '\n';
+    close_output_file(out, file);
+  }
   for (const auto& [name, poses] :
        {std::pair{"_path.dat", &fig.path}, std::pair{"_prm.dat", &fig.prm_points}}) {
     const std::filesystem::path file = dir / (stem + name);
@@ -98,6 +141,8 @@ void render_cg_map(const std::filesystem::path& dir, const std::string& stem,
         " with points pt 6 ps 0.4 lc rgb '#3182bd' title 'invalid foot node', " +
         gnuplot_string(stem + "_prm.dat") +
         " with points pt 7 ps 0.5 lc rgb '#31a354' title 'PRM point', " +
+        gnuplot_string(stem + "_steps.dat") +
+        " with points pt 2 ps 0.6 lc rgb '#756bb1' title 'footprint', " +
         gnuplot_string(stem + "_path.dat") + " with lines lc rgb '#e6550d' lw 2 title 'CG path'\n";
   write_text_file(dir / (stem + ".gp"), gp);
   run_gnuplot(dir / (stem + ".gp"));

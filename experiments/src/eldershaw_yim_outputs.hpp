@@ -30,6 +30,13 @@ std::string eldershaw_yim_points_csv(const EldershawYimResult& result, const CgL
 /// point first (indices into prm_points.csv).
 std::string eldershaw_yim_edges_csv(const EldershawYimResult& result);
 
+/// steps.csv: one row per step of the foot plan: `step,move,cg_x,cg_y,cg_theta`
+/// then `foot_x_i,foot_y_i,foot_z_i,contact_i` for every leg i = 0 … n-1 (the
+/// robot file's order; a raised foot keeps its last node, contact 0); move is
+/// to_string(FootMove). Header only when no foot plan ran.
+std::string eldershaw_yim_steps_csv(const EldershawYimResult& result, const Footmap& footmap,
+                                    std::size_t legs);
+
 /// The CGmap of one heading slice and the footmap it was built from.
 struct CgMapFigure {
   const Footmap* footmap = nullptr;
@@ -38,13 +45,14 @@ struct CgMapFigure {
   int it = 0;
   std::vector<SE2Pose> path;        ///< the CG path (may be empty)
   std::vector<SE2Pose> prm_points;  ///< drawn as dots (may be empty)
+  std::vector<Vec2> footprints;  ///< contact foot positions of the foot plan, drawn as crosses
   std::string title;
 };
 
 /// Counts of a slice: {"valid", "off_data", "no_support", "too_short"}.
 nlohmann::json cg_slice_counts(const std::vector<CgState>& slice);
 
-/// Writes `stem`_foot.dat, `stem`_cells.dat, `stem`_path.dat, `stem`_prm.dat,
+/// Writes `stem`_foot.dat, `stem`_cells.dat, `stem`_path.dat, `stem`_prm.dat, `stem`_steps.dat,
 /// `stem`.gp in `dir` and renders `stem`.png (throws talus::Error if gnuplot fails).
 void render_cg_map(const std::filesystem::path& dir, const std::string& stem,
                    const CgMapFigure& figure);

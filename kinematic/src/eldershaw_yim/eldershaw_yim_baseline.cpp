@@ -43,6 +43,9 @@ std::vector<BaselineOptionSpec> option_specs() {
       {"local-margin", std::to_string(d.local.margin),
        "least extra CG cells around the local planner's bounding box (>= 0)"},
       {"seed", std::to_string(d.seed), "seed of the PRM's random points (>= 0)"},
+      {"foot-budget", std::to_string(d.feet.budget),
+       "search nodes of the foot-level planner run along a found CG path (>= 0; 0 = do not "
+       "plan the feet)"},
       {"budget", std::to_string(d.budget),
        "work units (>= 1): CG cells evaluated plus A* expansions; the query stops with status "
        "budget_exceeded once spent"},
@@ -66,6 +69,9 @@ std::unique_ptr<BaselinePlanner> make(const BaselineOptions& text) {
   o.local.heading_weight = 0.0;  // the robot's outer radius
   o.seed = reader.count("seed", 0);
   o.budget = reader.count("budget", 1);
+  o.feet.budget = reader.count("foot-budget", 0);
+  o.plan_feet = o.feet.budget > 0;
+  if (!o.plan_feet) o.feet.budget = 1;
   const std::string& file = reader.text("robot");
   return std::make_unique<EldershawYimBaseline>(load_legged_robot(file), o, file);
 }
@@ -96,6 +102,8 @@ std::vector<BaselineSetting> EldershawYimBaseline::settings() const {
       {"options", "local_margin_fraction", options_.local.margin_fraction},
       {"options", "seed", static_cast<long long>(options_.seed)},
       {"options", "budget", static_cast<long long>(options_.budget)},
+      {"options", "foot_budget",
+       static_cast<long long>(options_.plan_feet ? options_.feet.budget : 0)},
   };
 }
 
@@ -145,13 +153,13 @@ BaselineResult to_baseline_result(const EldershawYimResult& r, bool direct) {
                   {"local_planner_successes", r.local_planner_successes},
                   {"recreate_calls", r.recreate_calls},
                   {"expansions", r.expansions},
-                  {"samples_drawn", r.samples_drawn}};
-  out.stage_seconds = {{"footmap", r.footmap_seconds},
-                       {"materialise", r.materialise_seconds},
-                       {"sample", r.sample_seconds},
-                       {"connect", r.connect_seconds},
-                       {"recreate", r.recreate_seconds}};
-  out.flags = {{"direct", direct}};
+                  {"samples_drawn", r.samples_drawn},
+                  {"foot_planner_nodes", r.foot_plan.nodes},
+                  {"foot_plan_steps", r.feet_planned ? r.foot_plan.steps.size() : 0}};
+  out.stage_seconds = {{"footmap", r.footmap_seconds},   {"materialise", r.materialise_seconds},
+                       {"sample", r.sample_seconds},     {"connect", r.connect_seconds},
+                       {"recreate", r.recreate_seconds}, {"foot_planner", r.foot_plan.seconds}};
+  out.flags = {{"direct", direct}, {"foot_plan_found", r.feet_planned && r.foot_plan.found()}};
   return out;
 }
 

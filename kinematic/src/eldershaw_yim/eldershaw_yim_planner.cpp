@@ -36,6 +36,7 @@ void EldershawYimPlannerOptions::validate() const {
   if (block_side < 1) throw InputError("block_side must be >= 1");
   if (budget < 1) throw InputError("budget must be >= 1");
   if (local.margin < 0) throw InputError("local.margin must be >= 0 cells");
+  feet.validate();
   if (!(std::isfinite(local.margin_fraction) && local.margin_fraction >= 0))
     throw InputError("local.margin_fraction must be a finite number >= 0");
   if (!std::isfinite(local.heading_weight))
@@ -272,7 +273,14 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
   std::ostringstream msg;
   msg << (options.direct ? "direct A*" : "tree-PRM") << ": " << r.cells.size() << " CG cells";
   if (!options.direct) msg << " through " << r.prm_points.size() << " PRM points";
-  return finish(EldershawYimStatus::kFound, msg.str());
+  finish(EldershawYimStatus::kFound, msg.str());
+  if (options.plan_feet) {
+    r.foot_plan = plan_footsteps(footmap, robot, L, r.cells, options.feet);
+    r.feet_planned = true;
+    r.message +=
+        std::string("; foot plan ") + to_string(r.foot_plan.status) + ": " + r.foot_plan.message;
+  }
+  return r;
 }
 
 }  // namespace talus

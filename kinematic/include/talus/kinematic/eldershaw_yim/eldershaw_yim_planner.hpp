@@ -23,7 +23,9 @@
 /// The work budget counts CG cells evaluated plus A* expansions (work, not
 /// time, so results are deterministic). The CG path is a 6-connected sequence
 /// of valid CG cells; as poses it is the start, the centres of the inner
-/// cells (θ unwrapped to stay continuous), then the goal.
+/// cells (θ unwrapped to stay continuous), then the goal. When a CG path is
+/// found the foot-level planner runs along it (plan_feet), outside
+/// search_seconds.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -34,6 +36,7 @@
 #include "talus/kinematic/configuration_space.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_local_planner.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
+#include "talus/kinematic/eldershaw_yim/foot_planner.hpp"
 #include "talus/kinematic/eldershaw_yim/legged_robot.hpp"
 
 namespace talus {
@@ -50,6 +53,10 @@ struct EldershawYimPlannerOptions {
   int block_side = 16;              ///< CGspace block side in cells (>= 1)
   std::uint64_t seed = 1;           ///< of the PRM's random points
   std::size_t budget = 50'000'000;  ///< CG cells evaluated + A* expansions (>= 1)
+  /// Run the foot-level planner (§3.2, foot_planner.hpp) along a found CG
+  /// path; its outcome does not change the status (the CG path is the result).
+  bool plan_feet = true;
+  FootPlannerOptions feet{20000};  ///< its options (budget: search nodes)
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -90,6 +97,8 @@ struct EldershawYimResult {
   double connect_seconds = 0.0;      ///< local-planner calls of the roadmap (or the direct A*) [s]
   double recreate_seconds = 0.0;     ///< re-running the path's edges [s]
   double search_seconds = 0.0;       ///< all of the query after the footmap [s]
+  bool feet_planned = false;         ///< the foot planner ran (a CG path was found and plan_feet)
+  FootPlan foot_plan;                ///< its steps and outcome (foot_plan.seconds: its time)
   bool found() const { return status == EldershawYimStatus::kFound; }
   /// One line: status, path, counters, times, message.
   std::string brief_report() const;

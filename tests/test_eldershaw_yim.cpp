@@ -382,7 +382,8 @@ TEST(EldershawYimPlanner, ARidgeIsCrossedOnlyIfLegsReachBothSides) {
   const SE2Pose start{3, 4, 0}, goal{9, 4, 0};
   EldershawYimPlannerOptions o;
   o.direct = true;
-  o.theta_slices = 1;  // no rotation: see the end for a robot that turns its wide side across
+  o.theta_slices = 1;   // no rotation: see the end for a robot that turns its wide side across
+  o.plan_feet = false;  // the CG level only
   // Ridge 0.3 m + under-carriage 0.1 m = MinHeight 0.4 m over the ridge.
   const LeggedRobot reaching = box_robot(0.5, 0.4, 0.9);  // 0.5 > 0.4, feet beyond the ridge
   const EldershawYimResult a = plan_eldershaw_yim(t, reaching, start, goal, o);
@@ -410,6 +411,7 @@ TEST(EldershawYimPlanner, TreePrmIsAForestAndASeedReproducesItBitForBit) {
   o.connect_radius = 5.0;
   o.seed = 7;
   o.feet.budget = 2000;
+  o.feedback_rounds = 0;  // one roadmap (feedback replans are tested below)
   const EldershawYimResult a = plan_eldershaw_yim(t, spider(), start, goal, o);
   ASSERT_TRUE(a.found()) << a.brief_report();
   // Each edge joined two trees: edges = points - trees.
@@ -459,6 +461,35 @@ TEST(EldershawYimPlanner, TooFewPointsIsNoPathAndBadOptionsThrow) {
   EXPECT_THROW(plan_eldershaw_yim(t, spider(), {4, 8, 0}, {12, 8, 0}, o), InputError);
   o.connect_attempts = 1;
   EXPECT_THROW(plan_eldershaw_yim(t, spider(), {4, 80, 0}, {12, 8, 0}, o), InputError);
+}
+
+TEST(EldershawYimPlanner, AFailedFootPlanMarksItsCellInvalidAndReplans) {
+  // One leg per quadrant: every CG cell can be stood on, but under the quadrant rule no foot
+  // can ever be lifted, so the feet cannot follow any CG path: feedback fires every round.
+  const RuledTerrain flat(
+      grid_from_function([](double, double) { return 0.0; }, 0, 0, 8, 8, 0.125));
+  const LeggedRobot stiff = box_robot(0.5, 0.3, 0.6);
+  EldershawYimPlannerOptions o;
+  o.direct = true;
+  o.theta_slices = 8;
+  o.feet.budget = 500;
+  o.feedback_rounds = 3;
+  const EldershawYimResult r = plan_eldershaw_yim(flat, stiff, {2, 4, 0}, {6, 4, 0}, o);
+  ASSERT_TRUE(r.found()) << r.brief_report();
+  EXPECT_TRUE(r.feet_planned);
+  EXPECT_FALSE(r.foot_plan.found());
+  EXPECT_EQ(r.feedback_events, 3u);
+  ASSERT_EQ(r.feedback_cells.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t m = 0; m < k; ++m) EXPECT_NE(r.feedback_cells[k], r.feedback_cells[m]);
+    EXPECT_EQ(std::count(r.cells.begin(), r.cells.end(), r.feedback_cells[k]), 0) << k;
+  }
+  EXPECT_GT(r.length_m, 4.0);            // the marked cells lay on the straight route
+  EXPECT_EQ(r.local_planner_calls, 4u);  // one direct A* per round
+  o.feedback_rounds = 0;
+  const EldershawYimResult q = plan_eldershaw_yim(flat, stiff, {2, 4, 0}, {6, 4, 0}, o);
+  EXPECT_EQ(q.feedback_events, 0u);
+  EXPECT_DOUBLE_EQ(q.length_m, 4.0);
 }
 
 }  // namespace

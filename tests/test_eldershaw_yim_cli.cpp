@@ -92,7 +92,10 @@ TEST(EldershawYimCli, WritesAPathOfValidCgCellsAndTheRoadmap) {
   const auto steps = read_csv(out + "/steps.csv", header);
   EXPECT_EQ(steps.size(), s["foot_plan_steps"].get<std::size_t>());
   EXPECT_EQ(s["options"]["foot_budget"], 3000);
-  EXPECT_LE(s["foot_planner_nodes"].get<std::size_t>(), 3000u);
+  // Each round of section 3.3 feedback plans the feet again.
+  EXPECT_LE(s["foot_planner_nodes"].get<std::size_t>(),
+            3000u * (1 + s["feedback_events"].get<std::size_t>()));
+  EXPECT_EQ(s["feedback_cells"].size(), s["feedback_events"].get<std::size_t>());
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const std::string& move = steps[k][1];
     EXPECT_TRUE(k == 0 ? move == "start"

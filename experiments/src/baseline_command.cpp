@@ -217,7 +217,9 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
         legged->feet_planned ? nlohmann::json(to_string(legged->foot_plan.status)) : nullptr;
     summary["foot_plan_message"] = legged->foot_plan.message;
     summary["foot_plan_furthest_cell"] = legged->foot_plan.furthest_index;
-    summary["feedback_events"] = 0;  // §3.3 feedback is not implemented
+    nlohmann::json fed = nlohmann::json::array();
+    for (const CgCell& c : legged->feedback_cells) fed.push_back({c.ix, c.iy, c.it});
+    summary["feedback_cells"] = fed;
   }
   for (const BaselineSetting& s : planner->settings()) {
     std::visit([&](const auto& v) { summary[s.section][s.key] = v; }, s.value);

@@ -35,6 +35,8 @@ const char* to_string(CgState s) {
       return "no_support";
     case CgState::kTooShort:
       return "too_short";
+    case CgState::kFeedback:
+      return "feedback";
   }
   return "unknown";
 }
@@ -225,6 +227,7 @@ CgSpace::CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_sli
 
 CgState CgSpace::peek(const CgCell& c) const {
   if (!lattice_.contains(c)) return CgState::kOffData;
+  if (!marked_.empty() && marked_.count(lattice_.index(c))) return CgState::kFeedback;
   const std::size_t key = static_cast<std::size_t>(c.iy / block_) * static_cast<std::size_t>(bx_) +
                           static_cast<std::size_t>(c.ix / block_);
   const auto it = blocks_.find(key);
@@ -233,8 +236,16 @@ CgState CgSpace::peek(const CgCell& c) const {
   return it->second[(static_cast<std::size_t>(c.it) * block_ + ly) * block_ + lx];
 }
 
+void CgSpace::mark_invalid(const CgCell& c) {
+  if (lattice_.contains(c)) marked_.insert(lattice_.index(c));
+}
+
 CgState CgSpace::state(const CgCell& c) {
   if (!lattice_.contains(c)) return CgState::kOffData;
+  if (!marked_.empty() && marked_.count(lattice_.index(c))) {
+    (void)peek(c);  // keeps the materialisation accounting independent of the marks
+    return CgState::kFeedback;
+  }
   const int bxi = c.ix / block_, byi = c.iy / block_;
   const std::size_t key =
       static_cast<std::size_t>(byi) * static_cast<std::size_t>(bx_) + static_cast<std::size_t>(bxi);

@@ -46,6 +46,9 @@ std::vector<BaselineOptionSpec> option_specs() {
       {"foot-budget", std::to_string(d.feet.budget),
        "search nodes of the foot-level planner run along a found CG path (>= 0; 0 = do not "
        "plan the feet)"},
+      {"feedback-rounds", std::to_string(d.feedback_rounds),
+       "times a failed foot plan may mark its blocking CG cell invalid and have the CG path "
+       "replanned (section 3.3; 0..1000)"},
       {"budget", std::to_string(d.budget),
        "work units (>= 1): CG cells evaluated plus A* expansions; the query stops with status "
        "budget_exceeded once spent"},
@@ -70,6 +73,9 @@ std::unique_ptr<BaselinePlanner> make(const BaselineOptions& text) {
   o.seed = reader.count("seed", 0);
   o.budget = reader.count("budget", 1);
   o.feet.budget = reader.count("foot-budget", 0);
+  o.feedback_rounds = reader.count("feedback-rounds", 0);
+  if (o.feedback_rounds > 1000)
+    throw BaselineOptionError("feedback-rounds", "must be at most 1000");
   o.plan_feet = o.feet.budget > 0;
   if (!o.plan_feet) o.feet.budget = 1;
   const std::string& file = reader.text("robot");
@@ -102,6 +108,7 @@ std::vector<BaselineSetting> EldershawYimBaseline::settings() const {
       {"options", "local_margin_fraction", options_.local.margin_fraction},
       {"options", "seed", static_cast<long long>(options_.seed)},
       {"options", "budget", static_cast<long long>(options_.budget)},
+      {"options", "feedback_rounds", static_cast<long long>(options_.feedback_rounds)},
       {"options", "foot_budget",
        static_cast<long long>(options_.plan_feet ? options_.feet.budget : 0)},
   };
@@ -154,7 +161,8 @@ BaselineResult to_baseline_result(const EldershawYimResult& r, bool direct) {
                   {"recreate_calls", r.recreate_calls},
                   {"expansions", r.expansions},
                   {"samples_drawn", r.samples_drawn},
-                  {"foot_planner_nodes", r.foot_plan.nodes},
+                  {"foot_planner_nodes", r.foot_planner_nodes},
+                  {"feedback_events", r.feedback_events},
                   {"foot_plan_steps", r.feet_planned ? r.foot_plan.steps.size() : 0}};
   out.stage_seconds = {{"footmap", r.footmap_seconds},   {"materialise", r.materialise_seconds},
                        {"sample", r.sample_seconds},     {"connect", r.connect_seconds},

@@ -25,6 +25,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "talus/core/ruled_terrain.hpp"
@@ -49,8 +50,9 @@ enum class CgState : std::uint8_t {
   kOffData = 2,    ///< the under-carriage leaves the terrain's data
   kNoSupport = 3,  ///< some quadrant has no valid foot position in any leg's range
   kTooShort = 4,   ///< some quadrant's valid foot positions are all out of reach of MinHeight
+  kFeedback = 5,   ///< marked invalid by the foot planner (§3.3, CgSpace::mark_invalid)
 };
-/// "unknown", "valid", "off_data", "no_support", "too_short".
+/// "unknown", "valid", "off_data", "no_support", "too_short", "feedback".
 const char* to_string(CgState state);
 
 /// The CG lattice over a terrain (positions and headings of the cells).
@@ -118,6 +120,8 @@ class CgSpace {
   /// The state of `c` (materialising its block); kOffData outside the lattice.
   CgState state(const CgCell& c);
   bool valid(const CgCell& c) { return state(c) == CgState::kValid; }
+  /// From now on `c` is kFeedback (invalid), whatever the rule says.
+  void mark_invalid(const CgCell& c);
   /// The state if its block is materialised, else kUnknown.
   CgState peek(const CgCell& c) const;
   /// Cells evaluated so far (whole blocks, clipped to the lattice).
@@ -132,6 +136,7 @@ class CgSpace {
   CgLattice lattice_;
   int block_ = 16, bx_ = 1;
   std::unordered_map<std::size_t, std::vector<CgState>> blocks_;
+  std::unordered_set<std::size_t> marked_;
   std::size_t cells_ = 0;
   double seconds_ = 0.0;
 };

@@ -15,12 +15,13 @@
 /// | local-margin | 4 | least extra cells around the local planner's box (>= 0) |
 /// | seed | 1 | of the PRM's random points |
 /// | foot-budget | 20000 | foot-planner search nodes along a found path; 0 = no foot plan |
+/// | feedback-rounds | 3 | §3.3 replans after a failed foot plan (0..1000) |
 /// | budget | 50000000 | CG cells evaluated + A* expansions (>= 1) |
 ///
 /// Results: counters cg_cells_materialised, cg_blocks_materialised, cg_cells,
 /// prm_points, prm_edges, prm_trees, local_planner_calls,
 /// local_planner_successes, recreate_calls, expansions, samples_drawn,
-/// foot_planner_nodes, foot_plan_steps; stage seconds footmap, materialise,
+/// foot_planner_nodes, foot_plan_steps, feedback_events; stage seconds footmap, materialise,
 /// sample, connect, recreate, foot_planner; flags direct, foot_plan_found.
 /// The status is the CG path's: a foot plan that fails does not change it.
 /// validity() is the CG-cell rule of cg_space.hpp for the cell holding the

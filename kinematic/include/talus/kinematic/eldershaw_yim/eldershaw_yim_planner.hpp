@@ -57,6 +57,12 @@ struct EldershawYimPlannerOptions {
   /// path; its outcome does not change the status (the CG path is the result).
   bool plan_feet = true;
   FootPlannerOptions feet{20000};  ///< its options (budget: search nodes)
+  /// §3.3 feedback (not implemented in the paper): when the foot plan fails
+  /// (search exhausted or its budget spent) the CG cell after the furthest
+  /// one it reached is marked invalid and the CG path is searched again, at
+  /// most this many times (0 = no feedback). The CGspace already materialised
+  /// is kept; the foot plan is made again from the start (not reused).
+  std::size_t feedback_rounds = 3;
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -98,7 +104,11 @@ struct EldershawYimResult {
   double recreate_seconds = 0.0;     ///< re-running the path's edges [s]
   double search_seconds = 0.0;       ///< all of the query after the footmap [s]
   bool feet_planned = false;         ///< the foot planner ran (a CG path was found and plan_feet)
-  FootPlan foot_plan;                ///< its steps and outcome (foot_plan.seconds: its time)
+  FootPlan foot_plan;                ///< the last foot plan: its steps and outcome
+  std::size_t feedback_events = 0;   ///< CG cells marked invalid by the foot planner (§3.3)
+  std::vector<CgCell> feedback_cells;  ///< those cells, in order
+  std::size_t foot_planner_nodes = 0;  ///< foot-planner nodes over every round
+  double foot_planner_seconds = 0.0;   ///< foot-planner time over every round [s]
   bool found() const { return status == EldershawYimStatus::kFound; }
   /// One line: status, path, counters, times, message.
   std::string brief_report() const;

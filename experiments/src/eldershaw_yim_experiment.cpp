@@ -16,6 +16,7 @@
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
+#include "talus/kinematic/eldershaw_yim/eldershaw_yim_planner.hpp"
 #include "talus/kinematic/eldershaw_yim/legged_robot.hpp"
 
 namespace talus::experiments {
@@ -62,16 +63,21 @@ std::vector<int> invalid_regions(const Footmap& fm, std::size_t& count) {
   return label;
 }
 
+/// The test terrain of both experiments: 24 m square (the generator lays it out in units of
+/// half the side: plateau +-3.6 m at 1 m with a cliff to the east, peaks 1.5 m high of base
+/// radius 0.96 m), seed 2001.
+ElevationGrid test_terrain(bool quick) {
+  EldershawYimOptions t;
+  t.shape = quick ? GridShape{81, 81, 0.3, 0.0, 0.0} : GridShape{121, 121, 0.2, 0.0, 0.0};
+  t.seed = 2001;
+  return generate_eldershaw_yim(t);
+}
+
 }  // namespace
 
 void run_eldershaw_footmap(const ExperimentContext& context) {
   require_gnuplot();
-  // The test terrain: 24 m square (the generator lays it out in units of half the side:
-  // plateau +-3.6 m at 1 m with a cliff to the east, peaks 1.5 m high of base radius 0.96 m).
-  EldershawYimOptions t;
-  t.shape = context.quick ? GridShape{81, 81, 0.3, 0.0, 0.0} : GridShape{121, 121, 0.2, 0.0, 0.0};
-  t.seed = 2001;
-  const ElevationGrid grid = generate_eldershaw_yim(t);
+  const ElevationGrid grid = test_terrain(context.quick);
   write_esri_ascii(grid, (context.output_dir / "terrain.asc").string());
   const RuledTerrain terrain(grid);
   const double side = grid.x_max() - grid.x_min();
@@ -270,6 +276,128 @@ void run_eldershaw_footmap(const ExperimentContext& context) {
                "`counts.csv`, `terrain.asc`, `cgmap_spider.png`, `cgmap_ambler.png`",
                {{"footmap and CGmap at θ = 0, spider (cf. Fig. 4)", "cgmap_spider.png"},
                 {"footmap and CGmap at θ = 0, Ambler-like (cf. Fig. 6)", "cgmap_ambler.png"}});
+}
+
+void run_eldershaw_plan(const ExperimentContext& context) {
+  require_gnuplot();
+  const ElevationGrid grid = test_terrain(context.quick);
+  write_esri_ascii(grid, (context.output_dir / "terrain.asc").string());
+  const RuledTerrain terrain(grid);
+  const SE2Pose start{4, 4, 0}, goal{20, 20, 0};
+  struct Run {
+    std::string robot, mode;
+    EldershawYimResult r;
+  };
+  std::vector<Run> runs;
+  std::string csv =
+      "robot,mode,status,length_m,prm_points,local_planner_calls,cg_cells_materialised,cg_cells,"
+      "search_seconds,foot_plan_status,foot_plan_steps,foot_planner_nodes,feedback_events\n";
+  Table table({"robot", "mode", "status", "length [m]", "PRM points", "local-planner calls",
+               "CG cells materialised", "search [s]", "foot plan", "feedback events"});
+  std::vector<FigureLink> figures;
+  for (const auto& [name, file] : {std::pair{"spider", "eldershaw_spider.yaml"},
+                                   std::pair{"ambler", "eldershaw_ambler.yaml"}}) {
+    const LeggedRobot robot = load_legged_robot(context.data_dir / "robots" / file);
+    for (const bool direct : {false, true}) {
+      EldershawYimPlannerOptions o;
+      o.direct = direct;
+      o.prm_points = context.quick ? 100 : 200;
+      o.feet.budget = context.quick ? 5000 : 20000;
+      EldershawYimResult r = plan_eldershaw_yim(terrain, robot, start, goal, o);
+      const std::string mode = direct ? "direct" : "tree-prm";
+      csv += std::string(name) + "," + mode + "," + to_string(r.status) + "," +
+             csv_number(r.length_m) + "," + std::to_string(r.prm_points.size()) + "," +
+             std::to_string(r.local_planner_calls) + "," + std::to_string(r.cells_materialised) +
+             "," + std::to_string(r.cg_cells) + "," + csv_number(r.search_seconds) + "," +
+             (r.feet_planned ? to_string(r.foot_plan.status) : "none") + "," +
+             std::to_string(r.feet_planned ? r.foot_plan.steps.size() : 0) + "," +
+             std::to_string(r.foot_planner_nodes) + "," + std::to_string(r.feedback_events) + "\n";
+      table.row({name, mode, to_string(r.status), sig3(r.length_m),
+                 std::to_string(r.prm_points.size()), std::to_string(r.local_planner_calls),
+                 std::to_string(r.cells_materialised) + " of " + std::to_string(r.cg_cells),
+                 fmt("%.3g", r.search_seconds),
+                 r.feet_planned ? std::string(to_string(r.foot_plan.status)) + ", " +
+                                      std::to_string(r.foot_plan.steps.size()) + " steps"
+                                : "none",
+                 std::to_string(r.feedback_events)});
+      if (direct) {
+        const Footmap fm(terrain, robot);
+        const CgLattice L(grid, robot.foot_print, o.theta_slices);
+        CgMapFigure fig;
+        fig.footmap = &fm;
+        fig.lattice = &L;
+        fig.slice = evaluate_cg_slice(fm, robot, L, 0);
+        fig.path = r.path;
+        if (r.feet_planned)
+          for (const FootStep& st : r.foot_plan.steps)
+            for (const FootState& f : st.feet)
+              if (f.contact) fig.footprints.push_back(foot_position(fm, f).head<2>());
+        fig.title = "eldershaw-plan: " + robot.name + ", direct A* route and footprints";
+        render_cg_map(context.output_dir, std::string("route_") + name, fig);
+        figures.push_back({std::string(name) + ": CGmap at θ = 0, the direct route and its "
+                                               "footprints (cf. Fig. 6)",
+                           std::string("route_") + name + ".png"});
+      }
+      runs.push_back({name, mode, std::move(r)});
+    }
+  }
+  write_text_file(context.output_dir / "runs.csv", csv);
+  const EldershawYimResult &sp_prm = runs[0].r, &sp_dir = runs[1].r, &am_prm = runs[2].r,
+                           &am_dir = runs[3].r;
+  ExperimentSummary& sum = *context.summary;
+  std::size_t found = 0;
+  for (const Run& run : runs) found += run.r.found() ? 1 : 0;
+  sum.set("routes_found", static_cast<double>(found), "1", "4: both vehicles, both modes");
+  for (const Run& run : runs) {
+    const std::string k = run.robot + "_" + (run.mode == "direct" ? "direct" : "prm");
+    sum.set(k + "_length_m", run.r.length_m, "m", "");
+    sum.set(k + "_local_planner_calls", static_cast<double>(run.r.local_planner_calls), "1",
+            run.mode == "direct" ? "1 per round (plus one per feedback event)" : "");
+    sum.set(k + "_search_seconds", run.r.search_seconds, "s", "");
+    sum.set(k + "_feedback_events", static_cast<double>(run.r.feedback_events), "1", "");
+  }
+  const double min_prm_over_direct =
+      std::min(sp_prm.length_m / sp_dir.length_m, am_prm.length_m / am_dir.length_m);
+  sum.set("min_prm_over_direct_length", min_prm_over_direct, "1",
+          ">= 1: the trees' routes are less direct (§3.1); the direct A* is optimal in its metric "
+          "on the final CGspace");
+  sum.set("ambler_over_spider_direct_length", am_dir.length_m / sp_dir.length_m, "1",
+          "<= 1: the Ambler straddles what the spider goes round");
+  sum.set("ambler_foot_plan_found", am_dir.feet_planned && am_dir.foot_plan.found() ? 1.0 : 0.0,
+          "1", "1: the foot planner follows the Ambler's route (Fig. 6's footprints)");
+
+  Report report("eldershaw-plan: the full route (Eldershaw, Yim, ICRA 2001)");
+  report.paragraph(
+      "**Problem.** The `eldershaw-footmap` terrain, from (4, 4) to (20, 20) at θ = 0, for the "
+      "spider and the Ambler-like walker; tree-PRM (" +
+      std::to_string(context.quick ? 100 : 200) +
+      " random points, seed 1, connect radius 40 foot prints) against one direct A* over "
+      "CGspace (16 heading slices), then the foot-level planner along the route with §3.3 "
+      "feedback (at most 3 rounds). Times are wall clock on a shared machine.");
+  if (context.quick) report.paragraph("**Quick mode**: 81 × 81 nodes, 100 PRM points.");
+  report.heading("Runs").table(table);
+  report.heading("Paper beside ours")
+      .table(Table({"statement", "paper", "ours"})
+                 .row({"tree-PRM routes", "may take a considerably less direct route",
+                       "PRM / direct length: spider " + sig3(sp_prm.length_m / sp_dir.length_m) +
+                           ", Ambler " + sig3(am_prm.length_m / am_dir.length_m)})
+                 .row({"direct A* on a server", "quite cheap; could replace the PRM",
+                       "spider " + fmt("%.3g", sp_dir.search_seconds) + " s direct vs " +
+                           fmt("%.3g", sp_prm.search_seconds) + " s PRM; Ambler " +
+                           fmt("%.3g", am_dir.search_seconds) + " s vs " +
+                           fmt("%.3g", am_prm.search_seconds) + " s"})
+                 .row({"§3.3 situations", "not frequent in the authors' experience",
+                       "feedback events: spider " + std::to_string(sp_dir.feedback_events) +
+                           " (direct), " + std::to_string(sp_prm.feedback_events) +
+                           " (PRM); Ambler " + std::to_string(am_dir.feedback_events) + ", " +
+                           std::to_string(am_prm.feedback_events)})
+                 .row({"Ambler footprints along the route (Fig. 6)", "shown",
+                       am_dir.feet_planned
+                           ? std::string(to_string(am_dir.foot_plan.status)) + ", " +
+                                 std::to_string(am_dir.foot_plan.steps.size()) + " steps"
+                           : "not planned"}));
+  report.write(context.output_dir,
+               "`runs.csv`, `terrain.asc`, `route_spider.png`, `route_ambler.png`", figures);
 }
 
 }  // namespace talus::experiments

@@ -13,3 +13,13 @@ namespace talus::experiments {
 void run_eldershaw_footmap(const ExperimentContext& context);
 
 }  // namespace talus::experiments
+
+namespace talus::experiments {
+
+/// `talus experiment eldershaw-plan`: the full route across the same terrain
+/// for both vehicles, tree-PRM against direct A* (local-planner calls, CG
+/// cells materialised, time, length), the foot plan along each route
+/// (steps, §3.3 feedback events) and the routes with footprints.
+void run_eldershaw_plan(const ExperimentContext& context);
+
+}  // namespace talus::experiments

@@ -72,6 +72,11 @@ std::vector<Experiment> all_experiments() {
        "foot nodes, invalid CG cells, straddled regions and black-border cells, and the "
        "paper's claims checked one by one",
        run_eldershaw_footmap},
+      {"eldershaw-plan",
+       "Eldershaw-Yim legged vehicles: the full route across the test terrain for the spider "
+       "and the Ambler-like walker, tree-PRM against direct A* (local-planner calls, CG cells "
+       "materialised, time, length), the foot plan and its section 3.3 feedback",
+       run_eldershaw_plan},
       {"sweep-friction-stability",
        "a sweep of the rover's plans over friction x stability (b/h) x roughness on a fractal "
        "terrain: success, travel time, binding-constraint shares, and the monotonicity the "

@@ -45,7 +45,7 @@ struct CgMapFigure {
   int it = 0;
   std::vector<SE2Pose> path;        ///< the CG path (may be empty)
   std::vector<SE2Pose> prm_points;  ///< drawn as dots (may be empty)
-  std::vector<Vec2> footprints;  ///< contact foot positions of the foot plan, drawn as crosses
+  std::vector<Vec2> footprints;     ///< contact foot positions of the foot plan, drawn as crosses
   std::string title;
 };
 

@@ -3,8 +3,8 @@
 #include <cstdlib>
 
 #include "dacre_wright_experiment.hpp"
-#include "eldershaw_yim_experiment.hpp"
 #include "dynamic_vs_kinematic_experiment.hpp"
+#include "eldershaw_yim_experiment.hpp"
 #include "global_search_experiment.hpp"
 #include "hait_experiments.hpp"
 #include "optimal_profile_experiment.hpp"

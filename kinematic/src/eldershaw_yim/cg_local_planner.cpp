@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "talus/core/error.hpp"
+#include "talus/core/memory_budget.hpp"
 
 namespace talus {
 
@@ -38,6 +39,11 @@ CgLocalPath cg_local_plan(CgSpace& space, const CgCell& from, const CgCell& to,
   const int wx = x1 - x0 + 1, wy = y1 - y0 + 1, nt = L.ntheta();
   const std::size_t n =
       static_cast<std::size_t>(wx) * static_cast<std::size_t>(wy) * static_cast<std::size_t>(nt);
+  // g, parent, closed per cell of the block, and about one queue entry per cell.
+  require_memory(
+      static_cast<double>(n) * (sizeof(double) + sizeof(std::uint32_t) + 1 + 24),
+      "the CG local planner's block of " + std::to_string(n) + " cells",
+      "use a larger foot_print, fewer theta slices, or the tree-PRM instead of --direct");
   auto local = [&](const CgCell& c) {
     return (static_cast<std::size_t>(c.it) * static_cast<std::size_t>(wy) +
             static_cast<std::size_t>(c.iy - y0)) *

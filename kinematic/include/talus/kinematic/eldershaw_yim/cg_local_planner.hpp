@@ -42,6 +42,8 @@ struct CgLocalPath {
 /// count (cell evaluations + expansions), incremented by this call's
 /// expansions; the search stops with budget_exceeded once
 /// space.cells_materialised() + work > budget.
+/// Throws InputError when the block's search arrays exceed the memory budget
+/// (memory_budget.hpp).
 CgLocalPath cg_local_plan(CgSpace& space, const CgCell& from, const CgCell& to,
                           const CgLocalPlannerOptions& options, std::size_t& work,
                           std::size_t budget);

@@ -34,6 +34,7 @@ BaselineOptions conformance_options(const std::string& name) {
   const std::map<std::string, BaselineOptions> options{
       {"hait", {{"robot", TALUS_DATA_DIR "/robots/rover4_sprung.yaml"}}},
       {"dacre-wright", {{"robot", TALUS_DATA_DIR "/robots/dacre_wright_six_wheel.yaml"}}},
+      {"eldershaw-yim", {{"robot", TALUS_DATA_DIR "/robots/eldershaw_spider.yaml"}}},
   };
   const auto it = options.find(name);
   return it == options.end() ? BaselineOptions{} : it->second;

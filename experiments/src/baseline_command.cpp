@@ -6,11 +6,13 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <system_error>
 #include <variant>
 
 #include "baseline_profile.hpp"
 #include "cli_values.hpp"
+#include "eldershaw_yim_outputs.hpp"
 #include "hait_figures.hpp"
 #include "limits_command.hpp"
 #include "talus/core/error.hpp"
@@ -23,6 +25,7 @@
 #include "talus/kinematic/baseline_registry.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_outputs.hpp"
+#include "talus/kinematic/eldershaw_yim/eldershaw_yim_baseline.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {
@@ -108,10 +111,16 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
 
   // The Dacre-Wright baseline's full result (voxels, channel) feeds its own outputs.
   std::optional<DacreWrightResult> octree;
+  // The Eldershaw-Yim baseline's full result (PRM points and edges) feeds its own outputs.
+  const auto* ey = dynamic_cast<const EldershawYimBaseline*>(planner.get());
+  std::optional<EldershawYimResult> legged;
   BaselineResult result;
   if (const auto* dw = dynamic_cast<const DacreWrightBaseline*>(planner.get())) {
     octree = dw->plan_full(terrain, start, goal);
     result = to_baseline_result(*octree, dw->options().full);
+  } else if (ey) {
+    legged = ey->plan_full(terrain, start, goal);
+    result = to_baseline_result(*legged, ey->options().direct);
   } else {
     result = planner->plan(terrain, start, goal);
   }
@@ -122,6 +131,23 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   if (octree) {
     write_text_file(dir / "voxels.csv", dacre_wright_voxels_csv(*octree));
     write_text_file(dir / "channel.csv", dacre_wright_channel_csv(*octree));
+  }
+  // The footmap and the CGmap of the start's heading slice (figures 4 and 6 of the paper).
+  std::optional<Footmap> footmap;
+  std::optional<CgLattice> lattice;
+  std::vector<CgState> cg_slice;
+  int cg_slice_index = 0;
+  if (legged) {
+    footmap.emplace(terrain, ey->robot());
+    lattice.emplace(terrain.grid(), ey->robot().foot_print, ey->options().theta_slices);
+    cg_slice_index = lattice->cell_of(start).it;
+    // One whole slice is evaluated for the figure, up to a million cells.
+    if (static_cast<double>(lattice->nx()) * lattice->ny() <= 1e6)
+      cg_slice = evaluate_cg_slice(*footmap, ey->robot(), *lattice, cg_slice_index);
+    write_text_file(dir / "prm_points.csv", eldershaw_yim_points_csv(*legged, *lattice));
+    write_text_file(dir / "prm_edges.csv", eldershaw_yim_edges_csv(*legged));
+    write_text_file(dir / "steps.csv",
+                    eldershaw_yim_steps_csv(*legged, *footmap, ey->robot().legs.size()));
   }
 
   const auto plot_start = Clock::now();
@@ -152,6 +178,25 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
       render_octree_slices(dir, "octree", figure);
     }
   }
+  const bool cg_plot = legged && !cg_slice.empty() && gnuplot_available();
+  if (cg_plot) {
+    CgMapFigure figure;
+    figure.footmap = &*footmap;
+    figure.lattice = &*lattice;
+    figure.slice = cg_slice;
+    figure.it = cg_slice_index;
+    figure.path = result.path;
+    for (const CgCell& c : legged->prm_points) figure.prm_points.push_back(lattice->centre(c));
+    if (legged->feet_planned) {
+      std::set<std::pair<std::size_t, std::size_t>> seen;
+      for (const FootStep& st : legged->foot_plan.steps)
+        for (const FootState& f : st.feet)
+          if (f.contact && seen.insert({f.i, f.j}).second)
+            figure.footprints.push_back(foot_position(*footmap, f).head<2>());
+    }
+    figure.title = "talus baseline eldershaw-yim: footmap and CGmap, " + ey->robot().name;
+    render_cg_map(dir, "cgmap", figure);
+  }
 
   nlohmann::json summary;
   summary["baseline"] = planner->name();
@@ -167,6 +212,20 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   if (octree) add_dacre_wright_summary(summary, *octree);
   if (vehicle)
     add_baseline_profile(summary, terrain.grid(), result.path, found, *vehicle, request.vehicle);
+  if (legged) {
+    summary["footmap_invalid_nodes"] = footmap->invalid_count();
+    summary["footmap_nodes"] = footmap->ncols() * footmap->nrows();
+    summary["cgmap_theta"] = lattice->heading(cg_slice_index);
+    summary["cgmap_cells"] = cg_slice.empty() ? nlohmann::json(nullptr) : cg_slice_counts(cg_slice);
+    summary["eldershaw_yim_status"] = to_string(legged->status);
+    summary["foot_plan_status"] =
+        legged->feet_planned ? nlohmann::json(to_string(legged->foot_plan.status)) : nullptr;
+    summary["foot_plan_message"] = legged->foot_plan.message;
+    summary["foot_plan_furthest_cell"] = legged->foot_plan.furthest_index;
+    nlohmann::json fed = nlohmann::json::array();
+    for (const CgCell& c : legged->feedback_cells) fed.push_back({c.ix, c.iy, c.it});
+    summary["feedback_cells"] = fed;
+  }
   for (const BaselineSetting& s : planner->settings()) {
     std::visit([&](const auto& v) { summary[s.section][s.key] = v; }, s.value);
   }
@@ -186,6 +245,13 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
     summary["files"]["channel"] = out.final_path("channel.csv").string();
     summary["files"]["octree_png"] =
         plots ? nlohmann::json(out.final_path("octree.png").string()) : nullptr;
+  }
+  if (legged) {
+    summary["files"]["prm_points"] = out.final_path("prm_points.csv").string();
+    summary["files"]["prm_edges"] = out.final_path("prm_edges.csv").string();
+    summary["files"]["steps"] = out.final_path("steps.csv").string();
+    summary["files"]["cgmap_png"] =
+        cg_plot ? nlohmann::json(out.final_path("cgmap.png").string()) : nullptr;
   }
   summary["plot_seconds"] = seconds_since(plot_start);
   summary["seconds"] = seconds_since(start_time);

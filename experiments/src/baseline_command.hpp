@@ -49,7 +49,12 @@ inline constexpr const char* kBaselineOutputHelp =
     "MIXED), channel.csv (columns step,voxel: the channel from the start's voxel to the goal's, "
     "voxel = 0-based data row of voxels.csv), octree.png (FREE voxels at four headings of the "
     "path, the channel and the path) and the summary keys voxels_analysed_per_level, "
-    "free_volume_fraction, voxels_decided, free_leaves, reference_level. Exit code 0 when a "
+    "free_volume_fraction, voxels_decided, free_leaves, reference_level. eldershaw-yim also "
+    "writes prm_points.csv (point,ix,iy,itheta,x,y,theta), prm_edges.csv "
+    "(new_point,old_point), steps.csv (the foot plan: step,move,cg_x,cg_y,cg_theta then "
+    "foot_x_i,foot_y_i,foot_z_i,contact_i per leg i), cgmap.png (the footmap and the CGmap of "
+    "the start's heading slice, the route and its footprints) and the summary keys "
+    "footmap_invalid_nodes, cgmap_cells, foot_plan_status, feedback_cells. Exit code 0 when a "
     "path is found; 2 when none exists, the start or goal configuration is invalid or the "
     "budget ran out (summary still written); 1 on bad input: malformed numbers or options, "
     "missing or bad files, a start or goal off the map or on NODATA (one line on stderr, "
@@ -82,6 +87,9 @@ struct BaselineOutcome {
 /// - for the dacre-wright baseline also voxels.csv, channel.csv
 ///   (dacre_wright_outputs.hpp), octree.png (when a path exists and gnuplot is
 ///   installed) and add_dacre_wright_summary()'s keys.
+/// - for the eldershaw-yim baseline also prm_points.csv, prm_edges.csv,
+///   steps.csv (eldershaw_yim_outputs.hpp), cgmap.png (when gnuplot is
+///   installed) and the footmap, CGmap, foot-plan and feedback keys.
 /// Bad input (an unknown baseline, bad options, malformed numbers, missing or
 /// bad files, a start or goal off the map or on NODATA) throws InputError,
 /// naming a bad option as its flag (--KEY), and writes nothing.

@@ -4,6 +4,7 @@
 
 #include "dacre_wright_experiment.hpp"
 #include "dynamic_vs_kinematic_experiment.hpp"
+#include "eldershaw_yim_experiment.hpp"
 #include "global_search_experiment.hpp"
 #include "hait_experiments.hpp"
 #include "optimal_profile_experiment.hpp"
@@ -65,6 +66,17 @@ std::vector<Experiment> all_experiments() {
        "voxels on a 64 x 64 rough terrain (FREE voxels at four headings, voxels per level, the "
        "effect of p0), an incremental search against the whole octree, Proposition 1 sampled",
        run_dacre_wright_octree},
+      {"eldershaw-footmap",
+       "Eldershaw-Yim legged vehicles: footmap and CGmap at theta = 0 (Fig. 4 and 6) for the "
+       "spider and the Ambler-like walker on the generated test terrain, counts of invalid "
+       "foot nodes, invalid CG cells, straddled regions and black-border cells, and the "
+       "paper's claims checked one by one",
+       run_eldershaw_footmap},
+      {"eldershaw-plan",
+       "Eldershaw-Yim legged vehicles: the full route across the test terrain for the spider "
+       "and the Ambler-like walker, tree-PRM against direct A* (local-planner calls, CG cells "
+       "materialised, time, length), the foot plan and its section 3.3 feedback",
+       run_eldershaw_plan},
       {"sweep-friction-stability",
        "a sweep of the rover's plans over friction x stability (b/h) x roughness on a fractal "
        "terrain: success, travel time, binding-constraint shares, and the monotonicity the "

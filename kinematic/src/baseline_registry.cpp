@@ -4,6 +4,7 @@
 
 #include "talus/core/error.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
+#include "talus/kinematic/eldershaw_yim/eldershaw_yim_baseline.hpp"
 #include "talus/kinematic/hait/hait_baseline.hpp"
 
 namespace talus {
@@ -13,6 +14,7 @@ const BaselineRegistry& BaselineRegistry::builtin() {
     BaselineRegistry r;
     r.add(hait_baseline_entry());
     r.add(dacre_wright_baseline_entry());
+    r.add(eldershaw_yim_baseline_entry());
     return r;
   }();
   return registry;

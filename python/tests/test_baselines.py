@@ -9,7 +9,8 @@ import pytest
 import talus
 
 # A robot file for each registered baseline; a new baseline must be added here.
-ROBOTS = {"hait": "marsokhod_chassis.yaml", "dacre-wright": "dacre_wright_six_wheel.yaml"}
+ROBOTS = {"hait": "marsokhod_chassis.yaml", "dacre-wright": "dacre_wright_six_wheel.yaml",
+          "eldershaw-yim": "eldershaw_spider.yaml"}
 START, GOAL = (2.0, 3.0, 0.0), (10.0, 9.0, 1.5)
 
 

@@ -1,0 +1,276 @@
+#include "talus/kinematic/eldershaw_yim/cg_space.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "talus/core/error.hpp"
+
+namespace talus {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// Node index range [lo, hi] covering [a, b] along one grid axis (empty when hi < lo).
+void node_span(double a, double b, double origin, double h, std::size_t n, long& lo, long& hi) {
+  lo = static_cast<long>(std::ceil((a - origin) / h - 1e-9));
+  hi = static_cast<long>(std::floor((b - origin) / h + 1e-9));
+  lo = std::max(lo, 0L);
+  hi = std::min(hi, static_cast<long>(n) - 1);
+}
+
+}  // namespace
+
+const char* to_string(CgState s) {
+  switch (s) {
+    case CgState::kUnknown:
+      return "unknown";
+    case CgState::kValid:
+      return "valid";
+    case CgState::kOffData:
+      return "off_data";
+    case CgState::kNoSupport:
+      return "no_support";
+    case CgState::kTooShort:
+      return "too_short";
+    case CgState::kFeedback:
+      return "feedback";
+  }
+  return "unknown";
+}
+
+CgLattice::CgLattice(const ElevationGrid& grid, double spacing, int theta_slices)
+    : x0_(grid.x_min()), y0_(grid.y_min()), f_(spacing), nt_(theta_slices) {
+  if (!(theta_slices == 1 || (theta_slices >= 8 && theta_slices <= 1024)))
+    throw InputError("theta slices must be 1 (no rotation) or 8 to 1024, got " +
+                     std::to_string(theta_slices));
+  if (!(std::isfinite(spacing) && spacing > 0))
+    throw InputError("the CG-space spacing (foot_print) must be > 0");
+  const double nx = std::floor((grid.x_max() - grid.x_min()) / spacing + 1e-9) + 1;
+  const double ny = std::floor((grid.y_max() - grid.y_min()) / spacing + 1e-9) + 1;
+  if (nx * ny * theta_slices > 2147483647.0)
+    throw InputError(
+        "the CG space would have more than 2^31 cells; use a larger foot_print or "
+        "fewer theta slices");
+  nx_ = static_cast<int>(nx);
+  ny_ = static_cast<int>(ny);
+}
+
+CgCell CgLattice::cell(std::size_t index) const {
+  CgCell c;
+  c.ix = static_cast<int>(index % static_cast<std::size_t>(nx_));
+  index /= static_cast<std::size_t>(nx_);
+  c.iy = static_cast<int>(index % static_cast<std::size_t>(ny_));
+  c.it = static_cast<int>(index / static_cast<std::size_t>(ny_));
+  return c;
+}
+
+CgCell CgLattice::cell_of(const SE2Pose& q) const {
+  CgCell c;
+  c.ix =
+      static_cast<int>(std::clamp(std::lround((q.x - x0_) / f_), 0L, static_cast<long>(nx_ - 1)));
+  c.iy =
+      static_cast<int>(std::clamp(std::lround((q.y - y0_) / f_), 0L, static_cast<long>(ny_ - 1)));
+  double t = std::fmod(q.theta, kTwoPi);
+  if (t < 0) t += kTwoPi;
+  c.it = static_cast<int>(std::lround(t / kTwoPi * nt_)) % nt_;
+  return c;
+}
+
+double CgLattice::heading(int it) const {
+  return kTwoPi * it / nt_;
+}
+
+SE2Pose CgLattice::centre(const CgCell& c) const {
+  return {x0_ + c.ix * f_, y0_ + c.iy * f_, heading(c.it)};
+}
+
+std::optional<double> cg_min_height(const Footmap& footmap, const LeggedRobot& robot,
+                                    const SE2Pose& q) {
+  const RuledTerrain& terrain = footmap.terrain();
+  const ElevationGrid& g = terrain.grid();
+  const double h = g.cellsize();
+  const double c = std::cos(q.theta), s = std::sin(q.theta);
+  const Vec2 cg(q.x, q.y);
+  auto to_world = [&](const Vec2& uv) {
+    return Vec2(cg.x() + c * uv.x() - s * uv.y(), cg.y() + s * uv.x() + c * uv.y());
+  };
+  auto to_body = [&](const Vec2& p) {
+    const Vec2 d = p - cg;
+    return Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+  };
+  auto world_box = [&](const std::vector<Vec2>& body_pts, long& i0, long& i1, long& j0, long& j1) {
+    double xa = std::numeric_limits<double>::infinity(), xb = -xa, ya = xa, yb = -xa;
+    for (const Vec2& uv : body_pts) {
+      const Vec2 p = to_world(uv);
+      xa = std::min(xa, p.x());
+      xb = std::max(xb, p.x());
+      ya = std::min(ya, p.y());
+      yb = std::max(yb, p.y());
+    }
+    node_span(xa, xb, g.x_min(), h, g.ncols(), i0, i1);
+    node_span(ya, yb, g.y_min(), h, g.nrows(), j0, j1);
+  };
+
+  // MinHeight over the under-carriage.
+  const BodyField& depth = robot.under_carriage.depth;
+  const double ua = depth.origin.x(), va = depth.origin.y();
+  const double ub = ua + static_cast<double>(depth.nu - 1) * depth.spacing;
+  const double vb = va + static_cast<double>(depth.nv - 1) * depth.spacing;
+  double min_height = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < depth.nv; ++k) {
+    for (std::size_t i = 0; i < depth.nu; ++i) {
+      const Vec2 p = to_world({ua + static_cast<double>(i) * depth.spacing,
+                               va + static_cast<double>(k) * depth.spacing});
+      if (!terrain.has_data(p)) return std::nullopt;
+      min_height = std::max(min_height, terrain.elevation(p) + depth.values[k * depth.nu + i]);
+    }
+  }
+  {
+    long i0, i1, j0, j1;
+    world_box({{ua, va}, {ub, va}, {ub, vb}, {ua, vb}}, i0, i1, j0, j1);
+    for (long j = j0; j <= j1; ++j) {
+      for (long i = i0; i <= i1; ++i) {
+        const auto iu = static_cast<std::size_t>(i), ju = static_cast<std::size_t>(j);
+        const Vec2 uv = to_body(g.node_position(iu, ju));
+        if (!depth.covers(uv)) continue;
+        if (!g.valid(iu, ju)) return std::nullopt;
+        min_height = std::max(min_height, g.at(iu, ju) + depth.at(uv));
+      }
+    }
+  }
+
+  return min_height;
+}
+
+CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const SE2Pose& q) {
+  const RuledTerrain& terrain = footmap.terrain();
+  const ElevationGrid& g = terrain.grid();
+  const double h = g.cellsize();
+  const double c = std::cos(q.theta), s = std::sin(q.theta);
+  const Vec2 cg(q.x, q.y);
+  auto to_world = [&](const Vec2& uv) {
+    return Vec2(cg.x() + c * uv.x() - s * uv.y(), cg.y() + s * uv.x() + c * uv.y());
+  };
+  auto to_body = [&](const Vec2& p) {
+    const Vec2 d = p - cg;
+    return Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+  };
+  auto world_box = [&](const std::vector<Vec2>& body_pts, long& i0, long& i1, long& j0, long& j1) {
+    double xa = std::numeric_limits<double>::infinity(), xb = -xa, ya = xa, yb = -xa;
+    for (const Vec2& uv : body_pts) {
+      const Vec2 p = to_world(uv);
+      xa = std::min(xa, p.x());
+      xb = std::max(xb, p.x());
+      ya = std::min(ya, p.y());
+      yb = std::max(yb, p.y());
+    }
+    node_span(xa, xb, g.x_min(), h, g.ncols(), i0, i1);
+    node_span(ya, yb, g.y_min(), h, g.nrows(), j0, j1);
+  };
+
+  const std::optional<double> mh = cg_min_height(footmap, robot, q);
+  if (!mh) return CgState::kOffData;
+  const double min_height = *mh;
+
+  // Rules (a) and (b): a reaching valid foot position in every quadrant.
+  bool support[4] = {false, false, false, false};
+  bool reached[4] = {false, false, false, false};
+  int reached_count = 0;
+  for (const Leg& leg : robot.legs) {
+    long i0, i1, j0, j1;
+    world_box(leg.range, i0, i1, j0, j1);
+    for (long j = j0; j <= j1; ++j) {
+      for (long i = i0; i <= i1; ++i) {
+        const auto iu = static_cast<std::size_t>(i), ju = static_cast<std::size_t>(j);
+        if (!footmap.valid(iu, ju)) continue;
+        const Vec2 uv = to_body(g.node_position(iu, ju));
+        const int quadrant = (uv.x() < 0 ? 1 : 0) + (uv.y() < 0 ? 2 : 0);
+        if (reached[quadrant]) continue;
+        if (!leg.in_range(uv)) continue;
+        support[quadrant] = true;
+        if (g.at(iu, ju) + leg.reach.at(uv) > min_height) {
+          reached[quadrant] = true;
+          if (++reached_count == 4) return CgState::kValid;
+        }
+      }
+    }
+  }
+  for (int k = 0; k < 4; ++k)
+    if (!support[k]) return CgState::kNoSupport;
+  return CgState::kTooShort;
+}
+
+std::vector<CgState> evaluate_cg_slice(const Footmap& footmap, const LeggedRobot& robot,
+                                       const CgLattice& lattice, int it) {
+  if (it < 0 || it >= lattice.ntheta())
+    throw InputError("evaluate_cg_slice: slice " + std::to_string(it) + " is not in 0.." +
+                     std::to_string(lattice.ntheta() - 1));
+  std::vector<CgState> out;
+  out.reserve(static_cast<std::size_t>(lattice.nx()) * static_cast<std::size_t>(lattice.ny()));
+  for (int iy = 0; iy < lattice.ny(); ++iy)
+    for (int ix = 0; ix < lattice.nx(); ++ix)
+      out.push_back(evaluate_cg_pose(footmap, robot, lattice.centre({ix, iy, it})));
+  return out;
+}
+
+CgSpace::CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_slices, int block_side)
+    : footmap_(&footmap),
+      robot_(&robot),
+      lattice_(footmap.terrain().grid(), robot.foot_print, theta_slices),
+      block_(block_side) {
+  if (block_side < 1) throw InputError("CgSpace: block side must be >= 1");
+  bx_ = (lattice_.nx() + block_ - 1) / block_;
+}
+
+CgState CgSpace::peek(const CgCell& c) const {
+  if (!lattice_.contains(c)) return CgState::kOffData;
+  if (!marked_.empty() && marked_.count(lattice_.index(c))) return CgState::kFeedback;
+  const std::size_t key = static_cast<std::size_t>(c.iy / block_) * static_cast<std::size_t>(bx_) +
+                          static_cast<std::size_t>(c.ix / block_);
+  const auto it = blocks_.find(key);
+  if (it == blocks_.end()) return CgState::kUnknown;
+  const int lx = c.ix % block_, ly = c.iy % block_;
+  return it->second[(static_cast<std::size_t>(c.it) * block_ + ly) * block_ + lx];
+}
+
+void CgSpace::mark_invalid(const CgCell& c) {
+  if (lattice_.contains(c)) marked_.insert(lattice_.index(c));
+}
+
+CgState CgSpace::state(const CgCell& c) {
+  if (!lattice_.contains(c)) return CgState::kOffData;
+  if (!marked_.empty() && marked_.count(lattice_.index(c))) {
+    (void)peek(c);  // keeps the materialisation accounting independent of the marks
+    return CgState::kFeedback;
+  }
+  const int bxi = c.ix / block_, byi = c.iy / block_;
+  const std::size_t key =
+      static_cast<std::size_t>(byi) * static_cast<std::size_t>(bx_) + static_cast<std::size_t>(bxi);
+  auto it = blocks_.find(key);
+  if (it == blocks_.end()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto n = static_cast<std::size_t>(block_);
+    std::vector<CgState> cells(n * n * static_cast<std::size_t>(lattice_.ntheta()),
+                               CgState::kOffData);
+    for (int t = 0; t < lattice_.ntheta(); ++t) {
+      for (int ly = 0; ly < block_; ++ly) {
+        for (int lx = 0; lx < block_; ++lx) {
+          const CgCell cell{bxi * block_ + lx, byi * block_ + ly, t};
+          if (!lattice_.contains(cell)) continue;
+          cells[(static_cast<std::size_t>(t) * n + ly) * n + lx] =
+              evaluate_cg_pose(*footmap_, *robot_, lattice_.centre(cell));
+          ++cells_;
+        }
+      }
+    }
+    it = blocks_.emplace(key, std::move(cells)).first;
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  const int lx = c.ix % block_, ly = c.iy % block_;
+  return it->second[(static_cast<std::size_t>(c.it) * block_ + ly) * block_ + lx];
+}
+
+}  // namespace talus

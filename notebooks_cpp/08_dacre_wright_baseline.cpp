@@ -96,6 +96,7 @@ int main(int argc, char** argv) {
     f.seed = 1993;
     const ElevationGrid grid = generate_fractal_terrain(f);
     const RuledTerrain ruled(grid);
+    const double side = std::max(grid.x_max() - grid.x_min(), grid.y_max() - grid.y_min());
     const SE2Pose start{3.0, 3.0, 0.0}, goal{12.5, 12.5, 1.5};
     const int p_max = nb.quick() ? 5 : 6;
     const BaselineOptions options{{"robot", nb.data("robots/dacre_wright_six_wheel.yaml")},
@@ -103,11 +104,13 @@ int main(int argc, char** argv) {
     const auto planner = registry.make("dacre-wright", options);
     nb.say(
         "The terrain: a 64 × 64 fractal elevation map (seed 1993, 0.25 m cells, 0.6 m peak "
-        "to peak), so the root voxel is 15.75 m on a side. The robot: the six-wheel rover "
+        "to peak), so the root voxel is " +
+        num("%.2f", side) +
+        " m on a side. The robot: the six-wheel rover "
         "`data/robots/dacre_wright_six_wheel.yaml` (wheels at ±0.6 m and 0 along, ±0.45 m "
         "across; L_max = 0.15 m, |roll| < 0.35 rad, |pitch| < 0.40 rad; the paper gives no "
         "dimensions). The octree goes down to p_max = " +
-        std::to_string(p_max) + " (voxels of " + num("%.2f", 15.75 / std::pow(2.0, p_max)) +
+        std::to_string(p_max) + " (voxels of " + num("%.2f", side / std::pow(2.0, p_max)) +
         " m and " + num("%.1f", 360.0 / std::pow(2.0, p_max)) +
         "°). The query: from (3, 3) heading east to (12.5, 12.5) heading 1.5 rad, planned "
         "with `registry.make(\"dacre-wright\", {robot, max-level})`, as "
@@ -128,7 +131,7 @@ int main(int argc, char** argv) {
       ++free_per_level[static_cast<std::size_t>(full.voxels[k].key.level)];
     for (std::size_t p = 0; p < full.analyses_per_level.size(); ++p) {
       levels.row({std::to_string(p) + (static_cast<int>(p) == full.reference_level ? " (p0)" : ""),
-                  num("%.3g", 15.75 / std::pow(2.0, static_cast<double>(p))),
+                  num("%.3g", side / std::pow(2.0, static_cast<double>(p))),
                   num("%.3g", 360.0 / std::pow(2.0, static_cast<double>(p))),
                   std::to_string(full.analyses_per_level[p]), std::to_string(free_per_level[p])});
     }
@@ -153,8 +156,8 @@ int main(int argc, char** argv) {
       const double step = hi - lo > 1e-6 ? (hi - lo) / 3.0 : 0.5 * std::numbers::pi;
       for (int k = 0; k < 4; ++k) slices.thetas.push_back(wrap_2pi(lo + k * step));
     }
-    slices.x_min = grid.x_min(), slices.x_max = grid.x_min() + 15.75;
-    slices.y_min = grid.y_min(), slices.y_max = grid.y_min() + 15.75;
+    slices.x_min = grid.x_min(), slices.x_max = grid.x_min() + side;
+    slices.y_min = grid.y_min(), slices.y_max = grid.y_min() + side;
     slices.title = "FREE voxels at four headings of the path, the channel and the path";
     render_octree_slices(nb.dir(), "octree", slices);
     nb.say(
@@ -171,6 +174,12 @@ int main(int argc, char** argv) {
     for (const SE2Pose& q : result.path) path_points.push_back(q.position());
     for (const CsBox& b : full.channel_boxes)
       centres.push_back({0.5 * (b.x1 + b.x2), 0.5 * (b.y1 + b.y2)});
+    nb.say(
+        "Seen from above, the path turns at the voxel faces and often moves sideways: its "
+        "heading only has to stay inside the channel's θ intervals, not along the motion. "
+        "The method proves where the robot may *stand*, not how a car-like robot could "
+        "drive between those configurations; the paper meant the channel to guide a finer "
+        "planner (the dacre-wright-octree experiment restricts notebook 06's search to it).");
     nb.figure("The path over the terrain",
               nb.map("path", "Dacre-Wright–Siméon: channel voxel centres and the path", surface,
                      {{"channel voxel centres", centres, "points pt 7 ps 0.6 lc rgb '#2c7fb8'"},

@@ -39,6 +39,9 @@ constexpr Page kPages[] = {
      "against Talus's plan"},
     {"07_sweeps", "07 · Parameter sweeps",
      "a small resumable sweep with `talus sweep`, its results read back and plotted"},
+    {"08_dacre_wright_baseline", "08 · The Dacre-Wright–Siméon baseline",
+     "configuration-space boxes proven admissible from the elevation map, the (x, y, θ) "
+     "octree and A* over its largest FREE voxels, through the baseline registry"},
 };
 
 /// The "N of M checks held" sentence of a page, or "" if it has none.

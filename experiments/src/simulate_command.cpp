@@ -12,9 +12,9 @@
 
 #include "cli_values.hpp"
 #include "limits_command.hpp"
-#include "output_folder.hpp"
-#include "plot.hpp"
-#include "stopwatch.hpp"
+#include "talus/core/output_folder.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"

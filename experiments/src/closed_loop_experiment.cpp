@@ -340,6 +340,28 @@ void run_closed_loop_plans(const ExperimentContext& context) {
                      sig3(st.median_time_ratio), sig3(st.median_progress)});
   }
 
+  // Drives by outcome (status) and speed scale.
+  constexpr std::array<TrackingStatus, 8> kStatuses = {
+      TrackingStatus::kReachedGoal, TrackingStatus::kTimeout,       TrackingStatus::kRollover,
+      TrackingStatus::kSideSlip,    TrackingStatus::kLossOfContact, TrackingStatus::kStall,
+      TrackingStatus::kLeftTerrain, TrackingStatus::kSolverFailure};
+  Table outcome_table({"outcome", "90 %", "100 %", "110 %"});
+  for (const TrackingStatus status : kStatuses) {
+    std::vector<std::string> row = {std::string(to_string(status))};
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < kScales.size(); ++i) {
+      std::size_t n = 0;
+      for (const Case& c : cases)
+        if (c.planned() && c.drives[i].result.status == status) ++n;
+      total += n;
+      row.push_back(std::to_string(n));
+      if (status != TrackingStatus::kReachedGoal && status != TrackingStatus::kTimeout)
+        summary.set(std::string(to_string(status)) + "_" + fmt("%.0f", 100.0 * kScales[i]),
+                    static_cast<double>(n), "count");
+    }
+    if (total > 0) outcome_table.row(row);
+  }
+
   Report report("closed-loop-plans: planned trajectories driven by the rigid-body simulation");
   report
       .paragraph(
@@ -360,6 +382,8 @@ void run_closed_loop_plans(const ExperimentContext& context) {
           "along the planar reference at the same scale.")
       .heading("By speed scale")
       .table(scale_table)
+      .paragraph("Drives by outcome:")
+      .table(outcome_table)
       .paragraph("Of the " + std::to_string(compared) +
                  " plans driven to the goal at every scale, the peak LTR is higher at 110 % than "
                  "at 90 % on " +

@@ -148,12 +148,13 @@ FigureLink margin_figure(const std::vector<Case>& cases, const fs::path& dir) {
   std::size_t block = 0;
   for (const Case& c : cases) {
     if (!c.planned()) continue;
-    data << "# seed " << c.seed << ": scale peak_ltr min_normal_load_ratio peak_slip_deg\n";
+    data << "# seed " << c.seed
+         << ": scale peak_ltr min_normal_load_ratio peak_slip_deg progress\n";
     for (const Drive& d : c.drives) {
       const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
       data << d.scale << " " << csv_number(m.peak_lateral_load_ratio) << " "
            << csv_number(m.min_normal_load_ratio) << " " << csv_number(degrees(m.peak_slip_angle))
-           << "\n";
+           << " " << csv_number(d.result.progress) << "\n";
     }
     data << "\n\n";
     const std::string source =
@@ -161,11 +162,13 @@ FigureLink margin_figure(const std::vector<Case>& cases, const fs::path& dir) {
     const std::string title =
         " with linespoints pt 7 title " + gnuplot_string("seed " + std::to_string(c.seed));
     ltr.push_back(source + " using 1:2" + title);
-    load.push_back(source + " using 1:3" + title);
+    load.push_back(source + " using 1:5" + title);
   }
   close_output_file(data, plot.file(".dat"));
-  plot.describe("margins kept by the simulated UGV against the speed scale, one line per plan",
-                plot.name(".dat"))
+  plot.describe(
+          "peak lateral load ratio and progress of the simulated UGV against the speed scale, one "
+          "line per plan",
+          plot.name(".dat"))
       .canvas(1400, 600);
   plot << "set multiplot layout 1,2 title 'Margins kept against the speed scale'\n"
        << "set xlabel 'speed scale [-]'\nset grid\nset key top left\n"
@@ -173,12 +176,12 @@ FigureLink margin_figure(const std::vector<Case>& cases, const fs::path& dir) {
        << "set title '(a) peak lateral load ratio |LTR| (1 = wheels of one side unloaded)'\n"
        << "set ylabel 'peak |LTR| [-]'\n";
   plot.plot(ltr);
-  plot << "set title '(b) minimum wheel normal load over its static value (0 = lift-off)'\n"
-       << "set ylabel 'min N / (m g / 4) [-]'\n";
+  plot << "set title '(b) fraction of the path driven before the run ended (1 = goal)'\n"
+       << "set ylabel 'progress [-]'\nset yrange [0:1.05]\n";
   plot.plot(load);
   plot << "unset multiplot\n";
   plot.render();
-  return {"Margins against the speed scale", plot.name(".png")};
+  return {"Peak lateral load ratio and progress against the speed scale", plot.name(".png")};
 }
 
 /// The simulated speed at every speed scale of one case against its planned profile, both
@@ -206,7 +209,7 @@ FigureLink speed_figure(const Case& c, const fs::path& dir) {
     items.push_back(gnuplot_string(plot.name(".dat")) + " index " + std::to_string(block++) +
                     " using 1:2 with lines lw 1.5 title " +
                     gnuplot_string("simulated at " + percent(d.scale) + " (" +
-                                   std::string(to_string(d.result.status)) + ")"));
+                                   gnuplot_plain_text(to_string(d.result.status)) + ")"));
   }
   close_output_file(data, plot.file(".dat"));
   const std::string title = "Seed " + std::to_string(c.seed) + ": simulated speed against the plan";
@@ -325,8 +328,13 @@ void run_closed_loop_plans(const ExperimentContext& context) {
 
   const fs::path& out = context.output_dir;
   std::vector<FigureLink> links = {margin_figure(cases, out)};
-  const auto representative =
-      std::find_if(cases.begin(), cases.end(), [](const Case& c) { return c.planned(); });
+  // The representative trace: the first plan driven to the goal at 90 %, else the first plan.
+  auto representative = std::find_if(cases.begin(), cases.end(), [](const Case& c) {
+    return c.planned() && reached(c.drives.front());
+  });
+  if (representative == cases.end())
+    representative =
+        std::find_if(cases.begin(), cases.end(), [](const Case& c) { return c.planned(); });
   if (representative != cases.end()) links.push_back(speed_figure(*representative, out));
 
   Table scale_table({"speed", "runs", "reached", "failed", "timeout", "median peak LTR",

@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "closed_loop_experiment.hpp"
 #include "dacre_wright_experiment.hpp"
 #include "dynamic_vs_kinematic_experiment.hpp"
 #include "eldershaw_yim_experiment.hpp"
@@ -91,6 +92,11 @@ std::vector<Experiment> all_experiments() {
        "time-optimal profile over roughness x friction: paths found, time and planning-time "
        "ratios, invariants",
        run_sweep_baselines},
+      {"closed-loop-plans",
+       "the planner's trajectories for the Iagnemma UGV on the fractal battery driven by the "
+       "rigid-body simulation at 90, 100 and 110 % of their profile speed: failures, margins "
+       "kept and travel time against the plan",
+       run_closed_loop_plans},
   };
 }
 

@@ -1,0 +1,429 @@
+#include "closed_loop_experiment.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/report/figure.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
+#include "talus/core/sample_statistics.hpp"
+#include "talus/core/stopwatch.hpp"
+#include "talus/core/terrain_generators.hpp"
+#include "talus/dynamics/trajectory_tracking.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/optimal/planner.hpp"
+
+namespace talus::experiments {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::array<double, 3> kScales = {0.9, 1.0, 1.1};
+
+/// The fractal battery of issue #12 (Iagnemma, Shimoda & Shiller, IROS 2008,
+/// §V): 129 x 129 nodes at 0.24 m (two wheel diameters), D 2.05, height
+/// scale 4.2 m (35 wheel diameters), a 1 m undulation over 30 m and six 1 m
+/// peaks; start (2, 2), goal (28.5, 28.5).
+FractalTerrainOptions battery_terrain(std::uint64_t seed) {
+  FractalTerrainOptions f;  // shape, D and height scale default to the study's
+  f.undulation_amplitude = 1.0;
+  f.undulation_wavelength = 30.0;
+  f.peaks = 6;
+  f.peak_height = 1.0;
+  f.seed = seed;
+  return f;
+}
+
+/// One tracking run of a plan at one speed scale.
+struct Drive {
+  double scale = 1.0;
+  TrackingResult result;
+};
+
+/// One battery case: the plan and its drives.
+struct Case {
+  std::uint64_t seed = 0;
+  PlannerStatus plan_status = PlannerStatus::kUnreachable;
+  std::string plan_message;
+  double planned_time = kNaN;  ///< the profile's travel time [s] (3-D arc length)
+  double plan_seconds = 0.0;
+  ReferenceTrajectory reference;
+  std::vector<Drive> drives;  ///< one per kScales entry when the plan is feasible
+  bool planned() const { return !drives.empty(); }
+};
+
+/// The best trajectory's stations as a planar reference with its profile speeds (repeated
+/// planar points merged, keeping the larger speed).
+ReferenceTrajectory reference_of(const Trajectory& t) {
+  ReferenceTrajectory r;
+  for (std::size_t k = 0; k < t.limits->size(); ++k) {
+    const Vec2 p(t.limits->frame(k).point.x(), t.limits->frame(k).point.y());
+    if (!r.points.empty() && (r.points.back() - p).norm() < 1e-9) {
+      r.speed.back() = std::max(r.speed.back(), t.profile.v[k]);
+      continue;
+    }
+    r.points.push_back(p);
+    r.speed.push_back(t.profile.v[k]);
+  }
+  return r;
+}
+
+Case run_case(std::uint64_t seed, const Vehicle& vehicle) {
+  Case c;
+  c.seed = seed;
+  const BPatch surface = BPatch::interpolate(generate_fractal_terrain(battery_terrain(seed)));
+  const PlanningProblem problem(surface, vehicle, {2.0, 2.0}, {28.5, 28.5});
+  const PlannerResult plan_result = plan(problem, PlannerOptions{});
+  c.plan_status = plan_result.status;
+  c.plan_message = plan_result.message;
+  c.plan_seconds = plan_result.seconds.total;
+  const Trajectory* best = plan_result.best();
+  if (best == nullptr) return c;
+  c.planned_time = best->travel_time();
+  c.reference = reference_of(*best);
+  for (const double scale : kScales) {
+    TrackingOptions options;
+    options.speed_scale = scale;
+    options.simulation.output_interval = 0.02;
+    c.drives.push_back({scale, track_trajectory(surface, vehicle, c.reference, options)});
+  }
+  return c;
+}
+
+std::string percent(double scale) {
+  return fmt("%.0f", 100.0 * scale) + " %";
+}
+
+bool reached(const Drive& d) {
+  return d.result.status == TrackingStatus::kReachedGoal;
+}
+
+/// Travel time over the planned one at the same scale (the planar reference's Σ ds / v).
+double time_ratio(const Drive& d) {
+  return reached(d) ? d.result.travel_time / d.result.planned_time : kNaN;
+}
+
+double degrees(double radians) {
+  return radians * 180.0 / M_PI;
+}
+
+Table case_table(const std::vector<Case>& cases) {
+  Table table({"seed", "plan", "planned time [s]", "speed", "status", "progress",
+               "travel / planned time", "peak LTR", "min N / (mg/4)", "peak slip [deg]",
+               "peak side slip [deg]", "max cross-track [m]"});
+  for (const Case& c : cases) {
+    if (!c.planned()) {
+      table.row({std::to_string(c.seed), std::string(to_string(c.plan_status)), "–", "–", "–", "–",
+                 "–", "–", "–", "–", "–", "–"});
+      continue;
+    }
+    for (const Drive& d : c.drives) {
+      const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
+      table.row({std::to_string(c.seed), "ok", sig3(c.planned_time), percent(d.scale),
+                 std::string(to_string(d.result.status)), sig3(d.result.progress),
+                 reached(d) ? sig3(time_ratio(d)) : "–", sig3(m.peak_lateral_load_ratio),
+                 sig3(m.min_normal_load_ratio), sig3(degrees(m.peak_slip_angle)),
+                 sig3(degrees(m.peak_side_slip)), sig3(d.result.max_cross_track)});
+    }
+  }
+  return table;
+}
+
+/// Peak lateral load ratio and minimum normal load ratio against the speed scale, one line
+/// per planned case.
+FigureLink margin_figure(const std::vector<Case>& cases, const fs::path& dir) {
+  GnuplotFigure plot(dir, "margins_vs_speed_scale");
+  auto data = open_output_file(plot.file(".dat"));
+  PlotItems ltr, load;
+  std::size_t block = 0;
+  for (const Case& c : cases) {
+    if (!c.planned()) continue;
+    data << "# seed " << c.seed
+         << ": scale peak_ltr min_normal_load_ratio peak_slip_deg progress\n";
+    for (const Drive& d : c.drives) {
+      const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
+      data << d.scale << " " << csv_number(m.peak_lateral_load_ratio) << " "
+           << csv_number(m.min_normal_load_ratio) << " " << csv_number(degrees(m.peak_slip_angle))
+           << " " << csv_number(d.result.progress) << "\n";
+    }
+    data << "\n\n";
+    const std::string source =
+        gnuplot_string(plot.name(".dat")) + " index " + std::to_string(block++);
+    const std::string title =
+        " with linespoints pt 7 title " + gnuplot_string("seed " + std::to_string(c.seed));
+    ltr.push_back(source + " using 1:2" + title);
+    load.push_back(source + " using 1:5" + title);
+  }
+  close_output_file(data, plot.file(".dat"));
+  plot.describe(
+          "peak lateral load ratio and progress of the simulated UGV against the speed scale, one "
+          "line per plan",
+          plot.name(".dat"))
+      .canvas(1400, 600);
+  plot << "set multiplot layout 1,2 title 'Margins kept against the speed scale'\n"
+       << "set xlabel 'speed scale [-]'\nset grid\nset key top left\n"
+       << "set xrange [0.85:1.15]\nset xtics 0.1\n"
+       << "set title '(a) peak lateral load ratio |LTR| (1 = wheels of one side unloaded)'\n"
+       << "set ylabel 'peak |LTR| [-]'\n";
+  plot.plot(ltr);
+  plot << "set title '(b) fraction of the path driven before the run ended (1 = goal)'\n"
+       << "set ylabel 'progress [-]'\nset yrange [0:1.05]\n";
+  plot.plot(load);
+  plot << "unset multiplot\n";
+  plot.render();
+  return {"Peak lateral load ratio and progress against the speed scale", plot.name(".png")};
+}
+
+/// The simulated speed at every speed scale of one case against its planned profile, both
+/// against the planar arc length along the reference.
+FigureLink speed_figure(const Case& c, const fs::path& dir) {
+  GnuplotFigure plot(dir, "speed_trace");
+  auto data = open_output_file(plot.file(".dat"));
+  data << "# planned profile: s_planar v_ref\n";
+  double s = 0.0;
+  for (std::size_t k = 0; k < c.reference.points.size(); ++k) {
+    if (k > 0) s += (c.reference.points[k] - c.reference.points[k - 1]).norm();
+    data << csv_number(s) << " " << csv_number(c.reference.speed[k]) << "\n";
+  }
+  data << "\n\n";
+  PlotItems items = {gnuplot_string(plot.name(".dat")) +
+                     " index 0 using 1:2 with lines lw 2 lc rgb 'black' title 'planned profile'"};
+  std::size_t block = 1;
+  for (const Drive& d : c.drives) {
+    data << "# simulated at " << d.scale << ": s speed desired_speed\n";
+    const auto& trace = d.result.simulation.trace;
+    for (std::size_t k = 0; k < trace.size(); ++k)
+      data << csv_number(d.result.tracking[k].s) << " " << csv_number(trace[k].speed) << " "
+           << csv_number(d.result.tracking[k].desired_speed) << "\n";
+    data << "\n\n";
+    items.push_back(gnuplot_string(plot.name(".dat")) + " index " + std::to_string(block++) +
+                    " using 1:2 with lines lw 1.5 title " +
+                    gnuplot_string("simulated at " + percent(d.scale) + " (" +
+                                   gnuplot_plain_text(to_string(d.result.status)) + ")"));
+  }
+  close_output_file(data, plot.file(".dat"));
+  const std::string title = "Seed " + std::to_string(c.seed) + ": simulated speed against the plan";
+  plot.describe("simulated UGV speed against the planned profile", plot.name(".dat"))
+      .canvas(1200, 600)
+      .title(title);
+  plot << "set xlabel 'distance along the reference (planar) [m]'\nset ylabel 'speed [m/s]'\n"
+       << "set grid\nset key bottom right\nset yrange [0:*]\n";
+  plot.plot(items);
+  plot.render();
+  return {title, plot.name(".png")};
+}
+
+/// Statistics of one speed scale over the planned cases.
+struct ScaleStats {
+  std::size_t runs = 0, reached = 0, failed = 0, timeouts = 0;
+  double median_ltr = kNaN, median_load = kNaN, median_slip = kNaN, median_time_ratio = kNaN;
+  double median_progress = kNaN;
+};
+
+ScaleStats scale_stats(const std::vector<Case>& cases, std::size_t index) {
+  ScaleStats st;
+  std::vector<double> ltr, load, slip, ratio, progress;
+  for (const Case& c : cases) {
+    if (!c.planned()) continue;
+    const Drive& d = c.drives[index];
+    const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
+    ++st.runs;
+    if (reached(d)) {
+      ++st.reached;
+      ratio.push_back(time_ratio(d));
+    } else if (d.result.status == TrackingStatus::kTimeout) {
+      ++st.timeouts;
+    } else {
+      ++st.failed;
+    }
+    ltr.push_back(m.peak_lateral_load_ratio);
+    load.push_back(m.min_normal_load_ratio);
+    slip.push_back(m.peak_slip_angle);
+    progress.push_back(d.result.progress);
+  }
+  if (!ltr.empty()) {
+    st.median_ltr = upper_median(ltr);
+    st.median_load = upper_median(load);
+    st.median_slip = upper_median(slip);
+    st.median_progress = upper_median(progress);
+  }
+  if (!ratio.empty()) st.median_time_ratio = upper_median(ratio);
+  return st;
+}
+
+}  // namespace
+
+void run_closed_loop_plans(const ExperimentContext& context) {
+  require_gnuplot();
+  const auto start = Clock::now();
+  const Vehicle vehicle =
+      load_vehicle((context.data_dir / "vehicles" / "iagnemma_ugv.yaml").string());
+  const std::size_t seeds = context.quick ? 2 : 25;  // issue #12: seeds 1-25
+  std::vector<Case> cases;
+  for (std::size_t seed = 1; seed <= seeds; ++seed) cases.push_back(run_case(seed, vehicle));
+
+  std::size_t planned = 0;
+  for (const Case& c : cases) planned += c.planned() ? 1 : 0;
+  std::vector<ScaleStats> stats;
+  for (std::size_t i = 0; i < kScales.size(); ++i) stats.push_back(scale_stats(cases, i));
+
+  // Per plan: does each margin worsen from 90 % to 110 % (peak LTR and peak slip up, minimum
+  // normal load down)? Counted over the plans whose three drives all reached the goal.
+  std::size_t compared = 0, ltr_up = 0, load_down = 0, slip_up = 0;
+  for (const Case& c : cases) {
+    if (!c.planned() || !std::all_of(c.drives.begin(), c.drives.end(), reached)) continue;
+    ++compared;
+    const auto& lo = c.drives.front().result.simulation.diagnostics;
+    const auto& hi = c.drives.back().result.simulation.diagnostics;
+    ltr_up += hi.peak_lateral_load_ratio >= lo.peak_lateral_load_ratio ? 1 : 0;
+    load_down += hi.min_normal_load_ratio <= lo.min_normal_load_ratio ? 1 : 0;
+    slip_up += hi.peak_slip_angle >= lo.peak_slip_angle ? 1 : 0;
+  }
+
+  // Per plan: did the 110 % drive get further along the path than the 90 % one (by more than
+  // 1 % of the length)? Driving the same path faster meets the same hazards sooner.
+  std::size_t progress_gain = 0;
+  for (const Case& c : cases)
+    if (c.planned() && c.drives.back().result.progress > c.drives.front().result.progress + 0.01)
+      ++progress_gain;
+
+  ExperimentSummary& summary = *context.summary;
+  summary.set("progress_gain_at_110_cases", static_cast<double>(progress_gain), "count",
+              "plans whose 110 % drive got > 1 % of the path further than the 90 % one");
+  summary.set("cases", static_cast<double>(cases.size()), "count");
+  summary.set("planned_cases", static_cast<double>(planned), "count");
+  summary.set("unplanned_cases", static_cast<double>(cases.size() - planned), "count");
+  std::size_t accounted = 0;
+  for (std::size_t i = 0; i < kScales.size(); ++i) {
+    const std::string tag = fmt("%.0f", 100.0 * kScales[i]);
+    const ScaleStats& st = stats[i];
+    accounted += st.reached + st.failed + st.timeouts;
+    summary.set("runs_" + tag, static_cast<double>(st.runs), "count");
+    summary.set("reached_" + tag, static_cast<double>(st.reached), "count");
+    summary.set("failed_" + tag, static_cast<double>(st.failed), "count");
+    summary.set("timeouts_" + tag, static_cast<double>(st.timeouts), "count");
+    summary.set("median_peak_ltr_" + tag, st.median_ltr, "1");
+    summary.set("median_min_normal_load_ratio_" + tag, st.median_load, "1");
+    summary.set("median_peak_slip_angle_" + tag, st.median_slip, "rad");
+    summary.set("median_travel_over_planned_" + tag, st.median_time_ratio, "1");
+    summary.set("median_progress_" + tag, st.median_progress, "1");
+  }
+  summary.set("runs_unaccounted",
+              static_cast<double>(kScales.size() * planned) - static_cast<double>(accounted),
+              "count", "3 drives per planned case, each reached, failed or timed out");
+  summary.set("margin_compared_cases", static_cast<double>(compared), "count");
+  summary.set("ltr_worse_at_110_cases", static_cast<double>(ltr_up), "count");
+  summary.set("normal_load_worse_at_110_cases", static_cast<double>(load_down), "count");
+  summary.set("slip_worse_at_110_cases", static_cast<double>(slip_up), "count");
+
+  const fs::path& out = context.output_dir;
+  std::vector<FigureLink> links = {margin_figure(cases, out)};
+  // The representative trace: the first plan driven to the goal at 90 %, else the first plan.
+  auto representative = std::find_if(cases.begin(), cases.end(), [](const Case& c) {
+    return c.planned() && reached(c.drives.front());
+  });
+  if (representative == cases.end())
+    representative =
+        std::find_if(cases.begin(), cases.end(), [](const Case& c) { return c.planned(); });
+  if (representative != cases.end()) links.push_back(speed_figure(*representative, out));
+
+  Table scale_table({"speed", "runs", "reached", "failed", "timeout", "median peak LTR",
+                     "median min N / (mg/4)", "median peak slip [deg]",
+                     "median travel / planned time", "median progress"});
+  for (std::size_t i = 0; i < kScales.size(); ++i) {
+    const ScaleStats& st = stats[i];
+    scale_table.row({percent(kScales[i]), std::to_string(st.runs), std::to_string(st.reached),
+                     std::to_string(st.failed), std::to_string(st.timeouts), sig3(st.median_ltr),
+                     sig3(st.median_load), sig3(degrees(st.median_slip)),
+                     sig3(st.median_time_ratio), sig3(st.median_progress)});
+  }
+
+  // Drives by outcome (status) and speed scale.
+  constexpr std::array<TrackingStatus, 8> kStatuses = {
+      TrackingStatus::kReachedGoal, TrackingStatus::kTimeout,       TrackingStatus::kRollover,
+      TrackingStatus::kSideSlip,    TrackingStatus::kLossOfContact, TrackingStatus::kStall,
+      TrackingStatus::kLeftTerrain, TrackingStatus::kSolverFailure};
+  Table outcome_table({"outcome", "90 %", "100 %", "110 %"});
+  for (const TrackingStatus status : kStatuses) {
+    std::vector<std::string> row = {std::string(to_string(status))};
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < kScales.size(); ++i) {
+      std::size_t n = 0;
+      for (const Case& c : cases)
+        if (c.planned() && c.drives[i].result.status == status) ++n;
+      total += n;
+      row.push_back(std::to_string(n));
+      if (status != TrackingStatus::kReachedGoal && status != TrackingStatus::kTimeout)
+        summary.set(std::string(to_string(status)) + "_" + fmt("%.0f", 100.0 * kScales[i]),
+                    static_cast<double>(n), "count");
+    }
+    if (total > 0) outcome_table.row(row);
+  }
+
+  Report report("closed-loop-plans: planned trajectories driven by the rigid-body simulation");
+  report
+      .paragraph(
+          "Each case plans the Iagnemma UGV (`data/vehicles/iagnemma_ugv.yaml`, rigid-body speed "
+          "limits) across one fractal terrain of the Iagnemma–Shimoda–Shiller battery (IROS "
+          "2008, §V, as in issue #12: 129 × 129 nodes at 0.24 m, D 2.05, height scale 4.2 m, a "
+          "1 m undulation over 30 m, six 1 m peaks; seeds 1–" +
+          std::to_string(seeds) +
+          ") from (2, 2) to (28.5, 28.5) with `talus::plan` (default options) on the "
+          "interpolating B-patch, then drives the best trajectory with `track_trajectory` (6-DOF "
+          "chassis, spring–damper wheels, Dugoff tyres on CVODE; pure pursuit and a speed PI with "
+          "feed-forward) at 90, 100 and 110 % of its profile speed on the same surface.")
+      .paragraph(
+          "Margins are the simulation's peaks over the run: |LTR| = |N_right − N_left| / ΣN "
+          "(1 = one side unloaded), the smallest wheel normal load over its static share "
+          "m g / 4 (0 = a wheel lifts off), the largest tyre slip angle of a loaded wheel. "
+          "Travel / planned time compares the simulated time to the goal with Σ ds / v_ref "
+          "along the planar reference at the same scale.")
+      .heading("By speed scale")
+      .table(scale_table)
+      .paragraph("Drives by outcome:")
+      .table(outcome_table)
+      .paragraph("Of the " + std::to_string(compared) +
+                 " plans driven to the goal at every scale, the peak LTR is higher at 110 % than "
+                 "at 90 % on " +
+                 std::to_string(ltr_up) + ", the minimum normal load lower on " +
+                 std::to_string(load_down) + " and the peak slip higher on " +
+                 std::to_string(slip_up) +
+                 " (a failed drive's margins stop at its failure, so "
+                 "only plans driven to the goal at every scale are compared). On " +
+                 std::to_string(progress_gain) + " of " + std::to_string(planned) +
+                 " plans the 110 % drive got more than 1 % of the path further than the 90 % "
+                 "one. Progress is the fraction of the path's length reached.")
+      .heading("Per case")
+      .table(case_table(cases));
+  for (const Case& c : cases)
+    if (!c.planned())
+      report.bullet("seed " + std::to_string(c.seed) + ": no plan (" +
+                    std::string(to_string(c.plan_status)) + "): " + c.plan_message);
+  for (const Case& c : cases)
+    for (const Drive& d : c.drives)
+      if (!reached(d))
+        report.bullet("seed " + std::to_string(c.seed) + " at " + percent(d.scale) + ": " +
+                      d.result.message);
+  double plan_seconds = 0.0, sim_seconds = 0.0;
+  for (const Case& c : cases) {
+    plan_seconds += c.plan_seconds;
+    for (const Drive& d : c.drives) sim_seconds += d.result.seconds;
+  }
+  summary.set("plan_seconds_total", plan_seconds, "s");
+  summary.set("simulation_seconds_total", sim_seconds, "s");
+  report.paragraph("Wall time: planning " + sig3(plan_seconds) + " s, simulation " +
+                   sig3(sim_seconds) + " s, total " + sig3(seconds_since(start)) + " s.");
+  report.write(out, "margins_vs_speed_scale.dat, speed_trace.dat", links);
+}
+
+}  // namespace talus::experiments

@@ -1,7 +1,7 @@
 // The planner's feedback from the local stage to the global one
-// (PlannerOptions::feedback_rounds) on real ground: a 64 x 64-cell window of
+// (PlannerOptions::feedback_rounds) on real ground: an 80 x 80-cell window of
 // the bundled Big Tujunga DEM (SRTM, 30 m cells) where the lattice's three
-// best corridors climb a switchback that no continuous profile of the rover
+// best corridors climb switchbacks that no continuous profile of the rover
 // drives (the hairpins are sharp turns on steep side slopes; the lattice
 // judges each straight edge alone and cannot see them). Without feedback the
 // plan is infeasible; with it the failing stretches are excluded and the
@@ -29,16 +29,16 @@ std::string data_file(const std::string& relative) {
   return std::string(TALUS_DATA_DIR) + "/" + relative;
 }
 
-/// The window round the switchback, columns 220–283 and rows 240–303 (from
+/// The window round the switchbacks, columns 211–290 and rows 233–312 (from
 /// the south) of the 512 x 512 grid.
 BPatch switchback_surface() {
   const ElevationGrid dem = read_esri_ascii(data_file("terrain/bigtujunga_srtm30m.asc"));
-  return BPatch::interpolate(crop_grid(dem, GridWindow{220, 240, 64, 64}));
+  return BPatch::interpolate(crop_grid(dem, GridWindow{211, 233, 80, 80}));
 }
 
 PlanningProblem switchback_problem(const BPatch& surface) {
   return PlanningProblem(surface, load_vehicle(data_file("vehicles/rover.yaml")),
-                         {389168.655454, 3796502.827628}, {390488.655454, 3798092.827628});
+                         {388538.655454, 3797372.827628}, {389438.655454, 3798452.827628});
 }
 
 PlannerOptions quick_options(std::size_t feedback_rounds) {

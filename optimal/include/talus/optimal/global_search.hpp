@@ -6,7 +6,7 @@
 /// extraction of several distinct good candidate paths for the local optimiser.
 ///
 /// Edges are straight segments in (x, y) lifted onto the B-patch, sampled at
-/// stations at most half a lattice spacing apart (Simpson's rule on
+/// stations at most a quarter lattice spacing apart (Simpson's rule on
 /// ds / v_max, see edge_stations()). An edge is untraversable in a direction if at some station
 /// (a) no speed satisfies the speed limits (v_max = 0), or (b) the vehicle
 /// could neither climb nor hold its speed — a_max < 0 at every admissible
@@ -32,7 +32,7 @@ enum class GlobalSearchResolution {
   /// Every node of the lattice (memory and time grow with the map).
   kFull,
   /// Coarse to fine: the same search on a lattice coarse_factor times coarser
-  /// (the surface sampled at its nodes, edges sampled every half coarse
+  /// (the surface sampled at its nodes, edges sampled every quarter coarse
   /// spacing), then the fine lattice restricted to a corridor of 16 x 16-node
   /// tiles within corridor_width of the coarse candidates. The corridor is
   /// doubled while the fine search finds no route in it or its best route

@@ -10,6 +10,11 @@
 # each flavour is compiled once by a host target with exactly its users' flags (talus_warnings,
 # the configuration's flags), and every user reuses it (REUSE_FROM).
 #
+# Measured (GCC 12, loaded 2-core machine, CPU seconds, CCACHE_DISABLE=1): a clean Makefiles
+# build of talus_core + test_core 68.1 -> 52.2 (Release, both precompiled headers included); the
+# same 23 layer files compiled with and without 40.6 vs 70.2 (Release), 16 files 24.9 vs 46.7
+# (ASan+UBSan, -O1 -g1); each flavour's header costs 5-7 s once per build.
+#
 # TALUS_PCH: AUTO (default) precompiles unless a compiler launcher such as ccache is set (ccache
 # would miss on every precompiled compile unless configured with sloppiness=pch_defines,
 # time_macros); ON or OFF force it.

@@ -19,5 +19,6 @@ function(talus_add_layer name)
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(talus_${name} PUBLIC ${ARG_PUBLIC_DEPENDS}
                                       PRIVATE ${ARG_PRIVATE_DEPENDS} $<BUILD_INTERFACE:talus_warnings>)
+  talus_use_pch(talus_${name} lib)
   install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endfunction()

@@ -37,8 +37,9 @@ fi
 exclude=()
 if [[ $sanitize -eq 1 ]]; then
   # The experiment runs (Experiment.*) drive the CLI end to end over minutes of CPU under
-  # ASan; the Release stage runs them, and their library code runs here in the unit tests.
-  exclude=(-E '^Experiment\.')
+  # ASan, and the notebooks (Notebook.*) walk through the library with their own checks; the
+  # Release stage runs both, and their library code runs here in the unit tests.
+  exclude=(-E '^(Experiment|Notebook)\.')
 fi
 
 start=$SECONDS

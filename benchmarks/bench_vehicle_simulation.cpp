@@ -40,6 +40,22 @@ void report(benchmark::State& state, double simulated, double wall, long steps) 
   state.counters["steps_per_sim_s"] = static_cast<double>(steps) / simulated;
 }
 
+/// Runs the simulation once per benchmark iteration and reports its rates.
+void simulate_repeatedly(benchmark::State& state, const BPatch& terrain, const Vehicle& v,
+                         const VehicleState& start, const VehicleController& controller,
+                         const VehicleSimulationOptions& options) {
+  double simulated = 0.0, wall = 0.0;
+  long steps = 0;
+  for (auto _ : state) {
+    const VehicleSimulationResult r = simulate_vehicle(terrain, v, start, controller, options);
+    simulated += r.end_time;
+    wall += r.seconds;
+    steps += r.diagnostics.steps;
+    benchmark::DoNotOptimize(r.final.state.position);
+  }
+  report(state, simulated, wall, steps);
+}
+
 void BM_Coasting(benchmark::State& state) {
   const BPatch flat = surface(0.0);
   const Vehicle v = ugv();
@@ -47,16 +63,7 @@ void BM_Coasting(benchmark::State& state) {
   o.end_time = 5.0;
   const VehicleState s = resting_state(flat, v, Vec2(-12.0, 0.0), 0.0, 2.0);
   const VehicleController c = [](double, const VehicleState&) { return VehicleControls{}; };
-  double simulated = 0.0, wall = 0.0;
-  long steps = 0;
-  for (auto _ : state) {
-    const VehicleSimulationResult r = simulate_vehicle(flat, v, s, c, o);
-    simulated += r.end_time;
-    wall += r.seconds;
-    steps += r.diagnostics.steps;
-    benchmark::DoNotOptimize(r.final.state.position);
-  }
-  report(state, simulated, wall, steps);
+  simulate_repeatedly(state, flat, v, s, c, o);
 }
 BENCHMARK(BM_Coasting)->Unit(benchmark::kMillisecond);
 
@@ -70,16 +77,7 @@ void BM_CorneringNearTheLimit(benchmark::State& state) {
   const VehicleController c = [m](double, const VehicleState& x) {
     return VehicleControls{0.1, m * 10.0 * (3.8 - x.velocity.x()), false};
   };
-  double simulated = 0.0, wall = 0.0;
-  long steps = 0;
-  for (auto _ : state) {
-    const VehicleSimulationResult r = simulate_vehicle(flat, v, s, c, o);
-    simulated += r.end_time;
-    wall += r.seconds;
-    steps += r.diagnostics.steps;
-    benchmark::DoNotOptimize(r.final.state.position);
-  }
-  report(state, simulated, wall, steps);
+  simulate_repeatedly(state, flat, v, s, c, o);
 }
 BENCHMARK(BM_CorneringNearTheLimit)->Unit(benchmark::kMillisecond);
 

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "eldershaw_yim_outputs.hpp"
+#include "talus/core/esri_ascii.hpp"
 #include "talus/core/report/number_format.hpp"
 #include "talus/core/report/plot.hpp"
 #include "talus/core/report/report.hpp"
-#include "talus/core/esri_ascii.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
 #include "talus/kinematic/eldershaw_yim/eldershaw_yim_planner.hpp"

@@ -12,12 +12,12 @@
 
 #include "cli_values.hpp"
 #include "limits_command.hpp"
-#include "talus/core/output_folder.hpp"
-#include "talus/core/report/plot.hpp"
-#include "talus/core/stopwatch.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
+#include "talus/core/output_folder.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "terrain_input.hpp"
 

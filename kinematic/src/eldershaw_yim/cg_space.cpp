@@ -1,10 +1,12 @@
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 
 #include "talus/core/error.hpp"
 
@@ -20,6 +22,35 @@ void node_span(double a, double b, double origin, double h, std::size_t n, long&
   lo = std::max(lo, 0L);
   hi = std::min(hi, static_cast<long>(n) - 1);
 }
+
+/// The body frame of a CG pose: body (u forward, v left) ↔ world (x, y).
+struct BodyFrame {
+  explicit BodyFrame(const SE2Pose& q) : cg(q.x, q.y), c(std::cos(q.theta)), s(std::sin(q.theta)) {}
+  Vec2 to_world(const Vec2& uv) const {
+    return Vec2(cg.x() + c * uv.x() - s * uv.y(), cg.y() + s * uv.x() + c * uv.y());
+  }
+  Vec2 to_body(const Vec2& p) const {
+    const Vec2 d = p - cg;
+    return Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+  }
+  /// The grid's node span [i0, i1] x [j0, j1] covering the world bounding box
+  /// of the body points `body_points`.
+  void node_box(const ElevationGrid& g, std::span<const Vec2> body_points, long& i0, long& i1,
+                long& j0, long& j1) const {
+    double xa = std::numeric_limits<double>::infinity(), xb = -xa, ya = xa, yb = -xa;
+    for (const Vec2& uv : body_points) {
+      const Vec2 p = to_world(uv);
+      xa = std::min(xa, p.x());
+      xb = std::max(xb, p.x());
+      ya = std::min(ya, p.y());
+      yb = std::max(yb, p.y());
+    }
+    node_span(xa, xb, g.x_min(), g.cellsize(), g.ncols(), i0, i1);
+    node_span(ya, yb, g.y_min(), g.cellsize(), g.nrows(), j0, j1);
+  }
+  Vec2 cg;
+  double c, s;
+};
 
 }  // namespace
 
@@ -91,28 +122,7 @@ std::optional<double> cg_min_height(const Footmap& footmap, const LeggedRobot& r
                                     const SE2Pose& q) {
   const RuledTerrain& terrain = footmap.terrain();
   const ElevationGrid& g = terrain.grid();
-  const double h = g.cellsize();
-  const double c = std::cos(q.theta), s = std::sin(q.theta);
-  const Vec2 cg(q.x, q.y);
-  auto to_world = [&](const Vec2& uv) {
-    return Vec2(cg.x() + c * uv.x() - s * uv.y(), cg.y() + s * uv.x() + c * uv.y());
-  };
-  auto to_body = [&](const Vec2& p) {
-    const Vec2 d = p - cg;
-    return Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
-  };
-  auto world_box = [&](const std::vector<Vec2>& body_pts, long& i0, long& i1, long& j0, long& j1) {
-    double xa = std::numeric_limits<double>::infinity(), xb = -xa, ya = xa, yb = -xa;
-    for (const Vec2& uv : body_pts) {
-      const Vec2 p = to_world(uv);
-      xa = std::min(xa, p.x());
-      xb = std::max(xb, p.x());
-      ya = std::min(ya, p.y());
-      yb = std::max(yb, p.y());
-    }
-    node_span(xa, xb, g.x_min(), h, g.ncols(), i0, i1);
-    node_span(ya, yb, g.y_min(), h, g.nrows(), j0, j1);
-  };
+  const BodyFrame body(q);
 
   // MinHeight over the under-carriage.
   const BodyField& depth = robot.under_carriage.depth;
@@ -122,19 +132,20 @@ std::optional<double> cg_min_height(const Footmap& footmap, const LeggedRobot& r
   double min_height = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < depth.nv; ++k) {
     for (std::size_t i = 0; i < depth.nu; ++i) {
-      const Vec2 p = to_world({ua + static_cast<double>(i) * depth.spacing,
-                               va + static_cast<double>(k) * depth.spacing});
+      const Vec2 p = body.to_world({ua + static_cast<double>(i) * depth.spacing,
+                                    va + static_cast<double>(k) * depth.spacing});
       if (!terrain.has_data(p)) return std::nullopt;
       min_height = std::max(min_height, terrain.elevation(p) + depth.values[k * depth.nu + i]);
     }
   }
   {
     long i0, i1, j0, j1;
-    world_box({{ua, va}, {ub, va}, {ub, vb}, {ua, vb}}, i0, i1, j0, j1);
+    const std::array<Vec2, 4> corners = {Vec2(ua, va), Vec2(ub, va), Vec2(ub, vb), Vec2(ua, vb)};
+    body.node_box(g, corners, i0, i1, j0, j1);
     for (long j = j0; j <= j1; ++j) {
       for (long i = i0; i <= i1; ++i) {
         const auto iu = static_cast<std::size_t>(i), ju = static_cast<std::size_t>(j);
-        const Vec2 uv = to_body(g.node_position(iu, ju));
+        const Vec2 uv = body.to_body(g.node_position(iu, ju));
         if (!depth.covers(uv)) continue;
         if (!g.valid(iu, ju)) return std::nullopt;
         min_height = std::max(min_height, g.at(iu, ju) + depth.at(uv));
@@ -148,28 +159,7 @@ std::optional<double> cg_min_height(const Footmap& footmap, const LeggedRobot& r
 CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const SE2Pose& q) {
   const RuledTerrain& terrain = footmap.terrain();
   const ElevationGrid& g = terrain.grid();
-  const double h = g.cellsize();
-  const double c = std::cos(q.theta), s = std::sin(q.theta);
-  const Vec2 cg(q.x, q.y);
-  auto to_world = [&](const Vec2& uv) {
-    return Vec2(cg.x() + c * uv.x() - s * uv.y(), cg.y() + s * uv.x() + c * uv.y());
-  };
-  auto to_body = [&](const Vec2& p) {
-    const Vec2 d = p - cg;
-    return Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
-  };
-  auto world_box = [&](const std::vector<Vec2>& body_pts, long& i0, long& i1, long& j0, long& j1) {
-    double xa = std::numeric_limits<double>::infinity(), xb = -xa, ya = xa, yb = -xa;
-    for (const Vec2& uv : body_pts) {
-      const Vec2 p = to_world(uv);
-      xa = std::min(xa, p.x());
-      xb = std::max(xb, p.x());
-      ya = std::min(ya, p.y());
-      yb = std::max(yb, p.y());
-    }
-    node_span(xa, xb, g.x_min(), h, g.ncols(), i0, i1);
-    node_span(ya, yb, g.y_min(), h, g.nrows(), j0, j1);
-  };
+  const BodyFrame body(q);
 
   const std::optional<double> mh = cg_min_height(footmap, robot, q);
   if (!mh) return CgState::kOffData;
@@ -181,12 +171,12 @@ CgState evaluate_cg_pose(const Footmap& footmap, const LeggedRobot& robot, const
   int reached_count = 0;
   for (const Leg& leg : robot.legs) {
     long i0, i1, j0, j1;
-    world_box(leg.range, i0, i1, j0, j1);
+    body.node_box(g, leg.range, i0, i1, j0, j1);
     for (long j = j0; j <= j1; ++j) {
       for (long i = i0; i <= i1; ++i) {
         const auto iu = static_cast<std::size_t>(i), ju = static_cast<std::size_t>(j);
         if (!footmap.valid(iu, ju)) continue;
-        const Vec2 uv = to_body(g.node_position(iu, ju));
+        const Vec2 uv = body.to_body(g.node_position(iu, ju));
         const int quadrant = (uv.x() < 0 ? 1 : 0) + (uv.y() < 0 ? 2 : 0);
         if (reached[quadrant]) continue;
         if (!leg.in_range(uv)) continue;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "planar_geometry_test_support.hpp"
 #include "talus/core/error.hpp"
 #include "talus/kinematic/eldershaw_yim/eldershaw_yim_planner.hpp"
 #include "talus/kinematic/eldershaw_yim/foot_planner.hpp"
@@ -18,30 +19,15 @@
 namespace talus {
 namespace {
 
+using geometry_test::convex_hull;
+using geometry_test::cross;
 using terrain_test::grid_from_function;
 
-double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
-
-/// Signed distance-like margin of p inside the convex hull of `pts` (Andrew's
-/// monotone chain): the smallest cross product over the hull's edges divided
-/// by the edge length; >= 0 inside or on the boundary, -inf with < 3 hull points.
-double hull_margin(std::vector<Vec2> pts, const Vec2& p) {
-  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  std::vector<Vec2> h(2 * pts.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
-    h[k++] = pts[i];
-  }
-  for (std::size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && cross(h[k - 2], h[k - 1], pts[i - 1]) <= 0) --k;
-    h[k++] = pts[i - 1];
-  }
-  h.resize(k > 0 ? k - 1 : 0);
+/// Signed distance-like margin of p inside the convex hull of `pts`: the
+/// smallest cross product over the hull's edges divided by the edge length;
+/// >= 0 inside or on the boundary, -inf with < 3 hull points.
+double hull_margin(const std::vector<Vec2>& pts, const Vec2& p) {
+  const std::vector<Vec2> h = convex_hull(pts);
   if (h.size() < 3) return -std::numeric_limits<double>::infinity();
   double margin = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < h.size(); ++i) {

@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "planar_geometry_test_support.hpp"
 #include "random_test_support.hpp"
 #include "talus/core/error.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
@@ -24,6 +25,8 @@
 namespace talus {
 namespace {
 
+using geometry_test::convex_hull;
+using geometry_test::cross;
 using random_test::uniform;
 
 constexpr double kPi = std::numbers::pi;
@@ -310,34 +313,10 @@ TEST(MovedLowerFaces, CoverEveryFaceOfTheDomainFromBelow) {
   EXPECT_THROW(moved_lower_faces(ch, in, q.x, q.y, q.theta, -0.1, 0.1), InputError);
 }
 
-/// Twice the signed area of the triangle (a, b, c): > 0 when c is left of a→b.
-double cross(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
 double polygon_area(const std::vector<Vec2>& p) {
   double a = 0.0;
   for (std::size_t k = 0; k < p.size(); ++k) a += cross(Vec2::Zero(), p[k], p[(k + 1) % p.size()]);
   return 0.5 * a;
-}
-
-/// Convex hull (Andrew's monotone chain), counter-clockwise.
-std::vector<Vec2> convex_hull(std::vector<Vec2> pts) {
-  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  std::vector<Vec2> h(2 * pts.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
-    h[k++] = pts[i];
-  }
-  for (std::size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && cross(h[k - 2], h[k - 1], pts[i - 1]) <= 0) --k;
-    h[k++] = pts[i - 1];
-  }
-  h.resize(k - 1);
-  return h;
 }
 
 TEST(SweptBodyOutline, HoldsEverySweptFootprintAndHugsItsHull) {

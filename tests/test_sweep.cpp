@@ -7,7 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <map>
 #include <set>
 #include <thread>
 
@@ -451,8 +453,41 @@ TEST(SweepCli, TwoMpiRanksGiveTheResultsOfOneJob) {
                               quoted(scratch_file("mpi.out")) + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << read_text(scratch_file("mpi.out"));
   EXPECT_EQ(results_without_timings(ranks), results_without_timings(one));
-  EXPECT_EQ(jsonl_records(ranks / "results.jsonl").size(), 3u);  // rank 0: every other case
-  EXPECT_EQ(jsonl_records(ranks / "results.rank-1.jsonl").size(), 3u);
+  EXPECT_EQ(records_in(ranks), 6u);  // each case once, on whichever rank it was dealt to
+}
+
+TEST(SweepCli, MpiRanksTakeTheNextCaseWhenTheyFreeUp) {
+  if (!have_mpirun()) GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
+  // One slow case first, then quick ones: with the cases dealt one at a
+  // time, the rank that drew the slow case runs only it (a static share,
+  // index mod 2, would give each rank three).
+  const std::string config = write_config("uneven.yaml", R"(job: noop
+design: list
+parameters:
+  crash: false
+cases:
+  - {value: 0, sleep: 3}
+  - {value: 1}
+  - {value: 2}
+  - {value: 3}
+  - {value: 4}
+  - {value: 5}
+)");
+  const fs::path dir = fresh_dir("mpi_uneven");
+  const std::string command = kMpirun + "'" + std::string(TALUS_CLI) + "' sweep " + quoted(config) +
+                              " --out " + quoted(dir.string()) + " --jobs 1 >" +
+                              quoted(scratch_file("uneven.out")) + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(scratch_file("uneven.out"));
+  std::map<int, std::vector<int>> values_by_rank;
+  for (const fs::path& file : {dir / "results.jsonl", dir / "results.rank-1.jsonl"}) {
+    for (const auto& r : jsonl_records(file)) {
+      values_by_rank[r.at("rank").get<int>()].push_back(r.at("figures").at("value").get<int>());
+    }
+  }
+  ASSERT_EQ(values_by_rank.size(), 2u);
+  const int slow_rank = std::count(values_by_rank[0].begin(), values_by_rank[0].end(), 0) ? 0 : 1;
+  EXPECT_EQ(values_by_rank[slow_rank], std::vector<int>{0});
+  EXPECT_EQ(values_by_rank[1 - slow_rank].size(), 5u);
 }
 
 }  // namespace

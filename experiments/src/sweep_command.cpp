@@ -1,6 +1,7 @@
 #include "sweep_command.hpp"
 
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "talus/core/error.hpp"
@@ -26,6 +27,8 @@ std::string sweep(const SweepRequest& request) {
   options.rank = mpi.rank();
   options.ranks = mpi.size();
   options.progress = mpi.rank() == 0;
+  const std::unique_ptr<CaseDealer> dealer = mpi.case_dealer();
+  options.dealer = dealer.get();
   options.run_command = request.run_command;
   options.check_command = request.check_command;
   options.check_vehicle = check_sweep_vehicle;

@@ -327,7 +327,9 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
     if (options.check_command) {
       for (const auto& command : prepared[c.index].commands) options.check_command(command);
     }
-    if (static_cast<int>(c.index % static_cast<std::size_t>(options.ranks)) == options.rank) {
+    const bool static_share =
+        static_cast<int>(c.index % static_cast<std::size_t>(options.ranks)) == options.rank;
+    if (options.dealer != nullptr ? options.dealer->deals() : static_share) {
       mine.push_back(c.index);
     }
   }
@@ -372,7 +374,13 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
       queue.push_back(i);
     }
   }
+  CaseDealer* const dealer = options.dealer;
+  if (dealer != nullptr) {
+    dealer->deal(std::move(queue));  // on rank 0; queue now holds only this rank's retries
+    queue.clear();
+  }
   std::reverse(queue.begin(), queue.end());  // pop_back() takes them in design order
+  bool dealt_out = dealer == nullptr;        // no more cases to ask the dealer for
   RecordWriter writer(results_path);
   const std::size_t jobs =
       options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
@@ -381,6 +389,13 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
   std::vector<Worker> running;
   Progress progress(options.progress, mine.size());
   std::size_t finished = result.skipped;
+  // The dealer's progress line counts the other ranks' cases as they report them.
+  const auto everyone_finished = [&] {
+    return dealer != nullptr ? finished + dealer->finished_elsewhere() : finished;
+  };
+  const auto everyone_failed = [&] {
+    return dealer != nullptr ? result.failed + dealer->failed_elsewhere() : result.failed;
+  };
   std::cout.flush();
   std::cerr.flush();
 
@@ -434,7 +449,8 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
       ++result.retries;
       --result.ran;
       queue.push_back(w.case_index);  // next, before the cases not yet started
-      progress.update(finished, result.failed, running.size(), c.id + " retried: " + ending.reason);
+      progress.update(everyone_finished(), everyone_failed(), running.size(),
+                      c.id + " retried: " + ending.reason);
       return;
     }
     Json record = Json::object();
@@ -468,16 +484,32 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
     record["rank"] = options.rank;
     writer.append(record);
     ++finished;
-    progress.update(finished, result.failed, running.size(), c.id + " " + status);
+    progress.update(everyone_finished(), everyone_failed(), running.size(), c.id + " " + status);
   };
 
-  while (!queue.empty() || !running.empty()) {
-    while (running.size() < jobs && !queue.empty()) {
-      const std::size_t next = queue.back();
-      queue.pop_back();
-      launch(next);
+  const bool serving = dealer != nullptr && dealer->deals();
+  while (!queue.empty() || !running.empty() || !dealt_out || (serving && !dealer->served_all())) {
+    while (running.size() < jobs) {
+      if (!queue.empty()) {
+        launch(queue.back());
+        queue.pop_back();
+      } else if (!dealt_out) {
+        const std::optional<std::size_t> next = dealer->next(finished, result.failed);
+        if (!next) {
+          dealt_out = true;
+          break;
+        }
+        launch(*next);
+      } else {
+        break;
+      }
     }
-    auto wait_until = Clock::now() + std::chrono::seconds(1);
+    // The dealer wakes often enough that a rank asking for a case waits
+    // about a millisecond.
+    const bool answering = serving && !dealer->served_all();
+    if (running.empty() && queue.empty() && dealt_out && !answering) break;  // told none are left
+    auto wait_until =
+        Clock::now() + (answering ? std::chrono::milliseconds(1) : std::chrono::milliseconds(1000));
     std::vector<pollfd> fds;
     for (const Worker& w : running) {
       fds.push_back({w.done_fd, POLLIN, 0});
@@ -514,7 +546,9 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
     running = std::move(still);
     for (const auto& [w, wait_status, timed_out] : ended_workers)
       conclude(w, wait_status, timed_out);
+    if (serving) dealer->serve();
   }
+  if (dealer != nullptr) result.mine = result.skipped + result.ran;
   progress.finish();
   result.seconds = std::chrono::duration<double>(Clock::now() - started).count();
   return result;

@@ -11,7 +11,10 @@
 /// library ("MPI_Comm_size called before MPI_INIT"), and linked first, Ipopt
 /// would call the real MPI_Init inside every worker process. Loaded locally,
 /// only this class sees Open MPI.
+#include <memory>
 #include <string>
+
+#include "talus/core/sweep/case_dealer.hpp"
 
 namespace talus {
 
@@ -28,11 +31,16 @@ class MpiSession {
   /// True on every rank iff `mine` is true on every rank (a collective call).
   bool all(bool mine) const;
   void barrier() const;
+  /// Hands the sweep's cases out one at a time from rank 0 (case_dealer.hpp);
+  /// null without mpirun or with one rank. Lives no longer than this session.
+  std::unique_ptr<CaseDealer> case_dealer() const;
   /// Ends every rank at once (a rank failed after the others started waiting).
   [[noreturn]] void abort(int code) const;
 
- private:
+  /// Open MPI's entry points; defined (and used) in mpi_session.cpp only.
   struct Api;
+
+ private:
   Api* api_ = nullptr;  ///< null without mpirun
   int rank_ = 0, size_ = 1;
 };

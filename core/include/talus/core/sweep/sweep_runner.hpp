@@ -19,10 +19,15 @@
 ///   skipped; a torn last line (the sweep was killed while writing it) is cut
 ///   off and its case redone. A second sweep on the same DIR is refused (a
 ///   lock, DIR/.talus-sweep.lock).
-/// - Ranks: rank r of R runs the cases whose index is r mod R (no messages
-///   while cases run; every case is computed by a single-threaded worker
-///   from its own parameters, so results do not depend on the job count or
-///   the rank count). Rank 0 merges every results file into results.csv.
+/// - Ranks: with a CaseDealer (case_dealer.hpp; `talus sweep` under mpirun)
+///   rank 0 hands the cases out one at a time as worker slots free up, so
+///   ranks that drew quick cases take more; without one, rank r of R runs
+///   the cases whose index is r mod R. Every case is computed by a
+///   single-threaded worker from its own parameters, so results do not
+///   depend on the job count, the rank count or which rank ran a case. Each
+///   rank writes its own results file (no result travels by MPI: a rank
+///   killed mid-sweep loses nothing it recorded) and rank 0 merges them
+///   into results.csv.
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -32,6 +37,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "talus/core/sweep/case_dealer.hpp"
 #include "talus/core/sweep/sweep_config.hpp"
 
 namespace talus {
@@ -62,6 +68,9 @@ struct SweepOptions {
   /// Called once on every rank with whether this rank took its lock; true
   /// iff every rank did (MPI: a collective). Default: `mine`.
   std::function<bool(bool mine)> all_ranks_agree;
+  /// Hands out the cases across ranks (not owned; null: the static share,
+  /// index mod ranks). Must outlive run_sweep.
+  CaseDealer* dealer = nullptr;
   /// InputError naming the field.
   void validate() const;
 };
@@ -75,7 +84,7 @@ std::string_view to_string(SweepStatus status);
 struct SweepResult {
   SweepStatus status = SweepStatus::kComplete;
   std::size_t cases = 0;    ///< in the design
-  std::size_t mine = 0;     ///< this rank's share
+  std::size_t mine = 0;     ///< this rank's share (with a dealer: the cases it ran or skipped)
   std::size_t skipped = 0;  ///< already in a results file
   std::size_t ran = 0;
   std::size_t ok = 0;         ///< ran with exit code 0

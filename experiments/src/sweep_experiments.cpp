@@ -584,7 +584,9 @@ void run_sweep_baselines(const ExperimentContext& context) {
   const double max_speed = matched_max_speed(context);
   // Every registered baseline with a sweep of its own on the same terrains and frictions.
   const std::vector<std::pair<std::string, std::string>> baselines = {
-      {"hait", "sweep-dynamic-vs-kinematic"}, {"dacre-wright", "sweep-baselines-dacre-wright"}};
+      {"hait", "sweep-dynamic-vs-kinematic"},
+      {"dacre-wright", "sweep-baselines-dacre-wright"},
+      {"eldershaw-yim", "sweep-baselines-eldershaw-yim"}};
 
   Report report("Sweep: Talus against every kinematic baseline");
   report.paragraph(
@@ -593,7 +595,8 @@ void run_sweep_baselines(const ExperimentContext& context) {
       "its path is driven at its time-optimal profile by the point mass matched to the chassis "
       "(`talus baseline NAME --vehicle`): along its own segments and arcs when it has a driving "
       "direction (Haït–Siméon–Taïx), along a clamped cubic fitted to its positions when it "
-      "moves sideways (Dacre-Wright–Siméon: `profile_method` fitted_cubic). Talus plans the "
+      "moves sideways or steps through CGspace (Dacre-Wright–Siméon; Eldershaw–Yim's walker, "
+      "whose CG route is what is compared: `profile_method` fitted_cubic). Talus plans the "
       "same queries once (`talus/`). Time ratio = the baseline path's time ÷ Talus's; "
       "planning-time ratio = the baseline's planning seconds ÷ Talus's whole planner (one "
       "machine, one run)" +

@@ -42,6 +42,9 @@ constexpr Page kPages[] = {
     {"08_dacre_wright_baseline", "08 · The Dacre-Wright–Siméon baseline",
      "configuration-space boxes proven admissible from the elevation map, the (x, y, θ) "
      "octree and A* over its largest FREE voxels, through the baseline registry"},
+    {"09_eldershaw_yim_baseline", "09 · The Eldershaw–Yim baseline",
+     "a legged walker's footmap and CGspace from leg range and reach, the tree-PRM against "
+     "one direct A*, and the footsteps along the route"},
 };
 
 /// The "N of M checks held" sentence of a page, or "" if it has none.

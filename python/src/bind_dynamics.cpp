@@ -55,7 +55,8 @@ std::string_view model_name(VehicleModel model) {
   return model == VehicleModel::kRigidBody ? "rigid_body" : "point_mass";
 }
 
-/// The keys a vehicle file of this model would have; unlimited limits are omitted.
+/// The keys a vehicle file of this model would have; unlimited limits are omitted,
+/// and the body keys (mass, inertia, suspension, tyres) are present iff it has a body.
 py::dict vehicle_to_dict(const Vehicle& v) {
   py::dict d;
   d["model"] = std::string(model_name(v.model));
@@ -67,6 +68,17 @@ py::dict vehicle_to_dict(const Vehicle& v) {
   if (std::isfinite(v.max_speed)) d["max_speed"] = v.max_speed;
   if (std::isfinite(v.max_accel)) d["max_accel"] = v.max_accel;
   if (std::isfinite(v.max_decel)) d["max_decel"] = v.max_decel;
+  if (v.body) {  // every key, defaults included: the dict says exactly what the simulation uses
+    const VehicleBody& b = *v.body;
+    d["mass"] = b.mass;
+    d["inertia_roll"] = b.inertia_roll;
+    d["inertia_pitch"] = b.inertia_pitch;
+    d["inertia_yaw"] = b.inertia_yaw;
+    d["wheel_radius"] = b.wheel_radius;
+    d["suspension_stiffness"] = b.suspension_stiffness;
+    d["suspension_damping"] = b.suspension_damping;
+    d["cornering_stiffness"] = b.cornering_stiffness;
+  }
   return d;
 }
 
@@ -205,7 +217,9 @@ void bind_dynamics(py::module_& m) {
                   "A vehicle from the keys of a vehicle file, checked by the file reader: "
                   "unknown or missing keys and bad values raise InputError naming `source`.")
       .def("to_dict", &vehicle_to_dict,
-           "The keys of a vehicle file (unlimited max_speed/max_accel/max_decel omitted).")
+           "The keys of a vehicle file (unlimited max_speed/max_accel/max_decel omitted; "
+           "the body keys mass, inertia_*, wheel_radius, suspension_*, cornering_stiffness "
+           "when the vehicle has a body).")
       .def_readwrite("model", &Vehicle::model)
       .def_readwrite("gravity", &Vehicle::gravity)
       .def_readwrite("friction", &Vehicle::friction)

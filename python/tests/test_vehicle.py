@@ -32,6 +32,17 @@ def test_to_dict_round_trips_and_omits_unlimited_limits(data_dir):
     assert talus.Vehicle.from_dict({**d, "max_speed": math.inf}).max_speed == math.inf
 
 
+def test_to_dict_keeps_the_body_of_a_simulated_vehicle(data_dir):
+    ugv_file = data_dir / "vehicles" / "iagnemma_ugv.yaml"
+    d = talus.load_vehicle(str(ugv_file)).to_dict()
+    assert d["mass"] == 2.0 and d["suspension_stiffness"] == 316.0
+    assert d["inertia_roll"] == 0.01265 and d["cornering_stiffness"] == 8.0
+    # The round trip through the file reader gives the same dict, body included.
+    assert talus.Vehicle.from_dict(d).to_dict() == d
+    # A vehicle without a body has none of its keys.
+    assert "mass" not in talus.Vehicle.from_dict(ROVER).to_dict()
+
+
 @pytest.mark.parametrize("change, words", [
     ({"foo": 1}, "unknown key 'foo'"),
     ({"friction": "slippery"}, "key 'friction' must be a number"),

@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
@@ -21,6 +22,7 @@
 #include "talus/core/terrain_generators.hpp"
 #include "talus/dynamics/trajectory_tracking.hpp"
 #include "talus/dynamics/vehicle.hpp"
+#include "talus/optimal/closed_loop_check.hpp"
 #include "talus/optimal/planner.hpp"
 
 namespace talus::experiments {
@@ -44,12 +46,6 @@ FractalTerrainOptions battery_terrain(std::uint64_t seed) {
   return f;
 }
 
-/// One tracking run of a plan at one speed scale.
-struct Drive {
-  double scale = 1.0;
-  TrackingResult result;
-};
-
 /// One battery case: the plan and its drives.
 struct Case {
   std::uint64_t seed = 0;
@@ -58,25 +54,9 @@ struct Case {
   double planned_time = kNaN;  ///< the profile's travel time [s] (3-D arc length)
   double plan_seconds = 0.0;
   ReferenceTrajectory reference;
-  std::vector<Drive> drives;  ///< one per kScales entry when the plan is feasible
+  std::vector<ClosedLoopDrive> drives;  ///< one per kScales entry when the plan is feasible
   bool planned() const { return !drives.empty(); }
 };
-
-/// The best trajectory's stations as a planar reference with its profile speeds (repeated
-/// planar points merged, keeping the larger speed).
-ReferenceTrajectory reference_of(const Trajectory& t) {
-  ReferenceTrajectory r;
-  for (std::size_t k = 0; k < t.limits->size(); ++k) {
-    const Vec2 p(t.limits->frame(k).point.x(), t.limits->frame(k).point.y());
-    if (!r.points.empty() && (r.points.back() - p).norm() < 1e-9) {
-      r.speed.back() = std::max(r.speed.back(), t.profile.v[k]);
-      continue;
-    }
-    r.points.push_back(p);
-    r.speed.push_back(t.profile.v[k]);
-  }
-  return r;
-}
 
 Case run_case(std::uint64_t seed, const Vehicle& vehicle) {
   Case c;
@@ -90,13 +70,12 @@ Case run_case(std::uint64_t seed, const Vehicle& vehicle) {
   const Trajectory* best = plan_result.best();
   if (best == nullptr) return c;
   c.planned_time = best->travel_time();
-  c.reference = reference_of(*best);
-  for (const double scale : kScales) {
-    TrackingOptions options;
-    options.speed_scale = scale;
-    options.simulation.output_interval = 0.02;
-    c.drives.push_back({scale, track_trajectory(surface, vehicle, c.reference, options)});
-  }
+  ClosedLoopOptions options;
+  options.speed_scales.assign(kScales.begin(), kScales.end());
+  options.tracking.simulation.output_interval = 0.02;
+  ClosedLoopResult driven = check_closed_loop(surface, vehicle, *best, options);
+  c.reference = std::move(driven.reference);
+  c.drives = std::move(driven.drives);
   return c;
 }
 
@@ -104,13 +83,9 @@ std::string percent(double scale) {
   return fmt("%.0f", 100.0 * scale) + " %";
 }
 
-bool reached(const Drive& d) {
-  return d.result.status == TrackingStatus::kReachedGoal;
-}
-
 /// Travel time over the planned one at the same scale (the planar reference's Σ ds / v).
-double time_ratio(const Drive& d) {
-  return reached(d) ? d.result.travel_time / d.result.planned_time : kNaN;
+double time_ratio(const ClosedLoopDrive& d) {
+  return d.reached() ? d.result.travel_time / d.result.planned_time : kNaN;
 }
 
 double degrees(double radians) {
@@ -127,11 +102,11 @@ Table case_table(const std::vector<Case>& cases) {
                  "–", "–", "–", "–", "–", "–"});
       continue;
     }
-    for (const Drive& d : c.drives) {
+    for (const ClosedLoopDrive& d : c.drives) {
       const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
-      table.row({std::to_string(c.seed), "ok", sig3(c.planned_time), percent(d.scale),
+      table.row({std::to_string(c.seed), "ok", sig3(c.planned_time), percent(d.speed_scale),
                  std::string(to_string(d.result.status)), sig3(d.result.progress),
-                 reached(d) ? sig3(time_ratio(d)) : "–", sig3(m.peak_lateral_load_ratio),
+                 d.reached() ? sig3(time_ratio(d)) : "–", sig3(m.peak_lateral_load_ratio),
                  sig3(m.min_normal_load_ratio), sig3(degrees(m.peak_slip_angle)),
                  sig3(degrees(m.peak_side_slip)), sig3(d.result.max_cross_track)});
     }
@@ -150,9 +125,9 @@ FigureLink margin_figure(const std::vector<Case>& cases, const fs::path& dir) {
     if (!c.planned()) continue;
     data << "# seed " << c.seed
          << ": scale peak_ltr min_normal_load_ratio peak_slip_deg progress\n";
-    for (const Drive& d : c.drives) {
+    for (const ClosedLoopDrive& d : c.drives) {
       const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
-      data << d.scale << " " << csv_number(m.peak_lateral_load_ratio) << " "
+      data << d.speed_scale << " " << csv_number(m.peak_lateral_load_ratio) << " "
            << csv_number(m.min_normal_load_ratio) << " " << csv_number(degrees(m.peak_slip_angle))
            << " " << csv_number(d.result.progress) << "\n";
     }
@@ -199,8 +174,8 @@ FigureLink speed_figure(const Case& c, const fs::path& dir) {
   PlotItems items = {gnuplot_string(plot.name(".dat")) +
                      " index 0 using 1:2 with lines lw 2 lc rgb 'black' title 'planned profile'"};
   std::size_t block = 1;
-  for (const Drive& d : c.drives) {
-    data << "# simulated at " << d.scale << ": s speed desired_speed\n";
+  for (const ClosedLoopDrive& d : c.drives) {
+    data << "# simulated at " << d.speed_scale << ": s speed desired_speed\n";
     const auto& trace = d.result.simulation.trace;
     for (std::size_t k = 0; k < trace.size(); ++k)
       data << csv_number(d.result.tracking[k].s) << " " << csv_number(trace[k].speed) << " "
@@ -208,7 +183,7 @@ FigureLink speed_figure(const Case& c, const fs::path& dir) {
     data << "\n\n";
     items.push_back(gnuplot_string(plot.name(".dat")) + " index " + std::to_string(block++) +
                     " using 1:2 with lines lw 1.5 title " +
-                    gnuplot_string("simulated at " + percent(d.scale) + " (" +
+                    gnuplot_string("simulated at " + percent(d.speed_scale) + " (" +
                                    gnuplot_plain_text(to_string(d.result.status)) + ")"));
   }
   close_output_file(data, plot.file(".dat"));
@@ -235,10 +210,10 @@ ScaleStats scale_stats(const std::vector<Case>& cases, std::size_t index) {
   std::vector<double> ltr, load, slip, ratio, progress;
   for (const Case& c : cases) {
     if (!c.planned()) continue;
-    const Drive& d = c.drives[index];
+    const ClosedLoopDrive& d = c.drives[index];
     const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
     ++st.runs;
-    if (reached(d)) {
+    if (d.reached()) {
       ++st.reached;
       ratio.push_back(time_ratio(d));
     } else if (d.result.status == TrackingStatus::kTimeout) {
@@ -281,7 +256,9 @@ void run_closed_loop_plans(const ExperimentContext& context) {
   // normal load down)? Counted over the plans whose three drives all reached the goal.
   std::size_t compared = 0, ltr_up = 0, load_down = 0, slip_up = 0;
   for (const Case& c : cases) {
-    if (!c.planned() || !std::all_of(c.drives.begin(), c.drives.end(), reached)) continue;
+    if (!c.planned() || !std::all_of(c.drives.begin(), c.drives.end(),
+                                     [](const ClosedLoopDrive& d) { return d.reached(); }))
+      continue;
     ++compared;
     const auto& lo = c.drives.front().result.simulation.diagnostics;
     const auto& hi = c.drives.back().result.simulation.diagnostics;
@@ -330,7 +307,7 @@ void run_closed_loop_plans(const ExperimentContext& context) {
   std::vector<FigureLink> links = {margin_figure(cases, out)};
   // The representative trace: the first plan driven to the goal at 90 %, else the first plan.
   auto representative = std::find_if(cases.begin(), cases.end(), [](const Case& c) {
-    return c.planned() && reached(c.drives.front());
+    return c.planned() && c.drives.front().reached();
   });
   if (representative == cases.end())
     representative =
@@ -410,14 +387,14 @@ void run_closed_loop_plans(const ExperimentContext& context) {
       report.bullet("seed " + std::to_string(c.seed) + ": no plan (" +
                     std::string(to_string(c.plan_status)) + "): " + c.plan_message);
   for (const Case& c : cases)
-    for (const Drive& d : c.drives)
-      if (!reached(d))
-        report.bullet("seed " + std::to_string(c.seed) + " at " + percent(d.scale) + ": " +
+    for (const ClosedLoopDrive& d : c.drives)
+      if (!d.reached())
+        report.bullet("seed " + std::to_string(c.seed) + " at " + percent(d.speed_scale) + ": " +
                       d.result.message);
   double plan_seconds = 0.0, sim_seconds = 0.0;
   for (const Case& c : cases) {
     plan_seconds += c.plan_seconds;
-    for (const Drive& d : c.drives) sim_seconds += d.result.seconds;
+    for (const ClosedLoopDrive& d : c.drives) sim_seconds += d.result.seconds;
   }
   summary.set("plan_seconds_total", plan_seconds, "s");
   summary.set("simulation_seconds_total", sim_seconds, "s");

@@ -38,19 +38,22 @@ fi
 rm -rf "$out_dir/plan" "$out_dir/optimal-profile" "$out_dir/global-search" \
        "$out_dir/terrain-gallery"
 mkdir -p "$out_dir"
-terrain=data/terrain/west_bijou_escarpment_nasadem25m.asc
+terrain=data/terrain/mount_st_helens_usgs30m.asc
 vehicle=data/vehicles/rover.yaml
 
-# 1. The terrain model: fit the B-patch to a real DEM (NASADEM, 25 m cells).
+# 1. The terrain model: fit the B-patch to a real DEM (USGS, 30 m cells).
 "$talus" terrain fit "$terrain" --smoothing 1
 
-# 2. The main job: a time-optimal plan across the DEM from the south-west to
-#    the north-east corner. Global minimum-time search for distinct
-#    candidates, local optimisation of each B-spline path for the travel
-#    time of its exact time-optimal velocity profile (Ipopt with the adjoint
-#    gradient), best trajectory and both figures.
+# 2. The main job: a time-optimal plan across Mount St. Helens, from 10 % to
+#    90 % of the DEM's diagonal (south-west of the crater to its north-east),
+#    where the rover's limits bind: the routes bend round the crater and the
+#    profile drops below the 15 m/s cap wherever the ground curves. Global
+#    minimum-time search for distinct candidates, local optimisation of each
+#    B-spline path for the travel time of its exact time-optimal velocity
+#    profile (Ipopt with the adjoint gradient), best trajectory and both
+#    figures.
 "$talus" plan --terrain "$terrain" --vehicle "$vehicle" \
-  --start 556608.707595,4373160.214932 --goal 559633.707595,4375185.214932 \
+  --start 558903,5109462 --goal 566487,5120478 \
   --out "$out_dir/plan" > "$out_dir/plan.json"
 python3 - "$out_dir/plan.json" <<'PY' 2>/dev/null || head -c 600 "$out_dir/plan.json"
 import json, sys

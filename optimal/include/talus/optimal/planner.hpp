@@ -8,12 +8,14 @@
 ///    exact start and goal): a clamped cubic B-spline minimising the travel
 ///    time of its exact time-optimal profile (PlannerOptions::local.formulation:
 ///    the nested formulation, or the simultaneous NLP in the control points
-///    and the squared speeds);
+///    and the squared speeds), at the final station spacing unless
+///    local.station_spacing says otherwise (local.max_search_stations still
+///    coarsens it on long paths);
 /// 3. every optimum and its initial fit re-evaluated with
 ///    evaluate_trajectory() at PlannerOptions::station_spacing; an optimum
-///    slower there than its own initial fit is replaced by the fit (the
-///    search's coarser stations can favour it), so no candidate's result is
-///    slower than where it started;
+///    slower there than its own initial fit (possible only when the search
+///    ran at coarser stations) is replaced by the fit, so no candidate's
+///    result is slower than where it started;
 /// 4. the fastest feasible trajectory is the result.
 ///
 /// Stages that agree (feedback from the local stage to the global one): the
@@ -23,7 +25,7 @@
 /// the local stage every candidate's followability is checked: the
 /// optimiser's own initial path (fit_initial_path(), grown while needed, up
 /// to control_point_limit()) must have an admissible profile at the search's
-/// stations. While some candidate fails and the budget
+/// stations (the final ones, by default). While some candidate fails and the budget
 /// (feedback_rounds) lasts, a disc of feedback_radius round the station where
 /// its profile fails is excluded from the lattice (GlobalSearchOptions::
 /// excluded) and the global search runs again. The round with the most

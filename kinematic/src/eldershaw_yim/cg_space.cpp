@@ -215,8 +215,37 @@ CgSpace::CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_sli
   bx_ = (lattice_.nx() + block_ - 1) / block_;
 }
 
+CgSpace::CgSpace(const CgSpace& base)
+    : footmap_(base.footmap_),
+      robot_(base.robot_),
+      base_(&base),
+      lattice_(base.lattice_),
+      block_(base.block_),
+      bx_(base.bx_) {}
+
+void CgSpace::absorb(CgSpace&& overlay) {
+  if (overlay.base_ != this) throw InputError("CgSpace::absorb: not an overlay on this space");
+  for (auto& [key, cells] : overlay.blocks_) {
+    if (blocks_.count(key)) continue;
+    const auto bxi = static_cast<int>(key % static_cast<std::size_t>(bx_));
+    const auto byi = static_cast<int>(key / static_cast<std::size_t>(bx_));
+    const auto w = static_cast<std::size_t>(std::min(block_, lattice_.nx() - bxi * block_));
+    const auto h = static_cast<std::size_t>(std::min(block_, lattice_.ny() - byi * block_));
+    cells_ += w * h * static_cast<std::size_t>(lattice_.ntheta());
+    blocks_.emplace(key, std::move(cells));
+  }
+  seconds_ += overlay.seconds_;
+  overlay.blocks_.clear();
+  overlay.cells_ = 0;
+  overlay.seconds_ = 0.0;
+}
+
 CgState CgSpace::peek(const CgCell& c) const {
   if (!lattice_.contains(c)) return CgState::kOffData;
+  if (base_) {
+    const CgState b = base_->peek(c);
+    if (b != CgState::kUnknown) return b;
+  }
   if (!marked_.empty() && marked_.count(lattice_.index(c))) return CgState::kFeedback;
   const std::size_t key = static_cast<std::size_t>(c.iy / block_) * static_cast<std::size_t>(bx_) +
                           static_cast<std::size_t>(c.ix / block_);
@@ -232,6 +261,10 @@ void CgSpace::mark_invalid(const CgCell& c) {
 
 CgState CgSpace::state(const CgCell& c) {
   if (!lattice_.contains(c)) return CgState::kOffData;
+  if (base_) {  // the base's blocks and marks first (an overlay has no marks of its own)
+    const CgState b = base_->peek(c);
+    if (b != CgState::kUnknown) return b;
+  }
   if (!marked_.empty() && marked_.count(lattice_.index(c))) {
     (void)peek(c);  // keeps the materialisation accounting independent of the marks
     return CgState::kFeedback;

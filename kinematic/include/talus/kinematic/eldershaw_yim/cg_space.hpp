@@ -108,12 +108,24 @@ std::vector<CgState> evaluate_cg_slice(const Footmap& footmap, const LeggedRobot
 /// CGspace of one robot on one terrain: a CgLattice whose cells are
 /// evaluated a block at a time (block_side × block_side cells in x, y and
 /// every heading) the first time any of them is asked for, and kept. Not
-/// thread-safe (one per query).
+/// thread-safe (one per query); concurrent local-planner calls each use an
+/// overlay (below) on one shared CgSpace that is left unchanged meanwhile.
 class CgSpace {
  public:
   /// `footmap` (and its terrain) must outlive this. Throws InputError as
   /// CgLattice, or for block_side < 1.
   CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_slices, int block_side = 16);
+  /// An overlay on `base`: reads base's blocks and marks, materialises the
+  /// blocks base lacks itself, and counts only those (cells_materialised() is
+  /// then this overlay's own evaluations, whatever other overlays do). `base`
+  /// must outlive the overlay and not change while it is used; several
+  /// overlays on one base may be used from different threads.
+  explicit CgSpace(const CgSpace& base);
+  /// Moves `overlay`'s blocks that this lacks into this (their cells and time
+  /// counted here); `overlay` must be an overlay on this. Blocks are a pure
+  /// function of the cell, so the result does not depend on the order of
+  /// absorption.
+  void absorb(CgSpace&& overlay);
 
   const CgLattice& lattice() const { return lattice_; }
   const Footmap& footmap() const { return *footmap_; }
@@ -133,6 +145,7 @@ class CgSpace {
  private:
   const Footmap* footmap_;
   const LeggedRobot* robot_;
+  const CgSpace* base_ = nullptr;  ///< set in an overlay
   CgLattice lattice_;
   int block_ = 16, bx_ = 1;
   std::unordered_map<std::size_t, std::vector<CgState>> blocks_;

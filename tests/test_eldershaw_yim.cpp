@@ -6,6 +6,10 @@
 // evaluate_cg_pose, independently of the planner's cache.
 #include <gtest/gtest.h>
 
+#include <barrier>
+#include <mutex>
+#include <thread>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -521,6 +525,78 @@ TEST(EldershawYimPlanner, TwoAndFourWorkersGiveTheSerialPlanBitForBit) {
   EXPECT_EQ(m.cells_materialised, s.cells_materialised);
   o.workers = 0;
   EXPECT_THROW(plan_eldershaw_yim(t, spider(), start, goal, o), InputError);
+}
+
+/// Ranks simulated by threads of this process (the CLI's MPI test runs real ranks).
+class ThreadRanks final : public CgRankGroup {
+ public:
+  struct Board {
+    explicit Board(int size) : size(size), sync(size) {}
+    int size;
+    std::mutex lock;
+    std::vector<double> max;
+    int arrived = 0;
+    std::barrier<> sync;
+  };
+  ThreadRanks(Board& board, int rank) : board_(board), rank_(rank) {}
+  int rank() const override { return rank_; }
+  int size() const override { return board_.size; }
+  void max_all(std::vector<double>& values) const override {
+    {
+      const std::lock_guard<std::mutex> hold(board_.lock);
+      if (board_.arrived++ == 0) board_.max = values;
+      for (std::size_t k = 0; k < values.size(); ++k)
+        board_.max[k] = std::max(board_.max[k], values[k]);
+    }
+    board_.sync.arrive_and_wait();
+    values = board_.max;
+    board_.sync.arrive_and_wait();
+    if (rank_ == 0) board_.arrived = 0;
+    board_.sync.arrive_and_wait();
+  }
+
+ private:
+  Board& board_;
+  int rank_;
+};
+
+TEST(EldershawYimPlanner, RanksSharingTheCallsAllGetTheSerialPlan) {
+  const RuledTerrain t = mesa();
+  const SE2Pose start{4, 8, 0}, goal{12, 8, 0};
+  EldershawYimPlannerOptions o;
+  o.theta_slices = 8;
+  o.prm_points = 300;
+  o.connect_radius = 5.0;
+  o.seed = 7;
+  o.feet.budget = 2000;
+  const EldershawYimResult a = plan_eldershaw_yim(t, spider(), start, goal, o);
+  ASSERT_TRUE(a.found()) << a.brief_report();
+  for (int size : {2, 3}) {
+    ThreadRanks::Board board(size);
+    std::vector<EldershawYimResult> got(static_cast<std::size_t>(size));
+    std::vector<std::thread> ranks;
+    for (int k = 0; k < size; ++k)
+      ranks.emplace_back([&, k] {
+        const ThreadRanks me(board, k);
+        EldershawYimPlannerOptions mine = o;
+        mine.ranks = &me;
+        mine.workers = 2;
+        got[static_cast<std::size_t>(k)] = plan_eldershaw_yim(t, spider(), start, goal, mine);
+      });
+    for (auto& r : ranks) r.join();
+    for (const EldershawYimResult& b : got) {
+      EXPECT_EQ(b.cells, a.cells) << size;
+      EXPECT_EQ(b.prm_points, a.prm_points) << size;
+      EXPECT_EQ(b.prm_edges, a.prm_edges) << size;
+      EXPECT_EQ(b.local_planner_calls, a.local_planner_calls) << size;
+      EXPECT_EQ(b.recreate_calls, a.recreate_calls) << size;
+      EXPECT_EQ(b.expansions, a.expansions) << size;
+      EXPECT_EQ(b.cells_materialised, a.cells_materialised) << size;
+      EXPECT_EQ(b.blocks_materialised, a.blocks_materialised) << size;
+      EXPECT_EQ(b.foot_plan.nodes, a.foot_plan.nodes) << size;
+      EXPECT_EQ(b.length_m, a.length_m) << size;
+    }
+  }
 }
 
 TEST(EldershawYimPlanner, TooFewPointsIsNoPathAndBadOptionsThrow) {

@@ -47,19 +47,92 @@ void parallel_for(std::size_t n, int workers, const std::function<void(std::size
   for (auto& t : pool) t.join();
 }
 
+/// The rank owning the call from `a` to `b` (the header's strips in x).
+int owner_of(const CgLattice& lattice, const CgCell& a, const CgCell& b, int ranks) {
+  const long mid = (static_cast<long>(a.ix) + b.ix) / 2;
+  return static_cast<int>(std::min<long>(ranks - 1, mid * ranks / std::max(lattice.nx(), 1)));
+}
+
+/// Every rank's results of a batch: each rank's own calls filled in, the
+/// others' taken from their owners (two max_all exchanges); `keys[i]` the
+/// blocks call i evaluated.
+void exchange(const CgRankGroup& ranks, const CgLattice& lattice, const std::vector<int>& owner,
+              std::vector<CgLocalPath>& out, std::vector<std::vector<std::size_t>>& keys,
+              bool failed) {
+  constexpr std::size_t kFields = 6;  // failed, found, budget exceeded, expansions, cells, keys
+  const std::size_t n = out.size();
+  std::vector<double> head(n * kFields + 1, -1.0);
+  head[n * kFields] = failed ? 1.0 : 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] != ranks.rank()) continue;
+    double* h = &head[i * kFields];
+    h[0] = out[i].found ? 1.0 : 0.0;
+    h[1] = out[i].budget_exceeded ? 1.0 : 0.0;
+    h[2] = static_cast<double>(out[i].expansions);
+    h[3] = out[i].cost;
+    h[4] = static_cast<double>(out[i].cells.size());
+    h[5] = static_cast<double>(keys[i].size());
+  }
+  ranks.max_all(head);
+  if (head[n * kFields] > 0) {  // every rank stops here; the failing one rethrows its error
+    if (failed) return;
+    throw SolverError("plan_eldershaw_yim: a local-planner call failed on another rank");
+  }
+  std::vector<std::size_t> offset(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    offset[i + 1] = offset[i] + static_cast<std::size_t>(head[i * kFields + 4]) +
+                    static_cast<std::size_t>(head[i * kFields + 5]);
+  std::vector<double> body(offset[n], -1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] != ranks.rank()) continue;
+    std::size_t k = offset[i];
+    for (const CgCell& c : out[i].cells) body[k++] = static_cast<double>(lattice.index(c));
+    for (std::size_t key : keys[i]) body[k++] = static_cast<double>(key);
+  }
+  ranks.max_all(body);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] == ranks.rank()) continue;
+    const double* h = &head[i * kFields];
+    CgLocalPath& p = out[i];
+    p.found = h[0] > 0;
+    p.budget_exceeded = h[1] > 0;
+    p.expansions = static_cast<std::size_t>(h[2]);
+    p.cost = h[3];
+    const auto cells = static_cast<std::size_t>(h[4]);
+    std::size_t k = offset[i];
+    p.cells.clear();
+    for (std::size_t j = 0; j < cells; ++j)
+      p.cells.push_back(lattice.cell(static_cast<std::size_t>(body[k++])));
+    keys[i].assign(body.begin() + static_cast<std::ptrdiff_t>(k),
+                   body.begin() + static_cast<std::ptrdiff_t>(offset[i + 1]));
+  }
+}
+
 /// One batch of local-planner calls (the header's parallel local planning):
 /// each on its own overlay of `space` with the budget left at the start
-/// (`work` = the caller's work so far); the overlays are then absorbed into
-/// `space`. The first error in query order is rethrown.
+/// (`work` = the caller's work so far), on this rank if it owns the call;
+/// the overlays are then absorbed into `space` (the other ranks' blocks
+/// counted). The first error in query order is rethrown.
 std::vector<CgLocalPath> local_plan_batch(CgSpace& space,
                                           const std::vector<std::pair<CgCell, CgCell>>& queries,
                                           const CgLocalPlannerOptions& local, std::size_t work,
-                                          std::size_t budget, int workers) {
-  std::vector<CgLocalPath> out(queries.size());
-  std::vector<std::unique_ptr<CgSpace>> overlays(queries.size());
-  std::vector<std::exception_ptr> errors(queries.size());
+                                          std::size_t budget, int workers,
+                                          const CgRankGroup* ranks) {
+  const std::size_t n = queries.size();
+  std::vector<CgLocalPath> out(n);
+  std::vector<std::unique_ptr<CgSpace>> overlays(n);
+  std::vector<std::exception_ptr> errors(n);
+  std::vector<int> owner(n, 0);
+  const bool shared = ranks != nullptr && ranks->size() > 1;
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (shared)
+      owner[i] = owner_of(space.lattice(), queries[i].first, queries[i].second, ranks->size());
+    if (!shared || owner[i] == ranks->rank()) mine.push_back(i);
+  }
   const std::size_t spent = space.cells_materialised() + work;
-  parallel_for(queries.size(), workers, [&](std::size_t i) {
+  parallel_for(mine.size(), workers, [&](std::size_t j) {
+    const std::size_t i = mine[j];
     try {
       overlays[i] = std::make_unique<CgSpace>(space);
       std::size_t w = spent;
@@ -68,6 +141,16 @@ std::vector<CgLocalPath> local_plan_batch(CgSpace& space,
       errors[i] = std::current_exception();
     }
   });
+  const bool failed =
+      std::any_of(errors.begin(), errors.end(), [](const auto& e) { return e != nullptr; });
+  if (shared) {
+    std::vector<std::vector<std::size_t>> keys(n);
+    for (std::size_t i : mine)
+      if (overlays[i]) keys[i] = overlays[i]->block_keys();
+    exchange(*ranks, space.lattice(), owner, out, keys, failed);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!overlays[i]) space.count_blocks(keys[i]);
+  }
   for (auto& o : overlays)
     if (o) space.absorb(std::move(*o));
   for (const auto& e : errors)
@@ -263,8 +346,8 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
             queries.emplace_back(c, r.prm_points[tried[t][k]]);
           }
           if (queries.empty()) break;
-          std::vector<CgLocalPath> batch =
-              local_plan_batch(space, queries, local, work, options.budget, options.workers);
+          std::vector<CgLocalPath> batch = local_plan_batch(
+              space, queries, local, work, options.budget, options.workers, options.ranks);
           for (std::size_t i = 0; i < batch.size(); ++i) {
             r.local_planner_calls += 1;
             r.expansions += batch[i].expansions;
@@ -354,8 +437,8 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
       std::vector<std::pair<CgCell, CgCell>> edges;
       for (std::size_t k = 1; k < route.size(); ++k)
         edges.emplace_back(r.prm_points[route[k - 1]], r.prm_points[route[k]]);
-      const std::vector<CgLocalPath> pieces =
-          local_plan_batch(space, edges, local, work, options.budget, options.workers);
+      const std::vector<CgLocalPath> pieces = local_plan_batch(
+          space, edges, local, work, options.budget, options.workers, options.ranks);
       r.recreate_seconds += since(t_recreate);
       r.cells = {s};
       for (const CgLocalPath& piece : pieces) {

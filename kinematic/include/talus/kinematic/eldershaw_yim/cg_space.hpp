@@ -126,6 +126,13 @@ class CgSpace {
   /// function of the cell, so the result does not depend on the order of
   /// absorption.
   void absorb(CgSpace&& overlay);
+  /// The keys of the blocks this space evaluated itself (ascending).
+  std::vector<std::size_t> block_keys() const;
+  /// Blocks another process evaluated (keys as block_keys()): counted now
+  /// unless known already, and evaluated here only if asked for, then
+  /// without counting them again. Keeps the counters of ranks that share
+  /// the local-planner calls equal.
+  void count_blocks(const std::vector<std::size_t>& keys);
 
   const CgLattice& lattice() const { return lattice_; }
   const Footmap& footmap() const { return *footmap_; }
@@ -138,7 +145,7 @@ class CgSpace {
   CgState peek(const CgCell& c) const;
   /// Cells evaluated so far (whole blocks, clipped to the lattice).
   std::size_t cells_materialised() const { return cells_; }
-  std::size_t blocks_materialised() const { return blocks_.size(); }
+  std::size_t blocks_materialised() const { return blocks_.size() + foreign_.size(); }
   /// Wall-clock time spent evaluating cells [s].
   double seconds() const { return seconds_; }
 
@@ -150,6 +157,8 @@ class CgSpace {
   int block_ = 16, bx_ = 1;
   std::unordered_map<std::size_t, std::vector<CgState>> blocks_;
   std::unordered_set<std::size_t> marked_;
+  std::unordered_set<std::size_t> foreign_;  ///< counted, evaluated elsewhere, not here yet
+  std::size_t block_cells(std::size_t key) const;
   std::size_t cells_ = 0;
   double seconds_ = 0.0;
 };

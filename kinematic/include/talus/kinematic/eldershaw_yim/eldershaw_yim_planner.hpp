@@ -55,6 +55,18 @@
 
 namespace talus {
 
+/// Processes sharing the local-planner calls of one query (file comment);
+/// the CLI implements it on its MPI session.
+class CgRankGroup {
+ public:
+  virtual ~CgRankGroup() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  /// `values` (the same length on every rank) replaced by their element-wise
+  /// maximum over the ranks; a collective call.
+  virtual void max_all(std::vector<double>& values) const = 0;
+};
+
 /// Options of plan_eldershaw_yim.
 struct EldershawYimPlannerOptions {
   int theta_slices = 16;             ///< n_θ: 1 (no rotation) or 8..1024
@@ -80,6 +92,8 @@ struct EldershawYimPlannerOptions {
   /// Threads of the local-planner calls (1..256; file comment). The result
   /// does not depend on it; 1 runs them on the calling thread.
   int workers = 1;
+  /// The ranks sharing the calls (not owned; null = this process alone).
+  const CgRankGroup* ranks = nullptr;
   /// Throws InputError naming the field.
   void validate() const;
 };

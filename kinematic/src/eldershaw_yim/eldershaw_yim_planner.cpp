@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <exception>
 #include <functional>
 #include <memory>
@@ -59,7 +60,9 @@ int owner_of(const CgLattice& lattice, const CgCell& a, const CgCell& b, int ran
 void exchange(const CgRankGroup& ranks, const CgLattice& lattice, const std::vector<int>& owner,
               std::vector<CgLocalPath>& out, std::vector<std::vector<std::size_t>>& keys,
               bool failed) {
-  constexpr std::size_t kFields = 6;  // failed, found, budget exceeded, expansions, cells, keys
+  // Per call: found, budget exceeded, expansions, cost, cell count, block count; then one
+  // "some call failed" flag. -1 (below every real value) on the ranks not owning the call.
+  constexpr std::size_t kFields = 6;
   const std::size_t n = out.size();
   std::vector<double> head(n * kFields + 1, -1.0);
   head[n * kFields] = failed ? 1.0 : 0.0;

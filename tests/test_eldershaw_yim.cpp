@@ -6,6 +6,10 @@
 // evaluate_cg_pose, independently of the planner's cache.
 #include <gtest/gtest.h>
 
+#include <barrier>
+#include <mutex>
+#include <thread>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -278,6 +282,32 @@ TEST(EldershawYimCgSpace, BlocksAreMaterialisedOnDemand) {
   EXPECT_EQ(space.peek({32, 20, 0}), CgState::kUnknown);  // the next one
 }
 
+TEST(EldershawYimCgSpace, OverlaysCountTheirOwnBlocksAndAreAbsorbedOnce) {
+  const RuledTerrain flat(
+      grid_from_function([](double, double) { return 0.0; }, 0, 0, 20, 20, 0.25));
+  const Footmap fm(flat, spider());
+  CgSpace space(fm, spider(), 8, 16);
+  ASSERT_EQ(space.lattice().nx(), 81);  // the last block column is one cell wide
+  EXPECT_TRUE(space.valid({20, 20, 3}));
+  space.mark_invalid({21, 20, 3});
+  CgSpace a(space), b(space);
+  EXPECT_EQ(a.state({21, 20, 3}), CgState::kFeedback);  // the base's mark
+  EXPECT_EQ(a.cells_materialised(), 0u);                // the base's block
+  EXPECT_TRUE(a.valid({40, 20, 0}));
+  EXPECT_EQ(b.state({80, 20, 0}), CgState::kOffData);  // the east edge: under-carriage off data
+  EXPECT_TRUE(b.valid({40, 20, 0}));
+  EXPECT_EQ(a.cells_materialised(), 16u * 16u * 8u);
+  EXPECT_EQ(b.cells_materialised(), 2u * 16u * 16u * 8u - 15u * 16u * 8u);
+  EXPECT_EQ(space.peek({40, 20, 0}), CgState::kUnknown);  // the base is unchanged
+  space.absorb(std::move(a));
+  space.absorb(std::move(b));
+  EXPECT_EQ(space.blocks_materialised(), 3u);
+  EXPECT_EQ(space.cells_materialised(), 2u * 16u * 16u * 8u + 16u * 8u);
+  EXPECT_EQ(space.peek({40, 20, 0}), CgState::kValid);
+  CgSpace other(fm, spider(), 8, 16);
+  EXPECT_THROW(space.absorb(std::move(other)), InputError);
+}
+
 // --- local planner -----------------------------------------------------------
 
 TEST(EldershawYimLocalPlanner, FlatCostIsTheL1DistanceAndThetaWraps) {
@@ -443,6 +473,130 @@ TEST(EldershawYimPlanner, TreePrmIsAForestAndASeedReproducesItBitForBit) {
   o.seed = 8;
   const EldershawYimResult c = plan_eldershaw_yim(t, spider(), start, goal, o);
   EXPECT_NE(c.prm_points, a.prm_points);
+}
+
+TEST(EldershawYimPlanner, TwoAndFourWorkersGiveTheSerialPlanBitForBit) {
+  const RuledTerrain t = mesa();
+  const SE2Pose start{4, 8, 0}, goal{12, 8, 0};
+  EldershawYimPlannerOptions o;
+  o.theta_slices = 8;
+  o.prm_points = 300;
+  o.connect_radius = 5.0;
+  o.seed = 7;
+  o.feet.budget = 2000;
+  const EldershawYimResult a = plan_eldershaw_yim(t, spider(), start, goal, o);
+  ASSERT_TRUE(a.found()) << a.brief_report();
+  ASSERT_GE(a.prm_points.size(), 4u);  // enough trees for batches of several calls
+  for (int workers : {2, 4}) {
+    o.workers = workers;
+    const EldershawYimResult b = plan_eldershaw_yim(t, spider(), start, goal, o);
+    EXPECT_EQ(b.cells, a.cells) << workers;
+    EXPECT_EQ(b.prm_points, a.prm_points) << workers;
+    EXPECT_EQ(b.prm_edges, a.prm_edges) << workers;
+    EXPECT_EQ(b.prm_trees, a.prm_trees) << workers;
+    EXPECT_EQ(b.local_planner_calls, a.local_planner_calls) << workers;
+    EXPECT_EQ(b.local_planner_successes, a.local_planner_successes) << workers;
+    EXPECT_EQ(b.recreate_calls, a.recreate_calls) << workers;
+    EXPECT_EQ(b.expansions, a.expansions) << workers;
+    EXPECT_EQ(b.cells_materialised, a.cells_materialised) << workers;
+    EXPECT_EQ(b.blocks_materialised, a.blocks_materialised) << workers;
+    EXPECT_EQ(b.samples_drawn, a.samples_drawn) << workers;
+    EXPECT_EQ(b.feedback_cells, a.feedback_cells) << workers;
+    EXPECT_EQ(b.foot_plan.nodes, a.foot_plan.nodes) << workers;
+    ASSERT_EQ(b.foot_plan.steps.size(), a.foot_plan.steps.size()) << workers;
+    ASSERT_EQ(b.path.size(), a.path.size()) << workers;
+    for (std::size_t k = 0; k < a.path.size(); ++k) {
+      EXPECT_EQ(b.path[k].x, a.path[k].x);
+      EXPECT_EQ(b.path[k].y, a.path[k].y);
+      EXPECT_EQ(b.path[k].theta, a.path[k].theta);
+    }
+  }
+  // A budget spent part-way through the roadmap stops at the same place for any worker count.
+  o.budget = a.cells_materialised / 2;
+  o.workers = 1;
+  const EldershawYimResult s = plan_eldershaw_yim(t, spider(), start, goal, o);
+  EXPECT_EQ(s.status, EldershawYimStatus::kBudgetExceeded) << s.brief_report();
+  o.workers = 3;
+  const EldershawYimResult m = plan_eldershaw_yim(t, spider(), start, goal, o);
+  EXPECT_EQ(m.status, s.status);
+  EXPECT_EQ(m.prm_points, s.prm_points);
+  EXPECT_EQ(m.local_planner_calls, s.local_planner_calls);
+  EXPECT_EQ(m.expansions, s.expansions);
+  EXPECT_EQ(m.cells_materialised, s.cells_materialised);
+  o.workers = 0;
+  EXPECT_THROW(plan_eldershaw_yim(t, spider(), start, goal, o), InputError);
+}
+
+/// Ranks simulated by threads of this process (the CLI's MPI test runs real ranks).
+class ThreadRanks final : public CgRankGroup {
+ public:
+  struct Board {
+    explicit Board(int size) : size(size), sync(size) {}
+    int size;
+    std::mutex lock;
+    std::vector<double> max;
+    int arrived = 0;
+    std::barrier<> sync;
+  };
+  ThreadRanks(Board& board, int rank) : board_(board), rank_(rank) {}
+  int rank() const override { return rank_; }
+  int size() const override { return board_.size; }
+  void max_all(std::vector<double>& values) const override {
+    {
+      const std::lock_guard<std::mutex> hold(board_.lock);
+      if (board_.arrived++ == 0) board_.max = values;
+      for (std::size_t k = 0; k < values.size(); ++k)
+        board_.max[k] = std::max(board_.max[k], values[k]);
+    }
+    board_.sync.arrive_and_wait();
+    values = board_.max;
+    board_.sync.arrive_and_wait();
+    if (rank_ == 0) board_.arrived = 0;
+    board_.sync.arrive_and_wait();
+  }
+
+ private:
+  Board& board_;
+  int rank_;
+};
+
+TEST(EldershawYimPlanner, RanksSharingTheCallsAllGetTheSerialPlan) {
+  const RuledTerrain t = mesa();
+  const SE2Pose start{4, 8, 0}, goal{12, 8, 0};
+  EldershawYimPlannerOptions o;
+  o.theta_slices = 8;
+  o.prm_points = 300;
+  o.connect_radius = 5.0;
+  o.seed = 7;
+  o.feet.budget = 2000;
+  const EldershawYimResult a = plan_eldershaw_yim(t, spider(), start, goal, o);
+  ASSERT_TRUE(a.found()) << a.brief_report();
+  for (int size : {2, 3}) {
+    ThreadRanks::Board board(size);
+    std::vector<EldershawYimResult> got(static_cast<std::size_t>(size));
+    std::vector<std::thread> ranks;
+    for (int k = 0; k < size; ++k)
+      ranks.emplace_back([&, k] {
+        const ThreadRanks me(board, k);
+        EldershawYimPlannerOptions mine = o;
+        mine.ranks = &me;
+        mine.workers = 2;
+        got[static_cast<std::size_t>(k)] = plan_eldershaw_yim(t, spider(), start, goal, mine);
+      });
+    for (auto& r : ranks) r.join();
+    for (const EldershawYimResult& b : got) {
+      EXPECT_EQ(b.cells, a.cells) << size;
+      EXPECT_EQ(b.prm_points, a.prm_points) << size;
+      EXPECT_EQ(b.prm_edges, a.prm_edges) << size;
+      EXPECT_EQ(b.local_planner_calls, a.local_planner_calls) << size;
+      EXPECT_EQ(b.recreate_calls, a.recreate_calls) << size;
+      EXPECT_EQ(b.expansions, a.expansions) << size;
+      EXPECT_EQ(b.cells_materialised, a.cells_materialised) << size;
+      EXPECT_EQ(b.blocks_materialised, a.blocks_materialised) << size;
+      EXPECT_EQ(b.foot_plan.nodes, a.foot_plan.nodes) << size;
+      EXPECT_EQ(b.length_m, a.length_m) << size;
+    }
+  }
 }
 
 TEST(EldershawYimPlanner, TooFewPointsIsNoPathAndBadOptionsThrow) {

@@ -3,7 +3,8 @@
 // re-checked by evaluate_cg_pose on the same file, prm_points.csv /
 // prm_edges.csv against the summary's counters (a forest: edges = points -
 // trees), the direct mode's single local-planner call, a seed rerun byte for
-// byte, and bad robot files and options as one-line errors.
+// byte, 2 worker threads and 2 MPI ranks writing the serial files, and bad
+// robot files and options as one-line errors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -129,6 +130,59 @@ TEST(EldershawYimCli, ASeedReproducesEveryFileByteForByte) {
     EXPECT_EQ(slurp(b + f), slurp(a + f)) << f;
   EXPECT_NE(slurp(c + "/prm_points.csv"), slurp(a + "/prm_points.csv"));
   EXPECT_FALSE(std::filesystem::exists(a + "/cgmap.png"));
+}
+
+/// The CLI through `launcher` (e.g. mpirun); without one, also without gnuplot on the PATH
+/// (no figures: the CSV files are what is compared).
+int run_cli(const std::string& launcher, const std::string& out, const std::string& extra) {
+  const std::string cmd =
+      (launcher.empty() ? "PATH=/nonexistent " : launcher) + "'" + std::string(TALUS_CLI) + "' " +
+      run_args(out, "--feedback-rounds 0 --seed 11 " + extra) + " >/dev/null 2>&1";
+  return std::system(cmd.c_str());
+}
+
+/// mpirun is installed and usable here. Not under AddressSanitizer: Open MPI is
+/// loaded with RTLD_DEEPBIND (mpi_session.hpp), which the sanitizer runtime refuses.
+bool have_mpirun() {
+#if defined(__SANITIZE_ADDRESS__)
+  return false;
+#else
+  return std::system("command -v mpirun >/dev/null 2>&1") == 0;
+#endif
+}
+
+TEST(EldershawYimCli, WorkerThreadsWriteTheSerialFiles) {
+  const std::string a = scratch_file("ey_workers_1"), b = scratch_file("ey_workers_2");
+  ASSERT_EQ(run_cli("", a, "--workers 1"), 0);
+  ASSERT_EQ(run_cli("", b, "--workers 2"), 0);
+  for (const char* f : {"/path.csv", "/prm_points.csv", "/prm_edges.csv", "/steps.csv"})
+    EXPECT_EQ(slurp(b + f), slurp(a + f)) << f;
+  const nlohmann::json s = parse_json(slurp(b + "/summary.json"), "summary.json");
+  EXPECT_EQ(s["workers"], 2);
+  EXPECT_EQ(s["ranks"], 1);
+  ASSERT_EQ(s["peak_rss_mib"].size(), 1u);
+  EXPECT_GT(s["peak_rss_mib"][0].get<double>(), 0.0);
+  EXPECT_NE(run_talus(run_args(scratch_file("ey_workers_0"), "--workers 0")).exit_code, 0);
+}
+
+TEST(EldershawYimCli, TwoMpiRanksWriteTheSerialFiles) {
+  if (!have_mpirun()) GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
+  const std::string a = scratch_file("ey_ranks_1"), b = scratch_file("ey_ranks_2");
+  ASSERT_EQ(run_cli("", a, "--workers 1"), 0);
+  ASSERT_EQ(run_cli("env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun "
+                    "--oversubscribe -n 2 ",
+                    b, "--workers 1"),
+            0);
+  for (const char* f : {"/path.csv", "/prm_points.csv", "/prm_edges.csv", "/steps.csv"})
+    EXPECT_EQ(slurp(b + f), slurp(a + f)) << f;
+  const nlohmann::json sa = parse_json(slurp(a + "/summary.json"), "summary.json");
+  const nlohmann::json sb = parse_json(slurp(b + "/summary.json"), "summary.json");
+  EXPECT_EQ(sb["ranks"], 2);
+  ASSERT_EQ(sb["peak_rss_mib"].size(), 2u);
+  for (const auto& mib : sb["peak_rss_mib"]) EXPECT_GT(mib.get<double>(), 0.0);
+  for (const char* k : {"local_planner_calls", "expansions", "cg_cells_materialised",
+                        "cg_blocks_materialised", "recreate_calls"})
+    EXPECT_EQ(sb[k], sa[k]) << k;
 }
 
 TEST(EldershawYimCli, DirectModeIsOneLocalPlannerCall) {

@@ -1,5 +1,6 @@
 #include "baseline_command.hpp"
 
+#include <sys/resource.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include "talus/core/report/plot.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/stopwatch.hpp"
+#include "talus/core/sweep/mpi_session.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_outputs.hpp"
@@ -78,6 +80,25 @@ std::vector<double> slice_headings(const std::vector<SE2Pose>& path) {
   return out;
 }
 
+/// The Eldershaw-Yim planner's ranks on the process's MPI session.
+class MpiRanks final : public CgRankGroup {
+ public:
+  explicit MpiRanks(const MpiSession& mpi) : mpi_(mpi) {}
+  int rank() const override { return mpi_.rank(); }
+  int size() const override { return mpi_.size(); }
+  void max_all(std::vector<double>& values) const override { mpi_.max_all(values); }
+
+ private:
+  const MpiSession& mpi_;
+};
+
+/// This process's peak resident memory [MiB] (getrusage; Linux reports KiB).
+double peak_rss_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
 }  // namespace
 
 SE2Pose parse_pose(const std::string& option, const std::string& text) {
@@ -101,25 +122,49 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   }
   std::optional<Vehicle> vehicle;  // --vehicle: read before the long work
   if (!request.vehicle.empty()) vehicle = load_vehicle(request.vehicle);
-  OutputFolder out(request.output_dir);  // locked for the whole run
+  // The Eldershaw-Yim baseline's full result (PRM points and edges) feeds its own outputs;
+  // under mpirun its ranks share the local-planner calls and only rank 0 writes.
+  const auto* ey = dynamic_cast<const EldershawYimBaseline*>(planner.get());
+  std::optional<MpiSession> mpi;
+  std::optional<MpiRanks> ranks;
+  if (ey) {
+    mpi.emplace();
+    if (mpi->size() > 1) ranks.emplace(*mpi);
+  }
+  const bool writer = !ranks || ranks->rank() == 0;
+  std::optional<OutputFolder> folder;
+  if (writer) folder.emplace(request.output_dir);  // locked for the whole run
   const RuledTerrain terrain(load_terrain(request.terrain, request.reproject).grid);
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
     throw InputError(request.terrain + ": the planner needs at least 2 x 2 nodes");
   }
   check_on_map("--start", start, terrain, request.terrain);
   check_on_map("--goal", goal, terrain, request.terrain);
+  // Each rank's peak memory after its planning, gathered by one collective maximum.
+  auto rank_rss = [&] {
+    std::vector<double> rss(static_cast<std::size_t>(ranks ? ranks->size() : 1), 0.0);
+    rss[static_cast<std::size_t>(ranks ? ranks->rank() : 0)] = peak_rss_mib();
+    if (ranks) mpi->max_all(rss);
+    return rss;
+  };
+  if (!writer) {
+    const bool found = ey->plan_full(terrain, start, goal, &*ranks).found();
+    rank_rss();
+    return {nlohmann::json(), found};
+  }
+  OutputFolder& out = *folder;
 
   // The Dacre-Wright baseline's full result (voxels, channel) feeds its own outputs.
   std::optional<DacreWrightResult> octree;
-  // The Eldershaw-Yim baseline's full result (PRM points and edges) feeds its own outputs.
-  const auto* ey = dynamic_cast<const EldershawYimBaseline*>(planner.get());
   std::optional<EldershawYimResult> legged;
+  std::vector<double> rss;  // [MiB] per rank (Eldershaw-Yim)
   BaselineResult result;
   if (const auto* dw = dynamic_cast<const DacreWrightBaseline*>(planner.get())) {
     octree = dw->plan_full(terrain, start, goal);
     result = to_baseline_result(*octree, dw->options().full);
   } else if (ey) {
-    legged = ey->plan_full(terrain, start, goal);
+    legged = ey->plan_full(terrain, start, goal, ranks ? &*ranks : nullptr);
+    rss = rank_rss();
     result = to_baseline_result(*legged, ey->options().direct);
   } else {
     result = planner->plan(terrain, start, goal);
@@ -225,6 +270,10 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
     nlohmann::json fed = nlohmann::json::array();
     for (const CgCell& c : legged->feedback_cells) fed.push_back({c.ix, c.iy, c.it});
     summary["feedback_cells"] = fed;
+    summary["workers"] = ey->options().workers;
+    summary["ranks"] = ranks ? ranks->size() : 1;
+    summary["peak_rss_mib"] = rss;  // per rank, after planning
+    summary["peak_rss_mib_max"] = *std::max_element(rss.begin(), rss.end());
   }
   for (const BaselineSetting& s : planner->settings()) {
     std::visit([&](const auto& v) { summary[s.section][s.key] = v; }, s.value);

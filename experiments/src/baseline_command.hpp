@@ -67,7 +67,7 @@ SE2Pose parse_pose(const std::string& option, const std::string& text);
 /// What `run_baseline` returns: the summary (also DIR/summary.json) and
 /// whether a path was found.
 struct BaselineOutcome {
-  nlohmann::json summary;
+  nlohmann::json summary;  ///< null on an MPI rank other than 0 (it writes nothing)
   bool found = false;
 };
 

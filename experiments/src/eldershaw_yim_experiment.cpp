@@ -6,10 +6,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
 #include "eldershaw_yim_outputs.hpp"
+#include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/report/number_format.hpp"
 #include "talus/core/report/plot.hpp"
@@ -398,6 +405,183 @@ void run_eldershaw_plan(const ExperimentContext& context) {
                            : "not planned"}));
   report.write(context.output_dir,
                "`runs.csv`, `terrain.asc`, `route_spider.png`, `route_ambler.png`", figures);
+}
+
+namespace {
+
+/// This process's peak resident memory so far [MiB] (Linux reports KiB).
+double process_peak_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+double median3(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+/// mpirun is installed and usable by this build (not under AddressSanitizer, which
+/// refuses the RTLD_DEEPBIND the MPI session loads Open MPI with).
+bool have_mpirun() {
+#if defined(__SANITIZE_ADDRESS__)
+  return false;
+#else
+  return std::system("command -v mpirun >/dev/null 2>&1") == 0;
+#endif
+}
+
+}  // namespace
+
+void run_eldershaw_parallel(const ExperimentContext& context) {
+  require_gnuplot();
+  const ElevationGrid grid = test_terrain(context.quick);
+  const std::string terrain_file = (context.output_dir / "terrain.asc").string();
+  write_esri_ascii(grid, terrain_file);
+  const RuledTerrain terrain(grid);
+  const std::string robot_file = (context.data_dir / "robots" / "eldershaw_spider.yaml").string();
+  const LeggedRobot robot = load_legged_robot(robot_file);
+  const SE2Pose start{4, 4, 0}, goal{20, 20, 0};
+  const int slices = context.quick ? 32 : 64;
+  EldershawYimPlannerOptions o;
+  o.theta_slices = slices;
+  o.connect_radius = 8.0;
+  o.local.margin = 12;
+  o.local.heading_weight = 0.0;  // the robot's outer radius, as the CLI
+  o.prm_points = 300;
+  o.plan_feet = false;
+  constexpr int kRuns = 3;
+
+  struct Row {
+    std::string mode;
+    double search_s = 0, connect_s = 0, peak_mib = 0;
+    bool same = true;
+  };
+  std::vector<Row> rows;
+  EldershawYimResult serial;
+  for (const int workers : {1, 2, 4}) {
+    o.workers = workers;
+    std::vector<double> search, connect;
+    Row row{std::to_string(workers) + (workers == 1 ? " thread" : " threads")};
+    for (int k = 0; k < kRuns; ++k) {
+      const EldershawYimResult r = plan_eldershaw_yim(terrain, robot, start, goal, o);
+      if (workers == 1 && k == 0) serial = r;
+      row.same = row.same && r.cells == serial.cells && r.prm_points == serial.prm_points &&
+                 r.local_planner_calls == serial.local_planner_calls &&
+                 r.expansions == serial.expansions &&
+                 r.cells_materialised == serial.cells_materialised;
+      search.push_back(r.search_seconds);
+      connect.push_back(r.connect_seconds + r.recreate_seconds);
+    }
+    row.search_s = median3(search);
+    row.connect_s = median3(connect);
+    row.peak_mib = process_peak_mib();
+    rows.push_back(row);
+  }
+
+  // Two ranks: this program under mpirun, its summary.json read back.
+  const bool mpi = have_mpirun();
+  if (mpi) {
+    std::vector<double> search, connect, peak;
+    Row row{"2 MPI ranks"};
+    for (int k = 0; k < kRuns; ++k) {
+      const std::filesystem::path out = context.output_dir / ("mpi_run_" + std::to_string(k));
+      const std::string cmd =
+          "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe "
+          "-n 2 /proc/" +
+          std::to_string(getpid()) + "/exe baseline eldershaw-yim --terrain '" + terrain_file +
+          "' --robot '" + robot_file + "' --start 4,4,0 --goal 20,20,0 --theta-slices " +
+          std::to_string(slices) +
+          " --connect-radius 8 --local-margin 12 --prm-points 300 --foot-budget 0 --out '" +
+          out.string() + "' >/dev/null 2>&1";
+      if (std::system(cmd.c_str()) != 0) throw SolverError("eldershaw-parallel: failed: " + cmd);
+      std::ifstream in(out / "summary.json");
+      const nlohmann::json s = nlohmann::json::parse(in);
+      row.same = row.same && s["local_planner_calls"] == serial.local_planner_calls &&
+                 s["expansions"] == serial.expansions &&
+                 s["cg_cells_materialised"] == serial.cells_materialised &&
+                 s["length_m"].get<double>() == serial.length_m;
+      search.push_back(s["search_seconds"].get<double>());
+      connect.push_back(s["connect_seconds"].get<double>() + s["recreate_seconds"].get<double>());
+      peak.push_back(s["peak_rss_mib_max"].get<double>());
+    }
+    row.search_s = median3(search);
+    row.connect_s = median3(connect);
+    row.peak_mib = median3(peak);
+    rows.push_back(row);
+  }
+
+  std::string csv =
+      "mode,same_plan,search_seconds_median,local_planning_seconds_median,"
+      "speed_up,peak_rss_mib\n";
+  Table table(
+      {"mode", "same plan", "search [s]", "local planning [s]", "speed-up", "peak memory [MiB]"});
+  std::size_t same = 0;
+  for (const Row& r : rows) {
+    const double speed_up = rows[0].search_s / r.search_s;
+    same += r.same ? 1 : 0;
+    csv += r.mode + "," + (r.same ? "1" : "0") + "," + csv_number(r.search_s) + "," +
+           csv_number(r.connect_s) + "," + csv_number(speed_up) + "," + csv_number(r.peak_mib) +
+           "\n";
+    table.row({r.mode, r.same ? "yes" : "NO", fmt("%.3g", r.search_s), fmt("%.3g", r.connect_s),
+               fmt("%.3g", speed_up), fmt("%.4g", r.peak_mib)});
+  }
+  write_text_file(context.output_dir / "runs.csv", csv);
+  // The median times per mode as bars (speedup.png).
+  std::string dat;
+  for (const Row& r : rows)
+    dat += "\"" + r.mode + "\" " + csv_number(r.search_s) + " " + csv_number(r.connect_s) + "\n";
+  write_text_file(context.output_dir / "speedup.dat", dat);
+  write_text_file(context.output_dir / "speedup.gp",
+                  png_terminal(900, 600) + "\nset output 'speedup.png'\n" + "set title " +
+                      gnuplot_plain_text("eldershaw-parallel: median search time of " +
+                                         std::to_string(kRuns) + " runs") +
+                      "\nset style data histograms\nset style fill solid 0.7 border -1\n"
+                      "set ylabel 'time [s]'\nset yrange [0:*]\nset key top left\n"
+                      "plot 'speedup.dat' using 2:xtic(1) title 'search', '' using 3 title "
+                      "'local-planner calls'\n");
+  run_gnuplot(context.output_dir / "speedup.gp");
+  ExperimentSummary& sum = *context.summary;
+  sum.set("modes_run", static_cast<double>(rows.size()), "1", "3 thread counts, plus 2 ranks");
+  sum.set("modes_differing", static_cast<double>(rows.size() - same), "1",
+          "0: the plan and its counters do not depend on threads or ranks");
+  sum.set("mpi_run", mpi ? 1.0 : 0.0, "1", "1 when mpirun is installed");
+  sum.set("local_planner_calls", static_cast<double>(serial.local_planner_calls), "1", "");
+  sum.set("speed_up_2_threads", rows[0].search_s / rows[1].search_s, "1", "search time");
+  sum.set("speed_up_4_threads", rows[0].search_s / rows[2].search_s, "1", "search time");
+  if (mpi) sum.set("speed_up_2_ranks", rows[0].search_s / rows[3].search_s, "1", "search time");
+
+  Report report("eldershaw-parallel: distributed local planning (Eldershaw, Yim, ICRA 2001)");
+  report.paragraph(
+      "**Problem.** The spider's tree-PRM query of `eldershaw-plan` ((4, 4) to (20, 20)) with " +
+      std::to_string(slices) +
+      " heading slices, connect radius 8 m and local-planner margin 12 cells (300 points at "
+      "most, no foot plan), " +
+      std::to_string(serial.local_planner_calls) + " local-planner calls, " +
+      std::to_string(serial.cells_materialised) +
+      " CG cells evaluated. Threads run in this process (its peak memory only grows, so the "
+      "column is the peak so far); ranks are this program under mpirun on the same machine "
+      "(the column: the larger rank's peak). Search times are medians of 3 runs, wall clock "
+      "on a shared 2-core machine.");
+  if (!mpi) report.paragraph("mpirun is not installed here: the ranks were not run.");
+  report.heading("Runs").table(table);
+  report.heading("Paper beside ours")
+      .table(Table({"statement", "paper", "ours"})
+                 .row({"distributed local planning",
+                       "five PolyBot modules roughly halved the "
+                       "planning time",
+                       "2 threads: speed-up " + fmt("%.3g", rows[0].search_s / rows[1].search_s) +
+                           (mpi ? ", 2 ranks: " + fmt("%.3g", rows[0].search_s / rows[3].search_s)
+                                : std::string())}));
+  report.paragraph(
+      "The calls of one new point are few (one per tree within reach, round by round) and each "
+      "call's overlay evaluates the CGspace blocks the shared space lacks, so concurrent calls "
+      "near each other evaluate some blocks twice, and the random points' validity is checked "
+      "serially; under MPI every rank also evaluates those blocks itself.");
+  report.write(context.output_dir,
+               "`runs.csv`, `terrain.asc`, `speedup.png` (with `speedup.gp`, `speedup.dat`), "
+               "`mpi_run_*/`",
+               {{"Median search time and local-planner time per mode", "speedup.png"}});
 }
 
 }  // namespace talus::experiments

@@ -22,4 +22,12 @@ namespace talus::experiments {
 /// (steps, §3.3 feedback events) and the routes with footprints.
 void run_eldershaw_plan(const ExperimentContext& context);
 
+/// `talus experiment eldershaw-parallel`: the spider's tree-PRM query of
+/// eldershaw-plan (more heading slices and a wider connect radius, so the
+/// local-planner calls dominate) on 1, 2 and 4 worker threads and on 2 MPI
+/// ranks (this program under mpirun, when installed): the same plan
+/// everywhere, the median search time of 3 runs, the speed-up and the peak
+/// memory, beside the paper's "five modules roughly halved the planning time".
+void run_eldershaw_parallel(const ExperimentContext& context);
+
 }  // namespace talus::experiments

@@ -78,6 +78,11 @@ std::vector<Experiment> all_experiments() {
        "and the Ambler-like walker, tree-PRM against direct A* (local-planner calls, CG cells "
        "materialised, time, length), the foot plan and its section 3.3 feedback",
        run_eldershaw_plan},
+      {"eldershaw-parallel",
+       "Eldershaw-Yim legged vehicles: the tree-PRM's local-planner calls on 1, 2 and 4 threads "
+       "and on 2 MPI ranks (mpirun, when installed): the same plan, search-time speed-up and "
+       "peak memory beside the paper's five modules halving the planning time",
+       run_eldershaw_parallel},
       {"sweep-friction-stability",
        "a sweep of the rover's plans over friction x stability (b/h) x roughness on a fractal "
        "terrain: success, travel time, binding-constraint shares, and the monotonicity the "

@@ -619,7 +619,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       for (const auto& [key, value] : f.values) f.request.options[key] = value;
       for (const auto& [key, on] : f.flags) f.request.options[key] = on ? "true" : "false";
       const ex::BaselineOutcome outcome = ex::run_baseline(f.request);
-      std::cout << outcome.summary.dump(2) << "\n";
+      if (!outcome.summary.is_null()) std::cout << outcome.summary.dump(2) << "\n";
       if (!outcome.found) exit_code = ex::kBaselineNoPathExitCode;
     });
   }

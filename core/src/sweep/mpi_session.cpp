@@ -40,6 +40,8 @@ struct MpiSession::Api {
   void* world = nullptr;
   void* type_int = nullptr;
   void* op_min = nullptr;
+  void* type_double = nullptr;
+  void* op_max = nullptr;
 };
 
 namespace {
@@ -113,6 +115,8 @@ MpiSession::MpiSession() {
     api->world = object(library, "ompi_mpi_comm_world");
     api->type_int = object(library, "ompi_mpi_int");
     api->op_min = object(library, "ompi_mpi_op_min");
+    api->type_double = object(library, "ompi_mpi_double");
+    api->op_max = object(library, "ompi_mpi_op_max");
   } catch (...) {
     delete api;
     throw;
@@ -134,6 +138,14 @@ bool MpiSession::all(bool mine) const {
   int local = mine ? 1 : 0, global = 0;
   api_->allreduce(&local, &global, 1, api_->type_int, api_->op_min, api_->world);
   return global == 1;
+}
+
+void MpiSession::max_all(std::vector<double>& values) const {
+  if (api_ == nullptr || values.empty()) return;
+  std::vector<double> out(values.size());
+  api_->allreduce(values.data(), out.data(), static_cast<int>(values.size()), api_->type_double,
+                  api_->op_max, api_->world);
+  values = std::move(out);
 }
 
 void MpiSession::barrier() const {

@@ -215,8 +215,60 @@ CgSpace::CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_sli
   bx_ = (lattice_.nx() + block_ - 1) / block_;
 }
 
+CgSpace::CgSpace(const CgSpace& base)
+    : footmap_(base.footmap_),
+      robot_(base.robot_),
+      base_(&base),
+      lattice_(base.lattice_),
+      block_(base.block_),
+      bx_(base.bx_) {}
+
+std::size_t CgSpace::block_cells(std::size_t key) const {
+  const auto bxi = static_cast<int>(key % static_cast<std::size_t>(bx_));
+  const auto byi = static_cast<int>(key / static_cast<std::size_t>(bx_));
+  const auto w = static_cast<std::size_t>(std::min(block_, lattice_.nx() - bxi * block_));
+  const auto h = static_cast<std::size_t>(std::min(block_, lattice_.ny() - byi * block_));
+  return w * h * static_cast<std::size_t>(lattice_.ntheta());
+}
+
+void CgSpace::absorb(CgSpace&& overlay) {
+  if (overlay.base_ != this) throw InputError("CgSpace::absorb: not an overlay on this space");
+  for (auto& [key, cells] : overlay.blocks_) {
+    if (blocks_.count(key)) continue;
+    if (foreign_.erase(key) == 0) cells_ += block_cells(key);
+    blocks_.emplace(key, std::move(cells));
+  }
+  seconds_ += overlay.seconds_;
+  overlay.blocks_.clear();
+  overlay.cells_ = 0;
+  overlay.seconds_ = 0.0;
+}
+
+std::vector<std::size_t> CgSpace::block_keys() const {
+  std::vector<std::size_t> out;
+  out.reserve(blocks_.size());
+  for (const auto& entry : blocks_) out.push_back(entry.first);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void CgSpace::count_blocks(const std::vector<std::size_t>& keys) {
+  for (std::size_t key : keys) {
+    if (key >= static_cast<std::size_t>(bx_) *
+                   static_cast<std::size_t>((lattice_.ny() + block_ - 1) / block_))
+      throw InputError("CgSpace::count_blocks: no block " + std::to_string(key));
+    if (blocks_.count(key) || foreign_.count(key)) continue;
+    foreign_.insert(key);
+    cells_ += block_cells(key);
+  }
+}
+
 CgState CgSpace::peek(const CgCell& c) const {
   if (!lattice_.contains(c)) return CgState::kOffData;
+  if (base_) {
+    const CgState b = base_->peek(c);
+    if (b != CgState::kUnknown) return b;
+  }
   if (!marked_.empty() && marked_.count(lattice_.index(c))) return CgState::kFeedback;
   const std::size_t key = static_cast<std::size_t>(c.iy / block_) * static_cast<std::size_t>(bx_) +
                           static_cast<std::size_t>(c.ix / block_);
@@ -232,6 +284,10 @@ void CgSpace::mark_invalid(const CgCell& c) {
 
 CgState CgSpace::state(const CgCell& c) {
   if (!lattice_.contains(c)) return CgState::kOffData;
+  if (base_) {  // the base's blocks and marks first (an overlay has no marks of its own)
+    const CgState b = base_->peek(c);
+    if (b != CgState::kUnknown) return b;
+  }
   if (!marked_.empty() && marked_.count(lattice_.index(c))) {
     (void)peek(c);  // keeps the materialisation accounting independent of the marks
     return CgState::kFeedback;
@@ -241,6 +297,8 @@ CgState CgSpace::state(const CgCell& c) {
       static_cast<std::size_t>(byi) * static_cast<std::size_t>(bx_) + static_cast<std::size_t>(bxi);
   auto it = blocks_.find(key);
   if (it == blocks_.end()) {
+    // A block counted already (here or, for an overlay, in its base) is not counted again.
+    const bool counted = foreign_.erase(key) > 0 || (base_ && base_->foreign_.count(key) > 0);
     const auto t0 = std::chrono::steady_clock::now();
     const auto n = static_cast<std::size_t>(block_);
     std::vector<CgState> cells(n * n * static_cast<std::size_t>(lattice_.ntheta()),
@@ -252,7 +310,7 @@ CgState CgSpace::state(const CgCell& c) {
           if (!lattice_.contains(cell)) continue;
           cells[(static_cast<std::size_t>(t) * n + ly) * n + lx] =
               evaluate_cg_pose(*footmap_, *robot_, lattice_.centre(cell));
-          ++cells_;
+          if (!counted) ++cells_;
         }
       }
     }

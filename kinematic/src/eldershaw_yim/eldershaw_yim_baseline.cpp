@@ -49,6 +49,8 @@ std::vector<BaselineOptionSpec> option_specs() {
       {"feedback-rounds", std::to_string(d.feedback_rounds),
        "times a failed foot plan may mark its blocking CG cell invalid and have the CG path "
        "replanned (section 3.3; 0..1000)"},
+      {"workers", std::to_string(d.workers),
+       "threads of the local-planner calls (1..256); the plan is the same for any count"},
       {"budget", std::to_string(d.budget),
        "work units (>= 1): CG cells evaluated plus A* expansions; the query stops with status "
        "budget_exceeded once spent"},
@@ -72,6 +74,9 @@ std::unique_ptr<BaselinePlanner> make(const BaselineOptions& text) {
   o.local.heading_weight = 0.0;  // the robot's outer radius
   o.seed = reader.count("seed", 0);
   o.budget = reader.count("budget", 1);
+  const std::size_t workers = reader.count("workers", 1);
+  if (workers > 256) throw BaselineOptionError("workers", "must be at most 256");
+  o.workers = static_cast<int>(workers);
   o.feet.budget = reader.count("foot-budget", 0);
   o.feedback_rounds = reader.count("feedback-rounds", 0);
   if (o.feedback_rounds > 1000)
@@ -130,9 +135,11 @@ ValidityFunction EldershawYimBaseline::validity(const RuledTerrain& terrain) con
 }
 
 EldershawYimResult EldershawYimBaseline::plan_full(const RuledTerrain& terrain,
-                                                   const SE2Pose& start,
-                                                   const SE2Pose& goal) const {
-  return plan_eldershaw_yim(terrain, robot_, start, goal, options_);
+                                                   const SE2Pose& start, const SE2Pose& goal,
+                                                   const CgRankGroup* ranks) const {
+  EldershawYimPlannerOptions o = options_;
+  o.ranks = ranks;
+  return plan_eldershaw_yim(terrain, robot_, start, goal, o);
 }
 
 BaselineResult EldershawYimBaseline::solve(const RuledTerrain& terrain, const SE2Pose& start,

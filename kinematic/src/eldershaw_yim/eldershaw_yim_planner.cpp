@@ -1,11 +1,17 @@
 #include "talus/kinematic/eldershaw_yim/eldershaw_yim_planner.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <sstream>
+#include <thread>
 #include <unordered_set>
 
 #include "talus/core/error.hpp"
@@ -24,6 +30,137 @@ std::size_t uniform_index(std::mt19937_64& rng, std::size_t n) {
   return std::min(n - 1, static_cast<std::size_t>(u * static_cast<double>(n)));
 }
 
+/// f(0) … f(n-1) on up to `workers` threads (each index exactly once, in no
+/// particular order); f must not throw.
+void parallel_for(std::size_t n, int workers, const std::function<void(std::size_t)>& f) {
+  const std::size_t threads = std::min(n, static_cast<std::size_t>(std::max(workers, 1)));
+  if (threads <= 1) {
+    for (std::size_t i = 0; i < n; ++i) f(i);
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  pool.reserve(threads);
+  for (std::size_t k = 0; k < threads; ++k)
+    pool.emplace_back([&] {
+      for (std::size_t i = next++; i < n; i = next++) f(i);
+    });
+  for (auto& t : pool) t.join();
+}
+
+/// The rank owning the call from `a` to `b` (the header's strips in x).
+int owner_of(const CgLattice& lattice, const CgCell& a, const CgCell& b, int ranks) {
+  const long mid = (static_cast<long>(a.ix) + b.ix) / 2;
+  return static_cast<int>(std::min<long>(ranks - 1, mid * ranks / std::max(lattice.nx(), 1)));
+}
+
+/// Every rank's results of a batch: each rank's own calls filled in, the
+/// others' taken from their owners (two max_all exchanges); `keys[i]` the
+/// blocks call i evaluated.
+void exchange(const CgRankGroup& ranks, const CgLattice& lattice, const std::vector<int>& owner,
+              std::vector<CgLocalPath>& out, std::vector<std::vector<std::size_t>>& keys,
+              bool failed) {
+  // Per call: found, budget exceeded, expansions, cost, cell count, block count; then one
+  // "some call failed" flag. -1 (below every real value) on the ranks not owning the call.
+  constexpr std::size_t kFields = 6;
+  const std::size_t n = out.size();
+  std::vector<double> head(n * kFields + 1, -1.0);
+  head[n * kFields] = failed ? 1.0 : 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] != ranks.rank()) continue;
+    double* h = &head[i * kFields];
+    h[0] = out[i].found ? 1.0 : 0.0;
+    h[1] = out[i].budget_exceeded ? 1.0 : 0.0;
+    h[2] = static_cast<double>(out[i].expansions);
+    h[3] = out[i].cost;
+    h[4] = static_cast<double>(out[i].cells.size());
+    h[5] = static_cast<double>(keys[i].size());
+  }
+  ranks.max_all(head);
+  if (head[n * kFields] > 0) {  // every rank stops here; the failing one rethrows its error
+    if (failed) return;
+    throw SolverError("plan_eldershaw_yim: a local-planner call failed on another rank");
+  }
+  std::vector<std::size_t> offset(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    offset[i + 1] = offset[i] + static_cast<std::size_t>(head[i * kFields + 4]) +
+                    static_cast<std::size_t>(head[i * kFields + 5]);
+  std::vector<double> body(offset[n], -1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] != ranks.rank()) continue;
+    std::size_t k = offset[i];
+    for (const CgCell& c : out[i].cells) body[k++] = static_cast<double>(lattice.index(c));
+    for (std::size_t key : keys[i]) body[k++] = static_cast<double>(key);
+  }
+  ranks.max_all(body);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] == ranks.rank()) continue;
+    const double* h = &head[i * kFields];
+    CgLocalPath& p = out[i];
+    p.found = h[0] > 0;
+    p.budget_exceeded = h[1] > 0;
+    p.expansions = static_cast<std::size_t>(h[2]);
+    p.cost = h[3];
+    const auto cells = static_cast<std::size_t>(h[4]);
+    std::size_t k = offset[i];
+    p.cells.clear();
+    for (std::size_t j = 0; j < cells; ++j)
+      p.cells.push_back(lattice.cell(static_cast<std::size_t>(body[k++])));
+    keys[i].assign(body.begin() + static_cast<std::ptrdiff_t>(k),
+                   body.begin() + static_cast<std::ptrdiff_t>(offset[i + 1]));
+  }
+}
+
+/// One batch of local-planner calls (the header's parallel local planning):
+/// each on its own overlay of `space` with the budget left at the start
+/// (`work` = the caller's work so far), on this rank if it owns the call;
+/// the overlays are then absorbed into `space` (the other ranks' blocks
+/// counted). The first error in query order is rethrown.
+std::vector<CgLocalPath> local_plan_batch(CgSpace& space,
+                                          const std::vector<std::pair<CgCell, CgCell>>& queries,
+                                          const CgLocalPlannerOptions& local, std::size_t work,
+                                          std::size_t budget, int workers,
+                                          const CgRankGroup* ranks) {
+  const std::size_t n = queries.size();
+  std::vector<CgLocalPath> out(n);
+  std::vector<std::unique_ptr<CgSpace>> overlays(n);
+  std::vector<std::exception_ptr> errors(n);
+  std::vector<int> owner(n, 0);
+  const bool shared = ranks != nullptr && ranks->size() > 1;
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (shared)
+      owner[i] = owner_of(space.lattice(), queries[i].first, queries[i].second, ranks->size());
+    if (!shared || owner[i] == ranks->rank()) mine.push_back(i);
+  }
+  const std::size_t spent = space.cells_materialised() + work;
+  parallel_for(mine.size(), workers, [&](std::size_t j) {
+    const std::size_t i = mine[j];
+    try {
+      overlays[i] = std::make_unique<CgSpace>(space);
+      std::size_t w = spent;
+      out[i] = cg_local_plan(*overlays[i], queries[i].first, queries[i].second, local, w, budget);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  const bool failed =
+      std::any_of(errors.begin(), errors.end(), [](const auto& e) { return e != nullptr; });
+  if (shared) {
+    std::vector<std::vector<std::size_t>> keys(n);
+    for (std::size_t i : mine)
+      if (overlays[i]) keys[i] = overlays[i]->block_keys();
+    exchange(*ranks, space.lattice(), owner, out, keys, failed);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!overlays[i]) space.count_blocks(keys[i]);
+  }
+  for (auto& o : overlays)
+    if (o) space.absorb(std::move(*o));
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return out;
+}
+
 }  // namespace
 
 void EldershawYimPlannerOptions::validate() const {
@@ -37,6 +174,8 @@ void EldershawYimPlannerOptions::validate() const {
   if (budget < 1) throw InputError("budget must be >= 1");
   if (local.margin < 0) throw InputError("local.margin must be >= 0 cells");
   if (feedback_rounds > 1000) throw InputError("feedback_rounds must be at most 1000");
+  if (workers < 1 || workers > 256)
+    throw InputError("workers must be 1..256, got " + std::to_string(workers));
   feet.validate();
   if (!(std::isfinite(local.margin_fraction) && local.margin_fraction >= 0))
     throw InputError("local.margin_fraction must be a finite number >= 0");
@@ -182,28 +321,54 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
         trees.push_back({p});
         const auto t0 = Clock::now();
         const std::size_t existing = trees.size() - 1;
-        for (std::size_t t = 0; t < existing && !exhausted; ++t) {
-          if (trees[t].empty() || tree_of[p] == t) continue;
+        // The members tried per tree, nearest first (fixed for the whole insertion).
+        std::vector<std::vector<std::size_t>> tried(existing);
+        const SE2Pose cp = L.centre(c);
+        for (std::size_t t = 0; t < existing; ++t) {
           std::vector<std::pair<double, std::size_t>> near;
-          const SE2Pose cp = L.centre(c);
           for (std::size_t m : trees[t]) {
             const SE2Pose cm = L.centre(r.prm_points[m]);
             const double d = std::hypot(cp.x - cm.x, cp.y - cm.y);
             if (d <= radius) near.emplace_back(d, m);
           }
           std::sort(near.begin(), near.end());
-          const std::size_t tries = std::min(near.size(), options.connect_attempts);
-          for (std::size_t k = 0; k < tries; ++k) {
-            const std::size_t m = near[k].second;
-            const CgLocalPath path =
-                cg_local_plan(space, c, r.prm_points[m], local, work, options.budget);
-            ++r.local_planner_calls;
-            r.expansions += path.expansions;
+          for (std::size_t k = 0; k < std::min(near.size(), options.connect_attempts); ++k)
+            tried[t].push_back(near[k].second);
+        }
+        // Round k: the k-th member of every tree whose earlier ones failed, up to (and
+        // including) the first tree where a call spent the budget.
+        std::vector<std::vector<CgLocalPath>> results(existing);
+        std::size_t stop = existing;
+        for (std::size_t k = 0; k < options.connect_attempts; ++k) {
+          std::vector<std::size_t> which;
+          std::vector<std::pair<CgCell, CgCell>> queries;
+          for (std::size_t t = 0; t < stop; ++t) {
+            if (tried[t].size() <= k || results[t].size() != k) continue;
+            if (k > 0 && (results[t].back().found || results[t].back().budget_exceeded)) continue;
+            which.push_back(t);
+            queries.emplace_back(c, r.prm_points[tried[t][k]]);
+          }
+          if (queries.empty()) break;
+          std::vector<CgLocalPath> batch = local_plan_batch(
+              space, queries, local, work, options.budget, options.workers, options.ranks);
+          for (std::size_t i = 0; i < batch.size(); ++i) {
+            r.local_planner_calls += 1;
+            r.expansions += batch[i].expansions;
+            work += batch[i].expansions;
+            if (batch[i].budget_exceeded) stop = std::min(stop, which[i] + 1);
+            results[which[i]].push_back(std::move(batch[i]));
+          }
+        }
+        // Applied in the serial order: tree by tree, its members nearest first.
+        for (std::size_t t = 0; t < existing && !exhausted; ++t) {
+          for (std::size_t k = 0; k < results[t].size(); ++k) {
+            const CgLocalPath& path = results[t][k];
             if (path.budget_exceeded) {
               exhausted = true;
               break;
             }
             if (!path.found) continue;
+            const std::size_t m = tried[t][k];
             ++r.local_planner_successes;
             r.prm_edges.emplace_back(p, m);
             adjacency[p].push_back(m);
@@ -272,24 +437,27 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
       while (route.back() != 0) route.push_back(parent[route.back()]);
       std::reverse(route.begin(), route.end());
       const auto t_recreate = Clock::now();
+      std::vector<std::pair<CgCell, CgCell>> edges;
+      for (std::size_t k = 1; k < route.size(); ++k)
+        edges.emplace_back(r.prm_points[route[k - 1]], r.prm_points[route[k]]);
+      const std::vector<CgLocalPath> pieces = local_plan_batch(
+          space, edges, local, work, options.budget, options.workers, options.ranks);
+      r.recreate_seconds += since(t_recreate);
       r.cells = {s};
-      for (std::size_t k = 1; k < route.size(); ++k) {
-        const CgLocalPath piece = cg_local_plan(
-            space, r.prm_points[route[k - 1]], r.prm_points[route[k]], local, work, options.budget);
+      for (const CgLocalPath& piece : pieces) {
         ++r.recreate_calls;
         r.expansions += piece.expansions;
+        work += piece.expansions;
+      }
+      for (const CgLocalPath& piece : pieces) {
         if (piece.budget_exceeded) {
-          r.recreate_seconds += since(t_recreate);
-          {
-            finish(EldershawYimStatus::kBudgetExceeded, budget_message());
-            return false;
-          }
+          finish(EldershawYimStatus::kBudgetExceeded, budget_message());
+          return false;
         }
         if (!piece.found)  // cannot happen: the same search succeeded the other way
           throw SolverError("plan_eldershaw_yim: re-running a roadmap edge failed");
         r.cells.insert(r.cells.end(), piece.cells.begin() + 1, piece.cells.end());
       }
-      r.recreate_seconds += since(t_recreate);
     }
     return true;
   };

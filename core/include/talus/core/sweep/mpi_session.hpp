@@ -13,6 +13,7 @@
 /// only this class sees Open MPI.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "talus/core/sweep/case_dealer.hpp"
 
@@ -31,6 +32,9 @@ class MpiSession {
   /// True on every rank iff `mine` is true on every rank (a collective call).
   bool all(bool mine) const;
   void barrier() const;
+  /// `values` (the same length on every rank) replaced by their element-wise
+  /// maximum over the ranks (a collective call; unchanged without mpirun).
+  void max_all(std::vector<double>& values) const;
   /// Hands the sweep's cases out one at a time from rank 0 (case_dealer.hpp);
   /// null without mpirun or with one rank. Lives no longer than this session.
   std::unique_ptr<CaseDealer> case_dealer() const;

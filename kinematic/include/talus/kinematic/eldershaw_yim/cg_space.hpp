@@ -108,12 +108,31 @@ std::vector<CgState> evaluate_cg_slice(const Footmap& footmap, const LeggedRobot
 /// CGspace of one robot on one terrain: a CgLattice whose cells are
 /// evaluated a block at a time (block_side × block_side cells in x, y and
 /// every heading) the first time any of them is asked for, and kept. Not
-/// thread-safe (one per query).
+/// thread-safe (one per query); concurrent local-planner calls each use an
+/// overlay (below) on one shared CgSpace that is left unchanged meanwhile.
 class CgSpace {
  public:
   /// `footmap` (and its terrain) must outlive this. Throws InputError as
   /// CgLattice, or for block_side < 1.
   CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_slices, int block_side = 16);
+  /// An overlay on `base`: reads base's blocks and marks, materialises the
+  /// blocks base lacks itself, and counts only those (cells_materialised() is
+  /// then this overlay's own evaluations, whatever other overlays do). `base`
+  /// must outlive the overlay and not change while it is used; several
+  /// overlays on one base may be used from different threads.
+  explicit CgSpace(const CgSpace& base);
+  /// Moves `overlay`'s blocks that this lacks into this (their cells and time
+  /// counted here); `overlay` must be an overlay on this. Blocks are a pure
+  /// function of the cell, so the result does not depend on the order of
+  /// absorption.
+  void absorb(CgSpace&& overlay);
+  /// The keys of the blocks this space evaluated itself (ascending).
+  std::vector<std::size_t> block_keys() const;
+  /// Blocks another process evaluated (keys as block_keys()): counted now
+  /// unless known already, and evaluated here only if asked for, then
+  /// without counting them again. Keeps the counters of ranks that share
+  /// the local-planner calls equal.
+  void count_blocks(const std::vector<std::size_t>& keys);
 
   const CgLattice& lattice() const { return lattice_; }
   const Footmap& footmap() const { return *footmap_; }
@@ -126,17 +145,20 @@ class CgSpace {
   CgState peek(const CgCell& c) const;
   /// Cells evaluated so far (whole blocks, clipped to the lattice).
   std::size_t cells_materialised() const { return cells_; }
-  std::size_t blocks_materialised() const { return blocks_.size(); }
+  std::size_t blocks_materialised() const { return blocks_.size() + foreign_.size(); }
   /// Wall-clock time spent evaluating cells [s].
   double seconds() const { return seconds_; }
 
  private:
   const Footmap* footmap_;
   const LeggedRobot* robot_;
+  const CgSpace* base_ = nullptr;  ///< set in an overlay
   CgLattice lattice_;
   int block_ = 16, bx_ = 1;
   std::unordered_map<std::size_t, std::vector<CgState>> blocks_;
   std::unordered_set<std::size_t> marked_;
+  std::unordered_set<std::size_t> foreign_;  ///< counted, evaluated elsewhere, not here yet
+  std::size_t block_cells(std::size_t key) const;
   std::size_t cells_ = 0;
   double seconds_ = 0.0;
 };

@@ -16,6 +16,7 @@
 /// | seed | 1 | of the PRM's random points |
 /// | foot-budget | 20000 | foot-planner search nodes along a found path; 0 = no foot plan |
 /// | feedback-rounds | 3 | §3.3 replans after a failed foot plan (0..1000) |
+/// | workers | 1 | threads of the local-planner calls (1..256); same plan for any count |
 /// | budget | 50000000 | CG cells evaluated + A* expansions (>= 1) |
 ///
 /// Results: counters cg_cells_materialised, cg_blocks_materialised, cg_cells,
@@ -48,9 +49,10 @@ class EldershawYimBaseline final : public BaselinePlanner {
 
   const LeggedRobot& robot() const { return robot_; }
   const EldershawYimPlannerOptions& options() const { return options_; }
-  /// The full result (cells, PRM points and edges), for the CLI.
+  /// The full result (cells, PRM points and edges), for the CLI; `ranks`
+  /// share the local-planner calls (EldershawYimPlannerOptions::ranks).
   EldershawYimResult plan_full(const RuledTerrain& terrain, const SE2Pose& start,
-                               const SE2Pose& goal) const;
+                               const SE2Pose& goal, const CgRankGroup* ranks = nullptr) const;
 
  protected:
   BaselineResult solve(const RuledTerrain& terrain, const SE2Pose& start,

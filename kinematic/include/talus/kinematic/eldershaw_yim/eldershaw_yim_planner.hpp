@@ -20,6 +20,20 @@
 ///   start → goal (the unique one) is recreated by re-running the local
 ///   planner on each edge in travel order, and the pieces are concatenated.
 ///
+/// Parallel local planning (the paper's distributed planning on PolyBot):
+/// the local-planner calls of one inserted point are made in rounds, round k
+/// being the k-th nearest member of every tree still unjoined (the members
+/// tried are fixed when the point is inserted: a join only changes trees
+/// already visited), and the re-creation of the path's edges is one batch.
+/// The calls of a batch run on `workers` threads, each on its own overlay of
+/// the shared CGspace (CgSpace(const CgSpace&)), and their results are
+/// applied in the serial order afterwards, so the plan and every counter are
+/// the same for any worker count. Counters are per call: a call's cells
+/// evaluated are the blocks missing from the CGspace when its batch began,
+/// and its budget is what was left then; cells_materialised counts each
+/// block once. Calls of a round after one that spent the budget are still
+/// counted (local_planner_calls, expansions) though their results are unused.
+///
 /// The work budget counts CG cells evaluated plus A* expansions (work, not
 /// time, so results are deterministic). The CG path is a 6-connected sequence
 /// of valid CG cells; as poses it is the start, the centres of the inner
@@ -40,6 +54,18 @@
 #include "talus/kinematic/eldershaw_yim/legged_robot.hpp"
 
 namespace talus {
+
+/// Processes sharing the local-planner calls of one query (file comment);
+/// the CLI implements it on its MPI session.
+class CgRankGroup {
+ public:
+  virtual ~CgRankGroup() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  /// `values` (the same length on every rank) replaced by their element-wise
+  /// maximum over the ranks; a collective call.
+  virtual void max_all(std::vector<double>& values) const = 0;
+};
 
 /// Options of plan_eldershaw_yim.
 struct EldershawYimPlannerOptions {
@@ -63,6 +89,11 @@ struct EldershawYimPlannerOptions {
   /// most this many times (0 = no feedback). The CGspace already materialised
   /// is kept; the foot plan is made again from the start (not reused).
   std::size_t feedback_rounds = 3;
+  /// Threads of the local-planner calls (1..256; file comment). The result
+  /// does not depend on it; 1 runs them on the calling thread.
+  int workers = 1;
+  /// The ranks sharing the calls (not owned; null = this process alone).
+  const CgRankGroup* ranks = nullptr;
   /// Throws InputError naming the field.
   void validate() const;
 };

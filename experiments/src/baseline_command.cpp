@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <memory>
 #include <numbers>
@@ -133,7 +134,21 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   }
   const bool writer = !ranks || ranks->rank() == 0;
   std::optional<OutputFolder> folder;
-  if (writer) folder.emplace(request.output_dir);  // locked for the whole run
+  std::exception_ptr folder_error;
+  if (writer) {
+    try {
+      folder.emplace(request.output_dir);  // locked for the whole run
+    } catch (...) {
+      folder_error = std::current_exception();
+    }
+  }
+  // Every rank learns whether rank 0 took the folder, so none waits for ever
+  // in the planner's exchanges for a rank that has already given up.
+  const bool folder_taken = ranks ? mpi->all(!folder_error) : !folder_error;
+  if (folder_error) std::rethrow_exception(folder_error);
+  if (!folder_taken) {
+    throw InputError("--out " + request.output_dir + ": rank 0 could not take the output folder");
+  }
   const RuledTerrain terrain(load_terrain(request.terrain, request.reproject).grid);
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
     throw InputError(request.terrain + ": the planner needs at least 2 x 2 nodes");

@@ -73,7 +73,7 @@ MpiSession::MpiSession() {
   if (announced == nullptr) {
     if (std::getenv("PMI_SIZE") != nullptr && std::atoi(std::getenv("PMI_SIZE")) > 1) {
       throw InputError(
-          "talus sweep supports Open MPI's mpirun only (PMI_SIZE is set, "
+          "talus supports Open MPI's mpirun only (PMI_SIZE is set, "
           "OMPI_COMM_WORLD_SIZE is not)");
     }
     return;
@@ -93,7 +93,7 @@ MpiSession::MpiSession() {
     if (library != nullptr) break;
   }
   if (library == nullptr) {
-    throw InputError(std::string("talus sweep under mpirun needs Open MPI's libmpi.so.40 "
+    throw InputError(std::string("talus under mpirun needs Open MPI's libmpi.so.40 "
                                  "(Debian: libopenmpi3): ") +
                      dlerror());
   }

@@ -638,12 +638,49 @@ TEST(EldershawYimPlanner, AFailedFootPlanMarksItsCellInvalidAndReplans) {
     for (std::size_t m = 0; m < k; ++m) EXPECT_NE(r.feedback_cells[k], r.feedback_cells[m]);
     EXPECT_EQ(std::count(r.cells.begin(), r.cells.end(), r.feedback_cells[k]), 0) << k;
   }
+  // Resuming at the shared start cell got no further than a fresh plan (whose first stance
+  // suits the new direction), so the fresh one was kept.
+  EXPECT_EQ(r.foot_steps_reused, 0u);
   EXPECT_GT(r.length_m, 4.0);            // the marked cells lay on the straight route
   EXPECT_EQ(r.local_planner_calls, 4u);  // one direct A* per round
   o.feedback_rounds = 0;
   const EldershawYimResult q = plan_eldershaw_yim(flat, stiff, {2, 4, 0}, {6, 4, 0}, o);
   EXPECT_EQ(q.feedback_events, 0u);
   EXPECT_DOUBLE_EQ(q.length_m, 4.0);
+}
+
+TEST(EldershawYimFootPlanner, ResumesFromAPrefixAndKeepsIt) {
+  const RuledTerrain flat(
+      grid_from_function([](double, double) { return 0.0; }, 0, 0, 10, 10, 0.125));
+  EldershawYimPlannerOptions o;
+  o.direct = true;
+  o.theta_slices = 8;
+  const EldershawYimResult r = plan_eldershaw_yim(flat, spider(), {2, 5, 0}, {8, 5, 0}, o);
+  ASSERT_TRUE(r.found() && r.foot_plan.found()) << r.brief_report();
+  const Footmap footmap(flat, spider());
+  const CgLattice lattice(flat.grid(), spider().foot_print, o.theta_slices);
+  const FootPlan fresh = plan_footsteps(footmap, spider(), lattice, r.cells, o.feet);
+  ASSERT_TRUE(fresh.found());
+  // The steps up to the last one on the middle cell, as feedback would hand them over.
+  const std::size_t middle = r.cells.size() / 2;
+  std::vector<FootStep> prefix;
+  for (const FootStep& step : fresh.steps)
+    if (step.path_index <= middle) prefix.push_back(step);
+  ASSERT_GT(prefix.size(), 1u);
+  const FootPlan resumed = plan_footsteps(footmap, spider(), lattice, r.cells, o.feet, prefix);
+  ASSERT_TRUE(resumed.found()) << resumed.message;
+  ASSERT_GE(resumed.steps.size(), prefix.size());
+  for (std::size_t k = 0; k < prefix.size(); ++k) {
+    EXPECT_EQ(resumed.steps[k].move, prefix[k].move) << k;
+    EXPECT_EQ(resumed.steps[k].path_index, prefix[k].path_index) << k;
+    EXPECT_EQ(resumed.steps[k].leg, prefix[k].leg) << k;
+  }
+  EXPECT_EQ(resumed.steps.back().path_index, r.cells.size() - 1);
+  EXPECT_LT(resumed.nodes, fresh.nodes);  // the prefix was not searched again
+  // A prefix whose last stance has every foot in the air cannot be resumed from.
+  std::vector<FootStep> airborne = prefix;
+  for (FootState& foot : airborne.back().feet) foot.contact = false;
+  EXPECT_THROW(plan_footsteps(footmap, spider(), lattice, r.cells, o.feet, airborne), InputError);
 }
 
 }  // namespace

@@ -93,9 +93,11 @@ TEST(EldershawYimCli, WritesAPathOfValidCgCellsAndTheRoadmap) {
   const auto steps = read_csv(out + "/steps.csv", header);
   EXPECT_EQ(steps.size(), s["foot_plan_steps"].get<std::size_t>());
   EXPECT_EQ(s["options"]["foot_budget"], 3000);
-  // Each round of section 3.3 feedback plans the feet again.
+  // Each round of section 3.3 feedback plans the feet again: resumed from the steps it keeps,
+  // and afresh when that fails, each within the budget.
   EXPECT_LE(s["foot_planner_nodes"].get<std::size_t>(),
-            3000u * (1 + s["feedback_events"].get<std::size_t>()));
+            3000u * (1 + 2 * s["feedback_events"].get<std::size_t>()));
+  EXPECT_LE(s["foot_steps_reused"].get<std::size_t>(), s["foot_plan_steps"].get<std::size_t>());
   EXPECT_EQ(s["feedback_cells"].size(), s["feedback_events"].get<std::size_t>());
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const std::string& move = steps[k][1];

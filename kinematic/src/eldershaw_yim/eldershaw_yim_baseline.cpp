@@ -170,6 +170,7 @@ BaselineResult to_baseline_result(const EldershawYimResult& r, bool direct) {
                   {"samples_drawn", r.samples_drawn},
                   {"foot_planner_nodes", r.foot_planner_nodes},
                   {"feedback_events", r.feedback_events},
+                  {"foot_steps_reused", r.foot_steps_reused},
                   {"foot_plan_steps", r.feet_planned ? r.foot_plan.steps.size() : 0}};
   out.stage_seconds = {{"footmap", r.footmap_seconds},   {"materialise", r.materialise_seconds},
                        {"sample", r.sample_seconds},     {"connect", r.connect_seconds},

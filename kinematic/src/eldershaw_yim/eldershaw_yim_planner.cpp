@@ -223,6 +223,29 @@ std::vector<SE2Pose> cg_path_poses(const CgLattice& lattice, const std::vector<C
   return out;
 }
 
+namespace {
+
+/// The steps of `plan` (made along `old_cells`) that lie on the leading cells
+/// `new_cells` shares with `old_cells`, up to the last step on the last shared
+/// cell; empty when nothing is shared or there is no earlier plan.
+std::vector<FootStep> reusable_steps(const std::vector<CgCell>& old_cells, const FootPlan& plan,
+                                     const std::vector<CgCell>& new_cells) {
+  std::size_t shared = 0;
+  while (shared < old_cells.size() && shared < new_cells.size() &&
+         old_cells[shared] == new_cells[shared])
+    ++shared;
+  // The last shared cell must not be the new path's end: its pose (the goal) differs.
+  if (shared == 0 || shared >= new_cells.size()) return {};
+  std::vector<FootStep> steps;
+  for (const FootStep& step : plan.steps) {
+    if (step.path_index >= shared) break;
+    steps.push_back(step);
+  }
+  return steps;
+}
+
+}  // namespace
+
 EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedRobot& robot,
                                       const SE2Pose& start, const SE2Pose& goal,
                                       const EldershawYimPlannerOptions& options) {
@@ -462,6 +485,7 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
     return true;
   };
 
+  std::vector<CgCell> failed_cells;  // the CG path whose foot plan failed last
   for (;;) {
     if (!cg_search()) return r;
     r.path = cg_path_poses(L, r.cells, start, goal);
@@ -474,10 +498,24 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
     if (r.feedback_events > 0) msg << " after " << r.feedback_events << " feedback events";
     finish(EldershawYimStatus::kFound, msg.str());
     if (!options.plan_feet) return r;
-    r.foot_plan = plan_footsteps(footmap, robot, L, r.cells, options.feet);
-    r.feet_planned = true;
+    // After feedback (§3.3) the feet keep the steps they took on the cells
+    // the new CG path shares with the old one, and walk on from there; only
+    // if that fails is the whole path planned afresh.
+    const std::vector<FootStep> prefix = reusable_steps(failed_cells, r.foot_plan, r.cells);
+    r.foot_plan = plan_footsteps(footmap, robot, L, r.cells, options.feet, prefix);
     r.foot_planner_seconds += r.foot_plan.seconds;
     r.foot_planner_nodes += r.foot_plan.nodes;
+    r.foot_steps_reused = prefix.empty() ? 0 : prefix.size();
+    if (!prefix.empty() && !r.foot_plan.found()) {
+      FootPlan fresh = plan_footsteps(footmap, robot, L, r.cells, options.feet);
+      r.foot_planner_seconds += fresh.seconds;
+      r.foot_planner_nodes += fresh.nodes;
+      if (fresh.found() || fresh.furthest_index > r.foot_plan.furthest_index) {
+        r.foot_plan = std::move(fresh);
+        r.foot_steps_reused = 0;
+      }
+    }
+    r.feet_planned = true;
     const bool stuck = r.foot_plan.status == FootPlanStatus::kFailed ||
                        r.foot_plan.status == FootPlanStatus::kBudgetExceeded;
     const std::size_t next = r.foot_plan.furthest_index + 1;
@@ -487,6 +525,7 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
       return r;
     }
     // §3.3: the CG cell the feet could not reach is marked invalid and the CG path replanned.
+    failed_cells = r.cells;
     space.mark_invalid(r.cells[next]);
     r.feedback_cells.push_back(r.cells[next]);
     ++r.feedback_events;

@@ -273,7 +273,8 @@ Vec3 foot_position(const Footmap& footmap, const FootState& foot) {
 }
 
 FootPlan plan_footsteps(const Footmap& footmap, const LeggedRobot& robot, const CgLattice& lattice,
-                        const std::vector<CgCell>& cells, const FootPlannerOptions& options) {
+                        const std::vector<CgCell>& cells, const FootPlannerOptions& options,
+                        const std::vector<FootStep>& prefix) {
   options.validate();
   robot.validate();
   const auto t0 = std::chrono::steady_clock::now();
@@ -286,19 +287,35 @@ FootPlan plan_footsteps(const Footmap& footmap, const LeggedRobot& robot, const 
   };
   if (cells.empty()) return done(FootPlanStatus::kFailed, "the CG path is empty");
   const Search search(footmap, robot, lattice, cells, options);
-  std::vector<FootState> start = search.initial();
-  if (start.empty())
-    return done(FootPlanStatus::kNoStance, "no stable stance of the feet at the first CG cell");
+  Frame first;
+  if (prefix.empty()) {
+    first.feet = search.initial();
+    if (first.feet.empty())
+      return done(FootPlanStatus::kNoStance, "no stable stance of the feet at the first CG cell");
+    first.step = {FootMove::kStart, 0, search.pose(0), -1, first.feet};
+  } else {
+    // Resume at the prefix's last stance: it must stand on this path.
+    const FootStep& last = prefix.back();
+    if (last.path_index >= search.size() || last.feet.size() != robot.legs.size() ||
+        !search.stable(last.feet, last.path_index)) {
+      throw InputError(
+          "plan_footsteps: the prefix's last stance is not a stable stance on this "
+          "path at its CG cell " +
+          std::to_string(last.path_index));
+    }
+    first.k = last.path_index;
+    first.feet = last.feet;
+    first.step = last;
+  }
   std::vector<Frame> stack;
   std::unordered_set<std::string> visited;
-  Frame first;
-  first.feet = start;
-  first.step = {FootMove::kStart, 0, search.pose(0), -1, start};
-  visited.insert(search.key(0, start));
+  visited.insert(search.key(first.k, first.feet));
+  plan.furthest_index = first.k;
   stack.push_back(std::move(first));
   plan.nodes = 1;
+  // The steps taken: the prefix (its last step is the first frame's), then the stack's.
   auto record = [&] {
-    plan.steps.clear();
+    plan.steps.assign(prefix.begin(), prefix.empty() ? prefix.end() : prefix.end() - 1);
     for (const Frame& f : stack) plan.steps.push_back(f.step);
   };
   record();

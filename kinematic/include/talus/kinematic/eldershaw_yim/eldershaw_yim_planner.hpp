@@ -87,7 +87,9 @@ struct EldershawYimPlannerOptions {
   /// (search exhausted or its budget spent) the CG cell after the furthest
   /// one it reached is marked invalid and the CG path is searched again, at
   /// most this many times (0 = no feedback). The CGspace already materialised
-  /// is kept; the foot plan is made again from the start (not reused).
+  /// is kept; the foot plan keeps its steps on the leading cells the new CG
+  /// path shares with the old one and walks on from there (planned afresh
+  /// from the start only if that fails).
   std::size_t feedback_rounds = 3;
   /// Threads of the local-planner calls (1..256; file comment). The result
   /// does not depend on it; 1 runs them on the calling thread.
@@ -138,8 +140,12 @@ struct EldershawYimResult {
   FootPlan foot_plan;                ///< the last foot plan: its steps and outcome
   std::size_t feedback_events = 0;   ///< CG cells marked invalid by the foot planner (§3.3)
   std::vector<CgCell> feedback_cells;  ///< those cells, in order
-  std::size_t foot_planner_nodes = 0;  ///< foot-planner nodes over every round
-  double foot_planner_seconds = 0.0;   ///< foot-planner time over every round [s]
+  /// Steps of the last foot plan taken over from the plan before it (§3.3 reuse; 0 = none).
+  std::size_t foot_steps_reused = 0;
+  /// Foot-planner nodes over every round (a feedback round runs the resumed
+  /// plan and, when it fails, a fresh one).
+  std::size_t foot_planner_nodes = 0;
+  double foot_planner_seconds = 0.0;  ///< foot-planner time over every round [s]
   bool found() const { return status == EldershawYimStatus::kFound; }
   /// One line: status, path, counters, times, message.
   std::string brief_report() const;

@@ -101,7 +101,13 @@ struct FootPlan {
 Vec3 foot_position(const Footmap& footmap, const FootState& foot);
 
 /// The search along `cells` (6-connected, as plan_eldershaw_yim returns).
+/// `prefix`: steps already taken along these cells (an earlier plan's steps
+/// up to some path index, over the same leading cells); the search then
+/// starts from the last one's stance and never backtracks into the prefix,
+/// and the result's steps begin with it. InputError if that stance is not
+/// stable at its cell of `cells`. Empty: from an initial stance at cell 0.
 FootPlan plan_footsteps(const Footmap& footmap, const LeggedRobot& robot, const CgLattice& lattice,
-                        const std::vector<CgCell>& cells, const FootPlannerOptions& options = {});
+                        const std::vector<CgCell>& cells, const FootPlannerOptions& options = {},
+                        const std::vector<FootStep>& prefix = {});
 
 }  // namespace talus

@@ -475,41 +475,54 @@ TEST(EldershawYimPlanner, TreePrmIsAForestAndASeedReproducesItBitForBit) {
   EXPECT_NE(c.prm_points, a.prm_points);
 }
 
-TEST(EldershawYimPlanner, TwoAndFourWorkersGiveTheSerialPlanBitForBit) {
-  const RuledTerrain t = mesa();
-  const SE2Pose start{4, 8, 0}, goal{12, 8, 0};
+/// `b` is `a` bit for bit: the CG route and path, the roadmap, every counter and the foot plan.
+void expect_same_plan(const EldershawYimResult& b, const EldershawYimResult& a,
+                      const std::string& label) {
+  EXPECT_EQ(b.cells, a.cells) << label;
+  EXPECT_EQ(b.prm_points, a.prm_points) << label;
+  EXPECT_EQ(b.prm_edges, a.prm_edges) << label;
+  EXPECT_EQ(b.prm_trees, a.prm_trees) << label;
+  EXPECT_EQ(b.local_planner_calls, a.local_planner_calls) << label;
+  EXPECT_EQ(b.local_planner_successes, a.local_planner_successes) << label;
+  EXPECT_EQ(b.recreate_calls, a.recreate_calls) << label;
+  EXPECT_EQ(b.expansions, a.expansions) << label;
+  EXPECT_EQ(b.cells_materialised, a.cells_materialised) << label;
+  EXPECT_EQ(b.blocks_materialised, a.blocks_materialised) << label;
+  EXPECT_EQ(b.samples_drawn, a.samples_drawn) << label;
+  EXPECT_EQ(b.feedback_cells, a.feedback_cells) << label;
+  EXPECT_EQ(b.foot_plan.nodes, a.foot_plan.nodes) << label;
+  EXPECT_EQ(b.foot_plan.steps.size(), a.foot_plan.steps.size()) << label;
+  EXPECT_EQ(b.length_m, a.length_m) << label;
+  ASSERT_EQ(b.path.size(), a.path.size()) << label;
+  for (std::size_t k = 0; k < a.path.size(); ++k) {
+    EXPECT_EQ(b.path[k].x, a.path[k].x) << label;
+    EXPECT_EQ(b.path[k].y, a.path[k].y) << label;
+    EXPECT_EQ(b.path[k].theta, a.path[k].theta) << label;
+  }
+}
+
+/// A tree-PRM on mesa() with enough points for batches of several local-planner calls.
+EldershawYimPlannerOptions mesa_prm_options() {
   EldershawYimPlannerOptions o;
   o.theta_slices = 8;
   o.prm_points = 300;
   o.connect_radius = 5.0;
   o.seed = 7;
   o.feet.budget = 2000;
+  return o;
+}
+
+TEST(EldershawYimPlanner, TwoAndFourWorkersGiveTheSerialPlanBitForBit) {
+  const RuledTerrain t = mesa();
+  const SE2Pose start{4, 8, 0}, goal{12, 8, 0};
+  EldershawYimPlannerOptions o = mesa_prm_options();
   const EldershawYimResult a = plan_eldershaw_yim(t, spider(), start, goal, o);
   ASSERT_TRUE(a.found()) << a.brief_report();
   ASSERT_GE(a.prm_points.size(), 4u);  // enough trees for batches of several calls
   for (int workers : {2, 4}) {
     o.workers = workers;
     const EldershawYimResult b = plan_eldershaw_yim(t, spider(), start, goal, o);
-    EXPECT_EQ(b.cells, a.cells) << workers;
-    EXPECT_EQ(b.prm_points, a.prm_points) << workers;
-    EXPECT_EQ(b.prm_edges, a.prm_edges) << workers;
-    EXPECT_EQ(b.prm_trees, a.prm_trees) << workers;
-    EXPECT_EQ(b.local_planner_calls, a.local_planner_calls) << workers;
-    EXPECT_EQ(b.local_planner_successes, a.local_planner_successes) << workers;
-    EXPECT_EQ(b.recreate_calls, a.recreate_calls) << workers;
-    EXPECT_EQ(b.expansions, a.expansions) << workers;
-    EXPECT_EQ(b.cells_materialised, a.cells_materialised) << workers;
-    EXPECT_EQ(b.blocks_materialised, a.blocks_materialised) << workers;
-    EXPECT_EQ(b.samples_drawn, a.samples_drawn) << workers;
-    EXPECT_EQ(b.feedback_cells, a.feedback_cells) << workers;
-    EXPECT_EQ(b.foot_plan.nodes, a.foot_plan.nodes) << workers;
-    ASSERT_EQ(b.foot_plan.steps.size(), a.foot_plan.steps.size()) << workers;
-    ASSERT_EQ(b.path.size(), a.path.size()) << workers;
-    for (std::size_t k = 0; k < a.path.size(); ++k) {
-      EXPECT_EQ(b.path[k].x, a.path[k].x);
-      EXPECT_EQ(b.path[k].y, a.path[k].y);
-      EXPECT_EQ(b.path[k].theta, a.path[k].theta);
-    }
+    expect_same_plan(b, a, "workers " + std::to_string(workers));
   }
   // A budget spent part-way through the roadmap stops at the same place for any worker count.
   o.budget = a.cells_materialised / 2;
@@ -563,12 +576,7 @@ class ThreadRanks final : public CgRankGroup {
 TEST(EldershawYimPlanner, RanksSharingTheCallsAllGetTheSerialPlan) {
   const RuledTerrain t = mesa();
   const SE2Pose start{4, 8, 0}, goal{12, 8, 0};
-  EldershawYimPlannerOptions o;
-  o.theta_slices = 8;
-  o.prm_points = 300;
-  o.connect_radius = 5.0;
-  o.seed = 7;
-  o.feet.budget = 2000;
+  EldershawYimPlannerOptions o = mesa_prm_options();
   const EldershawYimResult a = plan_eldershaw_yim(t, spider(), start, goal, o);
   ASSERT_TRUE(a.found()) << a.brief_report();
   for (int size : {2, 3}) {
@@ -585,16 +593,7 @@ TEST(EldershawYimPlanner, RanksSharingTheCallsAllGetTheSerialPlan) {
       });
     for (auto& r : ranks) r.join();
     for (const EldershawYimResult& b : got) {
-      EXPECT_EQ(b.cells, a.cells) << size;
-      EXPECT_EQ(b.prm_points, a.prm_points) << size;
-      EXPECT_EQ(b.prm_edges, a.prm_edges) << size;
-      EXPECT_EQ(b.local_planner_calls, a.local_planner_calls) << size;
-      EXPECT_EQ(b.recreate_calls, a.recreate_calls) << size;
-      EXPECT_EQ(b.expansions, a.expansions) << size;
-      EXPECT_EQ(b.cells_materialised, a.cells_materialised) << size;
-      EXPECT_EQ(b.blocks_materialised, a.blocks_materialised) << size;
-      EXPECT_EQ(b.foot_plan.nodes, a.foot_plan.nodes) << size;
-      EXPECT_EQ(b.length_m, a.length_m) << size;
+      expect_same_plan(b, a, "ranks " + std::to_string(size));
     }
   }
 }

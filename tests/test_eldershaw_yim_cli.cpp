@@ -15,6 +15,7 @@
 #include "cli_test_support.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
+#include "talus/core/sweep/mpi_session.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
 #include "talus/kinematic/eldershaw_yim/legged_robot.hpp"
 
@@ -143,16 +144,6 @@ int run_cli(const std::string& launcher, const std::string& out, const std::stri
   return std::system(cmd.c_str());
 }
 
-/// mpirun is installed and usable here. Not under AddressSanitizer: Open MPI is
-/// loaded with RTLD_DEEPBIND (mpi_session.hpp), which the sanitizer runtime refuses.
-bool have_mpirun() {
-#if defined(__SANITIZE_ADDRESS__)
-  return false;
-#else
-  return std::system("command -v mpirun >/dev/null 2>&1") == 0;
-#endif
-}
-
 TEST(EldershawYimCli, WorkerThreadsWriteTheSerialFiles) {
   const std::string a = scratch_file("ey_workers_1"), b = scratch_file("ey_workers_2");
   ASSERT_EQ(run_cli("", a, "--workers 1"), 0);
@@ -168,7 +159,8 @@ TEST(EldershawYimCli, WorkerThreadsWriteTheSerialFiles) {
 }
 
 TEST(EldershawYimCli, TwoMpiRanksWriteTheSerialFiles) {
-  if (!have_mpirun()) GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
+  if (!MpiSession::mpirun_available())
+    GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
   const std::string a = scratch_file("ey_ranks_1"), b = scratch_file("ey_ranks_2");
   ASSERT_EQ(run_cli("", a, "--workers 1"), 0);
   ASSERT_EQ(run_cli("env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun "

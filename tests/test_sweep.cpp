@@ -15,11 +15,13 @@
 
 #include "cli_test_support.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/sweep/mpi_session.hpp"
 #include "talus/core/sweep/sweep_config.hpp"
 
 namespace {
 
 using talus::InputError;
+using talus::MpiSession;
 using talus::parse_sweep_config;
 using talus::SweepConfig;
 using namespace talus::cli_test;
@@ -280,16 +282,6 @@ TEST(SweepCli, ResultsDoNotDependOnTheJobCount) {
   EXPECT_TRUE(fs::exists(one / "sweep_1.png"));
 }
 
-/// mpirun is installed and usable here. Not under AddressSanitizer: Open MPI is
-/// loaded with RTLD_DEEPBIND (mpi_session.hpp), which the sanitizer runtime refuses.
-bool have_mpirun() {
-#if defined(__SANITIZE_ADDRESS__)
-  return false;
-#else
-  return std::system("command -v mpirun >/dev/null 2>&1") == 0;
-#endif
-}
-
 const std::string kMpirun =
     "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_warn_on_fork=0 "
     "mpirun --oversubscribe -n 2 ";
@@ -347,7 +339,8 @@ TEST(SweepCli, AKilledSweepResumesToOneRowPerCaseWithTheSameValues) {
 }
 
 TEST(SweepCli, AKilledMpiSweepResumesToOneRowPerCaseWithTheSameValues) {
-  if (!have_mpirun()) GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
+  if (!MpiSession::mpirun_available())
+    GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
   kill_and_resume(kMpirun, "killed_mpi");
 }
 
@@ -442,7 +435,8 @@ TEST(SweepCli, BadConfigsFailBeforeAnyCaseRuns) {
 }
 
 TEST(SweepCli, TwoMpiRanksGiveTheResultsOfOneJob) {
-  if (!have_mpirun()) GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
+  if (!MpiSession::mpirun_available())
+    GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
   const std::string config = plane_config();
   const fs::path one = fresh_dir("mpi_jobs1"), ranks = fresh_dir("mpi_ranks2");
   ASSERT_EQ(run_talus("sweep " + quoted(config) + " --out " + quoted(one.string()) + " --jobs 1")
@@ -457,7 +451,8 @@ TEST(SweepCli, TwoMpiRanksGiveTheResultsOfOneJob) {
 }
 
 TEST(SweepCli, MpiRanksTakeTheNextCaseWhenTheyFreeUp) {
-  if (!have_mpirun()) GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
+  if (!MpiSession::mpirun_available())
+    GTEST_SKIP() << "no mpirun (openmpi-bin), or an AddressSanitizer build";
   // One slow case first, then quick ones: with the cases dealt one at a
   // time, the rank that drew the slow case runs only it (a static share,
   // index mod 2, would give each rank three).

@@ -21,6 +21,7 @@
 #include "talus/core/report/number_format.hpp"
 #include "talus/core/report/plot.hpp"
 #include "talus/core/report/report.hpp"
+#include "talus/core/sweep/mpi_session.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
 #include "talus/kinematic/eldershaw_yim/eldershaw_yim_planner.hpp"
@@ -421,16 +422,6 @@ double median3(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-/// mpirun is installed and usable by this build (not under AddressSanitizer, which
-/// refuses the RTLD_DEEPBIND the MPI session loads Open MPI with).
-bool have_mpirun() {
-#if defined(__SANITIZE_ADDRESS__)
-  return false;
-#else
-  return std::system("command -v mpirun >/dev/null 2>&1") == 0;
-#endif
-}
-
 }  // namespace
 
 void run_eldershaw_parallel(const ExperimentContext& context) {
@@ -480,7 +471,7 @@ void run_eldershaw_parallel(const ExperimentContext& context) {
   }
 
   // Two ranks: this program under mpirun, its summary.json read back.
-  const bool mpi = have_mpirun();
+  const bool mpi = MpiSession::mpirun_available();
   if (mpi) {
     std::vector<double> search, connect, peak;
     Row row{"2 MPI ranks"};

@@ -239,6 +239,14 @@ std::unique_ptr<CaseDealer> MpiSession::case_dealer() const {
   return std::make_unique<MpiCaseDealer>(*api_, rank_, size_);
 }
 
+bool MpiSession::mpirun_available() {
+#if defined(__SANITIZE_ADDRESS__)
+  return false;
+#else
+  return std::system("command -v mpirun >/dev/null 2>&1") == 0;
+#endif
+}
+
 void MpiSession::abort(int code) const {
   if (api_ != nullptr) api_->abort(api_->world, code);
   std::exit(code);

@@ -40,6 +40,10 @@ class MpiSession {
   std::unique_ptr<CaseDealer> case_dealer() const;
   /// Ends every rank at once (a rank failed after the others started waiting).
   [[noreturn]] void abort(int code) const;
+  /// Whether this build can run under mpirun here: mpirun is on the PATH and
+  /// the build is not under AddressSanitizer, whose runtime refuses the
+  /// RTLD_DEEPBIND Open MPI is loaded with (google/sanitizers#611).
+  static bool mpirun_available();
 
   /// Open MPI's entry points; defined (and used) in mpi_session.cpp only.
   struct Api;

@@ -290,7 +290,7 @@ TEST(EldershawYimCgSpace, OverlaysCountTheirOwnBlocksAndAreAbsorbedOnce) {
   ASSERT_EQ(space.lattice().nx(), 81);  // the last block column is one cell wide
   EXPECT_TRUE(space.valid({20, 20, 3}));
   space.mark_invalid({21, 20, 3});
-  CgSpace a(space), b(space);
+  CgSpace a(CgSpace::OverlayOn{}, space), b(CgSpace::OverlayOn{}, space);
   EXPECT_EQ(a.state({21, 20, 3}), CgState::kFeedback);  // the base's mark
   EXPECT_EQ(a.cells_materialised(), 0u);                // the base's block
   EXPECT_TRUE(a.valid({40, 20, 0}));

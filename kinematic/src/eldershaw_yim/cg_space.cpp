@@ -215,7 +215,7 @@ CgSpace::CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_sli
   bx_ = (lattice_.nx() + block_ - 1) / block_;
 }
 
-CgSpace::CgSpace(const CgSpace& base)
+CgSpace::CgSpace(OverlayOn, const CgSpace& base)
     : footmap_(base.footmap_),
       robot_(base.robot_),
       base_(&base),

@@ -137,7 +137,7 @@ std::vector<CgLocalPath> local_plan_batch(CgSpace& space,
   parallel_for(mine.size(), workers, [&](std::size_t j) {
     const std::size_t i = mine[j];
     try {
-      overlays[i] = std::make_unique<CgSpace>(space);
+      overlays[i] = std::make_unique<CgSpace>(CgSpace::OverlayOn{}, space);
       std::size_t w = spent;
       out[i] = cg_local_plan(*overlays[i], queries[i].first, queries[i].second, local, w, budget);
     } catch (...) {

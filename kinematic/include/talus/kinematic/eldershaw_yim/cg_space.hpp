@@ -115,12 +115,18 @@ class CgSpace {
   /// `footmap` (and its terrain) must outlive this. Throws InputError as
   /// CgLattice, or for block_side < 1.
   CgSpace(const Footmap& footmap, const LeggedRobot& robot, int theta_slices, int block_side = 16);
+  /// Selects the overlay constructor below (not a copy: an overlay refers to its base).
+  struct OverlayOn {};
   /// An overlay on `base`: reads base's blocks and marks, materialises the
   /// blocks base lacks itself, and counts only those (cells_materialised() is
   /// then this overlay's own evaluations, whatever other overlays do). `base`
   /// must outlive the overlay and not change while it is used; several
   /// overlays on one base may be used from different threads.
-  explicit CgSpace(const CgSpace& base);
+  CgSpace(OverlayOn, const CgSpace& base);
+  /// Not copyable: a copy would be neither an overlay nor independent of the
+  /// overlays that refer to the original.
+  CgSpace(const CgSpace&) = delete;
+  CgSpace& operator=(const CgSpace&) = delete;
   /// Moves `overlay`'s blocks that this lacks into this (their cells and time
   /// counted here); `overlay` must be an overlay on this. Blocks are a pure
   /// function of the cell, so the result does not depend on the order of

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
@@ -159,6 +161,87 @@ TEST(PathOptimizer, OptimisedTrajectoryOnFractalTerrainSatisfiesEveryConstraint)
     ++checked;
   }
   EXPECT_GT(checked, 1000u);
+}
+
+/// The hill of ImprovesOnTheGlobalCandidateAroundAHill and its best lattice candidate.
+struct HillCase {
+  BPatch terrain = BPatch::interpolate(terrain_test::grid_from_function(
+      [](double x, double y) {
+        return 8.0 * std::exp(-((x - 40) * (x - 40) + (y - 30) * (y - 30)) / (2 * 7.0 * 7.0));
+      },
+      0, 0, 80, 60, 1.0));
+  Vehicle vehicle = point_mass_rover(0.4);
+  std::vector<Vec2> candidate = [this] {
+    GlobalSearchOptions search;
+    search.candidates = 1;
+    return global_search(terrain, vehicle, {5, 30}, {75, 30}, search).candidates.at(0).vertices;
+  }();
+};
+
+// An evaluation budget too small to converge: the restarts resume from the
+// best point, then perturb it; the result is the best over every attempt,
+// each attempt's time is its own best point's, and reruns are identical.
+TEST(PathOptimizerRestarts, ResumeThenPerturbAndKeepTheBestOfEveryAttempt) {
+  const HillCase hill;
+  PathOptimizerOptions options;
+  options.max_evaluations = 10;
+  const OptimizedPath single = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  ASSERT_EQ(single.attempts.size(), 1u);
+  EXPECT_EQ(single.attempts[0].start, "fit");
+  ASSERT_FALSE(single.converged) << single.solver_status;
+  EXPECT_DOUBLE_EQ(single.attempts[0].travel_time, single.travel_time);
+
+  options.restarts = 3;
+  const OptimizedPath multi = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  ASSERT_GE(multi.attempts.size(), 2u);
+  EXPECT_EQ(multi.attempts[0].start, "fit");
+  EXPECT_EQ(multi.attempts[1].start, "resume");
+  for (std::size_t k = 2; k < multi.attempts.size(); ++k)
+    EXPECT_EQ(multi.attempts[k].start, "perturbed");
+  // The first attempt is the single run's; the rest can only improve on it.
+  EXPECT_DOUBLE_EQ(multi.attempts[0].travel_time, single.travel_time);
+  EXPECT_LT(multi.travel_time, single.travel_time);
+  double best = multi.initial_time;
+  for (const LocalAttempt& a : multi.attempts) best = std::min(best, a.travel_time);
+  EXPECT_DOUBLE_EQ(multi.travel_time, best);
+  EXPECT_DOUBLE_EQ(multi.attempts.at(multi.best_attempt).travel_time, multi.travel_time);
+  EXPECT_EQ(multi.solver_status, multi.attempts[multi.best_attempt].solver_status);
+  // Restarting stops at the first attempt that converges.
+  for (std::size_t k = 0; k + 1 < multi.attempts.size(); ++k)
+    EXPECT_FALSE(multi.attempts[k].converged) << k;
+  // Independently: the returned curve's profile takes the reported time.
+  PathTimeObjective objective(hill.terrain, hill.vehicle, {5, 30}, {75, 30}, multi.control_points,
+                              multi.stations, {});
+  EXPECT_NEAR(objective.evaluate(objective.variables(multi.curve.control_points())),
+              multi.travel_time, 1e-9 * multi.travel_time);
+
+  const OptimizedPath again = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  EXPECT_EQ(again.travel_time, multi.travel_time);
+  EXPECT_EQ(again.attempts.size(), multi.attempts.size());
+}
+
+TEST(PathOptimizerRestarts, TheSimultaneousFormulationRestartsToo) {
+  const HillCase hill;
+  PathOptimizerOptions options;
+  options.formulation = PathFormulation::kSimultaneous;
+  options.simultaneous_lateral_iterations = 3;
+  options.simultaneous_max_iterations = 3;
+  options.restarts = 2;
+  const OptimizedPath result = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  ASSERT_GE(result.attempts.size(), 2u) << result.solver_status;
+  EXPECT_EQ(result.attempts[1].start, "resume");
+  double best = result.initial_time;
+  for (const LocalAttempt& a : result.attempts) best = std::min(best, a.travel_time);
+  EXPECT_DOUBLE_EQ(result.travel_time, best);
+  EXPECT_LE(result.travel_time, result.attempts[0].travel_time);
+}
+
+TEST(PathOptimizerRestarts, ANegativePerturbationIsAnInputError) {
+  PathOptimizerOptions options;
+  options.restart_perturbation = -1.0;
+  EXPECT_THROW(options.validate(), InputError);
+  options.restart_perturbation = std::nan("");
+  EXPECT_THROW(options.validate(), InputError);
 }
 
 TEST(PathOptimizer, BadInputIsAnInputError) {

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/report/figure.hpp"
@@ -32,20 +33,6 @@ namespace fs = std::filesystem;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::array<double, 3> kScales = {0.9, 1.0, 1.1};
 
-/// The fractal battery of issue #12 (Iagnemma, Shimoda & Shiller, IROS 2008,
-/// §V): 129 x 129 nodes at 0.24 m (two wheel diameters), D 2.05, height
-/// scale 4.2 m (35 wheel diameters), a 1 m undulation over 30 m and six 1 m
-/// peaks; start (2, 2), goal (28.5, 28.5).
-FractalTerrainOptions battery_terrain(std::uint64_t seed) {
-  FractalTerrainOptions f;  // shape, D and height scale default to the study's
-  f.undulation_amplitude = 1.0;
-  f.undulation_wavelength = 30.0;
-  f.peaks = 6;
-  f.peak_height = 1.0;
-  f.seed = seed;
-  return f;
-}
-
 /// One battery case: the plan and its drives.
 struct Case {
   std::uint64_t seed = 0;
@@ -62,7 +49,7 @@ Case run_case(std::uint64_t seed, const Vehicle& vehicle) {
   Case c;
   c.seed = seed;
   const BPatch surface = BPatch::interpolate(generate_fractal_terrain(battery_terrain(seed)));
-  const PlanningProblem problem(surface, vehicle, {2.0, 2.0}, {28.5, 28.5});
+  const PlanningProblem problem(surface, vehicle, kBatteryStart, kBatteryGoal);
   const PlannerResult plan_result = plan(problem, PlannerOptions{});
   c.plan_status = plan_result.status;
   c.plan_message = plan_result.message;

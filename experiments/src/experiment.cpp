@@ -9,6 +9,7 @@
 #include "global_search_experiment.hpp"
 #include "hait_experiments.hpp"
 #include "optimal_profile_experiment.hpp"
+#include "optimiser_quality_experiment.hpp"
 #include "shiller_gwo_experiment.hpp"
 #include "sweep_experiments.hpp"
 #include "talus/core/error.hpp"
@@ -102,6 +103,12 @@ std::vector<Experiment> all_experiments() {
        "rigid-body simulation at 90, 100 and 110 % of their profile speed: failures, margins "
        "kept and travel time against the plan",
        run_closed_loop_plans},
+      {"optimiser-quality",
+       "the planner's local stage on the fractal battery and every bundled DEM against a "
+       "multistart reference (formulations x solvers x 8-32 control points x restarts): success, "
+       "convergence by solver status, travel time above the reference, planning time, the "
+       "nested-against-simultaneous table",
+       run_optimiser_quality},
   };
 }
 

@@ -503,6 +503,14 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "time is still the exact profile's)")
       ->capture_default_str()
       ->check(CLI::IsMember({std::string("nested"), std::string("simultaneous")}));
+  plan->add_option("--restarts", plan_request.restarts,
+                   "--stage full: restarts of a candidate's local optimisation when it ends "
+                   "without converging (an iteration or evaluation cap): the first from its best "
+                   "point with fresh solver state, the others from that point perturbed "
+                   "laterally by two cells (seeded); optima[].attempts lists every solve with "
+                   "its status")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100));
   plan->add_option("--resolution", plan_request.resolution,
                    "global search: full (every lattice node) or multi (a coarse lattice 4x "
                    "coarser, then the fine lattice in a corridor around its candidates, widened "

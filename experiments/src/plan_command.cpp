@@ -234,6 +234,19 @@ nlohmann::json optimum_json(const CandidateOutcome& c, const std::string& solver
   entry["search_stations"] = o ? o->stations : 0;
   entry["control_points"] = o ? o->control_points : 0;
   entry["seconds"] = o ? o->seconds : 0.0;
+  nlohmann::json attempts = nlohmann::json::array();
+  if (o) {
+    for (const LocalAttempt& a : o->attempts) {
+      attempts.push_back({{"start", a.start},
+                          {"solver_status", a.solver_status},
+                          {"converged", a.converged},
+                          {"travel_time_search_spacing", finite_or_null(a.travel_time)},
+                          {"iterations", a.iterations},
+                          {"seconds", a.seconds}});
+    }
+  }
+  entry["attempts"] = std::move(attempts);
+  entry["best_attempt"] = o ? nlohmann::json(o->best_attempt) : nlohmann::json(nullptr);
   entry["length_m"] = c.feasible() ? nlohmann::json(c.trajectory.length()) : nullptr;
   return entry;
 }
@@ -351,6 +364,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   summary["optima"] = std::move(optima);
   summary["solver"] = request.solver;
   summary["formulation"] = request.formulation;
+  summary["restarts"] = request.restarts;
   summary["optimality_note"] =
       "optima[].optimality: largest projected-gradient component of the travel time at the "
       "returned path [s/m], from the adjoint gradient (for every solver); the travel time is "
@@ -388,6 +402,7 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.optimize = request.stage == kPlanStageFull;
   options.local.solver = parse_path_solver(request.solver);
   options.local.formulation = parse_path_formulation(request.formulation);
+  options.local.restarts = static_cast<std::size_t>(request.restarts);
   options.local.control_points = static_cast<std::size_t>(request.control_points);
   options.local.max_control_points =
       std::max(options.local.max_control_points, options.local.control_points);

@@ -22,7 +22,7 @@ namespace talus::experiments {
 /// `talus plan --terrain T.asc --start X,Y --goal X,Y --vehicle V.yaml
 /// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
 /// [--smoothing LAMBDA] [--control-points M] [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa]
-/// [--formulation nested|simultaneous] [--v0 A]
+/// [--formulation nested|simultaneous] [--restarts R] [--v0 A]
 /// [--v1 B] [--time-limit SECONDS] [--resolution full|multi] --out DIR`.
 struct PlanRequest {
   std::string terrain;             ///< DEM (load_terrain)
@@ -50,6 +50,8 @@ struct PlanRequest {
   std::string solver = "ipopt";  ///< ipopt, nlopt-lbfgs or nlopt-bobyqa (parse_path_solver)
   /// nested or simultaneous (parse_path_formulation; PathOptimizerOptions::formulation).
   std::string formulation = "nested";
+  /// PathOptimizerOptions::restarts (>= 0) after an optimisation that does not converge.
+  int restarts = static_cast<int>(PathOptimizerOptions{}.restarts);
   double start_speed = 0.0;  ///< --v0 [m/s] (finite, >= 0, <= max_speed)
   double end_speed = 0.0;    ///< --v1 [m/s]
   /// --rasters: also write cost_to_go.tif and trajectory.geojson (see plan()).

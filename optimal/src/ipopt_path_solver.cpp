@@ -56,7 +56,7 @@ using Ipopt::Number;
 class PathNlp : public Ipopt::TNLP {
  public:
   PathNlp(TrackedObjective& objective, const BoxProblem& problem)
-      : objective_(objective), problem_(problem) {}
+      : objective_(objective), problem_(problem), first_evaluation_(objective.evaluations()) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
                     IndexStyleEnum& index_style) override {
@@ -102,7 +102,8 @@ class PathNlp : public Ipopt::TNLP {
       timed_out_ = true;
       return false;
     }
-    return objective_.evaluations() < problem_.max_evaluations;
+    // The budget is this run's: a restart on the same objective gets its own.
+    return objective_.evaluations() - first_evaluation_ < problem_.max_evaluations;
   }
   bool timed_out() const { return timed_out_; }
   void finalize_solution(Ipopt::SolverReturn status, Index, const Number*, const Number*,
@@ -117,6 +118,7 @@ class PathNlp : public Ipopt::TNLP {
  private:
   TrackedObjective& objective_;
   const BoxProblem& problem_;
+  std::size_t first_evaluation_ = 0;  ///< objective evaluations before this run
   Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
   std::size_t iterations_ = 0;
   bool timed_out_ = false;

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "local_solvers.hpp"
 #include "simultaneous_path_solver.hpp"
@@ -46,6 +49,50 @@ bool stays_on_data(const BPatch& terrain, const Curve2& curve, std::size_t stati
 bool converged_status(const std::string& status) {
   return status == "success" || status == "stop_at_acceptable_point" || status == "ftol_reached" ||
          status == "xtol_reached";
+}
+
+/// `z` (the interior control points, x and y interleaved, between the fixed
+/// `first` and `last`) with each point moved along its lateral direction
+/// (normal to its neighbours' chord) by a normal deviate of `sigma`, clamped
+/// into the box.
+Eigen::VectorXd perturbed_laterally(const Eigen::VectorXd& z, const Vec2& first, const Vec2& last,
+                                    double sigma, const detail::BoxProblem& box,
+                                    std::mt19937_64& random) {
+  std::normal_distribution<double> deviate(0.0, sigma);
+  const long points = z.size() / 2;
+  const auto point = [&](long i) {  // i in [-1, points]: the fixed ends outside z
+    if (i < 0) return first;
+    if (i >= points) return last;
+    return Vec2(z[2 * i], z[2 * i + 1]);
+  };
+  Eigen::VectorXd out = z;
+  for (long i = 0; i < points; ++i) {
+    const Vec2 chord = point(i + 1) - point(i - 1);
+    const double length = chord.norm();
+    if (!(length > 0.0)) continue;
+    const Vec2 normal(-chord.y() / length, chord.x() / length);
+    const double offset = deviate(random);
+    out[2 * i] += offset * normal.x();
+    out[2 * i + 1] += offset * normal.y();
+  }
+  return out.cwiseMax(box.lower).cwiseMin(box.upper);
+}
+
+/// The start of restart `restart` (1-based) from `best`: `best` itself for
+/// the first ("resume"), else a lateral perturbation of it with an
+/// admissible profile (up to four draws, halving the deviation each time);
+/// empty if no draw was admissible.
+std::optional<Eigen::VectorXd> restart_point(std::size_t restart, const Eigen::VectorXd& best,
+                                             PathTimeObjective& objective, const Vec2& first,
+                                             const Vec2& last, double sigma,
+                                             const detail::BoxProblem& box,
+                                             std::mt19937_64& random) {
+  if (restart == 1) return best;
+  for (int draw = 0; draw < 4; ++draw, sigma *= 0.5) {
+    Eigen::VectorXd z = perturbed_laterally(best, first, last, sigma, box, random);
+    if (std::isfinite(objective.evaluate(z))) return z;
+  }
+  return std::nullopt;
 }
 
 /// The simultaneous formulation from the box problem's start (the initial
@@ -221,6 +268,9 @@ void PathOptimizerOptions::validate() const {
   if (!(time_limit > 0.0)) {
     throw InputError("PathOptimizerOptions.time_limit must be > 0 [s] (+inf = none)");
   }
+  if (!(restart_perturbation >= 0.0) || !std::isfinite(restart_perturbation)) {
+    throw InputError("PathOptimizerOptions.restart_perturbation must be >= 0 [m] (0 = two cells)");
+  }
   speeds.validate();
 }
 
@@ -342,40 +392,112 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                         terrain.cellsize()),
                0.45 * narrowest);
 
+  const Vec2 first = initial_polyline.front(), last = initial_polyline.back();
+  const double sigma =
+      options.restart_perturbation > 0.0 ? options.restart_perturbation : 2.0 * terrain.cellsize();
+  std::mt19937_64 random(options.seed);
+  const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  const auto out_of_time = [&problem] { return problem.expired && problem.expired(); };
+
   if (simultaneous) {
-    return optimize_simultaneous(terrain, vehicle, *objective, problem, control_points, stations,
-                                 options, started);
+    // Each attempt is a whole simultaneous solve (both phases) from its start.
+    OptimizedPath out = optimize_simultaneous(terrain, vehicle, *objective, problem, control_points,
+                                              stations, options, started);
+    out.attempts.push_back(
+        {"fit", out.solver_status, out.converged, out.travel_time, out.iterations, out.seconds});
+    for (std::size_t r = 1; r <= options.restarts && !out.attempts.back().converged; ++r) {
+      if (out_of_time()) break;
+      detail::BoxProblem restart = problem;
+      const auto point = restart_point(r, objective->variables(out.curve.control_points()),
+                                       *objective, first, last, sigma, problem, random);
+      if (!point) break;
+      restart.start = *point;
+      const auto attempt_started = std::chrono::steady_clock::now();
+      OptimizedPath next = optimize_simultaneous(terrain, vehicle, *objective, restart,
+                                                 control_points, stations, options, started);
+      out.attempts.push_back({r == 1 ? "resume" : "perturbed", next.solver_status, next.converged,
+                              next.travel_time, next.iterations, seconds_since(attempt_started)});
+      out.iterations += next.iterations;
+      out.evaluations += next.evaluations;
+      out.gradient_evaluations += next.gradient_evaluations;
+      // Ties go to the later attempt: it converged (or not) at the same point.
+      if (!(next.travel_time > out.travel_time)) {
+        next.initial_curve = out.initial_curve;
+        next.initial_time = out.initial_time;
+        next.attempts = std::move(out.attempts);
+        next.best_attempt = next.attempts.size() - 1;
+        next.iterations = out.iterations;
+        next.evaluations = out.evaluations;
+        next.gradient_evaluations = out.gradient_evaluations;
+        out = std::move(next);
+      }
+    }
+    out.finite_difference_fallbacks = objective->finite_difference_fallbacks();
+    out.seconds = seconds_since(started);
+    return out;
   }
-  detail::TrackedObjective tracked(*objective);
   // The start clamped into the bounds is the solvers' first point.
-  initial_time = tracked(problem.start, nullptr);
+  initial_time = objective->evaluate(problem.start);
   if (!std::isfinite(initial_time)) {
     throw InputError("the initial path leaves the map's interior or has no admissible profile");
   }
-  detail::SolverRun run;
-  switch (options.solver) {
-    case PathSolver::kIpopt:
-      run = detail::run_ipopt(tracked, problem);
-      break;
-    case PathSolver::kNloptLbfgs:
-      run = detail::run_nlopt_lbfgs(tracked, problem);
-      break;
-    case PathSolver::kNloptBobyqa:
-      run = detail::run_nlopt_bobyqa(tracked, problem);
-      break;
+  const auto solve = [&options](detail::TrackedObjective& tracked, const detail::BoxProblem& box) {
+    switch (options.solver) {
+      case PathSolver::kIpopt:
+        return detail::run_ipopt(tracked, box);
+      case PathSolver::kNloptLbfgs:
+        return detail::run_nlopt_lbfgs(tracked, box);
+      case PathSolver::kNloptBobyqa:
+        break;
+    }
+    return detail::run_nlopt_bobyqa(tracked, box);
+  };
+  // One tracker per attempt, so each attempt's best point is its own.
+  std::vector<LocalAttempt> attempts;
+  std::vector<detail::SolverRun> runs;
+  Eigen::VectorXd best = problem.start;
+  double best_time = initial_time;
+  std::size_t best_attempt = 0, iterations = 0;
+  for (std::size_t r = 0; r <= options.restarts; ++r) {
+    detail::BoxProblem box = problem;
+    if (r > 0) {
+      if (attempts.back().converged || out_of_time()) break;
+      const auto point = restart_point(r, best, *objective, first, last, sigma, problem, random);
+      if (!point) break;
+      box.start = *point;
+    }
+    const auto attempt_started = std::chrono::steady_clock::now();
+    detail::TrackedObjective tracked(*objective);
+    tracked(box.start, nullptr);
+    runs.push_back(solve(tracked, box));
+    const detail::SolverRun& run = runs.back();
+    iterations += run.iterations;
+    attempts.push_back({r == 0 ? "fit" : (r == 1 ? "resume" : "perturbed"), run.status,
+                        converged_status(run.status), tracked.best_value(), run.iterations,
+                        seconds_since(attempt_started)});
+    // Ties go to the later attempt: it converged (or not) at the same point.
+    if (!(tracked.best_value() > best_time) && tracked.best().size() == best.size()) {
+      best = tracked.best();
+      best_time = tracked.best_value();
+      best_attempt = attempts.size() - 1;
+    }
   }
-  const Eigen::VectorXd best = tracked.best();
+  const detail::SolverRun& run = runs[best_attempt];
   OptimizedPath out(objective->curve(best));
   out.initial_curve = objective->curve(problem.start);
   out.control_points = control_points;
-  out.travel_time = tracked.best_value();
+  out.travel_time = best_time;
   out.initial_time = initial_time;
   out.formulation = to_string(options.formulation);
   out.solver = to_string(options.solver);
   out.solver_status = run.status;
   out.converged = converged_status(run.status);
   out.solver_failed = run.failed;
-  out.iterations = run.iterations;
+  out.attempts = std::move(attempts);
+  out.best_attempt = best_attempt;
+  out.iterations = iterations;
   out.stations = stations;
   Eigen::VectorXd gradient;
   const double check = objective->evaluate(best, &gradient);
@@ -385,7 +507,7 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   out.evaluations = objective->evaluations();
   out.gradient_evaluations = objective->gradient_evaluations();
   out.finite_difference_fallbacks = objective->finite_difference_fallbacks();
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  out.seconds = seconds_since(started);
   return out;
 }
 

@@ -237,6 +237,10 @@ std::string PlannerResult::brief_report() const {
       report << "; " << o.solver << " " << o.solver_status << ", " << o.iterations
              << " iterations, " << o.evaluations << " evaluations, optimality " << o.optimality
              << " s/m";
+      if (o.attempts.size() > 1) {
+        report << "; " << o.attempts.size() << " attempts, the best from the "
+               << o.attempts[o.best_attempt].start;
+      }
     }
     if (c.kept_initial) report << "; kept the initial fit";
     if (c.time_limited) report << "; cut short by the time limit";

@@ -42,6 +42,7 @@
 ///   solver at the search stations: travel_time is that, never the NLP's own
 ///   objective (nlp_travel_time, a diagnostic).
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -128,9 +129,39 @@ struct PathOptimizerOptions {
   /// Polled with time_limit; true stops the solver likewise (the planner's
   /// deadline on its own clock). Empty: never.
   std::function<bool()> stop;
-  ProfileOptions speeds;  ///< start and end speeds
+  /// Restarts (>= 0) after a solve that ends without converging (on an
+  /// iteration or evaluation cap, or a solver error), within time_limit:
+  /// the first from the best point so far with fresh solver state (Ipopt's
+  /// barrier parameter and quasi-Newton memory, NLopt's trust region), each
+  /// further one from that point with every interior control point moved
+  /// along its lateral direction by a normal deviate of
+  /// restart_perturbation (seeded by `seed`; a draw without an admissible
+  /// profile is drawn again at half the size, up to four times). Restarting
+  /// stops at the first attempt that converges. The best point over every
+  /// attempt is the result; OptimizedPath::attempts lists them.
+  std::size_t restarts = 0;
+  /// Standard deviation of the restarts' lateral moves [m] (>= 0); 0 = two
+  /// cells of the terrain.
+  double restart_perturbation = 0.0;
+  std::uint64_t seed = 1;  ///< of the restarts' perturbations
+  ProfileOptions speeds;   ///< start and end speeds
   /// Throws InputError naming the field.
   void validate() const;
+};
+
+/// One solve of optimize_path(): the first from the initial fit, then the
+/// restarts (PathOptimizerOptions::restarts).
+struct LocalAttempt {
+  /// "fit" (the initial fit), "resume" (the best point so far, fresh solver
+  /// state) or "perturbed" (the best point so far moved laterally).
+  std::string start;
+  std::string solver_status;  ///< the solver's return code as text
+  bool converged = false;     ///< by the solver's own status (OptimizedPath::converged)
+  /// The exact travel time at the search stations of this attempt's best
+  /// point [s]; +inf when it evaluated none with an admissible profile.
+  double travel_time = std::numeric_limits<double>::infinity();
+  std::size_t iterations = 0;  ///< Ipopt iterations; NLopt: objective evaluations
+  double seconds = 0.0;        ///< wall time of this attempt
 };
 
 /// A locally optimised path with the solver's diagnostics.
@@ -150,10 +181,17 @@ struct OptimizedPath {
   double initial_time = 0.0;       ///< the initial path's travel time, same stations [s]
   std::string formulation;         ///< to_string(PathFormulation)
   std::string solver;              ///< to_string(PathSolver); "ipopt" when simultaneous
-  std::string solver_status;       ///< the solver's return code as text (Ipopt / NLopt names)
+  /// The solver's return code as text (Ipopt / NLopt names), of the attempt
+  /// whose point is returned.
+  std::string solver_status;
   /// Ipopt's Solve_Succeeded ("success") or Solved_To_Acceptable_Level
-  /// ("stop_at_acceptable_point"); NLopt: a tolerance stop (not a limit).
+  /// ("stop_at_acceptable_point"); NLopt: a tolerance stop (not a limit); of
+  /// the attempt whose point is returned.
   bool converged = false;
+  /// Every solve in order (the first from the initial fit, then restarts).
+  std::vector<LocalAttempt> attempts;
+  /// Index into attempts of the one whose point is returned.
+  std::size_t best_attempt = 0;
   /// Simultaneous formulation: the NLP's own travel time at its final
   /// iterate [s] (a diagnostic; travel_time is the exact re-evaluation). NaN
   /// for the nested formulation.
@@ -164,8 +202,8 @@ struct OptimizedPath {
   /// count both. 0 for the nested formulation.
   int phase = 0;
   bool solver_failed = false;   ///< an error return; the best point seen is still reported
-  std::size_t iterations = 0;   ///< Ipopt iterations; NLopt: objective evaluations
-  std::size_t evaluations = 0;  ///< objective evaluations
+  std::size_t iterations = 0;   ///< Ipopt iterations; NLopt: objective evaluations (all attempts)
+  std::size_t evaluations = 0;  ///< objective evaluations (all attempts)
   std::size_t gradient_evaluations = 0;
   std::size_t finite_difference_fallbacks = 0;  ///< gradients taken by finite differences
   /// First-order optimality at the returned path: the largest component of

@@ -1,0 +1,413 @@
+#include "optimiser_quality_experiment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fractal_battery.hpp"
+#include "talus/bspline/bpatch.hpp"
+#include "talus/core/esri_ascii.hpp"
+#include "talus/core/report/figure.hpp"
+#include "talus/core/report/number_format.hpp"
+#include "talus/core/report/plot.hpp"
+#include "talus/core/report/report.hpp"
+#include "talus/core/sample_statistics.hpp"
+#include "talus/core/stopwatch.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/optimal/planner.hpp"
+#include "talus/optimal/verify_profile.hpp"
+
+namespace talus::experiments {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// The issue's targets.
+constexpr double kConvergedTarget = 0.9;  ///< fraction of local optimisations
+constexpr double kWithinPercent = 1.0;    ///< of the multistart reference [%]
+constexpr double kWithinTarget = 0.9;     ///< fraction of battery cases
+constexpr double kSecondsTarget = 2.0;    ///< median planning time on the battery [s]
+
+/// One planning problem.
+struct Problem {
+  std::string name;  ///< "fractal seed 3", a DEM's file stem
+  bool battery = false;
+  std::shared_ptr<const BPatch> surface;
+  Vehicle vehicle;
+  Vec2 start, goal;
+};
+
+/// A local-stage configuration of the planner.
+struct Configuration {
+  std::string name;
+  PathOptimizerOptions local;
+};
+
+Configuration configuration(PathFormulation formulation, PathSolver solver,
+                            std::size_t control_points, std::size_t restarts) {
+  Configuration c;
+  c.local.formulation = formulation;
+  c.local.solver = solver;
+  c.local.control_points = control_points;
+  c.local.max_control_points = std::max(c.local.max_control_points, control_points);
+  c.local.restarts = restarts;
+  c.name = formulation == PathFormulation::kSimultaneous
+               ? std::string("simultaneous")
+               : "nested " + std::string(to_string(solver));
+  c.name += ", M " + std::to_string(control_points) + ", " + std::to_string(restarts) +
+            (restarts == 1 ? " restart" : " restarts");
+  return c;
+}
+
+/// The multistart reference: the nested Ipopt stage (4 restarts) and the
+/// simultaneous NLP at 8, 16 and 32 control points, and NLopt's LBFGS (4
+/// restarts) and BOBYQA (derivative-free; it stops on its own tolerance, so
+/// no restarts) at 8. The simultaneous NLP searches at the optimiser's own
+/// default spacing (kSearchSpacingFactor times the final one): at the final
+/// spacing its finite-difference Hessian takes minutes per candidate on the
+/// battery. Quick mode: the nested Ipopt stage at 16 control points with 2
+/// restarts.
+std::vector<Configuration> reference_configurations(bool quick) {
+  if (quick) return {configuration(PathFormulation::kNested, PathSolver::kIpopt, 16, 2)};
+  std::vector<Configuration> out;
+  for (const std::size_t m : {8, 16, 32}) {
+    out.push_back(configuration(PathFormulation::kNested, PathSolver::kIpopt, m, 4));
+    out.push_back(configuration(PathFormulation::kSimultaneous, PathSolver::kIpopt, m, 0));
+  }
+  out.push_back(configuration(PathFormulation::kNested, PathSolver::kNloptLbfgs, 8, 4));
+  out.push_back(configuration(PathFormulation::kNested, PathSolver::kNloptBobyqa, 8, 0));
+  return out;
+}
+
+/// One plan of one problem with one configuration.
+struct Run {
+  PlannerStatus status = PlannerStatus::kUnreachable;
+  std::string message;
+  double travel_time = kInf;  ///< the best trajectory's [s]
+  double seconds = 0.0;       ///< plan() wall time
+  std::size_t optimisations = 0, converged = 0;
+  std::size_t feedback_rounds = 0;
+  bool verified = false;  ///< verify_profile and a fresh evaluation agree
+  std::string verification;
+  bool feasible() const { return std::isfinite(travel_time); }
+};
+
+/// The best trajectory passes verify_profile against its own limits, and a
+/// fresh evaluation of its curve gives the same travel time (1e-9 relative).
+void verify(const Problem& p, const PlannerOptions& options, const Trajectory& best, Run& run) {
+  const ProfileVerification check = verify_profile(*best.limits, best.profile);
+  if (!check.passed()) {
+    run.verification = "verify_profile: " + std::string(to_string(check.status));
+    return;
+  }
+  TrajectoryOptions evaluation;
+  evaluation.station_spacing =
+      resolve_station_spacing(options.station_spacing, *p.surface, p.vehicle);
+  const Trajectory fresh =
+      evaluate_trajectory(*p.surface, p.vehicle, best.path->curve(), evaluation);
+  const double difference = std::abs(fresh.travel_time() - best.travel_time());
+  if (!fresh.feasible() || !(difference <= 1e-9 * best.travel_time())) {
+    run.verification = "fresh evaluation: " + sig3(fresh.travel_time()) + " s against " +
+                       sig3(best.travel_time()) + " s";
+    return;
+  }
+  run.verified = true;
+}
+
+Run run_plan(const Problem& p, const PathOptimizerOptions& local) {
+  PlannerOptions options;
+  options.local = local;
+  if (local.formulation == PathFormulation::kSimultaneous && local.station_spacing == 0.0) {
+    options.local.station_spacing = search_station_spacing(local, *p.surface, p.vehicle);
+  }
+  const PlanningProblem problem(*p.surface, p.vehicle, p.start, p.goal);
+  const PlannerResult result = plan(problem, options);
+  Run run;
+  run.status = result.status;
+  run.message = result.message;
+  run.seconds = result.seconds.total;
+  run.feedback_rounds = result.feedback_rounds;
+  for (const CandidateOutcome& c : result.candidates) {
+    if (!c.optimization) continue;
+    ++run.optimisations;
+    run.converged += c.optimization->converged ? 1 : 0;
+  }
+  if (const Trajectory* best = result.best()) {
+    run.travel_time = best->travel_time();
+    verify(p, options, *best, run);
+  }
+  return run;
+}
+
+/// One problem: the default plan and the reference plans.
+struct Case {
+  Problem problem;
+  Run default_run;
+  std::vector<Run> reference;  ///< one per reference configuration
+  /// The best travel time over the default and every reference plan [s].
+  double reference_time = kInf;
+  /// 100 (default / reference − 1); NaN unless both are feasible.
+  double above_reference_percent() const { return above_percent(default_run); }
+  double above_percent(const Run& r) const {
+    return r.feasible() && std::isfinite(reference_time)
+               ? 100.0 * (r.travel_time / reference_time - 1.0)
+               : kNaN;
+  }
+};
+
+Case run_case(Problem problem, const std::vector<Configuration>& reference) {
+  Case c;
+  c.problem = std::move(problem);
+  c.default_run = run_plan(c.problem, PathOptimizerOptions{});
+  c.reference_time = c.default_run.travel_time;
+  for (const Configuration& config : reference) {
+    c.reference.push_back(run_plan(c.problem, config.local));
+    c.reference_time = std::min(c.reference_time, c.reference.back().travel_time);
+  }
+  return c;
+}
+
+std::vector<Problem> battery_problems(std::size_t seeds) {
+  std::vector<Problem> out;
+  for (std::size_t seed = 1; seed <= seeds; ++seed) {
+    Problem p;
+    p.name = "fractal seed " + std::to_string(seed);
+    p.battery = true;
+    p.surface = std::make_shared<const BPatch>(
+        BPatch::interpolate(generate_fractal_terrain(battery_terrain(seed))));
+    p.vehicle = battery_point_mass_ugv();
+    p.start = kBatteryStart;
+    p.goal = kBatteryGoal;
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+/// Every bundled DEM with the documented rover, 10 % -> 90 % of its diagonal.
+std::vector<Problem> dem_problems(const fs::path& data_dir) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(data_dir / "terrain")) {
+    if (entry.path().extension() == ".asc") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  const Vehicle rover = load_vehicle((data_dir / "vehicles" / "rover.yaml").string());
+  std::vector<Problem> out;
+  for (const fs::path& file : files) {
+    const ElevationGrid grid = read_esri_ascii(file.string());
+    Problem p;
+    p.name = file.stem().string();
+    p.surface = std::make_shared<const BPatch>(BPatch::interpolate(grid));
+    p.vehicle = rover;
+    const Vec2 low(grid.x_min(), grid.y_min()), high(grid.x_max(), grid.y_max());
+    p.start = low + 0.1 * (high - low);
+    p.goal = low + 0.9 * (high - low);
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+double fraction(std::size_t part, std::size_t whole) {
+  return whole == 0 ? kNaN : static_cast<double>(part) / static_cast<double>(whole);
+}
+
+std::string percent_text(double f) {
+  return std::isfinite(f) ? fmt("%.1f", 100.0 * f) + " %" : "–";
+}
+
+std::string pass_text(bool pass) {
+  return pass ? "**met**" : "**not met**";
+}
+
+/// Statistics of one configuration (or the default) over a set of cases.
+struct Stats {
+  std::size_t cases = 0, feasible = 0, verified = 0, optimisations = 0, converged = 0;
+  std::size_t within = 0;  ///< feasible and within kWithinPercent of the reference
+  double median_above = kNaN, worst_above = kNaN, median_seconds = kNaN;
+};
+
+template <class RunOf>
+Stats stats(const std::vector<Case>& cases, bool battery_only, RunOf run_of) {
+  Stats s;
+  std::vector<double> above, seconds;
+  for (const Case& c : cases) {
+    if (battery_only && !c.problem.battery) continue;
+    const Run& r = run_of(c);
+    ++s.cases;
+    s.optimisations += r.optimisations;
+    s.converged += r.converged;
+    seconds.push_back(r.seconds);
+    if (!r.feasible()) continue;
+    ++s.feasible;
+    s.verified += r.verified ? 1 : 0;
+    const double a = c.above_percent(r);
+    above.push_back(a);
+    s.within += a <= kWithinPercent ? 1 : 0;
+  }
+  if (!above.empty()) {
+    s.median_above = upper_median(above);
+    s.worst_above = *std::max_element(above.begin(), above.end());
+  }
+  if (!seconds.empty()) s.median_seconds = upper_median(seconds);
+  return s;
+}
+
+/// Percent above the reference per case, for the default and every
+/// reference configuration (one column each).
+FigureLink spread_figure(const std::vector<Case>& cases,
+                         const std::vector<Configuration>& configurations, const fs::path& dir) {
+  GnuplotFigure plot(dir, "spread_above_reference");
+  auto data = open_output_file(plot.file(".dat"));
+  data << "# column: 0 = default, k = reference configuration k; y: percent above the "
+          "reference (feasible plans)\n";
+  for (const Case& c : cases) {
+    if (const double a = c.above_reference_percent(); std::isfinite(a))
+      data << 0 << " " << csv_number(a) << "\n";
+    for (std::size_t k = 0; k < c.reference.size(); ++k)
+      if (const double a = c.above_percent(c.reference[k]); std::isfinite(a))
+        data << k + 1 << " " << csv_number(a) << "\n";
+  }
+  close_output_file(data, plot.file(".dat"));
+  std::string tics = "set xtics rotate by -35 left (\"default\" 0";
+  for (std::size_t k = 0; k < configurations.size(); ++k)
+    tics += ", " + gnuplot_string(configurations[k].name) + " " + std::to_string(k + 1);
+  tics += ")\n";
+  plot.describe("travel time above the multistart reference per case and configuration",
+                plot.name(".dat"))
+      .canvas(1400, 700)
+      .title("Travel time above the multistart reference, every case");
+  plot << tics << "set xrange [-0.5:" + std::to_string(configurations.size()) + ".5]\n"
+       << "set ylabel 'above the reference [%]'\nset grid ytics\nset key off\n"
+       << "set bmargin 9\nset yrange [-0.1:*]\n";
+  plot.plot({gnuplot_string(plot.name(".dat")) + " using 1:2 with points pt 7 ps 1.2"});
+  plot.render();
+  return {"Travel time above the multistart reference, every case and configuration",
+          plot.name(".png")};
+}
+
+}  // namespace
+
+void run_optimiser_quality(const ExperimentContext& context) {
+  require_gnuplot();
+  const auto start = Clock::now();
+  const bool quick = context.quick;
+  std::vector<Problem> problems = battery_problems(quick ? 2 : 25);  // issue #12: seeds 1-25
+  if (!quick) {
+    for (Problem& p : dem_problems(context.data_dir)) problems.push_back(std::move(p));
+  }
+  const std::vector<Configuration> reference = reference_configurations(quick);
+  std::vector<Case> cases;
+  for (Problem& p : problems) cases.push_back(run_case(std::move(p), reference));
+
+  const auto default_of = [](const Case& c) -> const Run& { return c.default_run; };
+  const Stats all = stats(cases, false, default_of);
+  const Stats battery = stats(cases, true, default_of);
+  const double converged = fraction(all.converged, all.optimisations);
+  const double within = fraction(battery.within, battery.cases);
+
+  ExperimentSummary& summary = *context.summary;
+  summary.set("cases", static_cast<double>(all.cases), "count");
+  summary.set("battery_cases", static_cast<double>(battery.cases), "count");
+  summary.set("default_feasible", static_cast<double>(all.feasible), "count");
+  summary.set("default_verified", static_cast<double>(all.verified), "count",
+              "best trajectories accepted by verify_profile and a fresh evaluation");
+  summary.set("default_local_optimisations", static_cast<double>(all.optimisations), "count");
+  summary.set("default_converged_fraction", converged, "1",
+              "local optimisations converged by the solver's own status, every case");
+  summary.set("battery_within_1pct_fraction", within, "1",
+              "battery cases whose default plan is within 1 % of the multistart reference");
+  summary.set("battery_median_above_reference_percent", battery.median_above, "%");
+  summary.set("battery_worst_above_reference_percent", battery.worst_above, "%");
+  summary.set("battery_median_plan_seconds", battery.median_seconds, "s");
+  summary.set("reference_configurations", static_cast<double>(reference.size()), "count");
+
+  Table targets({"target (issue #12)", "measured", ""});
+  targets.row({"every case a feasible, verified trajectory (or exit 2 where no corridor exists)",
+               std::to_string(all.verified) + " of " + std::to_string(all.cases),
+               pass_text(all.verified == all.cases)});
+  targets.row({">= 90 % of local optimisations converge (solver status)",
+               percent_text(converged) + " (" + std::to_string(all.converged) + " of " +
+                   std::to_string(all.optimisations) + ")",
+               pass_text(converged >= kConvergedTarget)});
+  targets.row({"default within 1 % of the multistart reference on >= 90 % of the battery",
+               percent_text(within) + " (" + std::to_string(battery.within) + " of " +
+                   std::to_string(battery.cases) + ")",
+               pass_text(within >= kWithinTarget)});
+  targets.row({"median planning time on the battery <= 2 s", sig3(battery.median_seconds) + " s",
+               pass_text(battery.median_seconds <= kSecondsTarget)});
+
+  Table per_configuration({"configuration", "feasible", "verified", "converged",
+                           "within 1 % (battery)", "median above ref. [%]", "worst above ref. [%]",
+                           "median plan time [s]"});
+  const auto config_row = [&](const std::string& name, const Stats& s, const Stats& b) {
+    per_configuration.row({name, std::to_string(s.feasible) + " / " + std::to_string(s.cases),
+                           std::to_string(s.verified),
+                           percent_text(fraction(s.converged, s.optimisations)),
+                           std::to_string(b.within) + " / " + std::to_string(b.cases),
+                           sig3(s.median_above), sig3(s.worst_above), sig3(s.median_seconds)});
+  };
+  config_row("default (PlannerOptions{})", all, battery);
+  for (std::size_t k = 0; k < reference.size(); ++k) {
+    const auto of = [k](const Case& c) -> const Run& { return c.reference[k]; };
+    config_row(reference[k].name, stats(cases, false, of), stats(cases, true, of));
+  }
+
+  Table per_case({"case", "status", "travel time [s]", "reference [s]", "above ref. [%]",
+                  "converged", "feedback rounds", "plan time [s]", "verified"});
+  for (const Case& c : cases) {
+    const Run& r = c.default_run;
+    per_case.row({c.problem.name, std::string(to_string(r.status)),
+                  r.feasible() ? sig3(r.travel_time) : "–",
+                  std::isfinite(c.reference_time) ? sig3(c.reference_time) : "–",
+                  sig3(c.above_reference_percent()),
+                  std::to_string(r.converged) + " / " + std::to_string(r.optimisations),
+                  std::to_string(r.feedback_rounds), sig3(r.seconds),
+                  r.feasible() ? (r.verified ? "yes" : "no: " + r.verification) : "–"});
+  }
+
+  const PathOptimizerOptions defaults;
+  Report report("optimiser-quality: the planner's local stage against a multistart reference");
+  report
+      .paragraph(
+          "Cases: " + std::to_string(battery.cases) +
+          " terrains of the fractal battery of issue #12 (Iagnemma, Shimoda & Shiller, IROS "
+          "2008, §V: 129 × 129 nodes at 0.24 m, D 2.05, height scale 4.2 m, a 1 m undulation "
+          "over 30 m, six 1 m peaks; point-mass UGV with μ 0.7, h 0.06 m, b 0.124 m, 7 m/s, "
+          "drive 3, brake 5 m/s²; from (2, 2) to (28.5, 28.5))" +
+          (quick ? std::string(" (quick mode: no DEMs).")
+                 : " and every bundled DEM with `data/vehicles/rover.yaml` from 10 % to 90 % "
+                   "of its diagonal, on the interpolating B-patch."))
+      .paragraph(
+          "The default plan is `talus::plan` with `PlannerOptions{}` (local stage: " +
+          std::string(to_string(defaults.formulation)) + " formulation, " +
+          std::string(to_string(defaults.solver)) + ", " + std::to_string(defaults.control_points) +
+          " control points, " + std::to_string(defaults.restarts) +
+          " restarts). The reference of a case is the fastest trajectory over the default plan "
+          "and one plan per configuration below (the same global stage each time). A local "
+          "optimisation converges when the solver says so: Ipopt Solve_Succeeded or "
+          "Solved_To_Acceptable_Level, NLopt a tolerance stop. Every best trajectory is checked "
+          "by `verify_profile` against its own limits and by a fresh `evaluate_trajectory` of "
+          "its curve (same travel time to 1e-9).")
+      .heading("Targets")
+      .table(targets)
+      .heading("Per configuration (nested against simultaneous)")
+      .table(per_configuration)
+      .heading("Per case, default plan")
+      .table(per_case);
+  for (const Case& c : cases)
+    if (!c.default_run.feasible())
+      report.bullet(c.problem.name + ": " + std::string(to_string(c.default_run.status)) + ": " +
+                    c.default_run.message);
+  const std::vector<FigureLink> links = {spread_figure(cases, reference, context.output_dir)};
+  summary.set("wall_seconds", seconds_since(start), "s");
+  report.paragraph("Wall time: " + sig3(seconds_since(start)) + " s.");
+  report.write(context.output_dir, "spread_above_reference.dat", links);
+}
+
+}  // namespace talus::experiments

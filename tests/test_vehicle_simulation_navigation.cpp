@@ -4,12 +4,15 @@
 // hazard on the direct line.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
+#include "talus/dynamics/navigation_lookahead.hpp"
 #include "talus/dynamics/potential_field_navigation.hpp"
 
 namespace talus {
@@ -55,6 +58,69 @@ TEST(PotentialFieldNavigation, AvoidsAHazardOnTheDirectLine) {
       navigate_potential_field(ground, ugv(), Vec2(0, 0), 0.0, goal(15.0, 0.0, 2.0), hazards);
   EXPECT_EQ(again.navigation_time, r.navigation_time);
   EXPECT_EQ(again.simulation.final.state.position, r.simulation.final.state.position);
+}
+
+/// A Gaussian crest across the x axis: 0.25 m high, σ 0.7 m, at x = 9 m, so
+/// its top curves at κ = 0.25 / 0.7² = 0.51 1/m and the UGV loses contact
+/// above about √(g / κ) = 4.4 m/s there.
+BPatch crest() {
+  ElevationGrid grid(131, 41, 0.2, -2.0, -4.0);
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      const double x = grid.node_position(i, j).x();
+      grid.at(i, j) = 0.25 * std::exp(-(x - 9.0) * (x - 9.0) / (2.0 * 0.7 * 0.7));
+    }
+  return BPatch::interpolate(grid);
+}
+
+// §IV's purpose: the standard field drives over the crest at the waypoint's
+// 5.5 m/s and fails; with the lookahead the predicted path meets the crest's
+// contact limit within the horizon, the speed is capped before the crest and
+// the run reaches the goal.
+TEST(PotentialFieldNavigation, TheLookaheadSlowsForACrestTheStandardFieldTakesTooFast) {
+  const BPatch ground = crest();
+  PotentialFieldNavigationOptions standard;
+  const PotentialFieldNavigationResult fast =
+      navigate_potential_field(ground, ugv(), Vec2(0, 0), 0.0, goal(20.0, 0.0, 5.5), {}, standard);
+  std::cout << "standard: " << fast.brief_report() << "\n";
+  EXPECT_NE(fast.status, TrackingStatus::kReachedGoal);
+  EXPECT_EQ(fast.lookahead_caps_applied, 0u);
+
+  PotentialFieldNavigationOptions near_optimal;
+  near_optimal.lookahead.enabled = true;
+  const PotentialFieldNavigationResult safe = navigate_potential_field(
+      ground, ugv(), Vec2(0, 0), 0.0, goal(20.0, 0.0, 5.5), {}, near_optimal);
+  std::cout << "lookahead: " << safe.brief_report() << "\n";
+  ASSERT_EQ(safe.status, TrackingStatus::kReachedGoal) << safe.message;
+  EXPECT_GT(safe.lookahead_caps_applied, 0u);
+  ASSERT_EQ(safe.lookahead_caps.size(), safe.commands.size());
+  // Over the crest's top the UGV was below the contact limit √(g / κ).
+  const double limit = std::sqrt(9.81 / (0.25 / (0.7 * 0.7)));
+  for (const VehicleSample& k : safe.simulation.trace)
+    if (std::abs(k.state.position.x() - 9.0) < 0.2) {
+      EXPECT_LT(k.state.velocity.x(), limit);
+    }
+}
+
+TEST(NavigationLookahead, SafeSpeedsBrakeAheadOfTheCrestsContactLimit) {
+  const BPatch ground = crest();
+  std::vector<Vec2> points;
+  for (double x = 0.0; x <= 14.0; x += 0.5) points.emplace_back(x, 0.0);
+  const std::vector<double> safe = safe_speed_profile(ground, ugv(), points);
+  ASSERT_EQ(safe.size(), points.size());
+  const double limit = std::sqrt(9.81 / (0.25 / (0.7 * 0.7)));
+  // At the top: near the contact limit (the rigid body's own, within 15 %).
+  EXPECT_NEAR(safe[18], limit, 0.15 * limit);
+  // Braking ahead of it: the safe speed rises no faster than braking allows,
+  // the brake's 5 m/s² plus gravity on the crest's steepest slope
+  // (0.25 / 0.7 e^(-1/2) = 0.22), over steps of at most 0.5 m × 1.03 of 3-D length.
+  const double decel = 5.0 + 9.81 * 0.22;
+  for (std::size_t k = 1; k <= 18; ++k) {
+    EXPECT_LE(safe[k - 1] * safe[k - 1], safe[k] * safe[k] + 2.0 * decel * 0.5 * 1.03 + 1e-9) << k;
+  }
+  // Off the map: nothing is safe.
+  EXPECT_EQ(safe_speed_profile(ground, ugv(), {Vec2(0, 0), Vec2(100, 0)}).front(), 0.0);
+  EXPECT_THROW(safe_speed_profile(ground, ugv(), {Vec2(0, 0)}), InputError);
 }
 
 TEST(PotentialFieldNavigation, BadInputIsAnInputError) {

@@ -41,6 +41,7 @@ void PotentialFieldNavigationOptions::validate() const {
   require(speed_kp >= 0.0 && speed_kp < inf, "speed_kp", speed_kp, ">= 0");
   require(speed_kd >= 0.0 && speed_kd < inf, "speed_kd", speed_kd, ">= 0");
   require(time_limit > 0.0 && time_limit < inf, "time_limit", time_limit, "positive");
+  lookahead.validate();
   simulation.validate();
 }
 
@@ -48,9 +49,10 @@ std::string PotentialFieldNavigationResult::brief_report() const {
   char line[400];
   std::snprintf(line, sizeof line,
                 "potential-field navigation: %s in %.4g s, %zu waypoints reached, hazard "
-                "clearance %.3g m%s%s\n",
+                "clearance %.3g m, lookahead capped the speed on %zu of %zu ticks%s%s\n",
                 std::string(to_string(status)).c_str(), navigation_time, waypoints_reached,
-                min_hazard_clearance, message.empty() ? "" : "; ", message.c_str());
+                min_hazard_clearance, lookahead_caps_applied, commands.size(),
+                message.empty() ? "" : "; ", message.c_str());
   return line + simulation.brief_report();
 }
 
@@ -97,36 +99,27 @@ PotentialFieldNavigationResult navigate_potential_field(
   driver->rng.seed(options.seed);
   const auto goal_index = waypoints.points.size() - 1;
 
-  const VehicleController controller = [&, driver](double t, const VehicleState& s) {
-    VehicleControls c;
-    const Mat3 rot = s.rotation();
-    const Vec2 cg(s.position.x(), s.position.y());
-    while (driver->waypoint < goal_index &&
-           (waypoints.points[driver->waypoint] - cg).norm() < options.waypoint_radius)
-      ++driver->waypoint;
-    const Vec2 target = waypoints.points[driver->waypoint];
-    if (driver->waypoint == goal_index && (target - cg).norm() < options.waypoint_radius) {
-      result.waypoints_reached = waypoints.points.size();
-      c.stop = true;
-      return c;
-    }
-    result.waypoints_reached = driver->waypoint;
-    // Body-frame planar coordinates of a world point (heading frame on the plane).
-    const Vec3 fx = rot.col(0);
-    const Vec2 forward = Vec2(fx.x(), fx.y()).normalized();
+  // The field's inputs at a planar pose (c.g. `cg`, heading `forward`) with
+  // the gravity components in the body frame, towards waypoint `waypoint`
+  // (advanced past those within reach); the actual state and the
+  // lookahead's predictions both use it.
+  const auto inputs_at = [&](const Vec2& cg, const Vec2& forward, double gravity_lateral,
+                             double gravity_normal, std::size_t& waypoint) {
+    while (waypoint < goal_index &&
+           (waypoints.points[waypoint] - cg).norm() < options.waypoint_radius)
+      ++waypoint;
     const Vec2 left(-forward.y(), forward.x());
     const auto local = [&](const Vec2& p) {
       return Vec2((p - cg).dot(forward), (p - cg).dot(left));
     };
     TrajectorySpaceInputs in = base;
-    const Vec2 to_target = local(target);
+    const Vec2 to_target = local(waypoints.points[waypoint]);
     const double bearing = std::atan2(to_target.y(), to_target.x());
     in.desired_curvature =
         std::clamp(arc_curvature(to_target), -in.max_curvature, in.max_curvature);
-    in.desired_speed = waypoints.speed[driver->waypoint];
-    const Vec3 gravity_body = rot.transpose() * Vec3(0.0, 0.0, -g);
-    in.gravity_lateral = gravity_body.y();
-    in.gravity_normal = std::max(1e-6, -gravity_body.z());
+    in.desired_speed = waypoints.speed[waypoint];
+    in.gravity_lateral = gravity_lateral;
+    in.gravity_normal = std::max(1e-6, gravity_normal);
     for (const DiscHazard& h : hazards) {
       const Vec2 c_local = local(h.centre);
       const double distance = c_local.norm() - h.radius;
@@ -155,9 +148,85 @@ PotentialFieldNavigationResult navigate_potential_field(
       }
       in.hazards.push_back(th);
     }
+    return in;
+  };
+
+  // §IV: the reduced model driven by the field over the horizon from the
+  // actual pose and command; the safe speed where the prediction exceeds
+  // the safe profile (the smallest such), +inf where it never does.
+  const NavigationLookaheadOptions& ahead = options.lookahead;
+  const auto lookahead_cap = [&](Vec2 cg, double heading, double speed, std::size_t waypoint,
+                                 TrajectoryPoint command, std::mt19937_64 rng) {
+    const auto steps = static_cast<std::size_t>(std::ceil(ahead.horizon / ahead.step - 1e-9));
+    std::vector<Vec2> points = {cg};
+    std::vector<double> speeds = {speed};
+    for (std::size_t k = 0; k < steps; ++k) {
+      if (k > 0) {
+        if (!surface.contains(cg)) break;
+        const SurfacePoint z = surface.evaluate(cg);
+        const Vec3 normal = Vec3(-z.gradient.x(), -z.gradient.y(), 1.0).normalized();
+        const Vec3 along =
+            Vec3(std::cos(heading), std::sin(heading),
+                 z.gradient.x() * std::cos(heading) + z.gradient.y() * std::sin(heading))
+                .normalized();
+        const Vec3 left = normal.cross(along);
+        const TrajectorySpaceInputs in = inputs_at(cg, Vec2(std::cos(heading), std::sin(heading)),
+                                                   -g * left.z(), g * normal.z(), waypoint);
+        command = descend(in, command, rng, options.descent);
+      }
+      const double wanted = options.speed_kp * (command.speed - speed);
+      speed = std::max(
+          0.0, speed + std::clamp(wanted, -vehicle.max_decel, vehicle.max_accel) * ahead.step);
+      heading += speed * command.curvature * ahead.step;
+      cg += speed * ahead.step * Vec2(std::cos(heading), std::sin(heading));
+      points.push_back(cg);
+      speeds.push_back(speed);
+      // The run ends at the goal: nothing beyond it needs to be safe.
+      if ((waypoints.points[goal_index] - cg).norm() < options.waypoint_radius) break;
+    }
+    double cap = std::numeric_limits<double>::infinity();
+    if (points.size() < 2) return cap;
+    const std::vector<double> safe = safe_speed_profile(surface, vehicle, points);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      // The top speed is a limit of its own, not a dynamic one to keep a margin from.
+      if (safe[k] >= vehicle.max_speed) continue;
+      const double allowed = ahead.safety_factor * safe[k];
+      if (speeds[k] > allowed) cap = std::min(cap, allowed);
+    }
+    return cap;
+  };
+
+  const VehicleController controller = [&, driver](double t, const VehicleState& s) {
+    VehicleControls c;
+    const Mat3 rot = s.rotation();
+    const Vec2 cg(s.position.x(), s.position.y());
+    const Vec3 fx = rot.col(0);
+    const Vec2 forward = Vec2(fx.x(), fx.y()).normalized();
+    const Vec3 gravity_body = rot.transpose() * Vec3(0.0, 0.0, -g);
+    const TrajectorySpaceInputs in =
+        inputs_at(cg, forward, gravity_body.y(), -gravity_body.z(), driver->waypoint);
+    const Vec2 target = waypoints.points[driver->waypoint];
+    if (driver->waypoint == goal_index && (target - cg).norm() < options.waypoint_radius) {
+      result.waypoints_reached = waypoints.points.size();
+      c.stop = true;
+      return c;
+    }
+    result.waypoints_reached = driver->waypoint;
     if (t == 0.0) driver->command = TrajectoryPoint{std::max(0.0, s.velocity.x()), 0.0};
     driver->command = descend(in, driver->command, driver->rng, options.descent);
+    double cap = std::numeric_limits<double>::infinity();
+    if (ahead.enabled) {
+      // The prediction draws from a copy of the descent's generator, so the
+      // lookahead never changes the actual run's random sequence.
+      cap = lookahead_cap(cg, std::atan2(forward.y(), forward.x()), std::max(0.0, s.velocity.x()),
+                          driver->waypoint, driver->command, driver->rng);
+      if (driver->command.speed > cap) {
+        driver->command.speed = cap;
+        ++result.lookahead_caps_applied;
+      }
+    }
     result.commands.push_back(driver->command);
+    result.lookahead_caps.push_back(cap);
     c.steering = std::clamp(std::atan(wheelbase * driver->command.curvature), -options.max_steering,
                             options.max_steering);
     const double dt = t - driver->last_t;

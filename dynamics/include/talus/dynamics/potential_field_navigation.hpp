@@ -2,8 +2,9 @@
 /// @file
 /// navigate_potential_field: the standard potential-field navigation of
 /// Iagnemma, Shimoda, Shiller (IROS 2008, §III) driving the simulated vehicle
-/// (vehicle_simulation.hpp) through waypoints past disc-shaped hazards. No
-/// model-based lookahead (§IV) yet.
+/// (vehicle_simulation.hpp) through waypoints past disc-shaped hazards,
+/// optionally with the model-based lookahead of §IV (navigation_lookahead.hpp:
+/// the "near-optimal" navigation; without it the "standard" one).
 ///
 /// Every control tick the driver:
 /// 1. takes the current waypoint (the first one not yet within
@@ -17,7 +18,10 @@
 ///    waypoint's bearing A_d = |α|;
 /// 3. takes one descent step of the trajectory-space field
 ///    (trajectory_space_field.hpp) from the last commanded (v, κ);
-/// 4. steers δ = atan(L κ) (kinematic bicycle, L the wheelbase, clipped to
+/// 4. with the lookahead enabled, caps the commanded speed at the safe speed
+///    where the reduced model's prediction over the horizon exceeds the
+///    safe profile (navigation_lookahead.hpp);
+/// 5. steers δ = atan(L κ) (kinematic bicycle, L the wheelbase, clipped to
 ///    the steering limit) and drives with PD speed control,
 ///    F = m (kp (v − v_x) − kd a_x), a_x the measured forward acceleration
 ///    (finite difference of v_x over the tick) plus the weight's component
@@ -30,6 +34,7 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/types.hpp"
+#include "talus/dynamics/navigation_lookahead.hpp"
 #include "talus/dynamics/trajectory_space_field.hpp"
 #include "talus/dynamics/trajectory_tracking.hpp"
 #include "talus/dynamics/vehicle.hpp"
@@ -44,17 +49,18 @@ struct DiscHazard {
 };
 
 struct PotentialFieldNavigationOptions {
-  TrajectorySpaceGains gains;           ///< the paper's
-  double velocity_unit = 0.01;          ///< TrajectorySpaceInputs::velocity_unit [m/s]
-  DescentOptions descent;               ///< the per-tick step
-  double max_steering = 0.6;            ///< δ limit [rad] (0, π/2); κ_MAX = tan(δ)/L
-  double waypoint_radius = 0.3;         ///< a waypoint is reached within this [m] (> 0)
-  double sensor_radius = 3.0;           ///< hazards farther than this are not seen [m] (> 0)
-  double speed_kp = 4.0;                ///< [1/s] (>= 0)
-  double speed_kd = 0.1;                ///< [-] (>= 0)
-  double time_limit = 60.0;             ///< simulated [s] (> 0)
-  std::uint64_t seed = 1;               ///< the descent's randomisation
-  VehicleSimulationOptions simulation;  ///< end_time is replaced by time_limit
+  TrajectorySpaceGains gains;            ///< the paper's
+  double velocity_unit = 0.01;           ///< TrajectorySpaceInputs::velocity_unit [m/s]
+  DescentOptions descent;                ///< the per-tick step
+  double max_steering = 0.6;             ///< δ limit [rad] (0, π/2); κ_MAX = tan(δ)/L
+  double waypoint_radius = 0.3;          ///< a waypoint is reached within this [m] (> 0)
+  double sensor_radius = 3.0;            ///< hazards farther than this are not seen [m] (> 0)
+  double speed_kp = 4.0;                 ///< [1/s] (>= 0)
+  double speed_kd = 0.1;                 ///< [-] (>= 0)
+  double time_limit = 60.0;              ///< simulated [s] (> 0)
+  std::uint64_t seed = 1;                ///< the descent's randomisation
+  NavigationLookaheadOptions lookahead;  ///< §IV; off by default (the standard field)
+  VehicleSimulationOptions simulation;   ///< end_time is replaced by time_limit
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -65,6 +71,10 @@ struct PotentialFieldNavigationResult {
   VehicleSimulationResult simulation;
   /// The commanded (v, κ) at every control tick.
   std::vector<TrajectoryPoint> commands;
+  /// The lookahead's speed cap at every control tick [m/s]; +inf where the
+  /// prediction stayed under the safe profile or the lookahead is off.
+  std::vector<double> lookahead_caps;
+  std::size_t lookahead_caps_applied = 0;  ///< ticks whose commanded speed the cap lowered
   std::size_t waypoints_reached = 0;
   double navigation_time = 0.0;  ///< [s]
   /// Smallest distance from the c.g. to a hazard's rim over the trace [m]

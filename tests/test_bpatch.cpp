@@ -256,8 +256,8 @@ ElevationGrid noisy_terrain(std::size_t nc, std::size_t nr, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 0.3);
   ElevationGrid grid = sample(
-      [](double x, double y) { return 20.0 * std::sin(0.3 * x) * std::cos(0.2 * y) + 0.5 * x; },
-      nc, nr, 1.0);
+      [](double x, double y) { return 20.0 * std::sin(0.3 * x) * std::cos(0.2 * y) + 0.5 * x; }, nc,
+      nr, 1.0);
   for (std::size_t j = 0; j < nr; ++j)
     for (std::size_t i = 0; i < nc; ++i) grid.at(i, j) += noise(rng);
   return grid;
@@ -287,8 +287,8 @@ Eigen::MatrixXd node_values(const Eigen::MatrixXd& control) {
 
 void expect_tensor_matches_cholmod(const ElevationGrid& grid, double lambda) {
   SmoothingSolveReport report;
-  const Eigen::MatrixXd fast = detail::smoothing_control_points(
-      grid, lambda, SmoothingSolver::tensor_pcg, &report);
+  const Eigen::MatrixXd fast =
+      detail::smoothing_control_points(grid, lambda, SmoothingSolver::tensor_pcg, &report);
   const Eigen::MatrixXd reference =
       detail::smoothing_control_points(grid, lambda, SmoothingSolver::cholmod);
   EXPECT_TRUE(report.pcg_converged) << lambda;

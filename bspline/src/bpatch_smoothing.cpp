@@ -6,8 +6,8 @@
 //   banded per-axis matrices, preconditioned in a basis of per-axis
 //   generalised eigenvectors (below);
 // - CHOLMOD: the assembled sparse system, supernodal Cholesky. The fallback
-//   when PCG does not converge (large voids, where the preconditioner, built
-//   without them, is poor), and the reference for the tests.
+//   when PCG does not converge (voids too many for the preconditioner's local
+//   correction, at small lambda), and the reference for the tests.
 #include <cblas.h>
 
 #include <Eigen/CholmodSupport>
@@ -252,6 +252,13 @@ void in_two_halves(long n, const F& f) {
   other.join();
 }
 
+/// Widths (control points) added around the voids' basis supports for the
+/// preconditioner's local void correction, tried in turn, and the largest
+/// share of all control points that correction may cover (any share up to
+/// kVoidPointsAlways points).
+constexpr std::array<long, 2> kVoidMargins = {6, 2};
+constexpr double kMaxVoidFraction = 0.1, kVoidPointsAlways = 20000.0;
+
 constexpr double kHalfSqrt2 = 0.70710678118654752440;
 
 /// Folds a vector of length m (stride `stride`) into its even part (first
@@ -390,7 +397,7 @@ class TensorSystem {
         if (!(d > 0.0)) return false;
         diag_(i, j) = static_cast<Real>(1.0 / d);
       }
-    return true;
+    return build_void_correction();
   }
 
   /// Cx^T (W o D) Cy, D the data.
@@ -453,9 +460,80 @@ class TensorSystem {
       xm_ = fold_x_.col(h).cast<double>();
       unfold(xm_.data(), 1, m_x, out.col(h).data(), 1);
     }
+    if (!omega_.empty()) {
+      // Additive local solve on the control points around the voids.
+      VectorXd local(static_cast<Eigen::Index>(omega_.size()));
+      for (std::size_t k = 0; k < omega_.size(); ++k)
+        local[static_cast<Eigen::Index>(k)] = r.data()[omega_[k]];
+      const VectorXd correction = local_.solve(local);
+      for (std::size_t k = 0; k < omega_.size(); ++k)
+        out.data()[omega_[k]] += correction[static_cast<Eigen::Index>(k)];
+    }
   }
 
  private:
+  /// The preconditioner above knows nothing of the voids: where a void leaves
+  /// control points without data (a hole, small lambda) it is far off. Add the
+  /// exact inverse of N restricted to the control points whose basis functions
+  /// reach a void node, widened by kVoidMargins (additive Schwarz): P^-1 +
+  /// R^T N_omega^-1 R, still SPD. With too many voids for any margin there is
+  /// no correction (plain PCG, CHOLMOD if it stalls). False if the local
+  /// factorisation fails.
+  bool build_void_correction() {
+    const long nc = x_.nodes, nr = y_.nodes, m_x = mx(), m_y = my();
+    if (data_.mask.minCoeff() != 0.0) return true;
+    std::vector<char> in;
+    for (const long margin : kVoidMargins) {
+      in.assign(static_cast<std::size_t>(m_x * m_y), 0);
+      for (long j = 0; j < nr; ++j)
+        for (long i = 0; i < nc; ++i) {
+          if (data_.mask(i, j) != 0.0) continue;
+          for (long b = std::max(0L, j - margin); b <= std::min(m_y - 1, j + 2 + margin); ++b)
+            for (long a = std::max(0L, i - margin); a <= std::min(m_x - 1, i + 2 + margin); ++a)
+              in[static_cast<std::size_t>(a + b * m_x)] = 1;
+        }
+      const auto count = static_cast<double>(std::count(in.begin(), in.end(), char{1}));
+      if (count <= std::max(kMaxVoidFraction * static_cast<double>(m_x * m_y), kVoidPointsAlways))
+        break;
+      in.clear();
+    }
+    // Too many voids for a local correction: plain PCG (CHOLMOD if it stalls).
+    if (in.empty()) return true;
+    std::vector<long> index(in.size(), -1);
+    for (long k = 0; k < m_x * m_y; ++k)
+      if (in[static_cast<std::size_t>(k)] != 0) {
+        index[static_cast<std::size_t>(k)] = static_cast<long>(omega_.size());
+        omega_.push_back(k);
+      }
+    std::vector<Eigen::Triplet<double>> entries;
+    for (std::size_t row = 0; row < omega_.size(); ++row) {
+      const long a = omega_[row] % m_x, b = omega_[row] / m_x;
+      for (long b2 = std::max(0L, b - 3); b2 <= std::min(m_y - 1, b + 3); ++b2)
+        for (long a2 = std::max(0L, a - 3); a2 <= std::min(m_x - 1, a + 3); ++a2) {
+          const long col = index[static_cast<std::size_t>(a2 + b2 * m_x)];
+          if (col < 0) continue;
+          const long dx = a2 - a + 3, dy = b2 - b + 3;
+          double v = lambda_ * (y_.m.band(b, dy) * x_.k.band(a, dx) +
+                                2.0 * y_.g.band(b, dy) * x_.g.band(a, dx) +
+                                y_.k.band(b, dy) * x_.m.band(a, dx));
+          // Data: valid nodes (i, j) whose basis support holds both points.
+          for (long j = std::max({0L, b - 2, b2 - 2}); j <= std::min({nr - 1, b, b2}); ++j)
+            for (long i = std::max({0L, a - 2, a2 - 2}); i <= std::min({nc - 1, a, a2}); ++i)
+              v += data_.mask(i, j) * kCollocation[a - i] * kCollocation[a2 - i] *
+                   kCollocation[b - j] * kCollocation[b2 - j];
+          if (v != 0.0) entries.emplace_back(static_cast<long>(row), col, v);
+        }
+    }
+    const auto size = static_cast<Eigen::Index>(omega_.size());
+    SparseMatrix local(size, size);
+    local.setFromTriplets(entries.begin(), entries.end());
+    local_.cholmod().nmethods = 1;
+    local_.cholmod().method[0].ordering = CHOLMOD_AMD;
+    local_.cholmod().print = 0;
+    local_.compute(local);
+    return local_.info() == Eigen::Success;
+  }
+
   /// Columns [begin, end) of N x, given values_ (the masked node values of x).
   void apply_columns(const MatrixXd& x, MatrixXd& out, long begin, long end) const {
     const long nc = x_.nodes, nr = y_.nodes, m_x = mx(), m_y = my();
@@ -534,6 +612,8 @@ class TensorSystem {
   MatrixXd nodes_, values_, back_;
   VectorXd xm_, xg_;
   MatrixR fold_x_, work_;
+  std::vector<long> omega_;  // control points (linear index) of the void correction
+  Eigen::CholmodSupernodalLLT<SparseMatrix> local_;
 };
 
 double max_abs(const MatrixXd& m) {

@@ -22,9 +22,11 @@
 ///   for λ in [1e-8, 1e4] on any grid size; 1024 × 1024 in 2.7 s and 125 MB
 ///   (bench_bpatch on a loaded 2-core machine, where CHOLMOD took 128 s and
 ///   5.7 GB). The iteration stops when its error estimate is below 1e-10 of
-///   the elevation range. NODATA voids are not in the preconditioner:
-///   large voids at small λ slow PCG down, and when it stalls the same system
-///   is solved by sparse Cholesky (SuiteSparse CHOLMOD) instead.
+///   the elevation range. Around NODATA voids the preconditioner adds an
+///   exact local solve (sparse Cholesky, SuiteSparse CHOLMOD) on the control
+///   points near them; when the voids are too many for that (over 10% of the
+///   control points and over 20000) and PCG stalls, the whole system is
+///   solved by CHOLMOD instead.
 #include <cstddef>
 #include <vector>
 

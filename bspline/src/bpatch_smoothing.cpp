@@ -592,17 +592,22 @@ class TensorSystem {
     const int ld = static_cast<int>(mx());
     const std::array<const MatrixR*, 2> wx = {&x_.w_even, &x_.w_odd}, wy = {&y_.w_even, &y_.w_odd};
     const std::array<long, 2> xoff = {0, x_.even}, yoff = {0, y_.even};
-    for (int p = 0; p < 2; ++p)
+    const int width = static_cast<int>(my());
+    for (int p = 0; p < 2; ++p) {
+      const int sx = static_cast<int>(wx[p]->rows());
+      if (sx == 0) continue;
+      // x: one product over all columns of the parity-p rows.
+      gemm(forward ? CblasTrans : CblasNoTrans, CblasNoTrans, sx, width, sx, wx[p]->data(), sx,
+           fold_x_.data() + xoff[p], ld, work_.data() + xoff[p], ld);
+      // y: one product per column parity.
       for (int q = 0; q < 2; ++q) {
-        const int sx = static_cast<int>(wx[p]->rows()), sy = static_cast<int>(wy[q]->rows());
-        if (sx == 0 || sy == 0) continue;
-        Real* block = fold_x_.data() + xoff[p] + yoff[q] * mx();
-        Real* tmp = work_.data() + xoff[p] + yoff[q] * mx();
-        gemm(forward ? CblasTrans : CblasNoTrans, CblasNoTrans, sx, sy, sx, wx[p]->data(), sx,
-             block, ld, tmp, ld);
-        gemm(CblasNoTrans, forward ? CblasNoTrans : CblasTrans, sx, sy, sy, tmp, ld, wy[q]->data(),
-             sy, block, ld);
+        const int sy = static_cast<int>(wy[q]->rows());
+        if (sy == 0) continue;
+        gemm(CblasNoTrans, forward ? CblasNoTrans : CblasTrans, sx, sy, sy,
+             work_.data() + xoff[p] + yoff[q] * mx(), ld, wy[q]->data(), sy,
+             fold_x_.data() + xoff[p] + yoff[q] * mx(), ld);
       }
+    }
   }
 
   double lambda_;
@@ -624,7 +629,7 @@ double max_abs(const MatrixXd& m) {
 /// preconditioner is not exactly symmetric). Stops when the preconditioned
 /// residual, an estimate of the remaining error in the control points, is
 /// below kTolerance times the data's elevation range.
-constexpr double kTolerance = 1e-10;
+constexpr double kTolerance = 1e-9;
 constexpr std::size_t kMaxIterations = 120;
 /// From this iteration on, PCG gives up (and CHOLMOD takes over) when the mean
 /// convergence rate so far would not reach the tolerance by kMaxIterations.

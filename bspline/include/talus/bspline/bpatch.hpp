@@ -21,7 +21,7 @@
 ///   Grams), applied with dense per-axis products (OpenBLAS). 15-25 iterations
 ///   for λ in [1e-8, 1e4] on any grid size; 1024 × 1024 in 2.7 s and 125 MB
 ///   (bench_bpatch on a loaded 2-core machine, where CHOLMOD took 128 s and
-///   5.7 GB). The iteration stops when its error estimate is below 1e-10 of
+///   5.7 GB). The iteration stops when its error estimate is below 1e-9 of
 ///   the elevation range. Around NODATA voids the preconditioner adds an
 ///   exact local solve (sparse Cholesky, SuiteSparse CHOLMOD) on the control
 ///   points near them; when the voids are too many for that (over 10% of the

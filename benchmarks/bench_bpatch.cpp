@@ -7,6 +7,7 @@
 /// synthetic grids and the path) happens outside the timed loops.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +17,7 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
+#include "talus/bspline/detail/smoothing_solver.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/esri_ascii.hpp"
@@ -136,17 +138,37 @@ void BM_BPatchSmoothing(benchmark::State& state) {
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n * n));
 }
-// Wall-clock time: CHOLMOD factors with OpenMP threads, which the default
-// (main-thread) CPU time would not count. The 256 case takes seconds, so it
-// runs once per repetition to keep the whole binary well under a minute.
+// Wall-clock time: the solver's dense products run on OpenBLAS threads and its
+// matrix-free products on two threads, which the default (main-thread) CPU
+// time would not count. fit_smoothing() solves by tensor PCG (see bpatch.hpp).
 BENCHMARK(BM_BPatchSmoothing)
     ->Arg(64)
     ->Arg(128)
+    ->Arg(256)
+    ->Arg(512)
+    ->Arg(1024)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3)
     ->UseRealTime();
-BENCHMARK(BM_BPatchSmoothing)
+
+/// The same fit by the assembled sparse Cholesky (CHOLMOD, AMD ordering): the
+/// previous solver, now the fallback for grids with large voids. Its ratio to
+/// BM_BPatchSmoothing in the same run is the speed-up. 1024 x 1024 is left out
+/// (about 40 s and 6 GB).
+void BM_BPatchSmoothingCholmod(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const ElevationGrid grid = synthetic_grid(n);
+  for (auto _ : state) {
+    Eigen::MatrixXd control =
+        talus::detail::smoothing_control_points(grid, 1.0, talus::detail::SmoothingSolver::cholmod);
+    benchmark::DoNotOptimize(control.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n * n));
+}
+BENCHMARK(BM_BPatchSmoothingCholmod)
     ->Arg(256)
+    ->Arg(512)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
     ->UseRealTime();

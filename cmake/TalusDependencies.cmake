@@ -21,6 +21,11 @@ if(NOT TARGET SuiteSparse::CHOLMOD)
                                                       ${SUITESPARSE_suitesparseconfig_LIBRARY})
 endif()
 
+# BLAS and LAPACK (OpenBLAS on Debian 12; CHOLMOD links them too): the dense
+# per-axis eigenvectors and products of the smoothing fit's solver (talus::bspline).
+find_dependency(BLAS)
+find_dependency(LAPACK)
+
 # Ipopt 3.11 has only a pkg-config file; its flags carry -DHAVE_CSTDDEF, which
 # IpSmartPtr.hpp needs.
 find_dependency(PkgConfig)

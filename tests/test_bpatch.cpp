@@ -5,6 +5,7 @@
 #include <random>
 
 #include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/detail/smoothing_solver.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "terrain_test_support.hpp"
@@ -241,6 +242,127 @@ TEST(BPatchSmoothing, IgnoresVoidsAndFillsThemSmoothly) {
   EXPECT_NEAR(patch.elevation(hole), quad(hole.x(), hole.y()), 0.05);
   EXPECT_FALSE(patch.on_data(hole));
   EXPECT_TRUE(patch.on_data(grid.node_position(1, 1) + Vec2(0.5, 0.5)));
+}
+
+// The smoothing fit's default solver (tensor PCG) against the assembled
+// CHOLMOD solve of the same normal equations: the same minimiser, up to the
+// solvers' tolerance, for small, unit and large lambda, square grids with an
+// even and an odd number of control points per axis (the preconditioner folds
+// each axis into even and odd halves), and a non-square grid.
+using detail::SmoothingSolver;
+using detail::SmoothingSolveReport;
+
+ElevationGrid noisy_terrain(std::size_t nc, std::size_t nr, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  ElevationGrid grid = sample(
+      [](double x, double y) { return 20.0 * std::sin(0.3 * x) * std::cos(0.2 * y) + 0.5 * x; }, nc,
+      nr, 1.0);
+  for (std::size_t j = 0; j < nr; ++j)
+    for (std::size_t i = 0; i < nc; ++i) grid.at(i, j) += noise(rng);
+  return grid;
+}
+
+double elevation_range(const ElevationGrid& grid) {
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i)
+      if (grid.valid(i, j)) {
+        lo = std::min(lo, grid.at(i, j));
+        hi = std::max(hi, grid.at(i, j));
+      }
+  return hi - lo;
+}
+
+/// The surface at the nodes: weights 1/6, 4/6, 1/6 on each axis.
+Eigen::MatrixXd node_values(const Eigen::MatrixXd& control) {
+  const double w[3] = {1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0};
+  Eigen::MatrixXd z = Eigen::MatrixXd::Zero(control.rows() - 2, control.cols() - 2);
+  for (Eigen::Index j = 0; j < z.cols(); ++j)
+    for (Eigen::Index i = 0; i < z.rows(); ++i)
+      for (int b = 0; b < 3; ++b)
+        for (int a = 0; a < 3; ++a) z(i, j) += w[a] * w[b] * control(i + a, j + b);
+  return z;
+}
+
+void expect_tensor_matches_cholmod(const ElevationGrid& grid, double lambda) {
+  SmoothingSolveReport report;
+  const Eigen::MatrixXd fast =
+      detail::smoothing_control_points(grid, lambda, SmoothingSolver::tensor_pcg, &report);
+  const Eigen::MatrixXd reference =
+      detail::smoothing_control_points(grid, lambda, SmoothingSolver::cholmod);
+  EXPECT_TRUE(report.pcg_converged) << lambda;
+  EXPECT_FALSE(report.used_cholmod) << lambda;
+  ASSERT_EQ(fast.rows(), static_cast<Eigen::Index>(grid.ncols() + 2));
+  ASSERT_EQ(fast.cols(), static_cast<Eigen::Index>(grid.nrows() + 2));
+  EXPECT_LT((fast - reference).cwiseAbs().maxCoeff(), 1e-6 * elevation_range(grid))
+      << "lambda " << lambda << ", " << grid.ncols() << " x " << grid.nrows() << ", "
+      << report.iterations << " iterations";
+}
+
+TEST(BPatchSmoothing, TensorSolverMatchesCholmodWithoutVoids) {
+  for (const auto& [nc, nr] : {std::pair<std::size_t, std::size_t>{30, 30}, {31, 31}, {41, 26}})
+    for (double lambda : {1e-6, 1.0, 100.0})
+      expect_tensor_matches_cholmod(noisy_terrain(nc, nr, 11), lambda);
+}
+
+TEST(BPatchSmoothing, TensorSolverMatchesCholmodWithScatteredVoids) {
+  ElevationGrid grid = noisy_terrain(41, 29, 12);
+  std::mt19937_64 rng(13);
+  std::uniform_int_distribution<std::size_t> ui(0, 40), uj(0, 28);
+  for (int k = 0; k < 8; ++k) grid.set_void(ui(rng), uj(rng));
+  ASSERT_GT(grid.void_count(), 5u);
+  for (double lambda : {1e-6, 1.0, 100.0}) expect_tensor_matches_cholmod(grid, lambda);
+}
+
+TEST(BPatchSmoothing, TensorSolverMatchesCholmodAroundAHole) {
+  // A 6 x 6 hole: at small lambda its control points are fixed by the
+  // curvature energy alone, which the preconditioner's local void correction
+  // (not the void-free part) gets right.
+  ElevationGrid grid = noisy_terrain(32, 32, 14);
+  for (std::size_t j = 12; j < 18; ++j)
+    for (std::size_t i = 10; i < 16; ++i) grid.set_void(i, j);
+  for (double lambda : {1e-6, 1.0, 100.0}) expect_tensor_matches_cholmod(grid, lambda);
+}
+
+TEST(BPatchSmoothing, ManyVoidsFallBackToCholmodWithTheSameFit) {
+  // A third of the nodes void, scattered: too many for the local correction
+  // (over 20000 control points and 10% of all), and at small lambda the
+  // void-free preconditioner stalls. The tensor solver says so;
+  // fit_smoothing() answers with CHOLMOD.
+  ElevationGrid grid = noisy_terrain(150, 150, 16);
+  std::mt19937_64 rng(17);
+  std::uniform_int_distribution<std::size_t> u(0, 149);
+  for (int k = 0; k < 8000; ++k) grid.set_void(u(rng), u(rng));
+  EXPECT_THROW(detail::smoothing_control_points(grid, 1e-6, SmoothingSolver::tensor_pcg),
+               SolverError);
+  SmoothingSolveReport report;
+  const Eigen::MatrixXd automatic =
+      detail::smoothing_control_points(grid, 1e-6, SmoothingSolver::automatic, &report);
+  EXPECT_TRUE(report.used_cholmod);
+  EXPECT_FALSE(report.pcg_converged);
+  const Eigen::MatrixXd reference =
+      detail::smoothing_control_points(grid, 1e-6, SmoothingSolver::cholmod);
+  EXPECT_EQ((automatic - reference).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(BPatchSmoothing, DefaultSolverIsTheTensorOneOnVoidFreeGrids) {
+  const ElevationGrid grid = noisy_terrain(25, 20, 15);
+  SmoothingSolveReport report;
+  const Eigen::MatrixXd automatic =
+      detail::smoothing_control_points(grid, 1e-8, SmoothingSolver::automatic, &report);
+  EXPECT_FALSE(report.used_cholmod);
+  EXPECT_TRUE(report.pcg_converged);
+  EXPECT_GT(report.iterations, 0u);
+  EXPECT_EQ(BPatch::fit_smoothing(grid, 1e-8).control_points(), automatic);
+  // lambda = 1e-8 is close to interpolation: the control points are only
+  // determined to ~1e-6 of the range in double precision (by CHOLMOD too), the
+  // surface at the nodes much better.
+  const Eigen::MatrixXd reference =
+      detail::smoothing_control_points(grid, 1e-8, SmoothingSolver::cholmod);
+  EXPECT_LT((automatic - reference).cwiseAbs().maxCoeff(), 1e-4 * elevation_range(grid));
+  EXPECT_LT((node_values(automatic) - node_values(reference)).cwiseAbs().maxCoeff(),
+            1e-8 * elevation_range(grid));
 }
 
 TEST(BPatchSmoothing, RejectsBadLambdaAndTooFewNodes) {

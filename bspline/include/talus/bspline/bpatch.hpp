@@ -13,7 +13,20 @@
 ///   thin-plate curvature energy ∫∫ (z_uu² + 2 z_uv² + z_vv²) du dv measured in
 ///   grid-index units u = (x - x_min)/h, v = (y - y_min)/h. Both terms are in
 ///   m², so λ is dimensionless: λ = 1 smooths over about one cell on any grid.
-///   Solved as one sparse SPD system with SuiteSparse CHOLMOD.
+///   The normal equations (one SPD system in the control points) are solved
+///   by preconditioned conjugate gradients using the tensor-product structure:
+///   matrix-free products with the banded per-axis matrices, and a
+///   preconditioner diagonal in the basis of per-axis generalised eigenvectors
+///   of (A + λ K, M) (A the collocation Gram, K and M the curvature and value
+///   Grams), applied with dense per-axis products (OpenBLAS). 15-25 iterations
+///   for λ in [1e-8, 1e4] on any grid size; 1024 × 1024 in 2.7 s and 125 MB
+///   (bench_bpatch on a loaded 2-core machine, where CHOLMOD took 128 s and
+///   5.7 GB). The iteration stops when its error estimate is below 1e-9 of
+///   the elevation range. Around NODATA voids the preconditioner adds an
+///   exact local solve (sparse Cholesky, SuiteSparse CHOLMOD) on the control
+///   points near them; when the voids are too many for that (over 10% of the
+///   control points and over 20000) and PCG stalls, the whole system is
+///   solved by CHOLMOD instead.
 #include <cstddef>
 #include <vector>
 
@@ -46,7 +59,8 @@ class BPatch {
   static BPatch interpolate(const ElevationGrid& grid);
   /// Smoothing fit with curvature weight lambda > 0 (see the file comment);
   /// NODATA nodes are left out of the data term. Throws InputError for
-  /// lambda <= 0 or fewer than 3 valid nodes, SolverError if CHOLMOD fails.
+  /// lambda <= 0 or fewer than 3 valid nodes, SolverError if CHOLMOD (the
+  /// fallback) fails.
   static BPatch fit_smoothing(const ElevationGrid& grid, double lambda);
 
   double x_min() const { return x_min_; }

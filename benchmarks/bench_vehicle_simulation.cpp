@@ -6,11 +6,14 @@
 // restart, every tick). The machine is shared: compare the cases of one run.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
+#include "talus/dynamics/potential_field_navigation.hpp"
 #include "talus/dynamics/trajectory_tracking.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/vehicle_simulation.hpp"
@@ -102,5 +105,39 @@ void BM_TrackingASlalomOnRoughGround(benchmark::State& state) {
   report(state, simulated, wall, steps);
 }
 BENCHMARK(BM_TrackingASlalomOnRoughGround)->Unit(benchmark::kMillisecond);
+
+/// Potential-field navigation over the crest of the lookahead test
+/// (tests/test_vehicle_simulation_navigation.cpp: 0.25 m high, σ 0.7 m) to a
+/// goal 20 m away at 5.5 m/s, standard (arg 0) or with the §IV lookahead
+/// (arg 1). Counter us_per_tick: the whole run's wall time per control tick
+/// (simulation included); the lookahead's own cost is the difference between
+/// the two, measured in the same run (issue #16's target: < 1 ms per tick).
+void BM_NavigationTick(benchmark::State& state) {
+  ElevationGrid grid(131, 41, 0.2, -2.0, -4.0);
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      const double x = grid.node_position(i, j).x();
+      grid.set(i, j, 0.25 * std::exp(-(x - 9.0) * (x - 9.0) / (2.0 * 0.7 * 0.7)));
+    }
+  const BPatch crest = BPatch::interpolate(grid);
+  const Vehicle v = ugv();
+  ReferenceTrajectory goal;
+  goal.points = {Vec2(20.0, 0.0)};
+  goal.speed = {5.5};
+  PotentialFieldNavigationOptions options;
+  options.lookahead.enabled = state.range(0) != 0;
+  double wall = 0.0;
+  std::size_t ticks = 0;
+  for (auto _ : state) {
+    const auto started = std::chrono::steady_clock::now();
+    const PotentialFieldNavigationResult r =
+        navigate_potential_field(crest, v, Vec2(0, 0), 0.0, goal, {}, options);
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    ticks += r.commands.size();
+    benchmark::DoNotOptimize(r.navigation_time);
+  }
+  state.counters["us_per_tick"] = 1e6 * wall / static_cast<double>(std::max<std::size_t>(ticks, 1));
+}
+BENCHMARK(BM_NavigationTick)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

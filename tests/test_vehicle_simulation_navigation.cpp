@@ -12,6 +12,7 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
+#include "talus/dynamics/hazard_detection.hpp"
 #include "talus/dynamics/navigation_lookahead.hpp"
 #include "talus/dynamics/potential_field_navigation.hpp"
 
@@ -121,6 +122,66 @@ TEST(NavigationLookahead, SafeSpeedsBrakeAheadOfTheCrestsContactLimit) {
   // Off the map: nothing is safe.
   EXPECT_EQ(safe_speed_profile(ground, ugv(), {Vec2(0, 0), Vec2(100, 0)}).front(), 0.0);
   EXPECT_THROW(safe_speed_profile(ground, ugv(), {Vec2(0, 0)}), InputError);
+}
+
+/// Flat ground at 0.2 m cells, 26 m x 24 m (past a hazard the waypoint
+/// field steers along the arc through the goal, metres wide), with a 1 m x 1 m block 0.3 m high
+/// centred on (6, 0): a step five times the UGV's wheel radius.
+BPatch block() {
+  ElevationGrid grid(131, 121, 0.2, -2.0, -12.0);
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      const Vec2 p = grid.node_position(i, j);
+      grid.at(i, j) = std::abs(p.x() - 6.0) <= 0.5 && std::abs(p.y()) <= 0.5 ? 0.3 : 0.0;
+    }
+  return BPatch::interpolate(grid);
+}
+
+TEST(HazardDetection, TheBlockIsOneDiscAndFlatOrGentleGroundNone) {
+  const BPatch ground = block();
+  const std::vector<DiscHazard> seen = detect_hazards(ground, ugv(), Vec2(4.0, 0.0));
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_NEAR(seen[0].centre.x(), 6.0, 0.15);
+  EXPECT_NEAR(seen[0].centre.y(), 0.0, 0.15);
+  // It covers the block's corners (0.71 m from its centre) and not much more.
+  EXPECT_GE(seen[0].radius, 0.71);
+  EXPECT_LE(seen[0].radius, 1.2);
+  // Out of the sensor's 3 m.
+  EXPECT_TRUE(detect_hazards(ground, ugv(), Vec2(0.0, 0.0)).empty());
+  EXPECT_TRUE(detect_hazards(flat(), ugv(), Vec2(0.0, 0.0)).empty());
+
+  // Planes either side of the UGV's static limit atan(min(mu, b/h)) = atan(0.7) = 35 deg.
+  const auto plane = [](double degrees) {
+    ElevationGrid grid(31, 31, 0.2, 0.0, 0.0);
+    for (std::size_t j = 0; j < grid.nrows(); ++j)
+      for (std::size_t i = 0; i < grid.ncols(); ++i)
+        grid.at(i, j) = std::tan(degrees * M_PI / 180.0) * grid.node_position(i, j).x();
+    return BPatch::interpolate(grid);
+  };
+  // A plane's 3 x 3 relief is 2 cells of rise: 0.4 tan(30 deg) = 0.23 m; the step test is off.
+  HazardDetectionOptions slope_only;
+  slope_only.max_step = 10.0;
+  EXPECT_TRUE(detect_hazards(plane(30.0), ugv(), Vec2(3, 3), slope_only).empty());
+  EXPECT_EQ(detect_hazards(plane(40.0), ugv(), Vec2(3, 3), slope_only).size(), 1u);
+  HazardDetectionOptions bad;
+  bad.sensor_radius = 0.0;
+  EXPECT_THROW(detect_hazards(ground, ugv(), Vec2(0, 0), bad), InputError);
+}
+
+// The block lies on the direct line; no hazard is given, the sensor finds it.
+TEST(PotentialFieldNavigation, AvoidsAHazardItDetectsOnTheMap) {
+  const BPatch ground = block();
+  PotentialFieldNavigationOptions options;
+  options.hazards_from_map = true;
+  const PotentialFieldNavigationResult r =
+      navigate_potential_field(ground, ugv(), Vec2(0, 0), 0.0, goal(14.0, 0.0, 2.0), {}, options);
+  std::cout << r.brief_report() << "\n";
+  ASSERT_EQ(r.status, TrackingStatus::kReachedGoal) << r.message;
+  // The c.g. never crossed the block (its half-diagonal is 0.71 m).
+  for (const VehicleSample& k : r.simulation.trace) {
+    const Vec2 cg(k.state.position.x(), k.state.position.y());
+    EXPECT_FALSE(std::abs(cg.x() - 6.0) <= 0.5 && std::abs(cg.y()) <= 0.5) << cg.transpose();
+  }
 }
 
 TEST(PotentialFieldNavigation, BadInputIsAnInputError) {

@@ -42,6 +42,7 @@ void PotentialFieldNavigationOptions::validate() const {
   require(speed_kd >= 0.0 && speed_kd < inf, "speed_kd", speed_kd, ">= 0");
   require(time_limit > 0.0 && time_limit < inf, "time_limit", time_limit, "positive");
   lookahead.validate();
+  hazard_detection.validate();
   simulation.validate();
 }
 
@@ -104,7 +105,8 @@ PotentialFieldNavigationResult navigate_potential_field(
   // (advanced past those within reach); the actual state and the
   // lookahead's predictions both use it.
   const auto inputs_at = [&](const Vec2& cg, const Vec2& forward, double gravity_lateral,
-                             double gravity_normal, std::size_t& waypoint) {
+                             double gravity_normal, std::size_t& waypoint,
+                             const std::vector<DiscHazard>& seen) {
     while (waypoint < goal_index &&
            (waypoints.points[waypoint] - cg).norm() < options.waypoint_radius)
       ++waypoint;
@@ -120,7 +122,7 @@ PotentialFieldNavigationResult navigate_potential_field(
     in.desired_speed = waypoints.speed[waypoint];
     in.gravity_lateral = gravity_lateral;
     in.gravity_normal = std::max(1e-6, gravity_normal);
-    for (const DiscHazard& h : hazards) {
+    for (const DiscHazard& h : seen) {
       const Vec2 c_local = local(h.centre);
       const double distance = c_local.norm() - h.radius;
       if (distance > options.sensor_radius) continue;
@@ -156,7 +158,8 @@ PotentialFieldNavigationResult navigate_potential_field(
   // the safe profile (the smallest such), +inf where it never does.
   const NavigationLookaheadOptions& ahead = options.lookahead;
   const auto lookahead_cap = [&](Vec2 cg, double heading, double speed, std::size_t waypoint,
-                                 TrajectoryPoint command, std::mt19937_64 rng) {
+                                 TrajectoryPoint command, std::mt19937_64 rng,
+                                 const std::vector<DiscHazard>& seen) {
     const auto steps = static_cast<std::size_t>(std::ceil(ahead.horizon / ahead.step - 1e-9));
     std::vector<Vec2> points = {cg};
     std::vector<double> speeds = {speed};
@@ -171,7 +174,7 @@ PotentialFieldNavigationResult navigate_potential_field(
                 .normalized();
         const Vec3 left = normal.cross(along);
         const TrajectorySpaceInputs in = inputs_at(cg, Vec2(std::cos(heading), std::sin(heading)),
-                                                   -g * left.z(), g * normal.z(), waypoint);
+                                                   -g * left.z(), g * normal.z(), waypoint, seen);
         command = descend(in, command, rng, options.descent);
       }
       const double wanted = options.speed_kp * (command.speed - speed);
@@ -203,8 +206,15 @@ PotentialFieldNavigationResult navigate_potential_field(
     const Vec3 fx = rot.col(0);
     const Vec2 forward = Vec2(fx.x(), fx.y()).normalized();
     const Vec3 gravity_body = rot.transpose() * Vec3(0.0, 0.0, -g);
+    // The given hazards, and those the sensor sees on the map from here.
+    std::vector<DiscHazard> seen = hazards;
+    if (options.hazards_from_map) {
+      HazardDetectionOptions detection = options.hazard_detection;
+      detection.sensor_radius = options.sensor_radius;
+      for (const DiscHazard& h : detect_hazards(surface, vehicle, cg, detection)) seen.push_back(h);
+    }
     const TrajectorySpaceInputs in =
-        inputs_at(cg, forward, gravity_body.y(), -gravity_body.z(), driver->waypoint);
+        inputs_at(cg, forward, gravity_body.y(), -gravity_body.z(), driver->waypoint, seen);
     const Vec2 target = waypoints.points[driver->waypoint];
     if (driver->waypoint == goal_index && (target - cg).norm() < options.waypoint_radius) {
       result.waypoints_reached = waypoints.points.size();
@@ -219,7 +229,7 @@ PotentialFieldNavigationResult navigate_potential_field(
       // The prediction draws from a copy of the descent's generator, so the
       // lookahead never changes the actual run's random sequence.
       cap = lookahead_cap(cg, std::atan2(forward.y(), forward.x()), std::max(0.0, s.velocity.x()),
-                          driver->waypoint, driver->command, driver->rng);
+                          driver->waypoint, driver->command, driver->rng, seen);
       if (driver->command.speed > cap) {
         driver->command.speed = cap;
         ++result.lookahead_caps_applied;

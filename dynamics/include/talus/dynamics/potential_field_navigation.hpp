@@ -34,6 +34,7 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/types.hpp"
+#include "talus/dynamics/hazard_detection.hpp"
 #include "talus/dynamics/navigation_lookahead.hpp"
 #include "talus/dynamics/trajectory_space_field.hpp"
 #include "talus/dynamics/trajectory_tracking.hpp"
@@ -41,12 +42,6 @@
 #include "talus/dynamics/vehicle_simulation.hpp"
 
 namespace talus {
-
-/// A hazard: a disc of the plane the vehicle must not enter.
-struct DiscHazard {
-  Vec2 centre = Vec2::Zero();  ///< [m]
-  double radius = 0.0;         ///< [m] (> 0)
-};
 
 struct PotentialFieldNavigationOptions {
   TrajectorySpaceGains gains;            ///< the paper's
@@ -60,7 +55,13 @@ struct PotentialFieldNavigationOptions {
   double time_limit = 60.0;              ///< simulated [s] (> 0)
   std::uint64_t seed = 1;                ///< the descent's randomisation
   NavigationLookaheadOptions lookahead;  ///< §IV; off by default (the standard field)
-  VehicleSimulationOptions simulation;   ///< end_time is replaced by time_limit
+  /// Also avoid the hazards detect_hazards() sees on the map within
+  /// sensor_radius at every tick (hazard_detection.hpp), beside the given
+  /// ones. min_hazard_clearance still measures the given hazards only.
+  bool hazards_from_map = false;
+  /// Its thresholds; its sensor_radius is replaced by the one above.
+  HazardDetectionOptions hazard_detection;
+  VehicleSimulationOptions simulation;  ///< end_time is replaced by time_limit
   /// Throws InputError naming the field.
   void validate() const;
 };

@@ -105,3 +105,31 @@ TEST(GridWindow, GridPositionOfFractionalIndices) {
 
 }  // namespace
 }  // namespace talus
+
+namespace talus {
+namespace {
+
+TEST(DecimateGrid, KeepsEveryKthNodeItsVoidAndItsPosition) {
+  ElevationGrid grid(10, 7, 2.0, 100.0, 50.0);
+  for (std::size_t j = 0; j < grid.nrows(); ++j)
+    for (std::size_t i = 0; i < grid.ncols(); ++i) grid.at(i, j) = 10.0 * i + j;
+  grid.set_void(3, 3);
+  const ElevationGrid coarse = decimate_grid(grid, 3);
+  ASSERT_EQ(coarse.ncols(), 4u);  // nodes 0, 3, 6, 9
+  ASSERT_EQ(coarse.nrows(), 3u);  // nodes 0, 3, 6
+  EXPECT_DOUBLE_EQ(coarse.cellsize(), 6.0);
+  for (std::size_t j = 0; j < coarse.nrows(); ++j)
+    for (std::size_t i = 0; i < coarse.ncols(); ++i) {
+      EXPECT_EQ(coarse.node_position(i, j), grid.node_position(3 * i, 3 * j));
+      EXPECT_EQ(coarse.valid(i, j), !(i == 1 && j == 1));
+      if (coarse.valid(i, j)) {
+        EXPECT_DOUBLE_EQ(coarse.at(i, j), 10.0 * (3 * i) + 3 * j);
+      }
+    }
+  EXPECT_EQ(decimate_grid(grid, 1).ncols(), grid.ncols());
+  EXPECT_THROW(decimate_grid(grid, 0), InputError);
+  EXPECT_THROW(decimate_grid(grid, 7), InputError);  // 7 rows: one node left
+}
+
+}  // namespace
+}  // namespace talus

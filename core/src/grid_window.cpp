@@ -34,6 +34,24 @@ ElevationGrid crop_grid(const ElevationGrid& grid, const GridWindow& window) {
   return out;
 }
 
+ElevationGrid decimate_grid(const ElevationGrid& grid, std::size_t factor) {
+  if (factor == 0) throw InputError("decimate_grid: the factor must be >= 1");
+  const std::size_t nc = (grid.ncols() - 1) / factor + 1, nr = (grid.nrows() - 1) / factor + 1;
+  if (nc < 2 || nr < 2) {
+    throw InputError("decimate_grid: every " + std::to_string(factor) + "th node of a " +
+                     std::to_string(grid.ncols()) + " × " + std::to_string(grid.nrows()) +
+                     "-node grid leaves fewer than 2 × 2 nodes");
+  }
+  ElevationGrid out(nc, nr, static_cast<double>(factor) * grid.cellsize(), grid.x_min(),
+                    grid.y_min());
+  for (std::size_t j = 0; j < nr; ++j)
+    for (std::size_t i = 0; i < nc; ++i) {
+      out.at(i, j) = grid.at(i * factor, j * factor);
+      if (!grid.valid(i * factor, j * factor)) out.set_void(i, j);
+    }
+  return out;
+}
+
 Vec2 grid_position(const ElevationGrid& grid, const GridIndex& index) {
   if (!std::isfinite(index.i) || !std::isfinite(index.j)) {
     throw InputError("grid_position: node index (" + std::to_string(index.i) + ", " +

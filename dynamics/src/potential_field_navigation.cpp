@@ -107,9 +107,15 @@ PotentialFieldNavigationResult navigate_potential_field(
   const auto inputs_at = [&](const Vec2& cg, const Vec2& forward, double gravity_lateral,
                              double gravity_normal, std::size_t& waypoint,
                              const std::vector<DiscHazard>& seen) {
-    while (waypoint < goal_index &&
-           (waypoints.points[waypoint] - cg).norm() < options.waypoint_radius)
-      ++waypoint;
+    // A waypoint is done when reached, or passed: the c.g. is beyond the
+    // line through it normal to the leg to the next one (else one missed by
+    // more than waypoint_radius would have the vehicle turn back for it).
+    const auto done = [&](std::size_t w) {
+      const Vec2 leg = waypoints.points[w + 1] - waypoints.points[w];
+      return (waypoints.points[w] - cg).norm() < options.waypoint_radius ||
+             (cg - waypoints.points[w]).dot(leg) > 0.0;
+    };
+    while (waypoint < goal_index && done(waypoint)) ++waypoint;
     const Vec2 left(-forward.y(), forward.x());
     const auto local = [&](const Vec2& p) {
       return Vec2((p - cg).dot(forward), (p - cg).dot(left));

@@ -30,6 +30,13 @@ struct GridWindow {
 /// nodes or does not lie inside the grid.
 ElevationGrid crop_grid(const ElevationGrid& grid, const GridWindow& window);
 
+/// Every `factor`-th node of `grid` in both directions from its south-west
+/// node (values and NODATA marks as they are, no filtering): the coarse map
+/// data of a layered planner, cell size factor × h, same origin, and
+/// (ncols − 1) / factor + 1 by (nrows − 1) / factor + 1 nodes. Throws
+/// InputError for factor 0 or fewer than 2 × 2 nodes left.
+ElevationGrid decimate_grid(const ElevationGrid& grid, std::size_t factor);
+
 /// A node index that may fall between nodes: i columns east and j rows north
 /// of the south-west node (fractions interpolate linearly).
 struct GridIndex {

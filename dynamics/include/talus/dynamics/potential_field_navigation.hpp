@@ -7,8 +7,9 @@
 /// the "near-optimal" navigation; without it the "standard" one).
 ///
 /// Every control tick the driver:
-/// 1. takes the current waypoint (the first one not yet within
-///    waypoint_radius; the last is the goal) and its desired curvature
+/// 1. takes the current waypoint (the first one neither within
+///    waypoint_radius nor passed — the c.g. beyond the line through it normal
+///    to the leg to the next one; the last is the goal) and its desired curvature
 ///    κ_d = 2 sin α / D (the arc from the c.g. tangent to the heading through
 ///    the waypoint, α its bearing, D its distance) and speed v_d;
 /// 2. reads the gravity components g_y, g_z in the body frame (an IMU) and,

@@ -116,5 +116,57 @@ TEST(CliSimulate, BadInputIsOneErrorLine) {
       out);
 }
 
+// `talus navigate`: the layered scheme on a flat field, plan on every 4th
+// node, navigation to the goal with the lookahead; files and columns as documented.
+TEST(CliNavigate, PlansCoarseAndNavigatesFineToTheGoal) {
+  const std::string terrain = flat_field();
+  const std::string out = scratch_file("nav_out");
+  const RunResult r = run_talus("navigate --terrain " + quoted(terrain) + " --vehicle " +
+                                quoted(kUgv) + " --start 1,5 --goal 14,4 --out " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json s = parse_json(read_text(out + "/summary.json"), "summary");
+  EXPECT_EQ(s.value("status", ""), "reached");
+  EXPECT_TRUE(s["failure"].is_null());
+  EXPECT_TRUE(s.value("lookahead", false));
+  EXPECT_EQ(s.value("coarse_factor", 0), 4);
+  const double navigation = s.value("navigation_time", 0.0), optimal = s.value("optimal_time", 0.0);
+  EXPECT_GT(optimal, 13.0 / 6.0);  // at least the distance at the top speed
+  EXPECT_NEAR(s.value("time_increase", 0.0), navigation / optimal - 1.0, 1e-9);
+  std::istringstream trace(read_text(out + "/trace.csv"));
+  std::string header, row;
+  std::getline(trace, header);
+  EXPECT_EQ(header, "t,x,y,z,roll,pitch,yaw,v,kappa,slip_angle,desired_v,lookahead_cap");
+  std::size_t rows = 0;
+  while (std::getline(trace, row)) ++rows;
+  EXPECT_GT(rows, static_cast<std::size_t>(navigation / 0.02) - 2);
+  EXPECT_EQ(read_text(out + "/waypoints.csv").rfind("x,y,v\n", 0), 0u);
+
+  const std::string standard = scratch_file("nav_standard");
+  const RunResult without =
+      run_talus("navigate --terrain " + quoted(terrain) + " --vehicle " + quoted(kUgv) +
+                " --start 1,5 --goal 14,4 --no-lookahead " + "--out " + quoted(standard));
+  ASSERT_EQ(without.exit_code, 0) << without.err;
+  const nlohmann::json w = parse_json(read_text(standard + "/summary.json"), "summary");
+  EXPECT_FALSE(w.value("lookahead", true));
+  EXPECT_EQ(w.value("lookahead_caps_applied", 1), 0);
+}
+
+TEST(CliNavigate, BadInputIsOneErrorLine) {
+  const std::string terrain = flat_field();
+  const std::string rover = data_file("vehicles/rover.yaml");
+  const std::string out = scratch_file("nav_never");
+  const std::string base = "--terrain " + quoted(terrain) + " --out " + quoted(out);
+  expect_bad_input(
+      "navigate",
+      {{base + " --vehicle " + quoted(rover) + " --start 1,5 --goal 14,4", "needs its body"},
+       {base + " --vehicle " + quoted(kUgv) + " --start 1,5 --goal 50,4", "off the terrain"},
+       {base + " --vehicle " + quoted(kUgv) + " --start 1,5 --goal 14,4 --coarse-factor 0",
+        "--coarse-factor must be >= 1"},
+       {base + " --vehicle " + quoted(kUgv) + " --start 1,5 --goal 14,4 --coarse-factor 100",
+        "leaves fewer than 2"},
+       {base + " --vehicle " + quoted(kUgv) + " --start 1x5 --goal 14,4", "--start"}},
+      out);
+}
+
 }  // namespace
 }  // namespace talus::cli_test

@@ -242,6 +242,7 @@ PotentialFieldNavigationResult navigate_potential_field(
       }
     }
     result.commands.push_back(driver->command);
+    result.command_times.push_back(t);
     result.lookahead_caps.push_back(cap);
     c.steering = std::clamp(std::atan(wheelbase * driver->command.curvature), -options.max_steering,
                             options.max_steering);

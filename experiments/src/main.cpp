@@ -12,6 +12,7 @@
 #include "baseline_profile.hpp"
 #include "experiment.hpp"
 #include "limits_command.hpp"
+#include "navigate_command.hpp"
 #include "placement_command.hpp"
 #include "plan_command.hpp"
 #include "profile_command.hpp"
@@ -577,6 +578,54 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
     const ex::SimulateOutcome outcome = ex::simulate(simulate_request);
     std::cout << outcome.summary.dump(2) << "\n";
     if (!outcome.reached) exit_code = ex::kSimulateNotReachedExitCode;
+  });
+
+  ex::NavigateRequest navigate_request;
+  CLI::App* navigate = app.add_subcommand(
+      "navigate",
+      "the layered scheme of Iagnemma, Shimoda & Shiller (IROS 2008): a time-optimal plan on "
+      "coarse map data (every --coarse-factor-th node of the terrain), its trajectory as "
+      "waypoints with their profile speeds, and potential-field navigation of the simulated "
+      "vehicle through them on the fine terrain, with the model-based lookahead (near-optimal) "
+      "or, with --no-lookahead, without (standard). Writes in --out DIR: trace.csv (t,x,y,z,"
+      "roll,pitch,yaw,v,kappa,slip_angle,desired_v,lookahead_cap), waypoints.csv (x,y,v) and "
+      "summary.json (status reached | failed | timeout | no_plan, failure, navigation_time, "
+      "optimal_time, time_increase, ...), and prints the summary. Exit code 0 when the goal was "
+      "reached, 2 when not (outputs written), 1 on bad input (one line on stderr, nothing "
+      "written)");
+  navigate->add_option("--terrain", navigate_request.terrain, ex::kTerrainHelp)->required();
+  navigate->add_option("--reproject", navigate_request.reproject, ex::kReprojectHelp)
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+      ->capture_default_str();
+  navigate
+      ->add_option("--vehicle", navigate_request.vehicle,
+                   "vehicle YAML with a body (mass, ...) and a finite max_speed, e.g. "
+                   "data/vehicles/iagnemma_ugv.yaml")
+      ->required();
+  navigate->add_option("--start", navigate_request.start, "start X,Y [m]")->required();
+  navigate->add_option("--goal", navigate_request.goal, "goal X,Y [m]")->required();
+  navigate
+      ->add_option("--coarse-factor", navigate_request.coarse_factor,
+                   "the plan's map keeps every K-th node of the terrain (>= 1)")
+      ->capture_default_str();
+  navigate->add_flag("!--no-lookahead", navigate_request.lookahead,
+                     "the standard potential field, without the model-based lookahead");
+  navigate
+      ->add_option("--time-limit", navigate_request.time_limit,
+                   "simulated time limit of the navigation [s]")
+      ->capture_default_str();
+  navigate->add_option("--seed", navigate_request.seed, "the field's randomisation")
+      ->capture_default_str();
+  navigate
+      ->add_option("--trace-interval", navigate_request.trace_interval,
+                   "trace.csv sample interval [s]")
+      ->capture_default_str();
+  navigate->add_option("--out", navigate_request.output_dir, "output folder (created if needed)")
+      ->required();
+  navigate->callback([&]() {
+    const ex::NavigateOutcome outcome = ex::navigate(navigate_request);
+    std::cout << outcome.summary.dump(2) << "\n";
+    if (!outcome.reached()) exit_code = ex::kNavigateNotReachedExitCode;
   });
 
   CLI::App* baseline = app.add_subcommand(

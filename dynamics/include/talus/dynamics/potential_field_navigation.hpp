@@ -73,6 +73,7 @@ struct PotentialFieldNavigationResult {
   VehicleSimulationResult simulation;
   /// The commanded (v, κ) at every control tick.
   std::vector<TrajectoryPoint> commands;
+  std::vector<double> command_times;  ///< the simulated time of each command [s]
   /// The lookahead's speed cap at every control tick [m/s]; +inf where the
   /// prediction stayed under the safe profile or the lookahead is off.
   std::vector<double> lookahead_caps;

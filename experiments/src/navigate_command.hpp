@@ -1,0 +1,61 @@
+#pragma once
+/// @file
+/// The `talus navigate` command's work, separate from argument parsing: the
+/// layered scheme of Iagnemma, Shimoda & Shiller (navigate_layered,
+/// optimal/layered_navigation.hpp) on a terrain file, its trace and summary.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "talus/optimal/layered_navigation.hpp"
+
+namespace talus::experiments {
+
+/// `talus navigate --terrain FINE.asc [--coarse-factor K] --vehicle V.yaml
+/// --start X,Y --goal X,Y [--no-lookahead] [--time-limit S] [--seed N]
+/// [--trace-interval DT] --out DIR`.
+struct NavigateRequest {
+  std::string terrain;             ///< the fine DEM (load_terrain), no NODATA
+  std::string reproject = "none";  ///< --reproject: none | auto
+  std::string vehicle;             ///< vehicle file with a body and a finite max_speed
+  std::string start, goal;         ///< "X,Y" [m] (parse_point)
+  std::string output_dir;          ///< --out
+  long long coarse_factor = 4;     ///< LayeredNavigationOptions::coarse_factor (>= 1)
+  bool lookahead = true;           ///< false (--no-lookahead): the standard field
+  double time_limit = 60.0;        ///< simulated navigation time limit [s] (> 0)
+  std::uint64_t seed = 1;          ///< the descent's randomisation
+  double trace_interval = 0.02;    ///< trace.csv sample interval [s] (> 0)
+};
+
+/// Exit code when the goal was not reached (failure, timeout, no plan); the
+/// outputs are written.
+inline constexpr int kNavigateNotReachedExitCode = 2;
+
+/// The columns of DIR/trace.csv, in order: angles in radians, v the forward
+/// speed, kappa and desired_v the commanded (v, κ) of the last control tick,
+/// slip_angle the c.g.'s side slip, lookahead_cap the lookahead's cap at
+/// that tick (inf where it did not cap or is off).
+inline constexpr const char* kNavigateTraceHeader =
+    "t,x,y,z,roll,pitch,yaw,v,kappa,slip_angle,desired_v,lookahead_cap";
+
+struct NavigateOutcome {
+  LayeredNavigationResult result;
+  nlohmann::json summary;
+  bool reached() const { return result.status == LayeredNavigationStatus::kReachedGoal; }
+};
+
+/// Loads the terrain and vehicle, runs navigate_layered and writes, in
+/// request.output_dir (an OutputFolder, committed only when complete):
+/// - trace.csv (kNavigateTraceHeader) every trace_interval;
+/// - waypoints.csv (x,y,v): the high-level plan's waypoints;
+/// - summary.json: status (reached | failed | timeout | no_plan), failure
+///   (the simulation's failure kind, null otherwise), message,
+///   navigation_time, optimal_time, time_increase, plan_status, lookahead,
+///   coarse_factor, waypoints, lookahead_caps_applied, ticks, margins,
+///   inputs, files and seconds.
+/// Bad input throws InputError and writes nothing.
+NavigateOutcome navigate(const NavigateRequest& request);
+
+}  // namespace talus::experiments

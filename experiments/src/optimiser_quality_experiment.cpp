@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <string>
@@ -303,7 +304,15 @@ void run_optimiser_quality(const ExperimentContext& context) {
   }
   const std::vector<Configuration> reference = reference_configurations(quick);
   std::vector<Case> cases;
-  for (Problem& p : problems) cases.push_back(run_case(std::move(p), reference));
+  // One line per case on stderr: the full run takes tens of minutes.
+  for (std::size_t k = 0; k < problems.size(); ++k) {
+    cases.push_back(run_case(std::move(problems[k]), reference));
+    const Case& c = cases.back();
+    std::cerr << "optimiser-quality: case " << k + 1 << "/" << problems.size() << " ("
+              << c.problem.name << "): default " << sig3(c.default_run.travel_time) << " s in "
+              << sig3(c.default_run.seconds) << " s, reference " << sig3(c.reference_time)
+              << " s, " << sig3(seconds_since(start)) << " s so far\n";
+  }
 
   const auto default_of = [](const Case& c) -> const Run& { return c.default_run; };
   const Stats all = stats(cases, false, default_of);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "talus/bspline/surface_path.hpp"
@@ -39,7 +40,15 @@ std::vector<double> safe_speed_profile(const BPatch& surface, const Vehicle& veh
     std::fill(safe.begin(), safe.end(), std::isfinite(vehicle.max_speed) ? vehicle.max_speed : 0.0);
     return safe;
   }
-  const SurfacePath path(surface, Curve2::interpolate(distinct));
+  // The cubic through points near the map's edge can swing off it between
+  // them: then, as for a point off the map, nothing is safe.
+  std::optional<SurfacePath> lifted;
+  try {
+    lifted.emplace(surface, Curve2::interpolate(distinct));
+  } catch (const InputError&) {
+    return safe;
+  }
+  const SurfacePath& path = *lifted;
   // Stations equally spaced in arc length, at least two per predicted point.
   const std::size_t stations = std::max<std::size_t>(8, 2 * distinct.size());
   const VelocityLimits limits(vehicle, path, stations);

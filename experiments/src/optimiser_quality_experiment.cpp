@@ -310,8 +310,8 @@ void run_optimiser_quality(const ExperimentContext& context) {
     const Case& c = cases.back();
     std::cerr << "optimiser-quality: case " << k + 1 << "/" << problems.size() << " ("
               << c.problem.name << "): default " << sig3(c.default_run.travel_time) << " s in "
-              << sig3(c.default_run.seconds) << " s, reference " << sig3(c.reference_time)
-              << " s, " << sig3(seconds_since(start)) << " s so far\n";
+              << sig3(c.default_run.seconds) << " s, reference " << sig3(c.reference_time) << " s, "
+              << sig3(seconds_since(start)) << " s so far\n";
   }
 
   const auto default_of = [](const Case& c) -> const Run& { return c.default_run; };

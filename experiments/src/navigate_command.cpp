@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli_values.hpp"
+#include "json_values.hpp"
 #include "limits_command.hpp"
 #include "plan_command.hpp"
 #include "talus/core/error.hpp"
@@ -55,10 +56,6 @@ std::string waypoints_csv(const ReferenceTrajectory& w) {
     csv += '\n';
   }
   return csv;
-}
-
-nlohmann::json finite_or_null(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
 }  // namespace

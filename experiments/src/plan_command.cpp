@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli_values.hpp"
+#include "json_values.hpp"
 #include "limits_command.hpp"
 #include "plan_rasters.hpp"
 #include "talus/bspline/bpatch.hpp"
@@ -198,10 +199,6 @@ std::string optima_csv(const PlannerResult& result) {
     }
   }
   return csv;
-}
-
-nlohmann::json finite_or_null(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
 /// optima[] of the summary: one entry per candidate of the local stage.

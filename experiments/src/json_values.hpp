@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// The JSON form of numbers in the commands' summaries: a non-finite value
-/// (NaN for "not computed", ±inf for "unbounded") is written as null, since
-/// JSON has no literal for it and nlohmann::json would write null silently
-/// only for some of them.
+/// (NaN for "not computed", ±inf for "unbounded") becomes null in the
+/// document itself, since JSON has no literal for it; readers and tests then
+/// see is_null() rather than a number that only dump() turns into null.
 #include <cmath>
 
 #include <nlohmann/json.hpp>

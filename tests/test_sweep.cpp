@@ -261,6 +261,42 @@ TEST(SweepCli, TheReadmeConfigRunsAsWrittenFromTheRepositoryRoot) {
   EXPECT_TRUE(fs::exists(dir / "report.md"));
 }
 
+// job: navigate runs `talus navigate` per case: near-optimal and standard navigation of the
+// paper's UGV across a flat field both reach the goal; each record carries the navigation's
+// summary (status, optimal and navigation times), and only the lookahead run caps its speed.
+TEST(SweepCli, NavigateJobRunsTheLayeredSchemePerCase) {
+  const std::string config =
+      write_config("navigate.yaml",
+                   "job: navigate\nparameters:\n"
+                   "  terrain.generator: plane\n"
+                   "  terrain.ncols: 61\n  terrain.nrows: 25\n  terrain.cellsize: 0.25\n"
+                   "  vehicle.file: " +
+                       data_file("vehicles/iagnemma_ugv.yaml") +
+                       "\n  start: \"1,3\"\n  goal: \"13,3\"\n"
+                       "  no_lookahead: [false, true]\n  no_figures: true\n");
+  const fs::path dir = fresh_dir("navigate_sweep");
+  const RunResult r =
+      run_talus("sweep " + quoted(config) + " --out " + quoted(dir.string()) + " --jobs 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const auto records = jsonl_records(dir / "results.jsonl");
+  ASSERT_EQ(records.size(), 2u);
+  for (const nlohmann::json& record : records) {
+    EXPECT_EQ(record.at("status"), "reached") << record.dump();
+    const nlohmann::json& f = record.at("figures");
+    EXPECT_GT(f.at("optimal_time").get<double>(), 12.0 / 6.0);  // 12 m at the 6 m/s top speed
+    EXPECT_GT(f.at("navigation_time").get<double>(), f.at("optimal_time").get<double>() * 0.5);
+    EXPECT_EQ(f.at("lookahead").get<bool>(), record.at("parameters").at("no_lookahead") == false);
+    if (!f.at("lookahead").get<bool>()) {
+      EXPECT_EQ(f.at("lookahead_caps_applied"), 0);
+    }
+  }
+  std::ifstream in(dir / "results.csv");
+  std::string header;
+  std::getline(in, header);
+  for (const char* column : {",no_lookahead,", ",status,", ",navigation_time,", ",optimal_time,"})
+    EXPECT_NE(header.find(column), std::string::npos) << column << " not in " << header;
+}
+
 TEST(SweepCli, ResultsDoNotDependOnTheJobCount) {
   const std::string config = plane_config();
   const fs::path one = fresh_dir("jobs1"), two = fresh_dir("jobs2");

@@ -4,6 +4,7 @@
 // code 2, outputs written); bad input is one error line and exit code 1.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -140,6 +141,17 @@ TEST(CliNavigate, PlansCoarseAndNavigatesFineToTheGoal) {
   while (std::getline(trace, row)) ++rows;
   EXPECT_GT(rows, static_cast<std::size_t>(navigation / 0.02) - 2);
   EXPECT_EQ(read_text(out + "/waypoints.csv").rfind("x,y,v\n", 0), 0u);
+  // The paper's figures 7-9, each listed in the summary and drawn from its data file: the
+  // map's driven path has one row per trace sample.
+  for (const char* figure : {"map", "speed", "angles"}) {
+    const std::string png = out + "/navigation_" + figure + ".png";
+    EXPECT_TRUE(std::filesystem::exists(png)) << png;
+    EXPECT_EQ(s["files"].value(std::string("figure_") + figure, ""), png);
+  }
+  const std::string map = read_text(out + "/navigation_map.dat");
+  const std::size_t path_block = map.find("\n\n\n") + 3;
+  const std::string path = map.substr(path_block, map.find("\n\n\n", path_block) - path_block);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(path.begin(), path.end(), '\n')) + 1, rows);
 
   const std::string standard = scratch_file("nav_standard");
   const RunResult without =
@@ -149,6 +161,15 @@ TEST(CliNavigate, PlansCoarseAndNavigatesFineToTheGoal) {
   const nlohmann::json w = parse_json(read_text(standard + "/summary.json"), "summary");
   EXPECT_FALSE(w.value("lookahead", true));
   EXPECT_EQ(w.value("lookahead_caps_applied", 1), 0);
+
+  const std::string bare = scratch_file("nav_no_figures");
+  ASSERT_EQ(run_talus("navigate --terrain " + quoted(terrain) + " --vehicle " + quoted(kUgv) +
+                      " --start 1,5 --goal 14,4 --no-figures --out " + quoted(bare))
+                .exit_code,
+            0);
+  EXPECT_FALSE(std::filesystem::exists(bare + "/navigation_map.png"));
+  EXPECT_FALSE(
+      parse_json(read_text(bare + "/summary.json"), "summary")["files"].contains("figure_map"));
 }
 
 TEST(CliNavigate, BadInputIsOneErrorLine) {

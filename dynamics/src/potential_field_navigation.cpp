@@ -160,9 +160,14 @@ PotentialFieldNavigationResult navigate_potential_field(
   };
 
   // §IV: the reduced model driven by the field over the horizon from the
-  // actual pose and command; the safe speed where the prediction exceeds
-  // the safe profile (the smallest such), +inf where it never does.
+  // actual pose and command; the cap is the safe speed where the prediction
+  // exceeds the safe profile (the smallest such), +inf where it never does;
+  // `here` the safe profile at the c.g. itself (figure 8's limit curve).
   const NavigationLookaheadOptions& ahead = options.lookahead;
+  struct Lookahead {
+    double cap = std::numeric_limits<double>::infinity();
+    double here = std::numeric_limits<double>::quiet_NaN();
+  };
   const auto lookahead_cap = [&](Vec2 cg, double heading, double speed, std::size_t waypoint,
                                  TrajectoryPoint command, std::mt19937_64 rng,
                                  const std::vector<DiscHazard>& seen) {
@@ -193,16 +198,17 @@ PotentialFieldNavigationResult navigate_potential_field(
       // The run ends at the goal: nothing beyond it needs to be safe.
       if ((waypoints.points[goal_index] - cg).norm() < options.waypoint_radius) break;
     }
-    double cap = std::numeric_limits<double>::infinity();
-    if (points.size() < 2) return cap;
+    Lookahead out;
+    if (points.size() < 2) return out;
     const std::vector<double> safe = safe_speed_profile(surface, vehicle, points);
+    out.here = safe.front();
     for (std::size_t k = 0; k < points.size(); ++k) {
       // The top speed is a limit of its own, not a dynamic one to keep a margin from.
       if (safe[k] >= vehicle.max_speed) continue;
       const double allowed = ahead.safety_factor * safe[k];
-      if (speeds[k] > allowed) cap = std::min(cap, allowed);
+      if (speeds[k] > allowed) out.cap = std::min(out.cap, allowed);
     }
-    return cap;
+    return out;
   };
 
   const VehicleController controller = [&, driver](double t, const VehicleState& s) {
@@ -230,27 +236,34 @@ PotentialFieldNavigationResult navigate_potential_field(
     result.waypoints_reached = driver->waypoint;
     if (t == 0.0) driver->command = TrajectoryPoint{std::max(0.0, s.velocity.x()), 0.0};
     driver->command = descend(in, driver->command, driver->rng, options.descent);
-    double cap = std::numeric_limits<double>::infinity();
+    // The cap limits the speed sent to the vehicle, not the descent's own
+    // point: were the capped speed fed back, every next step would start far
+    // from the desired speed, the velocity term (quartic) would take the
+    // whole normalised step, and the curvature would freeze, so a vehicle
+    // slowed near a hazard could never steer away from it.
+    TrajectoryPoint applied = driver->command;
+    Lookahead look;
     if (ahead.enabled) {
       // The prediction draws from a copy of the descent's generator, so the
       // lookahead never changes the actual run's random sequence.
-      cap = lookahead_cap(cg, std::atan2(forward.y(), forward.x()), std::max(0.0, s.velocity.x()),
-                          driver->waypoint, driver->command, driver->rng, seen);
-      if (driver->command.speed > cap) {
-        driver->command.speed = cap;
+      look = lookahead_cap(cg, std::atan2(forward.y(), forward.x()), std::max(0.0, s.velocity.x()),
+                           driver->waypoint, driver->command, driver->rng, seen);
+      if (applied.speed > look.cap) {
+        applied.speed = look.cap;
         ++result.lookahead_caps_applied;
       }
     }
-    result.commands.push_back(driver->command);
+    result.commands.push_back(applied);
     result.command_times.push_back(t);
-    result.lookahead_caps.push_back(cap);
-    c.steering = std::clamp(std::atan(wheelbase * driver->command.curvature), -options.max_steering,
+    result.lookahead_caps.push_back(look.cap);
+    result.lookahead_safe_speeds.push_back(look.here);
+    c.steering = std::clamp(std::atan(wheelbase * applied.curvature), -options.max_steering,
                             options.max_steering);
     const double dt = t - driver->last_t;
     const double accel = dt > 0.0 ? (s.velocity.x() - driver->last_v) / dt : 0.0;
     driver->last_t = t;
     driver->last_v = s.velocity.x();
-    c.drive_force = m * (g * fx.z() + options.speed_kp * (driver->command.speed - s.velocity.x()) -
+    c.drive_force = m * (g * fx.z() + options.speed_kp * (applied.speed - s.velocity.x()) -
                          options.speed_kd * accel);
     return c;
   };

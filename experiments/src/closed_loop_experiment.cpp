@@ -8,9 +8,11 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
+#include "experiment_terrain.hpp"
 #include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
@@ -33,9 +35,9 @@ namespace fs = std::filesystem;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::array<double, 3> kScales = {0.9, 1.0, 1.1};
 
-/// One battery case: the plan and its drives.
+/// One case: the plan and its drives.
 struct Case {
-  std::uint64_t seed = 0;
+  std::string terrain;  ///< "seed N" or the DEM's file stem
   PlannerStatus plan_status = PlannerStatus::kUnreachable;
   std::string plan_message;
   double planned_time = kNaN;  ///< the profile's travel time [s] (3-D arc length)
@@ -45,11 +47,13 @@ struct Case {
   bool planned() const { return !drives.empty(); }
 };
 
-Case run_case(std::uint64_t seed, const Vehicle& vehicle) {
+/// Plans from `start` to `goal` on `surface` with the default options and
+/// drives the best trajectory at every kScales entry.
+Case run_case(std::string terrain, const BPatch& surface, const Vehicle& vehicle, const Vec2& start,
+              const Vec2& goal, double output_interval) {
   Case c;
-  c.seed = seed;
-  const BPatch surface = BPatch::interpolate(generate_fractal_terrain(battery_terrain(seed)));
-  const PlanningProblem problem(surface, vehicle, kBatteryStart, kBatteryGoal);
+  c.terrain = std::move(terrain);
+  const PlanningProblem problem(surface, vehicle, start, goal);
   const PlannerResult plan_result = plan(problem, PlannerOptions{});
   c.plan_status = plan_result.status;
   c.plan_message = plan_result.message;
@@ -59,11 +63,25 @@ Case run_case(std::uint64_t seed, const Vehicle& vehicle) {
   c.planned_time = best->travel_time();
   ClosedLoopOptions options;
   options.speed_scales.assign(kScales.begin(), kScales.end());
-  options.tracking.simulation.output_interval = 0.02;
+  options.tracking.simulation.output_interval = output_interval;
   ClosedLoopResult driven = check_closed_loop(surface, vehicle, *best, options);
   c.reference = std::move(driven.reference);
   c.drives = std::move(driven.drives);
   return c;
+}
+
+Case run_battery_case(std::uint64_t seed, const Vehicle& vehicle) {
+  const BPatch surface = BPatch::interpolate(generate_fractal_terrain(battery_terrain(seed)));
+  return run_case("seed " + std::to_string(seed), surface, vehicle, kBatteryStart, kBatteryGoal,
+                  0.02);
+}
+
+/// A bundled DEM with `vehicle` from 10 % to 90 % of its diagonal, traced every second.
+Case run_dem_case(const fs::path& data_dir, std::string_view stem, const Vehicle& vehicle) {
+  const ElevationGrid grid = load_bundled_dem(data_dir, stem, "closed-loop-plans");
+  const Vec2 low(grid.x_min(), grid.y_min()), high(grid.x_max(), grid.y_max());
+  return run_case(std::string(stem), BPatch::interpolate(grid), vehicle, low + 0.1 * (high - low),
+                  low + 0.9 * (high - low), 1.0);
 }
 
 std::string percent(double scale) {
@@ -80,18 +98,18 @@ double degrees(double radians) {
 }
 
 Table case_table(const std::vector<Case>& cases) {
-  Table table({"seed", "plan", "planned time [s]", "speed", "status", "progress",
+  Table table({"terrain", "plan", "planned time [s]", "speed", "status", "progress",
                "travel / planned time", "peak LTR", "min N / (mg/4)", "peak slip [deg]",
                "peak side slip [deg]", "max cross-track [m]"});
   for (const Case& c : cases) {
     if (!c.planned()) {
-      table.row({std::to_string(c.seed), std::string(to_string(c.plan_status)), "–", "–", "–", "–",
-                 "–", "–", "–", "–", "–", "–"});
+      table.row({c.terrain, std::string(to_string(c.plan_status)), "–", "–", "–", "–", "–", "–",
+                 "–", "–", "–", "–"});
       continue;
     }
     for (const ClosedLoopDrive& d : c.drives) {
       const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
-      table.row({std::to_string(c.seed), "ok", sig3(c.planned_time), percent(d.speed_scale),
+      table.row({c.terrain, "ok", sig3(c.planned_time), percent(d.speed_scale),
                  std::string(to_string(d.result.status)), sig3(d.result.progress),
                  d.reached() ? sig3(time_ratio(d)) : "–", sig3(m.peak_lateral_load_ratio),
                  sig3(m.min_normal_load_ratio), sig3(degrees(m.peak_slip_angle)),
@@ -110,8 +128,7 @@ FigureLink margin_figure(const std::vector<Case>& cases, const fs::path& dir) {
   std::size_t block = 0;
   for (const Case& c : cases) {
     if (!c.planned()) continue;
-    data << "# seed " << c.seed
-         << ": scale peak_ltr min_normal_load_ratio peak_slip_deg progress\n";
+    data << "# " << c.terrain << ": scale peak_ltr min_normal_load_ratio peak_slip_deg progress\n";
     for (const ClosedLoopDrive& d : c.drives) {
       const VehicleSimulationDiagnostics& m = d.result.simulation.diagnostics;
       data << d.speed_scale << " " << csv_number(m.peak_lateral_load_ratio) << " "
@@ -121,8 +138,7 @@ FigureLink margin_figure(const std::vector<Case>& cases, const fs::path& dir) {
     data << "\n\n";
     const std::string source =
         gnuplot_string(plot.name(".dat")) + " index " + std::to_string(block++);
-    const std::string title =
-        " with linespoints pt 7 title " + gnuplot_string("seed " + std::to_string(c.seed));
+    const std::string title = " with linespoints pt 7 title " + gnuplot_string(c.terrain);
     ltr.push_back(source + " using 1:2" + title);
     load.push_back(source + " using 1:5" + title);
   }
@@ -174,7 +190,7 @@ FigureLink speed_figure(const Case& c, const fs::path& dir) {
                                    gnuplot_plain_text(to_string(d.result.status)) + ")"));
   }
   close_output_file(data, plot.file(".dat"));
-  const std::string title = "Seed " + std::to_string(c.seed) + ": simulated speed against the plan";
+  const std::string title = c.terrain + ": simulated speed against the plan";
   plot.describe("simulated UGV speed against the planned profile", plot.name(".dat"))
       .canvas(1200, 600)
       .title(title);
@@ -232,7 +248,16 @@ void run_closed_loop_plans(const ExperimentContext& context) {
       load_vehicle((context.data_dir / "vehicles" / "iagnemma_ugv.yaml").string());
   const std::size_t seeds = context.quick ? 2 : 25;  // issue #12: seeds 1-25
   std::vector<Case> cases;
-  for (std::size_t seed = 1; seed <= seeds; ++seed) cases.push_back(run_case(seed, vehicle));
+  for (std::size_t seed = 1; seed <= seeds; ++seed)
+    cases.push_back(run_battery_case(seed, vehicle));
+  // Two real DEMs with the rover and a simulation body (one in quick runs).
+  const Vehicle rover = load_vehicle((context.data_dir / "vehicles" / "rover_sim.yaml").string());
+  std::vector<Case> dems;
+  for (const std::string_view stem :
+       {"west_bijou_escarpment_nasadem25m", "mount_st_helens_usgs30m"}) {
+    if (context.quick && !dems.empty()) break;
+    dems.push_back(run_dem_case(context.data_dir, stem, rover));
+  }
 
   std::size_t planned = 0;
   for (const Case& c : cases) planned += c.planned() ? 1 : 0;
@@ -371,18 +396,51 @@ void run_closed_loop_plans(const ExperimentContext& context) {
       .table(case_table(cases));
   for (const Case& c : cases)
     if (!c.planned())
-      report.bullet("seed " + std::to_string(c.seed) + ": no plan (" +
-                    std::string(to_string(c.plan_status)) + "): " + c.plan_message);
+      report.bullet(c.terrain + ": no plan (" + std::string(to_string(c.plan_status)) +
+                    "): " + c.plan_message);
   for (const Case& c : cases)
     for (const ClosedLoopDrive& d : c.drives)
       if (!d.reached())
-        report.bullet("seed " + std::to_string(c.seed) + " at " + percent(d.speed_scale) + ": " +
-                      d.result.message);
-  double plan_seconds = 0.0, sim_seconds = 0.0;
-  for (const Case& c : cases) {
-    plan_seconds += c.plan_seconds;
-    for (const ClosedLoopDrive& d : c.drives) sim_seconds += d.result.seconds;
+        report.bullet(c.terrain + " at " + percent(d.speed_scale) + ": " + d.result.message);
+  // The real DEMs: the rover at its own scale, the same three speed scales.
+  std::size_t dem_planned = 0;
+  for (const Case& c : dems) dem_planned += c.planned() ? 1 : 0;
+  summary.set("dem_cases", static_cast<double>(dems.size()), "count");
+  summary.set("dem_planned_cases", static_cast<double>(dem_planned), "count");
+  std::size_t dem_accounted = 0;
+  for (std::size_t i = 0; i < kScales.size(); ++i) {
+    const ScaleStats st = scale_stats(dems, i);
+    dem_accounted += st.reached + st.failed + st.timeouts;
+    const std::string tag = fmt("%.0f", 100.0 * kScales[i]);
+    summary.set("dem_reached_" + tag, static_cast<double>(st.reached), "count");
+    summary.set("dem_median_travel_over_planned_" + tag, st.median_time_ratio, "1");
+    summary.set("dem_median_peak_ltr_" + tag, st.median_ltr, "1");
   }
+  summary.set(
+      "dem_runs_unaccounted",
+      static_cast<double>(kScales.size() * dem_planned) - static_cast<double>(dem_accounted),
+      "count", "3 drives per planned DEM case, each reached, failed or timed out");
+  report.heading("Real DEMs")
+      .paragraph(
+          "The same check on bundled real DEMs (`data/terrain/`) with the rover "
+          "(`data/vehicles/rover_sim.yaml`: `rover_rigid.yaml`'s limits with a 300 kg "
+          "simulation body of our choosing), from 10 % to 90 % of each DEM's diagonal, traced "
+          "every second; quick runs take West Bijou only.")
+      .table(case_table(dems));
+  for (const Case& c : dems) {
+    if (!c.planned())
+      report.bullet(c.terrain + ": no plan (" + std::string(to_string(c.plan_status)) +
+                    "): " + c.plan_message);
+    for (const ClosedLoopDrive& d : c.drives)
+      if (!d.reached())
+        report.bullet(c.terrain + " at " + percent(d.speed_scale) + ": " + d.result.message);
+  }
+  double plan_seconds = 0.0, sim_seconds = 0.0;
+  for (const std::vector<Case>* group : {&cases, &dems})
+    for (const Case& c : *group) {
+      plan_seconds += c.plan_seconds;
+      for (const ClosedLoopDrive& d : c.drives) sim_seconds += d.result.seconds;
+    }
   summary.set("plan_seconds_total", plan_seconds, "s");
   summary.set("simulation_seconds_total", sim_seconds, "s");
   report.paragraph("Wall time: planning " + sig3(plan_seconds) + " s, simulation " +

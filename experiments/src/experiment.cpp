@@ -8,6 +8,7 @@
 #include "eldershaw_yim_experiment.hpp"
 #include "global_search_experiment.hpp"
 #include "hait_experiments.hpp"
+#include "iagnemma_table1_experiment.hpp"
 #include "optimal_profile_experiment.hpp"
 #include "optimiser_quality_experiment.hpp"
 #include "shiller_gwo_experiment.hpp"
@@ -103,6 +104,12 @@ std::vector<Experiment> all_experiments() {
        "rigid-body simulation at 90, 100 and 110 % of their profile speed: failures, margins "
        "kept and travel time against the plan",
        run_closed_loop_plans},
+      {"iagnemma-table1",
+       "Table I of Iagnemma-Shimoda-Shiller (IROS 2008): near-optimal (model-based lookahead) "
+       "against standard potential-field navigation of the paper's UGV on 25 fractal terrains "
+       "under the layered scheme: incidence of failure and increase over the optimal time, "
+       "beside the paper's, per-terrain rows and figures 7-9",
+       run_iagnemma_table1},
       {"optimiser-quality",
        "the planner's local stage on the fractal battery and every bundled DEM against a "
        "multistart reference (formulations x solvers x 8-32 control points x restarts): success, "

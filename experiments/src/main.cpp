@@ -252,7 +252,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only);
 void add_sweep_command(CLI::App& app, ex::SweepRequest& request) {
   CLI::App* sweep = app.add_subcommand(
       "sweep",
-      "run a parameter sweep: CONFIG.yaml names a job (plan, profile, baseline NAME, noop) and "
+      "run a parameter sweep: CONFIG.yaml names a job (plan, profile, navigate, baseline NAME, "
+      "noop) and "
       "a design over its parameters (grid, list or seeded random samples); each case runs in "
       "its own worker process and its result is appended to DIR/results.jsonl as it ends "
       "(every input parameter, status, the job's key figures, seconds, attempts, host, rank). "
@@ -588,8 +589,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "waypoints with their profile speeds, and potential-field navigation of the simulated "
       "vehicle through them on the fine terrain, with the model-based lookahead (near-optimal) "
       "or, with --no-lookahead, without (standard). Writes in --out DIR: trace.csv (t,x,y,z,"
-      "roll,pitch,yaw,v,kappa,slip_angle,desired_v,lookahead_cap), waypoints.csv (x,y,v) and "
-      "summary.json (status reached | failed | timeout | no_plan, failure, navigation_time, "
+      "roll,pitch,yaw,v,kappa,slip_angle,desired_v,lookahead_cap), waypoints.csv (x,y,v), the "
+      "paper's figures 7-9 (navigation_map.png, navigation_speed.png, navigation_angles.png; "
+      "--no-figures skips them) and summary.json (status reached | failed | timeout | no_plan, "
+      "failure, navigation_time, "
       "optimal_time, time_increase, ...), and prints the summary. Exit code 0 when the goal was "
       "reached, 2 when not (outputs written), 1 on bad input (one line on stderr, nothing "
       "written)");
@@ -620,6 +623,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->add_option("--trace-interval", navigate_request.trace_interval,
                    "trace.csv sample interval [s]")
       ->capture_default_str();
+  navigate->add_flag("!--no-figures", navigate_request.figures,
+                     "skip navigation_map.png, navigation_speed.png and navigation_angles.png");
   navigate->add_option("--out", navigate_request.output_dir, "output folder (created if needed)")
       ->required();
   navigate->callback([&]() {

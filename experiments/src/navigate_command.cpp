@@ -15,6 +15,7 @@
 #include "talus/core/report/plot.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
+#include "talus/optimal/navigation_figures.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {
@@ -131,6 +132,20 @@ NavigateOutcome navigate(const NavigateRequest& request) {
     write_text_file(dir / "trace.csv", std::string(kNavigateTraceHeader) + "\n");
   }
   write_text_file(dir / "waypoints.csv", waypoints_csv(r.waypoints));
+  const bool plots = request.figures && r.navigation && gnuplot_available();
+  if (plots) {
+    const BPatch surface = BPatch::interpolate(terrain.grid);
+    NavigationFigureData figure;
+    figure.surface = &surface;
+    figure.waypoints = &r.waypoints;
+    figure.result = &*r.navigation;
+    figure.start = start;
+    figure.goal = goal;
+    figure.title = std::string(request.lookahead ? "near-optimal" : "standard") +
+                   " navigation: " + std::string(to_string(r.status)) +
+                   (r.navigation->message.empty() ? "" : " (" + r.navigation->message + ")");
+    render_navigation_figures(dir, "navigation", figure);
+  }
   summary["inputs"] = {{"terrain", request.terrain},
                        {"vehicle", request.vehicle},
                        {"start", {start.x(), start.y()}},
@@ -140,6 +155,11 @@ NavigateOutcome navigate(const NavigateRequest& request) {
   summary["files"] = {{"trace", out.final_path("trace.csv").string()},
                       {"waypoints", out.final_path("waypoints.csv").string()},
                       {"summary", out.final_path("summary.json").string()}};
+  if (plots) {
+    for (const char* name : {"map", "speed", "angles"})
+      summary["files"][std::string("figure_") + name] =
+          out.final_path(std::string("navigation_") + name + ".png").string();
+  }
   summary["seconds"] = {{"plan", r.plan_seconds},
                         {"navigation", r.navigation ? r.navigation->simulation.seconds : 0.0},
                         {"total", seconds_since(start_time)}};

@@ -15,7 +15,7 @@ namespace talus::experiments {
 
 /// `talus navigate --terrain FINE.asc [--coarse-factor K] --vehicle V.yaml
 /// --start X,Y --goal X,Y [--no-lookahead] [--time-limit S] [--seed N]
-/// [--trace-interval DT] --out DIR`.
+/// [--trace-interval DT] [--no-figures] --out DIR`.
 struct NavigateRequest {
   std::string terrain;             ///< the fine DEM (load_terrain), no NODATA
   std::string reproject = "none";  ///< --reproject: none | auto
@@ -27,6 +27,9 @@ struct NavigateRequest {
   double time_limit = 60.0;        ///< simulated navigation time limit [s] (> 0)
   std::uint64_t seed = 1;          ///< the descent's randomisation
   double trace_interval = 0.02;    ///< trace.csv sample interval [s] (> 0)
+  /// false (--no-figures): no navigation_map.png, navigation_speed.png and
+  /// navigation_angles.png (sweeps draw their own).
+  bool figures = true;
 };
 
 /// Exit code when the goal was not reached (failure, timeout, no plan); the
@@ -50,6 +53,10 @@ struct NavigateOutcome {
 /// request.output_dir (an OutputFolder, committed only when complete):
 /// - trace.csv (kNavigateTraceHeader) every trace_interval;
 /// - waypoints.csv (x,y,v): the high-level plan's waypoints;
+/// - when the navigation ran and gnuplot is installed, the paper's figures
+///   7–9 (navigation_figures.hpp): navigation_map.png (waypoints and driven
+///   path over the relief), navigation_speed.png (speed against the
+///   lookahead's safe speed), navigation_angles.png (roll and side slip);
 /// - summary.json: status (reached | failed | timeout | no_plan), failure
 ///   (the simulation's failure kind, null otherwise), message,
 ///   navigation_time, optimal_time, time_increase, plan_status, lookahead,

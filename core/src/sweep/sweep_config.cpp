@@ -22,7 +22,7 @@ using Json = nlohmann::ordered_json;
 const std::set<std::string> kTopLevelKeys = {"job",     "design",          "parameters",
                                              "cases",   "samples",         "seed",
                                              "retries", "case_time_limit", "quick"};
-const std::set<std::string> kJobs = {"plan", "profile", "noop"};
+const std::set<std::string> kJobs = {"plan", "profile", "navigate", "noop"};
 
 [[noreturn]] void fail(const std::string& source, const std::string& what) {
   throw InputError(source + ": " + what);
@@ -254,12 +254,12 @@ SweepConfig parse_sweep_config(const std::string& yaml_text, const std::string& 
     }
   }
   if (!root["job"] || !root["job"].IsScalar())
-    fail(source, "missing `job:` (plan, profile, baseline NAME, noop)");
+    fail(source, "missing `job:` (plan, profile, navigate, baseline NAME, noop)");
   config.job = root["job"].Scalar();
   const bool baseline = config.job.rfind("baseline ", 0) == 0 && config.job.size() > 9;
   if (kJobs.count(config.job) == 0 && !baseline) {
     fail(source, "unknown job '" + printable(config.job) +
-                     "' (expected plan, profile, baseline NAME or noop)");
+                     "' (expected plan, profile, navigate, baseline NAME or noop)");
   }
   config.design = root["design"] ? root["design"].as<std::string>() : "grid";
   YAML::Node parameters = root["parameters"];

@@ -19,9 +19,10 @@
 ///    waypoint's bearing A_d = |α|;
 /// 3. takes one descent step of the trajectory-space field
 ///    (trajectory_space_field.hpp) from the last commanded (v, κ);
-/// 4. with the lookahead enabled, caps the commanded speed at the safe speed
-///    where the reduced model's prediction over the horizon exceeds the
-///    safe profile (navigation_lookahead.hpp);
+/// 4. with the lookahead enabled, caps the speed sent to the vehicle at the
+///    safe speed where the reduced model's prediction over the horizon
+///    exceeds the safe profile (navigation_lookahead.hpp); the descent's own
+///    point keeps the uncapped speed, so the next step starts from it;
 /// 5. steers δ = atan(L κ) (kinematic bicycle, L the wheelbase, clipped to
 ///    the steering limit) and drives with PD speed control,
 ///    F = m (kp (v − v_x) − kd a_x), a_x the measured forward acceleration
@@ -77,6 +78,10 @@ struct PotentialFieldNavigationResult {
   /// The lookahead's speed cap at every control tick [m/s]; +inf where the
   /// prediction stayed under the safe profile or the lookahead is off.
   std::vector<double> lookahead_caps;
+  /// The safe profile's speed at the c.g. at every control tick [m/s]: the
+  /// lookahead's maximum safe speed there (the paper's figure 8 limit
+  /// curve); NaN where the lookahead is off or predicted no motion.
+  std::vector<double> lookahead_safe_speeds;
   std::size_t lookahead_caps_applied = 0;  ///< ticks whose commanded speed the cap lowered
   std::size_t waypoints_reached = 0;
   double navigation_time = 0.0;  ///< [s]

@@ -5,7 +5,7 @@
 ///
 /// Format (YAML, one document, no duplicate keys):
 ///
-///     job: plan                  # plan | profile | baseline NAME | noop
+///     job: plan                  # plan | profile | navigate | baseline NAME | noop
 ///     design: grid               # grid | list | random
 ///     parameters:                # in this order; a list is swept (grid) or
 ///       terrain.generator: fractal   #   chosen from (random)
@@ -58,7 +58,7 @@ struct SweepCase {
 };
 
 struct SweepConfig {
-  std::string job;     ///< "plan", "profile", "baseline NAME" or "noop"
+  std::string job;     ///< "plan", "profile", "navigate", "baseline NAME" or "noop"
   std::string design;  ///< grid | list | random
   std::vector<SweepCase> cases;
   /// Parameters whose value differs between cases, in the design's order.

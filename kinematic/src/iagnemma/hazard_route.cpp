@@ -16,6 +16,8 @@
 namespace talus {
 namespace {
 
+constexpr double kClearanceWeight = 10.0;
+
 /// The node of `grid` nearest `p` (clamped to the grid).
 std::pair<std::size_t, std::size_t> nearest_node(const ElevationGrid& grid, const Vec2& p) {
   const auto index = [](double value, double origin, double h, std::size_t n) {
@@ -29,8 +31,10 @@ std::pair<std::size_t, std::size_t> nearest_node(const ElevationGrid& grid, cons
 }  // namespace
 
 HazardRoute plan_hazard_route(const ElevationGrid& grid, const Vehicle& vehicle, const Vec2& start,
-                              const Vec2& goal, std::size_t coarse_factor) {
+                              const Vec2& goal, std::size_t coarse_factor, double clearance) {
   if (coarse_factor == 0) throw InputError("plan_hazard_route: the coarse factor must be >= 1");
+  if (!(clearance >= 0.0) || !std::isfinite(clearance))
+    throw InputError("plan_hazard_route: the clearance must be >= 0 [m]");
   const ElevationGrid coarse = coarse_factor == 1 ? grid : decimate_grid(grid, coarse_factor);
   const BPatch surface = BPatch::interpolate(coarse);
   const std::vector<unsigned char> hazard = hazard_node_mask(surface, vehicle);
@@ -55,14 +59,37 @@ HazardRoute plan_hazard_route(const ElevationGrid& grid, const Vehicle& vehicle,
     return coarse.valid(ui, uj) && hazard[n] == 0;
   };
   const double h = coarse.cellsize();
+  // Distance [m] from each node to the nearest hazard node, where below the
+  // clearance (`clearance` elsewhere): each hazard node marks the nodes
+  // within the clearance around it.
+  std::vector<double> distance(nc * nr, clearance);
+  if (clearance > 0.0) {
+    const long reach = static_cast<long>(std::ceil(clearance / h));
+    for (std::size_t n = 0; n < hazard.size(); ++n) {
+      if (!hazard[n]) continue;
+      const long i = static_cast<long>(n % nc), j = static_cast<long>(n / nc);
+      for (long b = std::max(0L, j - reach); b <= std::min<long>(nr - 1, j + reach); ++b)
+        for (long a = std::max(0L, i - reach); a <= std::min<long>(nc - 1, i + reach); ++a) {
+          const double d = h * std::hypot(static_cast<double>(a - i), static_cast<double>(b - j));
+          double& slot = distance[static_cast<std::size_t>(b) * nc + static_cast<std::size_t>(a)];
+          slot = std::min(slot, d);
+        }
+    }
+  }
+  // A move into a node closer to a hazard than the clearance costs more, up
+  // to (1 + kClearanceWeight) times its length next to one.
+  const auto weight = [&](std::uint32_t n) {
+    return clearance > 0.0 ? 1.0 + kClearanceWeight * (clearance - distance[n]) / clearance : 1.0;
+  };
   const auto edges = [&](std::uint32_t node, auto&& emit) {
     const long i = static_cast<long>(node % nc), j = static_cast<long>(node / nc);
     for (long dj = -1; dj <= 1; ++dj)
       for (long di = -1; di <= 1; ++di) {
         if ((di == 0 && dj == 0) || !passable(i + di, j + dj)) continue;
         if (di != 0 && dj != 0 && (!passable(i + di, j) || !passable(i, j + dj))) continue;
-        emit(id(static_cast<std::size_t>(i + di), static_cast<std::size_t>(j + dj)),
-             di != 0 && dj != 0 ? h * std::numbers::sqrt2 : h);
+        const std::uint32_t next =
+            id(static_cast<std::size_t>(i + di), static_cast<std::size_t>(j + dj));
+        emit(next, (di != 0 && dj != 0 ? h * std::numbers::sqrt2 : h) * weight(next));
       }
   };
   const Vec2 target_position = coarse.node_position(gi, gj);

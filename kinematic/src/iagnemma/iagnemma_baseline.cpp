@@ -61,12 +61,15 @@ std::vector<BaselineOptionSpec> option_specs() {
        "the high-level route's grid is every k-th node of the terrain's (>= 1; 1 = the terrain's "
        "own grid)"},
       {"waypoint-spacing", "1", "distance [m] between waypoints along the route (> 0)"},
-      {"speed", "0",
+      {"route-clearance", "1.5",
+       "distance [m] from hazards the route keeps where it can: moves closer cost up to 11 times "
+       "their length (>= 0; 0 = none)"},
+      {"speed", "1",
        "desired speed [m/s] at every waypoint (>= 0; 0 = the vehicle's max_speed, which must then "
        "be finite)"},
       {"waypoint-radius", "0.2",
        "a waypoint, and the goal, is reached within this distance [m] (0 < r <= 1)"},
-      {"sensor-radius", "3", "hazards on the map within this distance [m] are avoided (> 0)"},
+      {"sensor-radius", "1.5", "hazards on the map within this distance [m] are avoided (> 0)"},
       {"lookahead", "true",
        "true: the model-based lookahead of section IV (near-optimal navigation); false: the "
        "standard potential field of section III"},
@@ -83,6 +86,7 @@ std::unique_ptr<BaselinePlanner> make(const BaselineOptions& text) {
   IagnemmaOptions o;
   o.coarse_factor = reader.count("coarse-factor", 1);
   o.waypoint_spacing = reader.number("waypoint-spacing", 1e-6, 1e6);
+  o.route_clearance = reader.number("route-clearance", 0.0, 1e6);
   o.speed = reader.number("speed", 0.0, 1e3);
   o.waypoint_radius = reader.number("waypoint-radius", 1e-6, 1.0);
   o.sensor_radius = reader.number("sensor-radius", 1e-6, 1e6);
@@ -108,6 +112,8 @@ void IagnemmaOptions::validate() const {
   require(coarse_factor >= 1, "coarse_factor must be >= 1");
   require(waypoint_spacing > 0.0 && std::isfinite(waypoint_spacing),
           "waypoint_spacing must be > 0 [m]");
+  require(route_clearance >= 0.0 && std::isfinite(route_clearance),
+          "route_clearance must be >= 0 [m]");
   require(speed >= 0.0 && std::isfinite(speed), "speed must be >= 0 [m/s] (0 = max_speed)");
   require(waypoint_radius > 0.0 && waypoint_radius <= 1.0, "waypoint_radius must be in (0, 1] [m]");
   require(sensor_radius > 0.0 && std::isfinite(sensor_radius), "sensor_radius must be > 0 [m]");
@@ -151,6 +157,7 @@ std::vector<BaselineSetting> IagnemmaBaseline::settings() const {
       {"robot", "wheel_radius", body.wheel_radius},
       {"options", "coarse_factor", static_cast<long long>(options_.coarse_factor)},
       {"options", "waypoint_spacing", options_.waypoint_spacing},
+      {"options", "route_clearance", options_.route_clearance},
       {"options", "speed", options_.speed > 0.0 ? options_.speed : vehicle_.max_speed},
       {"options", "waypoint_radius", options_.waypoint_radius},
       {"options", "sensor_radius", options_.sensor_radius},
@@ -197,8 +204,9 @@ BaselineResult IagnemmaBaseline::solve(const RuledTerrain& terrain, const SE2Pos
   }
 
   // High level: the hazard-free route and its waypoints.
-  const HazardRoute route = plan_hazard_route(terrain.grid(), vehicle_, start.position(),
-                                              goal.position(), options_.coarse_factor);
+  const HazardRoute route =
+      plan_hazard_route(terrain.grid(), vehicle_, start.position(), goal.position(),
+                        options_.coarse_factor, options_.route_clearance);
   const auto t2 = Clock::now();
   out.stage_seconds["route"] = seconds_between(t1, t2);
   out.counters["route_nodes"] = route.route_nodes;

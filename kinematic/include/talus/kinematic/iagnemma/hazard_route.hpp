@@ -53,7 +53,7 @@ struct HazardRoute {
 /// itself). InputError for a factor of 0 or one that leaves fewer than 2 × 2
 /// nodes.
 HazardRoute plan_hazard_route(const ElevationGrid& grid, const Vehicle& vehicle, const Vec2& start,
-                              const Vec2& goal, std::size_t coarse_factor);
+                              const Vec2& goal, std::size_t coarse_factor, double clearance);
 
 /// Waypoints every `spacing` (> 0) metres of planar length along `points`
 /// (at least 2), then its last point, each at `speed` (>= 0) [m/s].

@@ -81,9 +81,10 @@ namespace talus {
 struct IagnemmaOptions {
   std::size_t coarse_factor = 1;
   double waypoint_spacing = 1.0;  ///< [m] (> 0)
-  double speed = 0.0;             ///< [m/s] (>= 0); 0 = the vehicle's max_speed
+  double route_clearance = 1.5;   ///< [m] (>= 0)
+  double speed = 1.0;             ///< [m/s] (>= 0); 0 = the vehicle's max_speed
   double waypoint_radius = 0.2;   ///< [m] (0, 1]
-  double sensor_radius = 3.0;     ///< [m] (> 0)
+  double sensor_radius = 1.5;     ///< [m] (> 0)
   bool lookahead = true;
   std::size_t seed = 1;
   double time_limit = 60.0;      ///< simulated [s] (> 0)

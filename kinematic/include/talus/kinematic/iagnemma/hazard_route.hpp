@@ -20,9 +20,13 @@
 ///   nearest the start and the goal are passable whatever they are (the
 ///   baseline checks the start and the goal on the fine map first);
 /// - A* (core's shortest_paths) with 8-connected moves costing their planar
-///   length, a diagonal move only where both nodes beside it are passable (no
-///   corner cutting between two hazards), the Euclidean distance to the goal
-///   node as the heuristic;
+///   length times 1 + 10 (c − d) / c for a move into a node at distance
+///   d < c from the nearest hazard node (c = `clearance`; 1 with c = 0), so
+///   the route keeps the clearance where it can and comes closer only where
+///   it must; a diagonal move only where both nodes beside it are passable
+///   (no corner cutting between two hazards); the Euclidean distance to the
+///   goal node as the heuristic (admissible: no move costs less than its
+///   length);
 /// - the route: the start, the route's nodes after the start's node and
 ///   before the goal's, the goal; waypoints every `spacing` metres of its
 ///   planar length and its last point (the goal), all at one speed.
@@ -49,9 +53,10 @@ struct HazardRoute {
 };
 
 /// The route of the file comment from `start` to `goal` (both inside
-/// `grid`'s domain) for `vehicle`. `coarse_factor` >= 1 (1 = the grid
-/// itself). InputError for a factor of 0 or one that leaves fewer than 2 × 2
-/// nodes.
+/// `grid`'s domain) for `vehicle`, keeping `clearance` [m] (>= 0) from
+/// hazards where it can. `coarse_factor` >= 1 (1 = the grid itself).
+/// InputError for a factor of 0 or one that leaves fewer than 2 × 2 nodes,
+/// or a negative clearance.
 HazardRoute plan_hazard_route(const ElevationGrid& grid, const Vehicle& vehicle, const Vec2& start,
                               const Vec2& goal, std::size_t coarse_factor, double clearance);
 

@@ -1,7 +1,8 @@
 // End-to-end tests of `talus baseline hait`: the path.csv / summary.json /
 // path.png contract on flat ground (a straight path of known length), exit
 // code 2 for an enclosed goal and an invalid start (summary still written),
-// exit code 1 with one line on stderr for bad input, and --help.
+// exit code 1 with one line on stderr for bad input, and --help; and the
+// Iagnemma navigator's run through the same command.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -214,6 +215,40 @@ TEST(CliBaseline, BadInputExitsOneWithOneLine) {
       dir + "/summary.json");
 }
 
+// The Iagnemma navigator through the same command (its options from the
+// registry): the path is the driven path, from the start to within the
+// waypoint radius of the goal.
+TEST(CliBaseline, IagnemmaDrivesToTheGoalAndWritesTheContract) {
+  const std::string terrain = flat_map();
+  const std::string dir = scratch_file("baseline_iagnemma");
+  std::filesystem::remove_all(dir);
+  const RunResult r = run_talus("baseline iagnemma --terrain " + quoted(terrain) + " --robot " +
+                                quoted(data_file("vehicles/iagnemma_ugv.yaml")) +
+                                " --start 2,6,0 --goal 10,6,0 --out " + quoted(dir));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json j = parse_json(r.out, "stdout");
+  EXPECT_EQ(j, parse_json(read_text(dir + "/summary.json"), "summary.json"));
+  EXPECT_EQ(j.value("baseline", ""), "iagnemma");
+  EXPECT_EQ(j.value("status", ""), "found");
+  EXPECT_GT(j.value("control_ticks", 0), 0);
+  EXPECT_EQ(j.value("vehicle_failed", true), false);
+  EXPECT_EQ(j["robot"].value("kind", ""), "vehicle");
+  EXPECT_EQ(j["options"].value("lookahead", false), true);
+  const auto rows = read_csv(dir + "/path.csv", "x,y,theta,control");
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_EQ(j.value("path_points", 0u), rows.size());
+  EXPECT_DOUBLE_EQ(parse_number(rows.front()[0]), 2.0);
+  EXPECT_DOUBLE_EQ(parse_number(rows.front()[1]), 6.0);
+  EXPECT_LE(std::hypot(parse_number(rows.back()[0]) - 10.0, parse_number(rows.back()[1]) - 6.0),
+            0.2);
+  const RunResult help = run_talus("baseline iagnemma --help");
+  EXPECT_EQ(help.exit_code, 0);
+  for (const char* fragment : {"--robot", "--lookahead", "--route-clearance", "--waypoint-radius",
+                               "--sensor-radius", "--speed", "--budget", "control ticks"}) {
+    EXPECT_NE(help.out.find(fragment), std::string::npos) << fragment << " not in --help";
+  }
+}
+
 TEST(CliBaseline, HelpDocumentsTheOptions) {
   const RunResult r = run_talus("baseline hait --help");
   EXPECT_EQ(r.exit_code, 0);
@@ -226,6 +261,7 @@ TEST(CliBaseline, HelpDocumentsTheOptions) {
   const RunResult b = run_talus("baseline --help");
   EXPECT_EQ(b.exit_code, 0);
   EXPECT_NE(b.out.find("hait"), std::string::npos);
+  EXPECT_NE(b.out.find("iagnemma"), std::string::npos);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // hazard on the direct line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -166,6 +167,36 @@ TEST(HazardDetection, TheBlockIsOneDiscAndFlatOrGentleGroundNone) {
   HazardDetectionOptions bad;
   bad.sensor_radius = 0.0;
   EXPECT_THROW(detect_hazards(ground, ugv(), Vec2(0, 0), bad), InputError);
+}
+
+// The whole map's node test is the sensor's: every hazard node within the
+// sensor radius lies in a disc detect_hazards returns, and the block's nodes
+// are hazards while flat ground has none.
+TEST(HazardDetection, TheNodeMaskIsTheSensorsTestOverTheWholeMap) {
+  const BPatch ground = block();
+  const std::vector<unsigned char> mask = hazard_node_mask(ground, ugv());
+  ASSERT_EQ(mask.size(), ground.ncols() * ground.nrows());
+  const auto node = [&](std::size_t n) {
+    return Vec2(ground.x_min() + static_cast<double>(n % ground.ncols()) * ground.cellsize(),
+                ground.y_min() + static_cast<double>(n / ground.ncols()) * ground.cellsize());
+  };
+  std::size_t hazards = 0;
+  const Vec2 from(4.0, 0.0);
+  const std::vector<DiscHazard> seen = detect_hazards(ground, ugv(), from);
+  for (std::size_t n = 0; n < mask.size(); ++n) {
+    if (!mask[n]) continue;
+    ++hazards;
+    const Vec2 p = node(n);
+    EXPECT_LE(std::abs(p.x() - 6.0), 0.5 + 0.2 + 1e-9) << p.transpose();  // the block's rim
+    EXPECT_LE(std::abs(p.y()), 0.5 + 0.2 + 1e-9) << p.transpose();
+    if ((p - from).norm() > 3.0) continue;
+    bool covered = false;
+    for (const DiscHazard& d : seen) covered = covered || (p - d.centre).norm() <= d.radius;
+    EXPECT_TRUE(covered) << p.transpose();
+  }
+  EXPECT_GT(hazards, 0u);
+  const std::vector<unsigned char> none = hazard_node_mask(flat(), ugv());
+  EXPECT_EQ(std::count(none.begin(), none.end(), 1), 0);
 }
 
 // The block lies on the direct line; no hazard is given, the sensor finds it.

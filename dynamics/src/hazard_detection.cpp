@@ -20,11 +20,17 @@ void HazardDetectionOptions::validate() const {
     throw InputError("HazardDetectionOptions.max_step must be >= 0 [m] (0 = derived)");
 }
 
-std::vector<DiscHazard> detect_hazards(const BPatch& surface, const Vehicle& vehicle,
-                                       const Vec2& position,
-                                       const HazardDetectionOptions& options) {
-  options.validate();
-  if (!position.allFinite()) throw InputError("detect_hazards: the position must be finite");
+namespace {
+
+/// The hazard flags of the grid nodes [i0, i1] x [j0, j1] (a window already
+/// clipped to the grid), row-major in the window: 1 where a node on the data
+/// that `considered(p)` accepts is too steep or has too much 3 x 3 relief
+/// (the file comment's test; the relief over the node's neighbours inside
+/// the window, which holds all of them unless the grid ends there).
+template <typename Considered>
+std::vector<unsigned char> hazard_window(const BPatch& surface, const Vehicle& vehicle,
+                                         const HazardDetectionOptions& options, long i0, long j0,
+                                         long i1, long j1, Considered considered) {
   const double slope_limit =
       std::tan(options.max_slope > 0.0
                    ? options.max_slope
@@ -32,6 +38,49 @@ std::vector<DiscHazard> detect_hazards(const BPatch& surface, const Vehicle& veh
   const double step_limit = options.max_step > 0.0
                                 ? options.max_step
                                 : (vehicle.body ? vehicle.body->wheel_radius : vehicle.cg_height);
+  const double h = surface.cellsize();
+  const long w = i1 - i0 + 1, rows = j1 - j0 + 1;
+  const auto node = [&](long i, long j) {
+    return Vec2(surface.x_min() + static_cast<double>(i) * h,
+                surface.y_min() + static_cast<double>(j) * h);
+  };
+  std::vector<double> z(static_cast<std::size_t>(w * rows));
+  std::vector<unsigned char> hazard(z.size(), 0);
+  const auto at = [w](long a, long b) { return static_cast<std::size_t>(b * w + a); };
+  for (long b = 0; b < rows; ++b)
+    for (long a = 0; a < w; ++a) z[at(a, b)] = surface.elevation(node(i0 + a, j0 + b));
+  for (long b = 0; b < rows; ++b)
+    for (long a = 0; a < w; ++a) {
+      const Vec2 p = node(i0 + a, j0 + b);
+      if (!considered(p) || !surface.on_data(p)) continue;
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (long db = -1; db <= 1; ++db)
+        for (long da = -1; da <= 1; ++da) {
+          const long x = a + da, y = b + db;
+          if (x < 0 || y < 0 || x >= w || y >= rows) continue;
+          lo = std::min(lo, z[at(x, y)]);
+          hi = std::max(hi, z[at(x, y)]);
+        }
+      const bool steep = surface.evaluate(p).gradient.norm() > slope_limit;
+      hazard[at(a, b)] = steep || hi - lo > step_limit ? 1 : 0;
+    }
+  return hazard;
+}
+
+}  // namespace
+
+std::vector<unsigned char> hazard_node_mask(const BPatch& surface, const Vehicle& vehicle,
+                                            const HazardDetectionOptions& options) {
+  options.validate();
+  return hazard_window(surface, vehicle, options, 0, 0, static_cast<long>(surface.ncols()) - 1,
+                       static_cast<long>(surface.nrows()) - 1, [](const Vec2&) { return true; });
+}
+
+std::vector<DiscHazard> detect_hazards(const BPatch& surface, const Vehicle& vehicle,
+                                       const Vec2& position,
+                                       const HazardDetectionOptions& options) {
+  options.validate();
+  if (!position.allFinite()) throw InputError("detect_hazards: the position must be finite");
   // The nodes of the sensor's bounding box, one node of margin for the 3 x 3 relief.
   const double h = surface.cellsize();
   const auto index = [h](double value, double origin) {
@@ -50,26 +99,11 @@ std::vector<DiscHazard> detect_hazards(const BPatch& surface, const Vehicle& veh
     return Vec2(surface.x_min() + static_cast<double>(i) * h,
                 surface.y_min() + static_cast<double>(j) * h);
   };
-  std::vector<double> z(static_cast<std::size_t>(w * rows));
-  std::vector<unsigned char> hazard(z.size(), 0), seen(z.size(), 0);
+  const std::vector<unsigned char> hazard =
+      hazard_window(surface, vehicle, options, i0, j0, i1, j1,
+                    [&](const Vec2& p) { return (p - position).norm() <= options.sensor_radius; });
+  std::vector<unsigned char> seen(hazard.size(), 0);
   const auto at = [w](long a, long b) { return static_cast<std::size_t>(b * w + a); };
-  for (long b = 0; b < rows; ++b)
-    for (long a = 0; a < w; ++a) z[at(a, b)] = surface.elevation(node(i0 + a, j0 + b));
-  for (long b = 0; b < rows; ++b)
-    for (long a = 0; a < w; ++a) {
-      const Vec2 p = node(i0 + a, j0 + b);
-      if ((p - position).norm() > options.sensor_radius || !surface.on_data(p)) continue;
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (long db = -1; db <= 1; ++db)
-        for (long da = -1; da <= 1; ++da) {
-          const long x = a + da, y = b + db;
-          if (x < 0 || y < 0 || x >= w || y >= rows) continue;
-          lo = std::min(lo, z[at(x, y)]);
-          hi = std::max(hi, z[at(x, y)]);
-        }
-      const bool steep = surface.evaluate(p).gradient.norm() > slope_limit;
-      hazard[at(a, b)] = steep || hi - lo > step_limit ? 1 : 0;
-    }
   // 8-connected groups, each as the disc round its centroid.
   std::vector<DiscHazard> out;
   std::vector<std::size_t> stack, group;

@@ -13,7 +13,9 @@
 ///   (a body's, else the c.g. height).
 /// Hazardous nodes within sensor_radius of the vehicle are grouped by
 /// 8-connectivity; each group becomes the disc round its nodes' centroid
-/// that covers them all, plus half a cell.
+/// that covers them all, plus half a cell. hazard_node_mask() is the same
+/// node test over the whole grid, for a planner that needs the hazards of the
+/// whole map (the Iagnemma baseline of kinematic/).
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
@@ -42,5 +44,13 @@ struct HazardDetectionOptions {
 std::vector<DiscHazard> detect_hazards(const BPatch& surface, const Vehicle& vehicle,
                                        const Vec2& position,
                                        const HazardDetectionOptions& options = {});
+
+/// The node test of the file comment at every node of `surface`'s grid, with
+/// no sensor radius: row-major (index j · ncols + i, node (i, j) at
+/// (x_min + i h, y_min + j h)), 1 where the node is a hazard, 0 elsewhere
+/// and on nodes off the data. A node detect_hazards() sees is a hazard there
+/// exactly when it is one here. Throws InputError for invalid options.
+std::vector<unsigned char> hazard_node_mask(const BPatch& surface, const Vehicle& vehicle,
+                                            const HazardDetectionOptions& options = {});
 
 }  // namespace talus

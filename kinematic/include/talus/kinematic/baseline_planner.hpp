@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The interface every kinematic baseline planner implements (Haït–Siméon–Taïx
-/// now; Dacre-Wright–Siméon, Eldershaw–Yim and Iagnemma–Shimoda–Shiller later):
+/// The interface every kinematic baseline planner implements (Haït–Siméon–Taïx,
+/// Dacre-Wright–Siméon, Eldershaw–Yim, Iagnemma–Shimoda–Shiller):
 /// one query plan(terrain, start, goal) → BaselineResult, and the planner's own
 /// validity check of a configuration on a terrain, so that a shared
 /// conformance test (tests/test_baseline_conformance.cpp) can hold every
@@ -17,6 +17,7 @@
 /// budget counts work, not time), so two runs give bit-identical paths.
 #include <cstddef>
 #include <map>
+#include <numbers>
 #include <string>
 #include <variant>
 #include <vector>
@@ -43,7 +44,7 @@ struct BaselineResult {
   BaselineStatus status = BaselineStatus::kNoPath;
   std::string message = "BaselinePlanner::plan was not called";  ///< human-readable outcome
   /// The path as configurations (x [m], y [m], θ [rad]), start first, goal
-  /// last (within the planner's goal tolerance); empty unless kFound. Each
+  /// last (within the planner's goal_tolerance()); empty unless kFound. Each
   /// pose passed the planner's validity check; consecutive poses are at most
   /// the planner's check spacing apart.
   std::vector<SE2Pose> path;
@@ -77,6 +78,16 @@ struct BaselineSetting {
   BaselineSettingValue value;
 };
 
+/// How close the last pose of a found path comes to the goal: its position
+/// within `position` and its heading within `heading` (modulo 2π). The
+/// defaults are a quarter-metre cell and one of 32 heading cells, the
+/// coarsest resolution of the search-based baselines; a planner that does not
+/// steer to the goal's heading says so with heading = π (any heading).
+struct GoalTolerance {
+  double position = 0.25;                      ///< [m] (>= 0)
+  double heading = 2 * std::numbers::pi / 32;  ///< [rad] in [0, π]
+};
+
 /// A kinematic baseline planner, configured once (its options, its robot) and
 /// queried any number of times. Implementations supply name(), settings(),
 /// validity() and solve(); plan() checks the query and calls solve(). A
@@ -96,6 +107,11 @@ class BaselinePlanner {
   /// preprocessing it needs done once here; `terrain` must outlive the
   /// returned function. A pose off the terrain's data is not valid.
   virtual ValidityFunction validity(const RuledTerrain& terrain) const = 0;
+
+  /// How close a found path's last pose comes to the goal (GoalTolerance's
+  /// defaults unless the planner says otherwise); the conformance suite holds
+  /// each planner to its own.
+  virtual GoalTolerance goal_tolerance() const { return {}; }
 
   /// Plans from `start` to `goal` on `terrain`. Throws InputError when a pose
   /// is not finite or its position is off the map or on NODATA; every other

@@ -20,6 +20,7 @@
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/layered_navigation.hpp"
 #include "talus/optimal/navigation_figures.hpp"
+#include "talus/optimal/planner.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -77,14 +78,17 @@ struct Battery {
   double height_scale;  ///< [m] (FractalTerrainOptions::height_scale)
 };
 
-/// How rough a terrain is at the UGV's scale: slopes from central
-/// differences at the nodes, curvature from second differences along x and
-/// y; the contact limit √(g/κ) of a crest of curvature κ.
-struct Roughness {
+/// What one terrain is at the UGV's scale: slopes from central differences
+/// at the nodes, curvature from second differences along x and y, the
+/// contact limit √(g/κ) of a crest of curvature κ; and the optimal time of
+/// Talus's plan on the fine map itself (NaN without a plan), which the coarse
+/// plan's time can only bound from below.
+struct TerrainFacts {
   double median_slope_deg = kNaN, steep_fraction = kNaN, median_contact_speed = kNaN;
+  double fine_optimal_time = kNaN;  ///< [s]
 };
 
-Roughness roughness(const ElevationGrid& g, const Vehicle& vehicle) {
+TerrainFacts terrain_facts(const ElevationGrid& g, const Vehicle& vehicle) {
   std::vector<double> slopes, curvatures;
   const double h = g.cellsize();
   const double static_limit =
@@ -101,7 +105,11 @@ Roughness roughness(const ElevationGrid& g, const Vehicle& vehicle) {
                              (g.at(i, j + 1) - 2 * g.at(i, j) + g.at(i, j - 1)) / (h * h)})
         curvatures.push_back(std::abs(k));
     }
-  Roughness r;
+  TerrainFacts r;
+  const PlannerResult fine =
+      plan(PlanningProblem(BPatch::interpolate(g), vehicle, kBatteryStart, kBatteryGoal),
+           PlannerOptions{});
+  if (fine.best() != nullptr) r.fine_optimal_time = fine.best()->travel_time();
   r.median_slope_deg = upper_median(slopes);
   r.steep_fraction = static_cast<double>(steep) / static_cast<double>(slopes.size());
   r.median_contact_speed = std::sqrt(vehicle.gravity / upper_median(curvatures));
@@ -147,20 +155,21 @@ MethodStats method_stats(const std::vector<Run>& runs, const Method& method) {
   return st;
 }
 
-std::string percent_cell(double value) {
-  return std::isfinite(value) ? fmt("%.1f", value) : std::string("–");
+/// `value` in `format`, or "–" where it is not finite (no run, no plan).
+std::string cell(double value, const char* format = "%.1f") {
+  return std::isfinite(value) ? fmt(format, value) : std::string("–");
 }
 
 /// Both methods on every terrain of `battery` (seeds 1..seeds), in order
 /// (terrain by terrain, kMethods' order within one).
 std::vector<Run> run_battery(const Battery& battery, std::size_t seeds, const Vehicle& vehicle,
-                             std::vector<Roughness>& roughnesses) {
+                             std::vector<TerrainFacts>& facts) {
   std::vector<Run> runs;
   for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
     FractalTerrainOptions terrain = battery_terrain(seed);
     terrain.height_scale = battery.height_scale;
     const ElevationGrid grid = generate_fractal_terrain(terrain);
-    roughnesses.push_back(roughness(grid, vehicle));
+    facts.push_back(terrain_facts(grid, vehicle));
     for (const Method& method : kMethods) {
       Run run;
       run.seed = seed;
@@ -197,11 +206,10 @@ Table table_one(const std::vector<Run>& runs, const std::string& prefix,
                 "runs that did not reach the goal (failure event or time limit)");
     summary.set(key + "_mean_increase_percent", st.mean_increase_percent, "%",
                 "navigation time over the optimal time, minus 1, mean over reached runs");
-    table.row({method.name, std::to_string(st.runs), percent_cell(st.failure_percent),
-               percent_cell(method.paper_failure_percent), percent_cell(st.mean_increase_percent),
-               percent_cell(method.paper_increase_percent),
-               percent_cell(st.median_increase_percent), std::to_string(st.reached),
-               std::to_string(st.failed), std::to_string(st.timeouts)});
+    table.row({method.name, std::to_string(st.runs), cell(st.failure_percent),
+               cell(method.paper_failure_percent), cell(st.mean_increase_percent),
+               cell(method.paper_increase_percent), cell(st.median_increase_percent),
+               std::to_string(st.reached), std::to_string(st.failed), std::to_string(st.timeouts)});
   }
   summary.set(prefix + "planned_terrains", static_cast<double>(planned), "count",
               "terrains whose high-level plan found a trajectory (the optimal time)");
@@ -212,13 +220,14 @@ Table table_one(const std::vector<Run>& runs, const std::string& prefix,
 }
 
 /// Both methods side by side, one row per terrain, with its roughness.
-Table per_terrain_table(const std::vector<Run>& runs, const std::vector<Roughness>& rough) {
+Table per_terrain_table(const std::vector<Run>& runs, const std::vector<TerrainFacts>& rough) {
   Table table({"seed", "median slope [deg]", "contact limit √(g/κ₅₀) [m/s]", "optimal time [s]",
-               "near-optimal", "time [s]", "increase [%]", "caps applied", "standard", "time [s]"});
+               "fine-map optimal time [s]", "near-optimal", "time [s]", "increase [%]",
+               "over fine-map optimal [%]", "caps applied", "standard", "time [s]"});
   for (std::size_t k = 0; k + 1 < runs.size(); k += kMethods.size()) {
     const Run& a = runs[k];
     const Run& b = runs[k + 1];
-    const Roughness& r = rough[k / kMethods.size()];
+    const TerrainFacts& r = rough[k / kMethods.size()];
     const auto status = [](const Run& run) {
       const std::string failure = run.failure();
       return std::string(to_string(run.result.status)) +
@@ -228,10 +237,14 @@ Table per_terrain_table(const std::vector<Run>& runs, const std::vector<Roughnes
       return run.result.navigation ? fmt("%.2f", run.result.navigation->navigation_time)
                                    : std::string("–");
     };
+    const double over_fine =
+        a.reached() ? 100.0 * (a.result.navigation->navigation_time / r.fine_optimal_time - 1.0)
+                    : kNaN;
     table.row(
         {std::to_string(a.seed), fmt("%.1f", r.median_slope_deg),
-         fmt("%.2f", r.median_contact_speed), fmt("%.2f", a.result.optimal_time), status(a),
-         time(a), a.reached() ? fmt("%.1f", 100.0 * a.result.time_increase()) : "–",
+         fmt("%.2f", r.median_contact_speed), fmt("%.2f", a.result.optimal_time),
+         cell(r.fine_optimal_time, "%.2f"), status(a), time(a),
+         a.reached() ? fmt("%.1f", 100.0 * a.result.time_increase()) : "–", cell(over_fine),
          a.result.navigation ? std::to_string(a.result.navigation->lookahead_caps_applied) : "–",
          status(b), time(b)});
   }
@@ -333,7 +346,7 @@ void run_iagnemma_table1(const ExperimentContext& context) {
   std::string data_files;
   double plan_seconds = 0.0, navigation_seconds = 0.0;
   for (const Battery& battery : batteries) {
-    std::vector<Roughness> rough;
+    std::vector<TerrainFacts> rough;
     const std::vector<Run> runs = run_battery(battery, seeds, vehicle, rough);
     const std::string prefix = battery.key.empty() ? "" : battery.key + "_";
     // The paper's claim in kind: the lookahead lowers the incidence of failure.
@@ -347,10 +360,39 @@ void run_iagnemma_table1(const ExperimentContext& context) {
     write_text_file(out / csv_name, results_csv(runs));
     data_files += (data_files.empty() ? "" : ", ") + csv_name;
     std::vector<double> slopes, contact;
-    for (const Roughness& r : rough) {
+    std::vector<double> over_fine, fine_over_coarse;
+    for (std::size_t t = 0; t < rough.size(); ++t) {
+      const TerrainFacts& r = rough[t];
       slopes.push_back(r.median_slope_deg);
       contact.push_back(r.median_contact_speed);
+      const Run& near = runs[t * kMethods.size()];
+      if (!std::isfinite(r.fine_optimal_time)) continue;
+      fine_over_coarse.push_back(r.fine_optimal_time / near.result.optimal_time);
+      if (near.reached())
+        over_fine.push_back(100.0 *
+                            (near.result.navigation->navigation_time / r.fine_optimal_time - 1.0));
     }
+    summary.set(prefix + "fine_over_coarse_optimal_median",
+                fine_over_coarse.empty() ? kNaN : upper_median(fine_over_coarse), "1",
+                "the fine map's optimal time over the coarse plan's, median over terrains");
+    double over_fine_sum = 0.0;
+    for (const double x : over_fine) over_fine_sum += x;
+    summary.set(prefix + "near_optimal_mean_increase_over_fine_percent",
+                over_fine.empty() ? kNaN : over_fine_sum / static_cast<double>(over_fine.size()),
+                "%",
+                "navigation time over the fine map's optimal time, minus 1, mean over reached");
+    std::string terrains_csv =
+        "terrain,median_slope_deg,steep_fraction,contact_speed,optimal_time,fine_optimal_time\n";
+    for (std::size_t t = 0; t < rough.size(); ++t)
+      terrains_csv += std::to_string(t + 1) + "," + csv_number(rough[t].median_slope_deg) + "," +
+                      csv_number(rough[t].steep_fraction) + "," +
+                      csv_number(rough[t].median_contact_speed) + "," +
+                      csv_number(runs[t * kMethods.size()].result.optimal_time) + "," +
+                      csv_number(rough[t].fine_optimal_time) + "\n";
+    const std::string terrains_name =
+        "terrains" + (battery.key.empty() ? "" : "_" + battery.key) + ".csv";
+    write_text_file(out / terrains_name, terrains_csv);
+    data_files += ", " + terrains_name;
     summary.set(prefix + "median_slope_deg", upper_median(slopes), "deg",
                 "median over terrains of the median node slope");
     summary.set(prefix + "median_contact_speed", upper_median(contact), "m/s",
@@ -360,7 +402,16 @@ void run_iagnemma_table1(const ExperimentContext& context) {
         .paragraph("Per terrain (`" + csv_name +
                    "`); the roughness columns are the median node slope and the contact limit "
                    "√(g/κ) of the median second-difference curvature κ₅₀ along x and y:")
-        .table(per_terrain_table(runs, rough));
+        .table(per_terrain_table(runs, rough))
+        .paragraph(
+            "Talus's plan on the fine map itself (`" + terrains_name +
+            "`) is a truer optimum for the fine terrain than the coarse plan: its travel time "
+            "is " +
+            cell(fine_over_coarse.empty() ? kNaN : upper_median(fine_over_coarse), "%.2f") +
+            "× the coarse plan's (median over terrains), and the near-optimal navigation is " +
+            cell(over_fine.empty() ? kNaN : over_fine_sum / static_cast<double>(over_fine.size()),
+                 "%.1f") +
+            " % slower than it (mean over its reached runs).");
     for (const Run& r : runs)
       if (!r.reached())
         report.bullet("seed " + std::to_string(r.seed) + ", " + r.method->name + ": " +
@@ -376,6 +427,29 @@ void run_iagnemma_table1(const ExperimentContext& context) {
   summary.set("navigation_seconds_total", navigation_seconds, "s");
 
   report.heading("Where we differ from the paper, and why")
+      .paragraph(
+          "**Hazards.** These runs leave `hazards_from_map` off (the layered scheme's default). "
+          "With it on, the paper's hazard gains (K_o = 1500, K_od = 0.05, K_oa = 10, "
+          "K_ov = 0.07) outweigh the waypoint field by orders of magnitude, and the UGV turned "
+          "away from its waypoints. Measured on the quick run's four terrains with it on: "
+          "none reached by either method, against two (both smoother-battery terrains, "
+          "near-optimal) with it off. The lookahead's safe profile still sees every crest, "
+          "slope and bank through the vehicle's speed limits.")
+      .paragraph(
+          "**The standard field fails everywhere.** It drives towards each waypoint's speed "
+          "(the coarse plan's profile, which never saw the fine crests). Its rollover and "
+          "side-slip terms use the local inclination only, and it has no term for contact. So "
+          "within the first few seconds it takes a crest too fast, or banks too hard, and "
+          "loses contact or rolls (see the per-terrain status). The paper's standard field "
+          "failed on 24 %. It notes that safer standard navigation is possible at the cost of "
+          "time, so its gains, or its terrain at the UGV's scale, must have left more margin "
+          "than ours.")
+      .paragraph(
+          "**The time increase.** The near-optimal field caps the speed at 0.9 of the safe "
+          "profile's minimum over the 1 s horizon wherever the prediction exceeds it (figure "
+          "8), so it keeps slower than even the fine map's optimal profile. The coarse plan's "
+          "time, which the paper and this table compare against, is faster still: see the "
+          "fine-map comparison under each table.")
       .paragraph(
           "The paper's simulator, tyre model, PD gains, vehicle mass and inertia, hazard "
           "definition and failure definition are not published; ours are documented choices "

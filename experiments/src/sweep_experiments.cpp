@@ -586,7 +586,8 @@ void run_sweep_baselines(const ExperimentContext& context) {
   const std::vector<std::pair<std::string, std::string>> baselines = {
       {"hait", "sweep-dynamic-vs-kinematic"},
       {"dacre-wright", "sweep-baselines-dacre-wright"},
-      {"eldershaw-yim", "sweep-baselines-eldershaw-yim"}};
+      {"eldershaw-yim", "sweep-baselines-eldershaw-yim"},
+      {"iagnemma", "sweep-baselines-iagnemma"}};
 
   Report report("Sweep: Talus against every kinematic baseline");
   report.paragraph(
@@ -596,7 +597,8 @@ void run_sweep_baselines(const ExperimentContext& context) {
       "(`talus baseline NAME --vehicle`): along its own segments and arcs when it has a driving "
       "direction (Haït–Siméon–Taïx), along a clamped cubic fitted to its positions when it "
       "moves sideways or steps through CGspace (Dacre-Wright–Siméon; Eldershaw–Yim's walker, "
-      "whose CG route is what is compared: `profile_method` fitted_cubic). Talus plans the "
+      "whose CG route is what is compared: `profile_method` fitted_cubic) or is a simulated "
+      "vehicle's driven path (Iagnemma–Shimoda–Shiller's navigator). Talus plans the "
       "same queries once (`talus/`). Time ratio = the baseline path's time ÷ Talus's; "
       "planning-time ratio = the baseline's planning seconds ÷ Talus's whole planner (one "
       "machine, one run)" +

@@ -47,11 +47,10 @@
 ///   hazards seen within 1.5 m, the field follows the waypoints and acts
 ///   only when the vehicle strays towards a hazard.
 /// - The waypoints' speed defaults to 1 m/s, not the UGV's 6 m/s top speed:
-///   on that wall at 2 m/s and above the UGV looped round waypoints (its
-///   turning circle at speed is wider than the waypoint radius), or, with
-///   the lookahead capping the speed, drove straight into the hills (a
-///   capped speed keeps the descent's step on the speed axis, so the
-///   commanded curvature stays put). `speed` 0 asks for the top speed.
+///   on that wall at 2 and 3 m/s the UGV did not reach the goal within the
+///   60 s limit, with either sensor radius (it loops round waypoints: its
+///   turning circle at speed is wider than the waypoint radius). `speed` 0
+///   asks for the top speed.
 /// - The vehicle starts at rest at the start with the start's heading; every
 ///   waypoint, the goal too, has the desired speed `speed` (the route has no
 ///   speed profile); the run ends within waypoint-radius of the goal, at full

@@ -5,7 +5,10 @@
 // search with lazily evaluated edges. "MultiFields" / "MultiAStar" are the
 // same with GlobalSearchResolution::kMulti (coarse lattice 4x coarser, then
 // the fine lattice in a corridor around its candidates); the counters
-// report the corridor's nodes and how often it widened.
+// report the corridor's nodes and how often it widened. "FieldsThreads/N/T"
+// is "Fields" with the edge costs computed up front on T threads
+// (GlobalSearchOptions::threads; T = 1 is the serial search itself, so the
+// ratio T = 2 / T = 1 of one run is the speed-up).
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -41,7 +44,8 @@ const Case& terrain_case(std::size_t n) {
 }
 
 void run(benchmark::State& state, std::size_t candidates, bool fields,
-         talus::GlobalSearchResolution resolution = talus::GlobalSearchResolution::kFull) {
+         talus::GlobalSearchResolution resolution = talus::GlobalSearchResolution::kFull,
+         std::size_t threads = 1) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const Case& c = terrain_case(n);
   const double w = c.terrain.x_max() - c.terrain.x_min();
@@ -50,6 +54,7 @@ void run(benchmark::State& state, std::size_t candidates, bool fields,
   options.candidates = candidates;
   options.cost_fields = fields;
   options.resolution = resolution;
+  options.threads = threads;
   talus::GlobalSearchResult result;
   for (auto _ : state) {
     result =
@@ -77,11 +82,20 @@ void BM_GlobalSearchMultiFields(benchmark::State& state) {
 void BM_GlobalSearchMultiAStar(benchmark::State& state) {
   run(state, 1, false, talus::GlobalSearchResolution::kMulti);
 }
+void BM_GlobalSearchFieldsThreads(benchmark::State& state) {
+  run(state, 3, true, talus::GlobalSearchResolution::kFull,
+      static_cast<std::size_t>(state.range(1)));
+}
 BENCHMARK(BM_GlobalSearchFields)
     ->Arg(128)
     ->Arg(256)
     ->Arg(512)
     ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+BENCHMARK(BM_GlobalSearchFieldsThreads)
+    ->Args({512, 1})
+    ->Args({512, 2})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
 BENCHMARK(BM_GlobalSearchAStar)

@@ -389,5 +389,54 @@ TEST(GlobalSearch, SlopeSteeperThanFrictionCanBeNeitherClimbedNorDescended) {
   EXPECT_LT(gentle.backward, INFINITY);
 }
 
+// GlobalSearchOptions::threads: every edge computed up front on several threads gives the
+// serial search's candidates, costs and both cost fields bit for bit.
+TEST(GlobalSearchThreads, AnyThreadCountGivesTheSerialCandidatesAndFields) {
+  const BPatch terrain = bumps();
+  GlobalSearchOptions options;
+  options.candidates = 3;
+  const Vehicle v = point_mass_rover(0.3);
+  const GlobalSearchResult serial = global_search(terrain, v, {3, 30}, {77, 30}, options);
+  ASSERT_EQ(serial.status, GlobalSearchStatus::kOk) << serial.message;
+  ASSERT_GE(serial.candidates.size(), 2u);
+  for (const std::size_t threads : {2u, 3u}) {
+    options.threads = threads;
+    const GlobalSearchResult r = global_search(terrain, v, {3, 30}, {77, 30}, options);
+    ASSERT_EQ(r.status, GlobalSearchStatus::kOk) << r.message;
+    ASSERT_EQ(r.candidates.size(), serial.candidates.size()) << threads;
+    for (std::size_t c = 0; c < r.candidates.size(); ++c) {
+      EXPECT_EQ(r.candidates[c].cost_seconds, serial.candidates[c].cost_seconds);
+      EXPECT_EQ(r.candidates[c].length_m, serial.candidates[c].length_m);
+      EXPECT_EQ(r.candidates[c].vertices, serial.candidates[c].vertices);
+    }
+    EXPECT_EQ(r.cost_from_start, serial.cost_from_start);
+    EXPECT_EQ(r.cost_to_goal, serial.cost_to_goal);
+    // Up front it also computes the edges at nodes no search reaches.
+    EXPECT_GE(r.edges_evaluated, serial.edges_evaluated);
+  }
+  options.threads = 2000;
+  EXPECT_THROW(global_search(terrain, v, {3, 30}, {77, 30}, options), InputError);
+}
+
+// The stop function is polled between the parallel batches of edge costs (on the calling
+// thread only): a stop after the first batch ends the search there.
+TEST(GlobalSearchThreads, StopIsPolledBetweenTheBatchesOfEdgeCosts) {
+  const BPatch terrain = bumps();
+  GlobalSearchOptions options;
+  options.threads = 2;
+  options.stop_interval = 1;
+  const Vehicle v = point_mass_rover(0.3);
+  const std::size_t nodes = global_search(terrain, v, {3, 30}, {77, 30}, options).nodes;
+  // Sampling the surface polls once per node (interval 1); the edge stage then once per batch.
+  std::size_t calls = 0;
+  options.stop = [&] { return ++calls > nodes + 1; };
+  const GlobalSearchResult r = global_search(terrain, v, {3, 30}, {77, 30}, options);
+  EXPECT_EQ(r.status, GlobalSearchStatus::kStopped);
+  EXPECT_NE(r.message.find("computing the edge costs"), std::string::npos) << r.message;
+  EXPECT_EQ(calls, nodes + 2);
+  // One batch of stop_interval nodes per thread, plus the start's and goal's own checks.
+  EXPECT_LE(r.edges_evaluated, 2u * 8u + 2u * 16u);
+}
+
 }  // namespace
 }  // namespace talus

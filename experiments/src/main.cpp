@@ -519,6 +519,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "while needed; no fields.csv)")
       ->capture_default_str()
       ->check(CLI::IsMember({std::string("full"), std::string("multi")}));
+  plan->add_option("--threads", plan_request.threads,
+                   "threads computing the global search's edge costs (0 = one per hardware "
+                   "thread); the plan is the same for any count")
+      ->capture_default_str();
   plan->add_option("--time-limit", plan_request.time_limit,
                    "wall-clock budget of the plan [s] (> 0; default none): returns the best "
                    "feasible trajectory so far with status time_limit");

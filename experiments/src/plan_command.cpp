@@ -80,6 +80,9 @@ void check_plan_options(const PlanRequest& request) {
         "10), got " +
         format_number(request.station_spacing));
   }
+  if (request.threads < 0 || request.threads > 1024)
+    throw InputError("--threads must be 0 (one per hardware thread) to 1024, got " +
+                     std::to_string(request.threads));
   if (request.connectivity != 8 && request.connectivity != 16 && request.connectivity != 32) {
     throw InputError("--connectivity must be 8, 16 or 32, got " +
                      std::to_string(request.connectivity));
@@ -394,6 +397,7 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.global.candidates = static_cast<std::size_t>(request.candidates);
   options.global.cost_fields = true;  // fields.csv
   options.global.resolution = parse_global_search_resolution(request.resolution);
+  options.global.threads = static_cast<std::size_t>(request.threads);
   options.time_limit = request.time_limit;
   options.feedback_rounds = static_cast<std::size_t>(request.feedback_rounds);
   options.optimize = request.stage == kPlanStageFull;

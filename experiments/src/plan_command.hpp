@@ -23,7 +23,7 @@ namespace talus::experiments {
 /// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
 /// [--smoothing LAMBDA] [--control-points M] [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa]
 /// [--formulation nested|simultaneous] [--restarts R] [--v0 A]
-/// [--v1 B] [--time-limit SECONDS] [--resolution full|multi] --out DIR`.
+/// [--v1 B] [--time-limit SECONDS] [--resolution full|multi] [--threads N] --out DIR`.
 struct PlanRequest {
   std::string terrain;             ///< DEM (load_terrain)
   std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
@@ -39,6 +39,9 @@ struct PlanRequest {
   int connectivity = 16;  ///< 8, 16 or 32
   /// The global search's GlobalSearchOptions::resolution: "full" or "multi".
   std::string resolution = "full";
+  /// GlobalSearchOptions::threads: threads computing the lattice's edge
+  /// costs (0 = one per hardware thread); the plan is the same for any count.
+  long long threads = 1;
   /// PlannerOptions::time_limit [s] (> 0; +inf = none).
   double time_limit = std::numeric_limits<double>::infinity();
   /// PlannerOptions::feedback_rounds (>= 0).

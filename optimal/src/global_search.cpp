@@ -1,6 +1,7 @@
 #include "talus/optimal/global_search.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -8,6 +9,8 @@
 #include <numeric>
 #include <optional>
 #include <sstream>
+#include <thread>
+#include <vector>
 
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
@@ -317,21 +320,58 @@ class Lattice {
   /// Stations of an edge of planar length L: at most half a spacing apart, odd count.
   int stations_for(double planar_length) const { return edge_stations(planar_length, spacing_); }
 
+  /// Computes the costs of every positive edge of nodes [begin, end) that
+  /// the searches would otherwise compute lazily, on `threads` threads
+  /// (>= 1): chunks of consecutive nodes are handed out in turn, and each
+  /// edge's slot is written by the one thread that owns its first node, so
+  /// the costs are those of a serial run, whatever the thread count.
+  void evaluate_edges(std::size_t begin, std::size_t end, std::size_t threads) {
+    constexpr std::size_t kChunk = 64;  // nodes: big enough that slots seldom share cache lines
+    std::atomic<std::size_t> next{begin}, evaluated{0};
+    const auto work = [&] {
+      std::size_t count = 0;
+      for (std::size_t first = next.fetch_add(kChunk); first < end;
+           first = next.fetch_add(kChunk)) {
+        for (std::size_t n = first; n < std::min(end, first + kChunk); ++n) {
+          const auto a = static_cast<std::uint32_t>(n);
+          if (!exists(a)) continue;
+          const auto [i, j] = coords(a);
+          for (std::size_t k = 0; k < half_; ++k) {
+            const std::uint32_t b = node_at(i + offsets_[k].first, j + offsets_[k].second);
+            if (b != kNoNode) count += compute(a, b, k) ? 1 : 0;
+          }
+        }
+      }
+      evaluated += count;
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    evaluated_ += evaluated;
+  }
+
  private:
+  /// Computes the slot of the positive edge a -> b (offset k < half) unless
+  /// it is already known; true if it computed it.
+  bool compute(std::uint32_t a, std::uint32_t b, std::size_t k) {
+    const std::size_t slot = static_cast<std::size_t>(a) * half_ + k;
+    if (!std::isnan(forward_[slot])) return false;
+    EdgeCost c{kInf, kInf, kInf};
+    if (on_data_[a] && on_data_[b]) {
+      const Vec2 pa = position(a), pb = position(b);
+      c = edge_cost_impl(terrain_, set_, pa, pb, stations_for((pb - pa).norm()), &surface_[a],
+                         &surface_[b]);
+    }
+    forward_[slot] = c.forward;
+    backward_[slot] = c.backward;
+    return true;
+  }
+
   /// Forward/backward costs of the positive edge a -> b (offset k < half).
   std::pair<double, double> ensure(std::uint32_t a, std::uint32_t b, std::size_t k) {
+    evaluated_ += compute(a, b, k) ? 1 : 0;
     const std::size_t slot = static_cast<std::size_t>(a) * half_ + k;
-    if (std::isnan(forward_[slot])) {
-      EdgeCost c{kInf, kInf, kInf};
-      if (on_data_[a] && on_data_[b]) {
-        const Vec2 pa = position(a), pb = position(b);
-        c = edge_cost_impl(terrain_, set_, pa, pb, stations_for((pb - pa).norm()), &surface_[a],
-                           &surface_[b]);
-      }
-      forward_[slot] = c.forward;
-      backward_[slot] = c.backward;
-      ++evaluated_;
-    }
     return {forward_[slot], backward_[slot]};
   }
 
@@ -435,6 +475,7 @@ void GlobalSearchOptions::validate() const {
     throw InputError("GlobalSearchOptions.corridor_width must be a finite number >= 0 [m]");
   }
   if (stop_interval < 1) throw InputError("GlobalSearchOptions.stop_interval must be >= 1");
+  if (threads > 1024) throw InputError("GlobalSearchOptions.threads must be at most 1024");
 }
 
 std::string_view to_string(GlobalSearchResolution resolution) {
@@ -544,6 +585,18 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
   }
 
   const std::size_t n = lattice.size();
+  const std::size_t threads =
+      options.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : options.threads;
+  if (threads > 1 && (options.cost_fields || options.candidates > 1)) {
+    // Both cost fields reach every edge of the reachable lattice: compute
+    // them all up front on the threads, `stop` polled (on this thread only,
+    // as the searches do) between batches of stop_interval nodes per thread.
+    const std::size_t batch = options.stop_interval * threads;
+    for (std::size_t begin = 0; begin < n; begin += batch) {
+      if (stop()) return stopped("computing the edge costs");
+      lattice.evaluate_edges(begin, std::min(n, begin + batch), threads);
+    }
+  }
   const auto forward = [&lattice](std::uint32_t node, auto&& emit) {
     lattice.for_each_edge(node, true, emit);
   };

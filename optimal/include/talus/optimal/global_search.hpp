@@ -105,6 +105,14 @@ struct GlobalSearchOptions {
   /// Empty: never stops.
   std::function<bool()> stop;
   std::size_t stop_interval = 1024;  ///< >= 1
+  /// Threads computing the lattice's edge costs (0 = one per hardware
+  /// thread). With more than one, and both cost fields wanted (cost_fields
+  /// or candidates > 1), every edge is computed up front in parallel instead
+  /// of lazily during the searches; the candidates, costs and fields are
+  /// bit-identical for any count, but edges_evaluated then also counts the
+  /// edges at nodes the searches never reach. The searches themselves stay
+  /// serial. Default 1: one-core figures are the primary benchmark.
+  std::size_t threads = 1;
   /// Lattice nodes within any of these discs are untraversable (every edge
   /// at them is), except the snapped start and goal nodes, which are always
   /// kept. The planner's feedback from the local stage

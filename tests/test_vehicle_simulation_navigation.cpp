@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,9 @@ TEST(PotentialFieldNavigation, TheLookaheadSlowsForACrestTheStandardFieldTakesTo
   std::cout << "standard: " << fast.brief_report() << "\n";
   EXPECT_NE(fast.status, TrackingStatus::kReachedGoal);
   EXPECT_EQ(fast.lookahead_caps_applied, 0u);
+  // Without the lookahead there is no safe speed to record.
+  ASSERT_EQ(fast.lookahead_safe_speeds.size(), fast.commands.size());
+  for (const double v : fast.lookahead_safe_speeds) EXPECT_TRUE(std::isnan(v));
 
   PotentialFieldNavigationOptions near_optimal;
   near_optimal.lookahead.enabled = true;
@@ -96,6 +100,18 @@ TEST(PotentialFieldNavigation, TheLookaheadSlowsForACrestTheStandardFieldTakesTo
   ASSERT_EQ(safe.status, TrackingStatus::kReachedGoal) << safe.message;
   EXPECT_GT(safe.lookahead_caps_applied, 0u);
   ASSERT_EQ(safe.lookahead_caps.size(), safe.commands.size());
+  ASSERT_EQ(safe.lookahead_safe_speeds.size(), safe.commands.size());
+  // Every command sent is within its tick's cap, and a safe speed was recorded at every tick
+  // the UGV moved; it drops below the top speed before the crest (figure 8's limit curve).
+  double lowest_safe = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < safe.commands.size(); ++k) {
+    EXPECT_LE(safe.commands[k].speed, safe.lookahead_caps[k]) << k;
+    if (safe.command_times[k] > 0.5) {
+      EXPECT_TRUE(std::isfinite(safe.lookahead_safe_speeds[k])) << k;
+      lowest_safe = std::min(lowest_safe, safe.lookahead_safe_speeds[k]);
+    }
+  }
+  EXPECT_LT(lowest_safe, 6.0);  // the UGV's top speed
   // Over the crest's top the UGV was below the contact limit √(g / κ).
   const double limit = std::sqrt(9.81 / (0.25 / (0.7 * 0.7)));
   for (const VehicleSample& k : safe.simulation.trace)

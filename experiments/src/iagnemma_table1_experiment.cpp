@@ -81,12 +81,20 @@ struct Battery {
 /// What one terrain is at the UGV's scale: slopes from central differences
 /// at the nodes, curvature from second differences along x and y, the
 /// contact limit √(g/κ) of a crest of curvature κ; and the optimal time of
-/// Talus's plan on the fine map itself (NaN without a plan), which the coarse
-/// plan's time can only bound from below.
+/// Talus's plan on the fine map itself (NaN without a plan), the optimum the
+/// coarse plan can only approximate.
 struct TerrainFacts {
   double median_slope_deg = kNaN, steep_fraction = kNaN, median_contact_speed = kNaN;
   double fine_optimal_time = kNaN;  ///< [s]
 };
+
+/// Talus's plan (default options) on the fine map, start to goal; NaN without one.
+double fine_optimal_time(const ElevationGrid& g, const Vehicle& vehicle) {
+  const PlannerResult fine =
+      plan(PlanningProblem(BPatch::interpolate(g), vehicle, kBatteryStart, kBatteryGoal),
+           PlannerOptions{});
+  return fine.best() != nullptr ? fine.best()->travel_time() : kNaN;
+}
 
 TerrainFacts terrain_facts(const ElevationGrid& g, const Vehicle& vehicle) {
   std::vector<double> slopes, curvatures;
@@ -106,10 +114,7 @@ TerrainFacts terrain_facts(const ElevationGrid& g, const Vehicle& vehicle) {
         curvatures.push_back(std::abs(k));
     }
   TerrainFacts r;
-  const PlannerResult fine =
-      plan(PlanningProblem(BPatch::interpolate(g), vehicle, kBatteryStart, kBatteryGoal),
-           PlannerOptions{});
-  if (fine.best() != nullptr) r.fine_optimal_time = fine.best()->travel_time();
+  r.fine_optimal_time = fine_optimal_time(g, vehicle);
   r.median_slope_deg = upper_median(slopes);
   r.steep_fraction = static_cast<double>(steep) / static_cast<double>(slopes.size());
   r.median_contact_speed = std::sqrt(vehicle.gravity / upper_median(curvatures));

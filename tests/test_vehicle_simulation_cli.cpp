@@ -170,6 +170,18 @@ TEST(CliNavigate, PlansCoarseAndNavigatesFineToTheGoal) {
   EXPECT_FALSE(std::filesystem::exists(bare + "/navigation_map.png"));
   EXPECT_FALSE(
       parse_json(read_text(bare + "/summary.json"), "summary")["files"].contains("figure_map"));
+  EXPECT_FALSE(s.value("detect_hazards", true));
+
+  // --detect-hazards: flat ground has none to see, so the run is the one without it.
+  const std::string sensing = scratch_file("nav_detect");
+  ASSERT_EQ(
+      run_talus("navigate --terrain " + quoted(terrain) + " --vehicle " + quoted(kUgv) +
+                " --start 1,5 --goal 14,4 --no-figures --detect-hazards --out " + quoted(sensing))
+          .exit_code,
+      0);
+  const nlohmann::json d = parse_json(read_text(sensing + "/summary.json"), "summary");
+  EXPECT_TRUE(d.value("detect_hazards", false));
+  EXPECT_EQ(d.value("navigation_time", 0.0), navigation);
 }
 
 TEST(CliNavigate, BadInputIsOneErrorLine) {

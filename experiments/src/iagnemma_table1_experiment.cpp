@@ -433,7 +433,8 @@ void run_iagnemma_table1(const ExperimentContext& context) {
 
   report.heading("Where we differ from the paper, and why")
       .paragraph(
-          "**Hazards.** These runs leave `hazards_from_map` off (the layered scheme's default). "
+          "**Hazards.** These runs leave `hazards_from_map` off (the layered scheme's default; "
+          "`talus navigate --detect-hazards` turns it on). "
           "With it on, the paper's hazard gains (K_o = 1500, K_od = 0.05, K_oa = 10, "
           "K_ov = 0.07) outweigh the waypoint field by orders of magnitude, and the UGV turned "
           "away from its waypoints. Measured on the quick run's four terrains with it on: "

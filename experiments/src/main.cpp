@@ -617,6 +617,11 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->capture_default_str();
   navigate->add_flag("!--no-lookahead", navigate_request.lookahead,
                      "the standard potential field, without the model-based lookahead");
+  navigate->add_flag("--detect-hazards", navigate_request.detect_hazards,
+                     "also avoid the hazards the vehicle's sensor sees on the fine map (nodes "
+                     "steeper than atan(min(mu, b/h)) or with a 3x3 relief above the wheel "
+                     "radius, within 3 m); off by default: with the paper's hazard gains the "
+                     "field then turns away from its waypoints");
   navigate
       ->add_option("--time-limit", navigate_request.time_limit,
                    "simulated time limit of the navigation [s]")

@@ -90,6 +90,7 @@ NavigateOutcome navigate(const NavigateRequest& request) {
   LayeredNavigationOptions options;
   options.coarse_factor = static_cast<std::size_t>(request.coarse_factor);
   options.navigation.lookahead.enabled = request.lookahead;
+  options.navigation.hazards_from_map = request.detect_hazards;
   options.navigation.time_limit = request.time_limit;
   options.navigation.seed = request.seed;
   options.navigation.simulation.output_interval = request.trace_interval;
@@ -114,6 +115,7 @@ NavigateOutcome navigate(const NavigateRequest& request) {
   summary["time_increase"] = finite_or_null(r.time_increase());
   summary["plan_status"] = std::string(to_string(r.plan_status));
   summary["lookahead"] = request.lookahead;
+  summary["detect_hazards"] = request.detect_hazards;
   summary["coarse_factor"] = request.coarse_factor;
   summary["waypoints"] = r.waypoints.points.size();
   summary["ticks"] = r.navigation ? r.navigation->commands.size() : 0;

@@ -14,7 +14,7 @@
 namespace talus::experiments {
 
 /// `talus navigate --terrain FINE.asc [--coarse-factor K] --vehicle V.yaml
-/// --start X,Y --goal X,Y [--no-lookahead] [--time-limit S] [--seed N]
+/// --start X,Y --goal X,Y [--no-lookahead] [--detect-hazards] [--time-limit S] [--seed N]
 /// [--trace-interval DT] [--no-figures] --out DIR`.
 struct NavigateRequest {
   std::string terrain;             ///< the fine DEM (load_terrain), no NODATA
@@ -24,9 +24,12 @@ struct NavigateRequest {
   std::string output_dir;          ///< --out
   long long coarse_factor = 4;     ///< LayeredNavigationOptions::coarse_factor (>= 1)
   bool lookahead = true;           ///< false (--no-lookahead): the standard field
-  double time_limit = 60.0;        ///< simulated navigation time limit [s] (> 0)
-  std::uint64_t seed = 1;          ///< the descent's randomisation
-  double trace_interval = 0.02;    ///< trace.csv sample interval [s] (> 0)
+  /// --detect-hazards: PotentialFieldNavigationOptions::hazards_from_map (off by default:
+  /// with the paper's hazard gains the UGV turns away from its waypoints; iagnemma-table1).
+  bool detect_hazards = false;
+  double time_limit = 60.0;      ///< simulated navigation time limit [s] (> 0)
+  std::uint64_t seed = 1;        ///< the descent's randomisation
+  double trace_interval = 0.02;  ///< trace.csv sample interval [s] (> 0)
   /// false (--no-figures): no navigation_map.png, navigation_speed.png and
   /// navigation_angles.png (sweeps draw their own).
   bool figures = true;
@@ -60,8 +63,8 @@ struct NavigateOutcome {
 /// - summary.json: status (reached | failed | timeout | no_plan), failure
 ///   (the simulation's failure kind, null otherwise), message,
 ///   navigation_time, optimal_time, time_increase, plan_status, lookahead,
-///   coarse_factor, waypoints, lookahead_caps_applied, ticks, margins,
-///   inputs, files and seconds.
+///   detect_hazards, coarse_factor, waypoints, lookahead_caps_applied,
+///   ticks, margins, inputs, files and seconds.
 /// Bad input throws InputError and writes nothing.
 NavigateOutcome navigate(const NavigateRequest& request);
 

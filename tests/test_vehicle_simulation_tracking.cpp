@@ -96,6 +96,25 @@ TEST(TrajectoryTracking, ReachesAFeasibleArcAndSlidesOnAnInfeasibleOne) {
   EXPECT_LT(slide.progress, 1.0);
 }
 
+// The tracking quantities (cross-track error, progress) are a projection of
+// the trace onto the path: a trace far coarser than the control period (1.5 s,
+// 4.5 m of driving between samples here) must give the same progress and no
+// larger cross-track error than a fine one of the same run.
+TEST(TrajectoryTracking, ACoarseTraceProjectsLikeAFineOne) {
+  const BPatch ground = flat(6.0);
+  const Vehicle v = ugv();
+  TrackingOptions fine, coarse;
+  fine.simulation.output_interval = 0.02;
+  coarse.simulation.output_interval = 1.5;
+  const TrackingResult a = track_trajectory(ground, v, arc(3.0, 3.0), fine);
+  const TrackingResult b = track_trajectory(ground, v, arc(3.0, 3.0), coarse);
+  ASSERT_EQ(a.status, TrackingStatus::kReachedGoal) << a.message;
+  ASSERT_EQ(b.status, TrackingStatus::kReachedGoal) << b.message;
+  ASSERT_LT(b.simulation.trace.size(), 10u);
+  EXPECT_NEAR(b.progress, a.progress, 1e-6);
+  EXPECT_LE(b.max_cross_track, a.max_cross_track + 1e-9);
+}
+
 TEST(TrajectoryTracking, BadInputIsAnInputError) {
   const BPatch ground = flat(6.0);
   const Vehicle v = ugv();

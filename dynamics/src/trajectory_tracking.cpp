@@ -272,11 +272,21 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
         "the time limit of " + std::to_string(sim.end_time) + " s came before the goal";
 
   // Tracking quantities along the trace (an independent forward projection).
-  double s = 0.0, sum2 = 0.0;
+  // The window ahead covers the controller's own, plus how far the vehicle
+  // can have driven since the last sample (twice the faster of the two
+  // samples' speeds over the interval): with a trace much coarser than the
+  // control period a fixed window lagged behind the vehicle, and the
+  // projection then reported cross-track errors of hundreds of metres and a
+  // progress short of 1 for a run that reached the goal.
+  double s = 0.0, sum2 = 0.0, last_t = 0.0, last_speed = 0.0;
   result.tracking.reserve(r.trace.size());
   for (const VehicleSample& k : r.trace) {
     const Vec2 cg(k.state.position.x(), k.state.position.y());
-    const double window = 2.0 * std::max(min_lookahead, options.lookahead_time * k.speed) + 1.0;
+    const double driven = 2.0 * std::max(k.speed, last_speed) * (k.t - last_t);
+    const double window =
+        2.0 * std::max(min_lookahead, options.lookahead_time * k.speed) + 1.0 + driven;
+    last_t = k.t;
+    last_speed = k.speed;
     const auto [sk, dk] = path.project(cg, s - 0.5, s + window);
     s = sk;
     TrackingSample t;

@@ -107,6 +107,16 @@ TEST(HazardRoute, KeepsItsClearanceWhereItCanAndFindsNoWayIntoARing) {
   EXPECT_EQ(coarse.searched_nodes, 25u * 25u);
   EXPECT_THROW(plan_hazard_route(wall, ugv, {2, 6}, {10, 6}, 0, 1.5), InputError);
   EXPECT_THROW(plan_hazard_route(wall, ugv, {2, 6}, {10, 6}, 100, 1.5), InputError);
+  // A caller's own mask of the grid gives the route the grid's own gives.
+  const HazardRoute own = plan_hazard_route(wall, ugv, {2, 6}, {10, 6}, 1, 1.5);
+  const HazardRoute given = plan_hazard_route(wall, hazard, {2, 6}, {10, 6}, 1.5);
+  EXPECT_EQ(given.points, own.points);
+  EXPECT_EQ(given.expansions, own.expansions);
+  EXPECT_EQ(given.hazard_nodes, own.hazard_nodes);
+  EXPECT_THROW(plan_hazard_route(wall, std::vector<unsigned char>(10, 0), {2, 6}, {10, 6}, 1.5),
+               InputError);
+  EXPECT_EQ(nearest_grid_node(wall, {2.05, 6.02}), (std::pair<std::size_t, std::size_t>{8, 24}));
+  EXPECT_EQ(nearest_grid_node(wall, {-5, 99}), (std::pair<std::size_t, std::size_t>{0, 48}));
 }
 
 TEST(HazardRoute, WaypointsEverySpacingAndTheGoalLast) {

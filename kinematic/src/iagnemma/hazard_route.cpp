@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <utility>
 
 #include "talus/bspline/bpatch.hpp"
@@ -18,8 +19,9 @@ namespace {
 
 constexpr double kClearanceWeight = 10.0;
 
-/// The node of `grid` nearest `p` (clamped to the grid).
-std::pair<std::size_t, std::size_t> nearest_node(const ElevationGrid& grid, const Vec2& p) {
+}  // namespace
+
+std::pair<std::size_t, std::size_t> nearest_grid_node(const ElevationGrid& grid, const Vec2& p) {
   const auto index = [](double value, double origin, double h, std::size_t n) {
     const double k = std::round((value - origin) / h);
     return static_cast<std::size_t>(std::clamp(k, 0.0, static_cast<double>(n - 1)));
@@ -28,16 +30,21 @@ std::pair<std::size_t, std::size_t> nearest_node(const ElevationGrid& grid, cons
           index(p.y(), grid.y_min(), grid.cellsize(), grid.nrows())};
 }
 
-}  // namespace
-
 HazardRoute plan_hazard_route(const ElevationGrid& grid, const Vehicle& vehicle, const Vec2& start,
                               const Vec2& goal, std::size_t coarse_factor, double clearance) {
   if (coarse_factor == 0) throw InputError("plan_hazard_route: the coarse factor must be >= 1");
+  const ElevationGrid coarse = coarse_factor == 1 ? grid : decimate_grid(grid, coarse_factor);
+  return plan_hazard_route(coarse, hazard_node_mask(BPatch::interpolate(coarse), vehicle), start,
+                           goal, clearance);
+}
+
+HazardRoute plan_hazard_route(const ElevationGrid& coarse, const std::vector<unsigned char>& hazard,
+                              const Vec2& start, const Vec2& goal, double clearance) {
   if (!(clearance >= 0.0) || !std::isfinite(clearance))
     throw InputError("plan_hazard_route: the clearance must be >= 0 [m]");
-  const ElevationGrid coarse = coarse_factor == 1 ? grid : decimate_grid(grid, coarse_factor);
-  const BPatch surface = BPatch::interpolate(coarse);
-  const std::vector<unsigned char> hazard = hazard_node_mask(surface, vehicle);
+  if (hazard.size() != coarse.ncols() * coarse.nrows())
+    throw InputError("plan_hazard_route: the hazard mask has " + std::to_string(hazard.size()) +
+                     " flags for " + std::to_string(coarse.ncols() * coarse.nrows()) + " nodes");
   const std::size_t nc = coarse.ncols(), nr = coarse.nrows();
   if (nc * nr >= ShortestPathTree::kNone)
     throw InputError("plan_hazard_route: the grid has too many nodes for the search");
@@ -45,8 +52,8 @@ HazardRoute plan_hazard_route(const ElevationGrid& grid, const Vehicle& vehicle,
   route.cellsize = coarse.cellsize();
   route.searched_nodes = nc * nr;
   route.hazard_nodes = static_cast<std::size_t>(std::count(hazard.begin(), hazard.end(), 1));
-  const auto [si, sj] = nearest_node(coarse, start);
-  const auto [gi, gj] = nearest_node(coarse, goal);
+  const auto [si, sj] = nearest_grid_node(coarse, start);
+  const auto [gi, gj] = nearest_grid_node(coarse, goal);
   const auto id = [nc](std::size_t i, std::size_t j) {
     return static_cast<std::uint32_t>(j * nc + i);
   };

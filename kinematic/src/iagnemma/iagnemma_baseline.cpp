@@ -32,18 +32,13 @@ class HazardMap {
 
   bool valid(const Vec2& p) const {
     if (!terrain_.has_data(p)) return false;
-    const ElevationGrid& g = terrain_.grid();
-    const auto index = [](double value, double origin, double h, std::size_t n) {
-      const double k = std::round((value - origin) / h);
-      return static_cast<std::size_t>(std::clamp(k, 0.0, static_cast<double>(n - 1)));
-    };
-    const std::size_t i = index(p.x(), g.x_min(), g.cellsize(), g.ncols());
-    const std::size_t j = index(p.y(), g.y_min(), g.cellsize(), g.nrows());
-    return mask_[j * g.ncols() + i] == 0;
+    const auto [i, j] = nearest_grid_node(terrain_.grid(), p);
+    return mask_[j * terrain_.grid().ncols() + i] == 0;
   }
   std::size_t hazards() const {
     return static_cast<std::size_t>(std::count(mask_.begin(), mask_.end(), 1));
   }
+  const std::vector<unsigned char>& mask() const { return mask_; }
 
  private:
   const RuledTerrain& terrain_;
@@ -203,10 +198,14 @@ BaselineResult IagnemmaBaseline::solve(const RuledTerrain& terrain, const SE2Pos
     return out;
   }
 
-  // High level: the hazard-free route and its waypoints.
+  // High level: the hazard-free route and its waypoints; on the terrain's own
+  // grid the fine map's hazards are the route's.
   const HazardRoute route =
-      plan_hazard_route(terrain.grid(), vehicle_, start.position(), goal.position(),
-                        options_.coarse_factor, options_.route_clearance);
+      options_.coarse_factor == 1
+          ? plan_hazard_route(terrain.grid(), hazards.mask(), start.position(), goal.position(),
+                              options_.route_clearance)
+          : plan_hazard_route(terrain.grid(), vehicle_, start.position(), goal.position(),
+                              options_.coarse_factor, options_.route_clearance);
   const auto t2 = Clock::now();
   out.stage_seconds["route"] = seconds_between(t1, t2);
   out.counters["route_nodes"] = route.route_nodes;

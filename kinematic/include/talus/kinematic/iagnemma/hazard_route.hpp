@@ -31,6 +31,7 @@
 ///   before the goal's, the goal; waypoints every `spacing` metres of its
 ///   planar length and its last point (the goal), all at one speed.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "talus/core/elevation_grid.hpp"
@@ -52,6 +53,9 @@ struct HazardRoute {
   double cellsize = 0.0;           ///< of the searched grid [m]
 };
 
+/// The node (column, row) of `grid` nearest `p`, clamped to the grid.
+std::pair<std::size_t, std::size_t> nearest_grid_node(const ElevationGrid& grid, const Vec2& p);
+
 /// The route of the file comment from `start` to `goal` (both inside
 /// `grid`'s domain) for `vehicle`, keeping `clearance` [m] (>= 0) from
 /// hazards where it can. `coarse_factor` >= 1 (1 = the grid itself).
@@ -59,6 +63,12 @@ struct HazardRoute {
 /// or a negative clearance.
 HazardRoute plan_hazard_route(const ElevationGrid& grid, const Vehicle& vehicle, const Vec2& start,
                               const Vec2& goal, std::size_t coarse_factor, double clearance);
+
+/// The same search on `grid` itself, given its hazard_node_mask() (row-major,
+/// one flag per node), for a caller that has the mask already. InputError
+/// for a mask of another size or a negative clearance.
+HazardRoute plan_hazard_route(const ElevationGrid& grid, const std::vector<unsigned char>& hazard,
+                              const Vec2& start, const Vec2& goal, double clearance);
 
 /// Waypoints every `spacing` (> 0) metres of planar length along `points`
 /// (at least 2), then its last point, each at `speed` (>= 0) [m/s].

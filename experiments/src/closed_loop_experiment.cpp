@@ -201,6 +201,18 @@ FigureLink speed_figure(const Case& c, const fs::path& dir) {
   return {title, plot.name(".png")};
 }
 
+/// One bullet per case without a plan, then one per drive that did not reach the goal.
+void add_failure_bullets(Report& report, const std::vector<Case>& cases) {
+  for (const Case& c : cases)
+    if (!c.planned())
+      report.bullet(c.terrain + ": no plan (" + std::string(to_string(c.plan_status)) +
+                    "): " + c.plan_message);
+  for (const Case& c : cases)
+    for (const ClosedLoopDrive& d : c.drives)
+      if (!d.reached())
+        report.bullet(c.terrain + " at " + percent(d.speed_scale) + ": " + d.result.message);
+}
+
 /// Statistics of one speed scale over the planned cases.
 struct ScaleStats {
   std::size_t runs = 0, reached = 0, failed = 0, timeouts = 0;
@@ -394,14 +406,7 @@ void run_closed_loop_plans(const ExperimentContext& context) {
                  "one. Progress is the fraction of the path's length reached.")
       .heading("Per case")
       .table(case_table(cases));
-  for (const Case& c : cases)
-    if (!c.planned())
-      report.bullet(c.terrain + ": no plan (" + std::string(to_string(c.plan_status)) +
-                    "): " + c.plan_message);
-  for (const Case& c : cases)
-    for (const ClosedLoopDrive& d : c.drives)
-      if (!d.reached())
-        report.bullet(c.terrain + " at " + percent(d.speed_scale) + ": " + d.result.message);
+  add_failure_bullets(report, cases);
   // The real DEMs: the rover at its own scale, the same three speed scales.
   std::size_t dem_planned = 0;
   for (const Case& c : dems) dem_planned += c.planned() ? 1 : 0;
@@ -427,14 +432,7 @@ void run_closed_loop_plans(const ExperimentContext& context) {
           "simulation body of our choosing), from 10 % to 90 % of each DEM's diagonal, traced "
           "every second; quick runs take West Bijou only.")
       .table(case_table(dems));
-  for (const Case& c : dems) {
-    if (!c.planned())
-      report.bullet(c.terrain + ": no plan (" + std::string(to_string(c.plan_status)) +
-                    "): " + c.plan_message);
-    for (const ClosedLoopDrive& d : c.drives)
-      if (!d.reached())
-        report.bullet(c.terrain + " at " + percent(d.speed_scale) + ": " + d.result.message);
-  }
+  add_failure_bullets(report, dems);
   double plan_seconds = 0.0, sim_seconds = 0.0;
   for (const std::vector<Case>* group : {&cases, &dems})
     for (const Case& c : *group) {

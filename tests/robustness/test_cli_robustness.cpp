@@ -248,8 +248,12 @@ TEST(CliRobustness, AnInterruptedPlanExits130AndLeavesThePreviousResult) {
   ASSERT_EQ(run_capped(args).exit_code, 0);
   const std::string before = read_text(dir + "/summary.json");
   // A long plan on the same folder (32-connected, 0.05 m lattice: 10 s or more),
-  // interrupted while it runs.
-  const std::string command = std::string("'") + TALUS_CLI + "' " + args +
+  // interrupted while it runs. A background command of a non-interactive shell
+  // starts with SIGINT ignored, so a signal that came before talus installed
+  // its handler (a slow start, e.g. under ASan on a loaded machine) was
+  // ignored and the plan ran to the end; `env --default-signal=INT` starts it
+  // with the default action, so an early SIGINT ends it with 130 as well.
+  const std::string command = std::string("env --default-signal=INT '") + TALUS_CLI + "' " + args +
                               " --connectivity 32 --lattice-spacing 0.05 >/dev/null 2>&1 & "
                               "pid=$!; sleep 1; kill -INT $pid; wait $pid; echo $?";
   FILE* pipe = popen(command.c_str(), "r");

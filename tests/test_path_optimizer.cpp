@@ -185,6 +185,7 @@ TEST(PathOptimizerRestarts, ResumeThenPerturbAndKeepTheBestOfEveryAttempt) {
   const HillCase hill;
   PathOptimizerOptions options;
   options.max_evaluations = 10;
+  options.polish = false;  // the restarts alone
   const OptimizedPath single = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   ASSERT_EQ(single.attempts.size(), 1u);
   EXPECT_EQ(single.attempts[0].start, "fit");
@@ -218,6 +219,49 @@ TEST(PathOptimizerRestarts, ResumeThenPerturbAndKeepTheBestOfEveryAttempt) {
   const OptimizedPath again = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   EXPECT_EQ(again.travel_time, multi.travel_time);
   EXPECT_EQ(again.attempts.size(), multi.attempts.size());
+}
+
+// The nested solver stops on its evaluation cap (its objective kinks where a
+// switching point crosses a station); the polish NLP from its point converges
+// by Ipopt's own status, its point is returned, and that point's exact
+// profile takes the reported time, no slower than the fit.
+TEST(PathOptimizerPolish, ConvergesFromTheNestedPointOnTheSmoothHill) {
+  const HillCase hill;
+  PathOptimizerOptions options;
+  options.polish = false;
+  const OptimizedPath nested = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  ASSERT_FALSE(nested.converged) << nested.solver_status;
+  options.polish = true;
+  const OptimizedPath polished = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  ASSERT_EQ(polished.attempts.size(), 2u);
+  EXPECT_EQ(polished.attempts[1].start, "polish");
+  EXPECT_TRUE(polished.attempts[1].converged) << polished.attempts[1].solver_status;
+  EXPECT_EQ(polished.best_attempt, 1u);
+  EXPECT_TRUE(polished.converged) << polished.solver_status;
+  EXPECT_EQ(polished.solver_status, "success");
+  EXPECT_DOUBLE_EQ(polished.attempts[0].travel_time, nested.travel_time);
+  EXPECT_LE(polished.travel_time, polished.initial_time);
+  EXPECT_LE(polished.travel_time, nested.travel_time * (1.0 + options.polish_tolerance));
+  EXPECT_TRUE(std::isfinite(polished.nlp_travel_time));
+  PathTimeObjective objective(hill.terrain, hill.vehicle, {5, 30}, {75, 30},
+                              polished.control_points, polished.stations, {});
+  EXPECT_NEAR(objective.evaluate(objective.variables(polished.curve.control_points())),
+              polished.travel_time, 1e-9 * polished.travel_time);
+  std::printf("nested %.5f s (%s), polished %.5f s (NLP %.5f s, %zu iterations), fit %.5f s\n",
+              nested.travel_time, nested.solver_status.c_str(), polished.travel_time,
+              polished.nlp_travel_time, polished.attempts[1].iterations, polished.initial_time);
+}
+
+TEST(PathOptimizerPolish, BadPolishOptionsAreInputErrors) {
+  PathOptimizerOptions options;
+  options.polish_station_factor = 0;
+  EXPECT_THROW(options.validate(), InputError);
+  options = {};
+  options.polish_max_iterations = 0;
+  EXPECT_THROW(options.validate(), InputError);
+  options = {};
+  options.polish_tolerance = -0.1;
+  EXPECT_THROW(options.validate(), InputError);
 }
 
 TEST(PathOptimizerRestarts, TheSimultaneousFormulationRestartsToo) {

@@ -95,6 +95,52 @@ std::optional<Eigen::VectorXd> restart_point(std::size_t restart, const Eigen::V
   return std::nullopt;
 }
 
+/// The outcome of polishing a nested optimum (PathOptimizerOptions::polish).
+struct Polish {
+  detail::SimultaneousRun run;
+  /// The exact travel time of the NLP's final path at the search stations
+  /// [s]; +inf without one or without an admissible profile.
+  double travel_time = std::numeric_limits<double>::infinity();
+};
+
+/// The simultaneous NLP in lateral offsets from `from`, warm-started with
+/// the exact profile of `from` at the NLP's own stations;
+/// `objective` (the search stations) re-evaluates its result.
+Polish polish_nested_optimum(const BPatch& terrain, const Vehicle& vehicle,
+                             PathTimeObjective& objective, const Eigen::VectorXd& from,
+                             const detail::BoxProblem& box, std::size_t control_points,
+                             std::size_t stations, const Vec2& first, const Vec2& last,
+                             const PathOptimizerOptions& options) {
+  const std::size_t nlp_stations =
+      std::max<std::size_t>(16, (stations - 1) / options.polish_station_factor + 1);
+  const Curve2 curve = objective.curve(from);
+  detail::SimultaneousProblem nlp;
+  nlp.terrain = &terrain;
+  nlp.vehicle = vehicle;
+  nlp.initial = &curve;
+  nlp.stations = nlp_stations;
+  nlp.speeds = options.speeds;
+  nlp.lower = box.lower;
+  nlp.upper = box.upper;
+  nlp.tolerance = options.simultaneous_tolerance;
+  nlp.lateral_offsets = true;
+  nlp.warm_start = true;
+  nlp.max_iterations = options.polish_max_iterations;
+  nlp.stop = box.expired;
+  // The profile solver's discrete model is the NLP's constraint set, so its
+  // profile at the NLP's stations is a feasible start.
+  PathTimeObjective coarse(terrain, vehicle, first, last, control_points, nlp_stations,
+                           options.speeds);
+  if (std::isfinite(coarse.evaluate(from))) {
+    for (double v : coarse.profile().v) nlp.initial_squared_speeds.push_back(v * v);
+  }
+  Polish out;
+  out.run = detail::run_simultaneous(nlp);
+  if (out.run.variables.size() == from.size() && out.run.variables.allFinite())
+    out.travel_time = objective.evaluate(out.run.variables);
+  return out;
+}
+
 /// The simultaneous formulation from the box problem's start (the initial
 /// fit clamped into the box); `objective` (the nested one, same stations)
 /// re-evaluates the initial fit and the NLP's result exactly.
@@ -268,6 +314,12 @@ void PathOptimizerOptions::validate() const {
   if (!(time_limit > 0.0)) {
     throw InputError("PathOptimizerOptions.time_limit must be > 0 [s] (+inf = none)");
   }
+  if (polish_station_factor < 1)
+    throw InputError("PathOptimizerOptions.polish_station_factor must be >= 1");
+  if (polish_max_iterations < 1)
+    throw InputError("PathOptimizerOptions.polish_max_iterations must be >= 1");
+  if (!(polish_tolerance >= 0.0) || !std::isfinite(polish_tolerance))
+    throw InputError("PathOptimizerOptions.polish_tolerance must be >= 0");
   if (!(restart_perturbation >= 0.0) || !std::isfinite(restart_perturbation)) {
     throw InputError("PathOptimizerOptions.restart_perturbation must be >= 0 [m] (0 = two cells)");
   }
@@ -484,7 +536,25 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
       best_attempt = attempts.size() - 1;
     }
   }
-  const detail::SolverRun& run = runs[best_attempt];
+  std::optional<Polish> polished;
+  if (options.polish && !out_of_time()) {
+    const auto polish_started = std::chrono::steady_clock::now();
+    Polish p = polish_nested_optimum(terrain, vehicle, *objective, best, problem, control_points,
+                                     stations, first, last, options);
+    attempts.push_back({"polish", p.run.status, p.run.converged, p.travel_time, p.run.iterations,
+                        seconds_since(polish_started)});
+    iterations += p.run.iterations;
+    const bool faster = p.travel_time < best_time;
+    const bool close = p.run.converged &&
+                       p.travel_time <= best_time * (1.0 + options.polish_tolerance) &&
+                       p.travel_time <= initial_time;
+    if (faster || close) {
+      best = p.run.variables;
+      best_time = p.travel_time;
+      best_attempt = attempts.size() - 1;
+      polished.emplace(std::move(p));
+    }
+  }
   OptimizedPath out(objective->curve(best));
   out.initial_curve = objective->curve(problem.start);
   out.control_points = control_points;
@@ -492,9 +562,17 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   out.initial_time = initial_time;
   out.formulation = to_string(options.formulation);
   out.solver = to_string(options.solver);
-  out.solver_status = run.status;
-  out.converged = converged_status(run.status);
-  out.solver_failed = run.failed;
+  if (polished) {
+    out.solver_status = polished->run.status;
+    out.converged = polished->run.converged;
+    out.solver_failed = polished->run.failed;
+    out.nlp_travel_time = polished->run.nlp_time;
+  } else {
+    const detail::SolverRun& run = runs[best_attempt];
+    out.solver_status = run.status;
+    out.converged = converged_status(run.status);
+    out.solver_failed = run.failed;
+  }
   out.attempts = std::move(attempts);
   out.best_attempt = best_attempt;
   out.iterations = iterations;

@@ -182,8 +182,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
     return true;
   }
 
-  bool eval_h(Index n, const Number* x, bool new_x, Number obj_factor, Index, const Number* lambda,
-              bool, Index, Index* i_row, Index* j_col, Number* values) override {
+  bool eval_h(Index n, const Number* x, bool, Number obj_factor, Index, const Number* lambda, bool,
+              Index, Index* i_row, Index* j_col, Number* values) override {
     if (values == nullptr) {
       for (std::size_t e = 0; e < hessian_entries_.size(); ++e) {
         i_row[e] = hessian_entries_[e].first;
@@ -191,40 +191,42 @@ class SimultaneousNlp : public Ipopt::TNLP {
       }
       return true;
     }
-    // Central differences of the Lagrangian's exact gradient, one perturbed
+    // Forward differences of the Lagrangian's exact gradient, one perturbed
     // column per free coordinate and three interleaved groups of b (b_k
     // and b_{k+3} never share a step); the b-coordinate entries come from
-    // the coordinates' columns (symmetry).
-    if (!update(x, new_x)) return false;
+    // the coordinates' columns (symmetry). Forward rather than central: half
+    // the geometry evaluations, and Ipopt's Newton steps need no more than
+    // the O(h) accuracy. A b probe leaves the geometry as it is (update()
+    // keys on the control coordinates), so it costs only the rows.
     const long dimension = n;
     std::vector<double> probe(x, x + n);
-    Eigen::VectorXd plus(dimension), minus(dimension);
+    Eigen::VectorXd& base = base_gradient_;
+    base.resize(dimension);
+    Eigen::VectorXd plus(dimension);
+    if (!lagrangian_gradient(x, obj_factor, lambda, base)) return false;
     const double control_step = 1e-4 * terrain_.cellsize();
     const auto column = [&](auto&& perturb, Eigen::VectorXd& out) {
-      perturb(+1.0);
-      const bool ok_plus = lagrangian_gradient(probe.data(), obj_factor, lambda, plus);
-      perturb(-1.0);
-      const bool ok_minus = lagrangian_gradient(probe.data(), obj_factor, lambda, minus);
+      perturb();
+      const bool ok = lagrangian_gradient(probe.data(), obj_factor, lambda, plus);
       std::copy(x, x + n, probe.begin());
-      out = plus - minus;
-      return ok_plus && ok_minus;
+      out = plus - base;
+      return ok;
     };
     bool ok = true;
     for (std::size_t c = 0; c < free_ && ok; ++c) {
-      ok = column([&](double sign) { probe[c] = x[c] + sign * control_step; }, control_columns_[c]);
-      control_columns_[c] /= 2.0 * control_step;
+      ok = column([&] { probe[c] = x[c] + control_step; }, control_columns_[c]);
+      control_columns_[c] /= control_step;
     }
     std::vector<double> b_step(stations_);
     for (std::size_t k = 0; k < stations_; ++k) b_step[k] = 1e-4 * x[free_ + k] + 1e-8;
     for (std::size_t group = 0; group < 3 && ok; ++group) {
       ok = column(
-          [&](double sign) {
+          [&] {
             for (std::size_t k = group; k < stations_; k += 3)
-              probe[free_ + k] = x[free_ + k] + sign * b_step[k];
+              probe[free_ + k] = x[free_ + k] + b_step[k];
           },
           b_columns_[group]);
     }
-    cached_ = false;  // the workspace holds the last probe
     if (!ok) return false;
     for (std::size_t e = 0; e < hessian_entries_.size(); ++e) {
       const auto [r, c] = hessian_entries_[e];
@@ -233,14 +235,14 @@ class SimultaneousNlp : public Ipopt::TNLP {
         values[e] = control_columns_[col][r];
       } else {
         const std::size_t k = col - free_;
-        values[e] = b_columns_[k % 3][r] / (2.0 * b_step[k]);
+        values[e] = b_columns_[k % 3][r] / b_step[k];
       }
     }
     return true;
   }
 
  private:
-  /// ∇(factor f + λᵀ g) at x (recomputes the workspace there).
+  /// ∇(factor f + λᵀ g) at x (updates the workspace there).
   bool lagrangian_gradient(const Number* x, double factor, const Number* lambda,
                            Eigen::VectorXd& out) {
     if (!update(x, true)) return false;
@@ -370,8 +372,9 @@ class SimultaneousNlp : public Ipopt::TNLP {
   /// The station geometry and its derivatives at x; false where a station
   /// leaves the data, the curve has a cusp or a step has no length.
   bool update(const Number* x, bool new_x) {
-    if (!new_x && cached_) return valid_;
+    if (cached_ && (!new_x || std::equal(x, x + free_, cached_controls_.begin()))) return valid_;
     cached_ = true;
+    cached_controls_.assign(x, x + free_);
     valid_ = false;
     ++evaluations_;
     set_control(x);
@@ -505,6 +508,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
   std::vector<Eigen::VectorXd> control_columns_;          // finite-difference Hessian columns
   std::array<Eigen::VectorXd, 3> b_columns_;
   bool cached_ = false, valid_ = false;
+  std::vector<double> cached_controls_;  // the control coordinates the workspace holds
+  Eigen::VectorXd base_gradient_;
   // Outcome.
   Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
   bool timed_out_ = false;
@@ -532,6 +537,16 @@ SimultaneousRun run_simultaneous(const SimultaneousProblem& problem) {
   // Monotone: on the smooth-hill and infeasible-start tests the adaptive
   // strategy took 2 to 4 times the iterations in the second phase.
   options->SetStringValue("mu_strategy", "monotone");
+  if (problem.warm_start) {
+    // The start is a local optimum's neighbourhood with a profile feasible
+    // for this discretisation: a small barrier parameter and push keep
+    // Ipopt near it instead of centring far inside (from the default 0.1 a
+    // cold phase 1 on battery seed 2 first slowed the path from 12.4 s to
+    // 17.9 s before coming back).
+    options->SetNumericValue("mu_init", 1e-4);
+    for (const char* push : {"bound_push", "bound_frac", "slack_bound_push", "slack_bound_frac"})
+      options->SetNumericValue(push, 1e-6);
+  }
   // Never set linear_solver=ma97: Debian's Ipopt 3.11 calls exit(1) for it.
   SimultaneousRun run;
   if (app->Initialize() != Ipopt::Solve_Succeeded) {

@@ -59,6 +59,8 @@ struct SimultaneousProblem {
   /// Ipopt's L-BFGS approximation instead of the finite-difference Hessian.
   bool limited_memory_hessian = false;
   double tolerance = 1e-6;  ///< Ipopt's tol
+  /// Start near a point believed close to the optimum (warm start).
+  bool warm_start = false;
   /// Polled every iteration: true stops Ipopt (status "time_limit"). Empty: never.
   std::function<bool()> stop;
 };

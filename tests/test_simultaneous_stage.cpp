@@ -127,7 +127,8 @@ TEST(SimultaneousStage, StartsFromAnInfeasibleFitAndEndsFeasible) {
   // the BLAS kernels of the CPU (it converges on some machines and stops at
   // 600 iterations on others), so the budget is capped.
   PathOptimizerOptions options = simultaneous_options();
-  options.simultaneous_max_iterations = 150;
+  options.simultaneous_lateral_iterations = 100;
+  options.simultaneous_max_iterations = 100;
   const OptimizedPath best = optimize_path(terrain, v, over, options);
   EXPECT_FALSE(std::isfinite(best.initial_time));
   ASSERT_TRUE(std::isfinite(best.travel_time)) << best.solver_status;

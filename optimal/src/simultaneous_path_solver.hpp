@@ -1,7 +1,8 @@
 #pragma once
 // The simultaneous (direct-transcription) local stage: one smooth NLP in the
 // path's interior control points and the squared speed b_k = ṡ² at every
-// station, solved by Ipopt (MUMPS, limited-memory quasi-Newton Hessian).
+// station, solved by Ipopt (MUMPS; forward-difference Hessian of the exact
+// gradient, or limited-memory quasi-Newton).
 //
 // Variables: z = (x_1, y_1, ..., x_{M-2}, y_{M-2}) of a clamped cubic with
 // uniform breakpoints on σ ∈ [0, 1] (the nested formulation's, so both

@@ -349,21 +349,21 @@ TEST(CliPlan, FullStageAroundAHillIsNoSlowerThanTheGlobalCandidates) {
   }
 }
 
-// By default each candidate's last solve is the polish, listed in its attempts
-// with its status; --no-polish leaves only the nested solve.
-TEST(CliPlan, ThePolishIsAnAttemptUnlessNoPolish) {
+// With --polish each candidate's last solve is the polish, listed in its
+// attempts with its status; without it only the nested solve.
+TEST(CliPlan, PolishAddsTheNlpAsTheLastAttempt) {
   const std::string terrain =
       generate_terrain("hill_polish.asc", "gaussian-hills --hill 30,20,8,5 " + kPlanShape);
   const std::string args =
       "--terrain " + quoted(terrain) + " --start 5,20 --goal 55,20 --vehicle " +
       quoted(point_mass_vehicle("slippery.yaml", 0.4, 10.0)) + " --candidates 1 --no-figures";
-  const nlohmann::json polished = run_plan_full_ok(args, scratch_file("polish_on"));
+  const nlohmann::json polished = run_plan_full_ok(args + " --polish", scratch_file("polish_on"));
   EXPECT_EQ(polished.at("polish"), true);
   const nlohmann::json& attempts = polished.at("optima").at(0).at("attempts");
   ASSERT_EQ(attempts.size(), 2u) << attempts.dump();
   EXPECT_EQ(attempts.at(1).at("start"), "polish");
   EXPECT_TRUE(attempts.at(1).at("solver_status").is_string());
-  const nlohmann::json plain = run_plan_full_ok(args + " --no-polish", scratch_file("polish_off"));
+  const nlohmann::json plain = run_plan_full_ok(args, scratch_file("polish_off"));
   EXPECT_EQ(plain.at("polish"), false);
   const nlohmann::json& only = plain.at("optima").at(0).at("attempts");
   ASSERT_EQ(only.size(), 1u) << only.dump();

@@ -185,7 +185,7 @@ TEST(PathOptimizerRestarts, ResumeThenPerturbAndKeepTheBestOfEveryAttempt) {
   const HillCase hill;
   PathOptimizerOptions options;
   options.max_evaluations = 10;
-  options.polish = false;  // the restarts alone
+  ASSERT_FALSE(options.polish);  // the restarts alone (the default)
   const OptimizedPath single = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   ASSERT_EQ(single.attempts.size(), 1u);
   EXPECT_EQ(single.attempts[0].start, "fit");

@@ -365,7 +365,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   summary["solver"] = request.solver;
   summary["formulation"] = request.formulation;
   summary["restarts"] = request.restarts;
-  summary["polish"] = !request.no_polish;
+  summary["polish"] = request.polish;
   summary["optimality_note"] =
       "optima[].optimality: largest projected-gradient component of the travel time at the "
       "returned path [s/m], from the adjoint gradient (for every solver); the travel time is "
@@ -405,7 +405,7 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.local.solver = parse_path_solver(request.solver);
   options.local.formulation = parse_path_formulation(request.formulation);
   options.local.restarts = static_cast<std::size_t>(request.restarts);
-  options.local.polish = !request.no_polish;
+  options.local.polish = request.polish;
   options.local.control_points = static_cast<std::size_t>(request.control_points);
   options.local.max_control_points =
       std::max(options.local.max_control_points, options.local.control_points);

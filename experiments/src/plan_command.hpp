@@ -22,7 +22,7 @@ namespace talus::experiments {
 /// `talus plan --terrain T.asc --start X,Y --goal X,Y --vehicle V.yaml
 /// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
 /// [--smoothing LAMBDA] [--control-points M] [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa]
-/// [--formulation nested|simultaneous] [--restarts R] [--no-polish] [--v0 A]
+/// [--formulation nested|simultaneous] [--restarts R] [--polish] [--v0 A]
 /// [--v1 B] [--time-limit SECONDS] [--resolution full|multi] [--threads N] --out DIR`.
 struct PlanRequest {
   std::string terrain;             ///< DEM (load_terrain)
@@ -55,7 +55,7 @@ struct PlanRequest {
   std::string formulation = "nested";
   /// PathOptimizerOptions::restarts (>= 0) after an optimisation that does not converge.
   int restarts = static_cast<int>(PathOptimizerOptions{}.restarts);
-  bool no_polish = false;    ///< --no-polish: PathOptimizerOptions::polish off
+  bool polish = false;       ///< --polish: PathOptimizerOptions::polish
   double start_speed = 0.0;  ///< --v0 [m/s] (finite, >= 0, <= max_speed)
   double end_speed = 0.0;    ///< --v1 [m/s]
   /// --rasters: also write cost_to_go.tif and trajectory.geojson (see plan()).

@@ -28,15 +28,7 @@ struct LayeredNavigationOptions {
   /// overshot them into tight circles and stalled). The last waypoint is the goal, at the speed of
   /// the one before it (the run ends within waypoint_radius of it).
   double waypoint_spacing = 0.0;
-  /// The high-level layer. Its local stage is not polished
-  /// (PathOptimizerOptions::polish off): the plan only places waypoints
-  /// four coarse cells apart and sets their speeds, and on the iagnemma-table1
-  /// battery the polish tripled the planning time.
-  PlannerOptions planner = [] {
-    PlannerOptions o;
-    o.local.polish = false;
-    return o;
-  }();
+  PlannerOptions planner;  ///< the high-level layer
   /// The low-level layer; lookahead.enabled is the near-optimal navigation.
   PotentialFieldNavigationOptions navigation = [] {
     PotentialFieldNavigationOptions o;

@@ -19,7 +19,8 @@
 /// - nested (default): T(control points), the exact profile solved inside
 ///   every evaluation, with the solver above. T is only piecewise smooth (it
 ///   kinks where a switching point crosses a station), so gradient solvers
-///   stall on rough terrain.
+///   stall on rough terrain; PathOptimizerOptions::polish then takes the
+///   solver's point to one where Ipopt's own convergence test holds.
 /// - simultaneous: direct transcription (as in minimum-lap-time planning,
 ///   Christ et al. 2019): a smooth NLP in the same control points and the
 ///   squared speed ṡ² at every search station, travel time as objective and
@@ -155,8 +156,12 @@ struct PathOptimizerOptions {
   /// lower, or when Ipopt converged and it is at most polish_tolerance
   /// slower (and never slower than the initial fit); otherwise the nested
   /// point stays, with its status. OptimizedPath::attempts lists the polish
-  /// (start "polish"). Ignored by the simultaneous formulation.
-  bool polish = true;
+  /// (start "polish"). Ignored by the simultaneous formulation. Off by
+  /// default for its cost: on the fractal battery it converged on 49 of 75
+  /// candidates (none converge without it) but tripled the median planning
+  /// time (1.5 to 4.5 s); on the README's Mount St. Helens plan (1400 NLP
+  /// stations) it took 26 s for no gain.
+  bool polish = false;
   /// The polish NLP's stations: the search's stations / this (>= 1), at
   /// least 16. 4: on the fractal battery (0.024 m search spacing) the NLP
   /// then has 400-480 stations and converges in 30-90 iterations (0.5-2 s);

@@ -95,6 +95,25 @@ std::optional<Eigen::VectorXd> restart_point(std::size_t restart, const Eigen::V
   return std::nullopt;
 }
 
+/// The simultaneous NLP's fields shared by the polish and the simultaneous
+/// formulation: `curve` with `stations` stations, within the box.
+detail::SimultaneousProblem simultaneous_problem(const BPatch& terrain, const Vehicle& vehicle,
+                                                 const Curve2& curve, std::size_t stations,
+                                                 const detail::BoxProblem& box,
+                                                 const PathOptimizerOptions& options) {
+  detail::SimultaneousProblem nlp;
+  nlp.terrain = &terrain;
+  nlp.vehicle = vehicle;
+  nlp.initial = &curve;
+  nlp.stations = stations;
+  nlp.speeds = options.speeds;
+  nlp.lower = box.lower;
+  nlp.upper = box.upper;
+  nlp.tolerance = options.simultaneous_tolerance;
+  nlp.stop = box.expired;
+  return nlp;
+}
+
 /// The outcome of polishing a nested optimum (PathOptimizerOptions::polish).
 struct Polish {
   detail::SimultaneousRun run;
@@ -114,19 +133,11 @@ Polish polish_nested_optimum(const BPatch& terrain, const Vehicle& vehicle,
   const std::size_t nlp_stations =
       std::max<std::size_t>(16, (stations - 1) / options.polish_station_factor + 1);
   const Curve2 curve = objective.curve(from);
-  detail::SimultaneousProblem nlp;
-  nlp.terrain = &terrain;
-  nlp.vehicle = vehicle;
-  nlp.initial = &curve;
-  nlp.stations = nlp_stations;
-  nlp.speeds = options.speeds;
-  nlp.lower = box.lower;
-  nlp.upper = box.upper;
-  nlp.tolerance = options.simultaneous_tolerance;
+  detail::SimultaneousProblem nlp =
+      simultaneous_problem(terrain, vehicle, curve, nlp_stations, box, options);
   nlp.lateral_offsets = true;
   nlp.warm_start = true;
   nlp.max_iterations = options.polish_max_iterations;
-  nlp.stop = box.expired;
   // The profile solver's discrete model is the NLP's constraint set, so its
   // profile at the NLP's stations is a feasible start.
   PathTimeObjective coarse(terrain, vehicle, first, last, control_points, nlp_stations,
@@ -150,17 +161,9 @@ OptimizedPath optimize_simultaneous(const BPatch& terrain, const Vehicle& vehicl
                                     const PathOptimizerOptions& options,
                                     std::chrono::steady_clock::time_point started) {
   const Curve2 initial_curve = objective.curve(box.start);
-  detail::SimultaneousProblem nlp;
-  nlp.terrain = &terrain;
-  nlp.vehicle = vehicle;
-  nlp.initial = &initial_curve;
-  nlp.stations = stations;
-  nlp.speeds = options.speeds;
-  nlp.lower = box.lower;
-  nlp.upper = box.upper;
-  nlp.tolerance = options.simultaneous_tolerance;
+  detail::SimultaneousProblem nlp =
+      simultaneous_problem(terrain, vehicle, initial_curve, stations, box, options);
   nlp.limited_memory_hessian = options.simultaneous_limited_memory;
-  nlp.stop = box.expired;
   // Warm start from the initial fit's exact profile when it has one.
   const double initial_time = objective.evaluate(box.start);
   if (std::isfinite(initial_time)) {

@@ -1,4 +1,5 @@
-// The local stage alone, nested against simultaneous formulation, on the
+// The local stage alone, nested (with and without the polish) against the
+// simultaneous formulation, on the
 // smooth case of tests/test_simultaneous_stage.cpp: an 8 m Gaussian hill
 // (σ 7 m) on an 80 × 60 m map at 1 m cells, a point mass with μ 0.4, from
 // (5, 30) to (75, 30), started from the global search's best candidate
@@ -53,9 +54,10 @@ const std::vector<talus::Vec2>& candidate() {
   return vertices;
 }
 
-void BM_LocalStage(benchmark::State& state, talus::PathFormulation formulation) {
+void BM_LocalStage(benchmark::State& state, talus::PathFormulation formulation, bool polish) {
   talus::PathOptimizerOptions options;
   options.formulation = formulation;
+  options.polish = polish;
   const std::vector<talus::Vec2>& start = candidate();
   double time = 0.0, converged = 0.0, iterations = 0.0;
   for (auto _ : state) {
@@ -70,9 +72,11 @@ void BM_LocalStage(benchmark::State& state, talus::PathFormulation formulation) 
   state.counters["iterations"] = iterations;
 }
 
-BENCHMARK_CAPTURE(BM_LocalStage, nested, talus::PathFormulation::kNested)
+BENCHMARK_CAPTURE(BM_LocalStage, nested, talus::PathFormulation::kNested, false)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_LocalStage, simultaneous, talus::PathFormulation::kSimultaneous)
+BENCHMARK_CAPTURE(BM_LocalStage, nested_polished, talus::PathFormulation::kNested, true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_LocalStage, simultaneous, talus::PathFormulation::kSimultaneous, false)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

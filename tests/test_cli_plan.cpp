@@ -368,6 +368,14 @@ TEST(CliPlan, PolishAddsTheNlpAsTheLastAttempt) {
   const nlohmann::json& only = plain.at("optima").at(0).at("attempts");
   ASSERT_EQ(only.size(), 1u) << only.dump();
   EXPECT_EQ(only.at(0).at("start"), "fit");
+  // A further start from a 10-point fit adds its solve, tagged with its M.
+  const nlohmann::json more =
+      run_plan_full_ok(args + " --more-control-points 10", scratch_file("more_points"));
+  const nlohmann::json& starts = more.at("optima").at(0).at("attempts");
+  ASSERT_EQ(starts.size(), 2u) << starts.dump();
+  EXPECT_EQ(starts.at(0).at("control_points"), 8);
+  EXPECT_EQ(starts.at(1).at("control_points"), 10);
+  EXPECT_LE(more.at("travel_time").get<double>(), plain.at("travel_time").get<double>() + 1e-9);
   // The polish never returns a path slower than the fit.
   const nlohmann::json& o = polished.at("optima").at(0);
   EXPECT_LE(o.at("travel_time").get<double>(), o.at("initial_time").get<double>());
@@ -456,6 +464,9 @@ TEST(CliPlan, BadInputGivesOneLineOnStderrAndExitCodeOne) {
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --control-points 3 --out " +
            quoted(dir),
        "--control-points"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 +
+           " --more-control-points 16,65 --out " + quoted(dir),
+       "--more-control-points must each be in [4, 64], got 65"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --v0 -1 --out " + quoted(dir),
        "--v0"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --v1 11 --out " + quoted(dir),

@@ -252,6 +252,33 @@ TEST(PathOptimizerPolish, ConvergesFromTheNestedPointOnTheSmoothHill) {
               polished.nlp_travel_time, polished.attempts[1].iterations, polished.initial_time);
 }
 
+// A further start from a 12-point fit: the result is the faster of the two
+// whole local stages, every solve is listed with the M of its fit, and the
+// first fit stays the start the result is compared with.
+TEST(PathOptimizerMoreControlPoints, KeepsTheFasterOfTheStartsAndListsEverySolve) {
+  const HillCase hill;
+  PathOptimizerOptions options;
+  const OptimizedPath eight = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  options.control_points = 12;
+  const OptimizedPath twelve = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  options.control_points = 8;
+  options.more_control_points = {12};
+  const OptimizedPath both = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
+  EXPECT_DOUBLE_EQ(both.travel_time, std::min(eight.travel_time, twelve.travel_time));
+  EXPECT_EQ(both.control_points, eight.travel_time <= twelve.travel_time ? 8u : 12u);
+  ASSERT_EQ(both.attempts.size(), eight.attempts.size() + twelve.attempts.size());
+  EXPECT_EQ(both.attempts.front().control_points, 8u);
+  EXPECT_EQ(both.attempts.back().control_points, 12u);
+  EXPECT_EQ(both.attempts.at(both.best_attempt).control_points, both.control_points);
+  EXPECT_DOUBLE_EQ(both.attempts.at(both.best_attempt).travel_time, both.travel_time);
+  EXPECT_DOUBLE_EQ(both.initial_time, eight.initial_time);
+  EXPECT_EQ(both.curve.control_points().size(), both.control_points);
+  options.more_control_points = {3};
+  EXPECT_THROW(options.validate(), InputError);
+  std::printf("M 8: %.5f s, M 12: %.5f s, both: %.5f s (M %zu)\n", eight.travel_time,
+              twelve.travel_time, both.travel_time, both.control_points);
+}
+
 TEST(PathOptimizerPolish, BadPolishOptionsAreInputErrors) {
   PathOptimizerOptions options;
   options.polish_station_factor = 0;

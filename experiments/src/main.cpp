@@ -493,6 +493,12 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "control points of each optimised clamped cubic (4 to 64; start and goal "
                    "fixed), --stage full")
       ->capture_default_str();
+  plan->add_option("--more-control-points", plan_request.more_control_points,
+                   "--stage full: further starts of each candidate's local stage from fits with "
+                   "these control-point counts (comma-separated, each 4 to 64), the fastest "
+                   "kept; optima[].attempts[].control_points says which fit each solve started "
+                   "from")
+      ->delimiter(',');
   plan->add_option("--solver", plan_request.solver,
                    "local solver, --stage full: ipopt (interior point, exact gradient), "
                    "nlopt-lbfgs (exact gradient) or nlopt-bobyqa (derivative-free); nested "

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -50,6 +51,8 @@ struct PlanRequest {
   std::optional<double> smoothing;
   // The local stage (--stage full only).
   long long control_points = 8;  ///< of each optimised clamped cubic (4 to 64)
+  /// PathOptimizerOptions::more_control_points (each 4 to 64).
+  std::vector<long long> more_control_points;
   std::string solver = "ipopt";  ///< ipopt, nlopt-lbfgs or nlopt-bobyqa (parse_path_solver)
   /// nested or simultaneous (parse_path_formulation; PathOptimizerOptions::formulation).
   std::string formulation = "nested";

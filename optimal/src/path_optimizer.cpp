@@ -317,6 +317,8 @@ void PathOptimizerOptions::validate() const {
   if (!(time_limit > 0.0)) {
     throw InputError("PathOptimizerOptions.time_limit must be > 0 [s] (+inf = none)");
   }
+  for (const std::size_t m : more_control_points)
+    if (m < 4) throw InputError("PathOptimizerOptions.more_control_points must each be >= 4");
   if (polish_station_factor < 1)
     throw InputError("PathOptimizerOptions.polish_station_factor must be >= 1");
   if (polish_max_iterations < 1)
@@ -387,11 +389,14 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
   }
 }
 
-OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
-                            const std::vector<Vec2>& initial_polyline,
-                            const PathOptimizerOptions& options) {
+namespace {
+
+/// optimize_path() from one fit (options.control_points; more_control_points
+/// ignored).
+OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicle,
+                                    const std::vector<Vec2>& initial_polyline,
+                                    const PathOptimizerOptions& options) {
   const auto started = std::chrono::steady_clock::now();
-  options.validate();
   if (initial_polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
   // The initial path: a least-squares fit to the candidate, grown while a
   // winding candidate needs more control points (fit_initial_path).
@@ -590,6 +595,58 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   out.finite_difference_fallbacks = objective->finite_difference_fallbacks();
   out.seconds = seconds_since(started);
   return out;
+}
+
+/// Every attempt of `path` tagged with its fit's control-point count.
+OptimizedPath tagged(OptimizedPath path) {
+  for (LocalAttempt& a : path.attempts) a.control_points = path.control_points;
+  return path;
+}
+
+}  // namespace
+
+OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
+                            const std::vector<Vec2>& initial_polyline,
+                            const PathOptimizerOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  options.validate();
+  OptimizedPath best = tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, options));
+  const auto elapsed = [started] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  };
+  for (const std::size_t m : options.more_control_points) {
+    if ((options.stop && options.stop()) || elapsed() >= options.time_limit) break;
+    PathOptimizerOptions further = options;
+    further.more_control_points.clear();
+    further.control_points = m;
+    further.max_control_points = std::max(further.max_control_points, m);
+    further.time_limit = options.time_limit - elapsed();
+    std::optional<OptimizedPath> next;
+    try {
+      next.emplace(tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, further)));
+    } catch (const InputError&) {
+      continue;  // no admissible fit at this count
+    }
+    std::vector<LocalAttempt> attempts = std::move(best.attempts);
+    const std::size_t offset = attempts.size();
+    attempts.insert(attempts.end(), next->attempts.begin(), next->attempts.end());
+    const std::size_t iterations = best.iterations + next->iterations;
+    const std::size_t evaluations = best.evaluations + next->evaluations;
+    const std::size_t gradients = best.gradient_evaluations + next->gradient_evaluations;
+    // The first fit stays the start every result is compared with.
+    if (next->travel_time < best.travel_time) {
+      next->initial_curve = best.initial_curve;
+      next->initial_time = best.initial_time;
+      next->best_attempt += offset;
+      best = std::move(*next);
+    }
+    best.attempts = std::move(attempts);
+    best.iterations = iterations;
+    best.evaluations = evaluations;
+    best.gradient_evaluations = gradients;
+  }
+  best.seconds = elapsed();
+  return best;
 }
 
 }  // namespace talus

@@ -113,8 +113,7 @@ std::vector<Experiment> all_experiments() {
       {"optimiser-quality",
        "the planner's local stage on the fractal battery and every bundled DEM against a "
        "multistart reference (formulations x solvers x 8-16 control points x restarts x polish): "
-       "success, "
-       "convergence by solver status, travel time above the reference, planning time, the "
+       "success, convergence by solver status, travel time above the reference, planning time, the "
        "nested-against-simultaneous table",
        run_optimiser_quality},
   };

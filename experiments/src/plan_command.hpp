@@ -22,8 +22,9 @@ namespace talus::experiments {
 
 /// `talus plan --terrain T.asc --start X,Y --goal X,Y --vehicle V.yaml
 /// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
-/// [--smoothing LAMBDA] [--control-points M] [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa]
-/// [--formulation nested|simultaneous] [--restarts R] [--polish] [--v0 A]
+/// [--smoothing LAMBDA] [--control-points M] [--more-control-points M2,...]
+/// [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa] [--formulation nested|simultaneous]
+/// [--restarts R] [--polish] [--v0 A]
 /// [--v1 B] [--time-limit SECONDS] [--resolution full|multi] [--threads N] --out DIR`.
 struct PlanRequest {
   std::string terrain;             ///< DEM (load_terrain)

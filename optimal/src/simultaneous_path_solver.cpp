@@ -165,8 +165,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
     return true;
   }
 
-  bool eval_f(Index, const Number* x, bool new_x, Number& value) override {
-    if (!update(x, new_x)) return false;
+  bool eval_f(Index, const Number* x, bool, Number& value) override {
+    if (!update(x)) return false;
     value = 0.0;
     for (std::size_t j = 0; j + 1 < stations_; ++j) {
       value += 2.0 * step_length_[j] / (std::sqrt(x[free_ + j]) + std::sqrt(x[free_ + j + 1]));
@@ -174,8 +174,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
     return std::isfinite(value);
   }
 
-  bool eval_grad_f(Index n, const Number* x, bool new_x, Number* gradient) override {
-    if (!update(x, new_x)) return false;
+  bool eval_grad_f(Index n, const Number* x, bool, Number* gradient) override {
+    if (!update(x)) return false;
     ++gradient_evaluations_;
     std::fill(gradient, gradient + n, 0.0);
     add_objective_gradient(x, 1.0, gradient);
@@ -212,13 +212,10 @@ class SimultaneousNlp : public Ipopt::TNLP {
       out = plus - base;
       return ok;
     };
-    bool ok = true;
-    for (std::size_t c = 0; c < free_ && ok; ++c) {
-      ok = column([&] { probe[c] = x[c] + control_step; }, control_columns_[c]);
-      control_columns_[c] /= control_step;
-    }
+    // The speed probes first, while the workspace still holds x's geometry.
     std::vector<double> b_step(stations_);
     for (std::size_t k = 0; k < stations_; ++k) b_step[k] = 1e-4 * x[free_ + k] + 1e-8;
+    bool ok = true;
     for (std::size_t group = 0; group < 3 && ok; ++group) {
       ok = column(
           [&] {
@@ -226,6 +223,10 @@ class SimultaneousNlp : public Ipopt::TNLP {
               probe[free_ + k] = x[free_ + k] + b_step[k];
           },
           b_columns_[group]);
+    }
+    for (std::size_t c = 0; c < free_ && ok; ++c) {
+      ok = column([&] { probe[c] = x[c] + control_step; }, control_columns_[c]);
+      control_columns_[c] /= control_step;
     }
     if (!ok) return false;
     for (std::size_t e = 0; e < hessian_entries_.size(); ++e) {
@@ -245,7 +246,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
   /// ∇(factor f + λᵀ g) at x (updates the workspace there).
   bool lagrangian_gradient(const Number* x, double factor, const Number* lambda,
                            Eigen::VectorXd& out) {
-    if (!update(x, true)) return false;
+    if (!update(x)) return false;
     out.setZero();
     add_objective_gradient(x, factor, out.data());
     std::vector<double>& rows = rows_;
@@ -285,13 +286,13 @@ class SimultaneousNlp : public Ipopt::TNLP {
   }
 
  public:
-  bool eval_g(Index, const Number* x, bool new_x, Index, Number* g) override {
-    if (!update(x, new_x)) return false;
+  bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
+    if (!update(x)) return false;
     for (std::size_t j = 0; j + 1 < stations_; ++j) step_rows(j, x, g + row_offset(j), nullptr);
     return true;
   }
 
-  bool eval_jac_g(Index, const Number* x, bool new_x, Index, Index, Index* i_row, Index* j_col,
+  bool eval_jac_g(Index, const Number* x, bool, Index, Index, Index* i_row, Index* j_col,
                   Number* values) override {
     if (values == nullptr) {
       Index e = 0;
@@ -307,7 +308,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
       }
       return true;
     }
-    if (!update(x, new_x)) return false;
+    if (!update(x)) return false;
     Index e = 0;
     std::vector<double> rows(2 * rows_per_end_);
     for (std::size_t j = 0; j + 1 < stations_; ++j) {
@@ -370,9 +371,12 @@ class SimultaneousNlp : public Ipopt::TNLP {
   }
 
   /// The station geometry and its derivatives at x; false where a station
-  /// leaves the data, the curve has a cusp or a step has no length.
-  bool update(const Number* x, bool new_x) {
-    if (cached_ && (!new_x || std::equal(x, x + free_, cached_controls_.begin()))) return valid_;
+  /// leaves the data, the curve has a cusp or a step has no length. Keyed on
+  /// the control coordinates the workspace holds (the speeds do not enter
+  /// the geometry), not on Ipopt's new_x: eval_h's probes move the workspace
+  /// away from Ipopt's current point.
+  bool update(const Number* x) {
+    if (cached_ && std::equal(x, x + free_, cached_controls_.begin())) return valid_;
     cached_ = true;
     cached_controls_.assign(x, x + free_);
     valid_ = false;

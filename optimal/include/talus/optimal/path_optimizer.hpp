@@ -159,7 +159,7 @@ struct PathOptimizerOptions {
   /// (start "polish"). Ignored by the simultaneous formulation. Off by
   /// default for its cost: on the fractal battery it converged on 49 of 75
   /// candidates (none converge without it) but tripled the median planning
-  /// time (1.5 to 4.5 s); on the README's Mount St. Helens plan (1400 NLP
+  /// time (1.2 to 4.5 s, CLI wall); on the README's Mount St. Helens plan (1400 NLP
   /// stations) it took 26 s for no gain.
   bool polish = false;
   /// The polish NLP's stations: the search's stations / this (>= 1), at

@@ -5,7 +5,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
+#include <utility>
+#include <vector>
 
+#include "simultaneous_path_solver.hpp"
 #include "talus/core/error.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "talus/optimal/path_optimizer.hpp"
@@ -156,6 +160,56 @@ TEST(SimultaneousStage, FormulationNamesAndOptions) {
   options.simultaneous_max_iterations = 10;
   options.simultaneous_tolerance = 0.0;
   EXPECT_THROW(options.validate(), InputError);
+}
+
+// The NLP's Hessian pattern: each of `steps` steps couples the controls
+// first..first+4 of its two stations (five consecutive, shifting every
+// `stations_per_span` steps) and its two speeds, as SimultaneousNlp builds it.
+std::vector<std::pair<int, int>> banded_pattern(int controls, int stations, int stations_per_span) {
+  std::set<std::pair<int, int>> entries;
+  for (int j = 0; j + 1 < stations; ++j) {
+    std::vector<int> columns;
+    const int first = std::min(j / stations_per_span, controls - 5);
+    for (int c = first; c < first + 5; ++c) columns.push_back(c);
+    columns.push_back(controls + j);
+    columns.push_back(controls + j + 1);
+    for (int a : columns)
+      for (int b : columns)
+        if (a >= b) entries.insert({a, b});
+  }
+  return {entries.begin(), entries.end()};
+}
+
+TEST(SimultaneousHessianProbes, NoRowSeesTwoColumnsOfOneGroup) {
+  const int controls = 55, stations = 435;
+  const auto pattern = banded_pattern(controls, stations, 8);
+  const auto groups = detail::probe_groups(pattern, controls, controls + stations);
+  // Every column in exactly one group.
+  std::vector<int> seen(controls, 0);
+  for (const auto& g : groups)
+    for (std::size_t c : g) ++seen[c];
+  for (int c = 0; c < controls; ++c) EXPECT_EQ(seen[c], 1) << "column " << c;
+  // The invariant that makes a group's probe exact: no row with an entry in
+  // two of its columns (the pattern is symmetric: (r, c) stands for (c, r) too).
+  std::vector<std::set<int>> rows(controls);
+  for (const auto& [r, c] : pattern) {
+    if (c < controls) rows[c].insert(r);
+    if (r < controls) rows[r].insert(c);
+  }
+  for (const auto& g : groups) {
+    for (std::size_t a = 0; a < g.size(); ++a)
+      for (std::size_t b = a + 1; b < g.size(); ++b)
+        for (int r : rows[g[a]])
+          EXPECT_EQ(rows[g[b]].count(r), 0u)
+              << "columns " << g[a] << ", " << g[b] << " share row " << r;
+  }
+  // Columns five apart share a step's speed row, nine apart share nothing:
+  // nine groups, not 55 probes.
+  EXPECT_EQ(groups.size(), 9u);
+}
+
+TEST(SimultaneousHessianProbes, RejectsAnEntryOutOfRange) {
+  EXPECT_THROW(detail::probe_groups({{7, 0}}, 2, 5), InputError);
 }
 
 }  // namespace

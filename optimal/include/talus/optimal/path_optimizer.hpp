@@ -117,7 +117,8 @@ struct PathOptimizerOptions {
   double simultaneous_tolerance = 1e-6;
   /// Simultaneous formulation: Ipopt's limited-memory quasi-Newton Hessian
   /// instead of the default, forward differences of the Lagrangian's exact
-  /// gradient (one probe per coordinate and three for all the speeds).
+  /// gradient (one probe per group of coordinates that share no Hessian row,
+  /// about nine for lateral offsets, and three for all the speeds).
   /// With L-BFGS phase 2 stalled on the tests' flat plane and smooth hill
   /// (1000 iterations without convergence).
   bool simultaneous_limited_memory = false;

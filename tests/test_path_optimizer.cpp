@@ -85,7 +85,7 @@ TEST_P(EverySolver, ImprovesOnTheGlobalCandidateAroundAHill) {
   EXPECT_LT(best.travel_time, 0.99 * best.initial_time);  // the lattice path is not time-optimal
   EXPECT_TRUE(std::isfinite(best.travel_time));
   // Independently: the returned curve's profile takes the reported time.
-  PathTimeObjective objective(terrain, v, {5, 30}, {75, 30}, options.control_points, best.stations,
+  PathTimeObjective objective(terrain, v, {5, 30}, {75, 30}, best.control_points, best.stations,
                               {});
   EXPECT_NEAR(objective.evaluate(objective.variables(best.curve.control_points())),
               best.travel_time, 1e-9 * best.travel_time);
@@ -185,7 +185,8 @@ TEST(PathOptimizerRestarts, ResumeThenPerturbAndKeepTheBestOfEveryAttempt) {
   const HillCase hill;
   PathOptimizerOptions options;
   options.max_evaluations = 10;
-  ASSERT_FALSE(options.polish);  // the restarts alone (the default)
+  options.more_control_points.clear();  // one fit
+  ASSERT_FALSE(options.polish);         // the restarts alone (the default)
   const OptimizedPath single = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   ASSERT_EQ(single.attempts.size(), 1u);
   EXPECT_EQ(single.attempts[0].start, "fit");
@@ -228,6 +229,7 @@ TEST(PathOptimizerRestarts, ResumeThenPerturbAndKeepTheBestOfEveryAttempt) {
 TEST(PathOptimizerPolish, ConvergesFromTheNestedPointOnTheSmoothHill) {
   const HillCase hill;
   PathOptimizerOptions options;
+  options.more_control_points.clear();  // one fit
   options.polish = false;
   const OptimizedPath nested = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   ASSERT_FALSE(nested.converged) << nested.solver_status;
@@ -258,6 +260,7 @@ TEST(PathOptimizerPolish, ConvergesFromTheNestedPointOnTheSmoothHill) {
 TEST(PathOptimizerMoreControlPoints, KeepsTheFasterOfTheStartsAndListsEverySolve) {
   const HillCase hill;
   PathOptimizerOptions options;
+  options.more_control_points.clear();
   const OptimizedPath eight = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   options.control_points = 12;
   const OptimizedPath twelve = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);

@@ -495,10 +495,11 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->capture_default_str();
   plan->add_option("--more-control-points", plan_request.more_control_points,
                    "--stage full: further starts of each candidate's local stage from fits with "
-                   "these control-point counts (comma-separated, each 4 to 64), the fastest "
-                   "kept; optima[].attempts[].control_points says which fit each solve started "
-                   "from")
-      ->delimiter(',');
+                   "these control-point counts (comma-separated, each 4 to 64; 0 = none), the "
+                   "fastest kept; optima[].attempts[].control_points says which fit each solve "
+                   "started from")
+      ->delimiter(',')
+      ->capture_default_str();
   plan->add_option("--solver", plan_request.solver,
                    "local solver, --stage full: ipopt (interior point, exact gradient), "
                    "nlopt-lbfgs (exact gradient) or nlopt-bobyqa (derivative-free); nested "
@@ -523,8 +524,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                  "--stage full, nested formulation: polish each candidate's optimum with the "
                  "simultaneous NLP in lateral offsets, which converges by Ipopt's own status "
                  "where the nested objective's kinks stop the solver on a cap "
-                 "(optima[].attempts lists it as start polish; it costs about 0.5-3 s per "
-                 "candidate on the fractal battery)");
+                 "(optima[].attempts lists it as start polish; it costs about 0.3-2 s per "
+                 "candidate and start on the fractal battery)");
   plan->add_option("--resolution", plan_request.resolution,
                    "global search: full (every lattice node) or multi (a coarse lattice 4x "
                    "coarser, then the fine lattice in a corridor around its candidates, widened "

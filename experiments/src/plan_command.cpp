@@ -58,10 +58,13 @@ void check_plan_options(const PlanRequest& request) {
     throw InputError("--control-points must be in [4, " + std::to_string(kMaxPlanControlPoints) +
                      "], got " + std::to_string(request.control_points));
   }
+  const bool no_more = request.more_control_points == std::vector<long long>{0};
   for (const long long m : request.more_control_points) {
+    if (no_more) break;
     if (m < 4 || m > kMaxPlanControlPoints)
       throw InputError("--more-control-points must each be in [4, " +
-                       std::to_string(kMaxPlanControlPoints) + "], got " + std::to_string(m));
+                       std::to_string(kMaxPlanControlPoints) + "] (or a single 0 for none), got " +
+                       std::to_string(m));
   }
   for (const auto& [option, speed] :
        {std::pair{"--v0", request.start_speed}, std::pair{"--v1", request.end_speed}}) {
@@ -377,7 +380,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
       "returned path [s/m], from the adjoint gradient (for every solver); the travel time is "
       "piecewise smooth, so a local optimum can sit on a kink with a non-zero value";
   summary["control_points"] = request.control_points;
-  summary["more_control_points"] = request.more_control_points;
+  summary["more_control_points"] = options.local.more_control_points;
   summary["start_speed"] = request.start_speed;
   summary["end_speed"] = request.end_speed;
   summary["station_spacing"] =
@@ -414,8 +417,9 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.local.restarts = static_cast<std::size_t>(request.restarts);
   options.local.polish = request.polish;
   options.local.control_points = static_cast<std::size_t>(request.control_points);
+  options.local.more_control_points.clear();
   for (const long long m : request.more_control_points)
-    options.local.more_control_points.push_back(static_cast<std::size_t>(m));
+    if (m != 0) options.local.more_control_points.push_back(static_cast<std::size_t>(m));
   options.local.max_control_points =
       std::max(options.local.max_control_points, options.local.control_points);
   return options;

@@ -52,8 +52,9 @@ struct PlanRequest {
   std::optional<double> smoothing;
   // The local stage (--stage full only).
   long long control_points = 8;  ///< of each optimised clamped cubic (4 to 64)
-  /// PathOptimizerOptions::more_control_points (each 4 to 64).
-  std::vector<long long> more_control_points;
+  /// PathOptimizerOptions::more_control_points (each 4 to 64; its default,
+  /// a further start at 16); a single 0 = none.
+  std::vector<long long> more_control_points = {16};
   std::string solver = "ipopt";  ///< ipopt, nlopt-lbfgs or nlopt-bobyqa (parse_path_solver)
   /// nested or simultaneous (parse_path_formulation; PathOptimizerOptions::formulation).
   std::string formulation = "nested";

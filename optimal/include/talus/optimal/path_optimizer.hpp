@@ -158,14 +158,16 @@ struct PathOptimizerOptions {
   /// slower (and never slower than the initial fit); otherwise the nested
   /// point stays, with its status. OptimizedPath::attempts lists the polish
   /// (start "polish"). Ignored by the simultaneous formulation. Off by
-  /// default for its cost: on the fractal battery it converged on 49 of 75
-  /// candidates (none converge without it) but tripled the median planning
-  /// time (1.2 to 4.5 s, CLI wall); on the README's Mount St. Helens plan (1400 NLP
-  /// stations) it took 26 s for no gain.
+  /// default for its cost: on the fractal battery (8-point fits only) it
+  /// converged on 49 of 75 candidates (none converge without it; 55 at 300
+  /// iterations, where the rest still stall with the limits binding on rough
+  /// ground) for 0.3-2.1 s per candidate (median 0.7 s), which tripled the
+  /// median planning time (1.1 to 3.2 s, two plans sharing two cores); on the
+  /// README's Mount St. Helens plan (1400 NLP stations) it took 26 s for no gain.
   bool polish = false;
   /// The polish NLP's stations: the search's stations / this (>= 1), at
   /// least 16. 4: on the fractal battery (0.024 m search spacing) the NLP
-  /// then has 400-480 stations and converges in 30-90 iterations (0.5-2 s);
+  /// then has 400-480 stations and converges in 30-90 iterations;
   /// at 8 it took more iterations and its optima were 0.4-1.1 % slower at
   /// the search stations, at 2 the iterations cost twice as much.
   std::size_t polish_station_factor = 4;
@@ -178,11 +180,13 @@ struct PathOptimizerOptions {
   /// restarts, polish) again from a fit with each of these control-point
   /// counts; the fastest result is returned and OptimizedPath::attempts lists
   /// every start's solves (LocalAttempt::control_points). A count whose fit
-  /// leaves the data or has no admissible profile is skipped. Empty by
-  /// default: on the fractal battery 16 beside 8 gave 3.3 % less travel
-  /// time summed over seeds 1-10 (up to 12.6 % on one) for twice the local
-  /// stage's time, while 16 alone was slower than 8 on four of the ten.
-  std::vector<std::size_t> more_control_points;
+  /// leaves the data or has no admissible profile is skipped. {16} by
+  /// default: on the 25-seed fractal battery (optimiser-quality's) the plan
+  /// within 1 % of the fastest over every configuration tried went from 9
+  /// to 21 cases, its median excess from 2.5 % to 0, its worst from 14.8 %
+  /// to 4.3 %, for a median planning time of 1.8 s instead of 1.1 s (one
+  /// core); 16 alone was slower than 8 on four of seeds 1-10.
+  std::vector<std::size_t> more_control_points = {16};
   ProfileOptions speeds;  ///< start and end speeds
   /// Throws InputError naming the field.
   void validate() const;

@@ -58,9 +58,8 @@ void check_plan_options(const PlanRequest& request) {
     throw InputError("--control-points must be in [4, " + std::to_string(kMaxPlanControlPoints) +
                      "], got " + std::to_string(request.control_points));
   }
-  const bool no_more = request.more_control_points == std::vector<long long>{0};
-  for (const long long m : request.more_control_points) {
-    if (no_more) break;
+  const bool none = request.more_control_points == std::vector<long long>{0};
+  for (const long long m : none ? std::vector<long long>{} : request.more_control_points) {
     if (m < 4 || m > kMaxPlanControlPoints)
       throw InputError("--more-control-points must each be in [4, " +
                        std::to_string(kMaxPlanControlPoints) + "] (or a single 0 for none), got " +

@@ -1,11 +1,15 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
+#include <vector>
 
+#include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/terrain_generators.hpp"
+#include "talus/optimal/trajectory.hpp"
 #include "talus/optimal/verify_profile.hpp"
 
 namespace talus {
@@ -127,6 +131,70 @@ TEST(VerifyProfile, AStepBeyondTheBrakeLimitIsOutOfBounds) {
   EXPECT_EQ(check.status, VerificationStatus::kAccelerationOutOfBounds) << check.message;
   EXPECT_EQ(check.inconsistencies, 0u) << check.message;
   EXPECT_GT(check.worst_acceleration.amount, 1.0);
+}
+
+/// Regression (issue #12, fractal battery seed 17): the planner's best path
+/// there crosses a crest 6e-8 m/s under its sliding limit, with the normal
+/// force down to 1.7e-3 m/s² per unit mass, where the s̈ interval is only
+/// 4e-5 m/s² wide. The step into it brakes 3.7e-6 m/s² harder than that
+/// interval allows, yet the contact force it needs lies 7.5e-8 m/s² (8e-9 g)
+/// outside the friction cone: the profile solver's rounding slack, not
+/// physics. So the profile verifies, because the check measures force; the
+/// s̈ interval alone would have rejected it.
+TEST(VerifyProfile, AStepIntoTheTipOfASlidingLimitIsMeasuredInForce) {
+  FractalTerrainOptions terrain;  // the battery's terrain of seed 17
+  terrain.undulation_amplitude = 1.0;
+  terrain.undulation_wavelength = 30.0;
+  terrain.peaks = 6;
+  terrain.peak_height = 1.0;
+  terrain.seed = 17;
+  const BPatch surface = BPatch::interpolate(generate_fractal_terrain(terrain));
+  Vehicle ugv;  // the battery's point-mass UGV
+  ugv.friction = 0.7;
+  ugv.cg_height = 0.06;
+  ugv.half_track = 0.124;
+  ugv.max_speed = 7.0;
+  ugv.max_accel = 3.0;
+  ugv.max_decel = 5.0;
+  std::vector<double> breakpoints;
+  for (int i = 0; i <= 13; ++i) breakpoints.push_back(i / 13.0);
+  const Curve2 curve(KnotVector::clamped(3, breakpoints),
+                     {{2, 2},
+                      {3.0023287958242832, 3.5044981524071441},
+                      {4.0568860105771023, 5.8322770173892264},
+                      {4.2166606898568766, 9.8873878275293983},
+                      {3.4454650762701351, 13.194868919906376},
+                      {3.0463473531246503, 15.521727345295393},
+                      {5.6640676739620064, 16.763795159583676},
+                      {8.2745287658824385, 18.080839531279899},
+                      {12.17485027262285, 19.329795549995957},
+                      {14.720330256884802, 21.352043573554472},
+                      {16.660159494320727, 23.009071172684536},
+                      {19.823314453319679, 24.758165567027568},
+                      {22.612507372017397, 26.228434007279599},
+                      {24.681864617558784, 27.485490438474905},
+                      {26.691394061354561, 27.879895533942801},
+                      {28.5, 28.5}});
+  TrajectoryOptions options;
+  options.station_spacing = 0.024;
+  const Trajectory trajectory = evaluate_trajectory(surface, ugv, curve, options);
+  const TimeOptimalProfile& p = trajectory.profile;
+  ASSERT_EQ(p.status, ProfileStatus::kOk) << p.message;
+  const ProfileVerification check = verify_profile(*trajectory.limits, p);
+  EXPECT_TRUE(check.passed()) << check.message;
+  EXPECT_LT(check.worst_acceleration.amount, 1e-7) << check.message;
+  // The tip: some step end's s̈ is outside its interval by more than the
+  // tolerance (so this path does exercise the ill-conditioned case).
+  const VelocityLimits& limits = *trajectory.limits;
+  double worst_interval_distance = 0.0;
+  for (std::size_t k = 1; k < limits.size(); ++k) {
+    const AccelerationBounds b =
+        limits.admissible_set().acceleration_bounds(limits.geometry(k), p.v[k]);
+    if (!b.feasible) continue;
+    const double a = p.a[k - 1];
+    worst_interval_distance = std::max({worst_interval_distance, b.a_min - a, a - b.a_max});
+  }
+  EXPECT_GT(worst_interval_distance, 1e-6);
 }
 
 TEST(VerifyProfile, InvalidInputThrowsAndNoProfileIsAStatus) {

@@ -9,8 +9,13 @@
 ///   speed          v_k <= v_max,k (1 + speed_relative) + speed_absolute, v_max from the limits
 ///   admissible     some s̈ is admissible at (station k, v_k): acceleration_bounds is feasible
 ///                  (this also rejects v_k < v_min, a NaN or a negative speed)
-///   acceleration   the step's s̈ a_k lies in [a_min, a_max] at **both** of its ends, at their
-///                  speeds, within acceleration_tolerance (1 + |a_k|) [m/s²]
+///   acceleration   the step's s̈ a_k is admissible at **both** of its ends, at their speeds:
+///                  the contact force per unit mass it needs there lies within
+///                  acceleration_tolerance (1 + |a_k|) [m/s²] of the vehicle's admissible force
+///                  set (friction cone and linear conditions, from the force model itself).
+///                  Measured in force because the s̈ interval [a_min, a_max] is ill-conditioned
+///                  at its tip: on a sliding limit it is sqrt(v_max − v) wide, so rounding of
+///                  1e-11 m/s² in force moves its ends by 1e-5 m/s².
 ///   consistency    a_k = (v_{k+1}² − v_k²) / (2 Δs) within acceleration_tolerance (1 + |a_k|);
 ///                  t_0 = 0, t_{k+1} = t_k + 2 Δs / (v_k + v_{k+1}) accumulated, within
 ///                  time_relative t + time_absolute; travel_time = t at the last station
@@ -45,7 +50,7 @@ enum class VerificationStatus {
   kNoProfile,                ///< the profile's status is not kOk: nothing to verify
   kSpeedAboveLimit,          ///< some v > v_max
   kInadmissibleState,        ///< some (station, v) admits no s̈ at all
-  kAccelerationOutOfBounds,  ///< some step's s̈ is outside [a_min, a_max] at an end
+  kAccelerationOutOfBounds,  ///< some step's s̈ needs an inadmissible force at an end
   kInconsistent,             ///< accelerations or times do not follow from the speeds
 };
 /// Lower-case name: pass, no_profile, speed_above_limit, inadmissible_state,
@@ -69,8 +74,10 @@ struct ProfileVerification {
   std::size_t inadmissible_states = 0;  ///< stations where no s̈ is admissible at v
   std::size_t first_inadmissible = 0;   ///< the first such station
   Constraint inadmissible_constraint = Constraint::kNone;  ///< what it violates
-  std::size_t acceleration_violations = 0;                 ///< step ends with s̈ outside the band
-  WorstViolation worst_acceleration;  ///< largest distance outside [a_min, a_max] [m/s²] (the end)
+  std::size_t acceleration_violations = 0;  ///< step ends whose s̈ needs a force outside the band
+  /// Largest distance of a step end's contact force per unit mass outside the
+  /// admissible force set [m/s²] (the end's station).
+  WorstViolation worst_acceleration;
   /// Steps whose s̈ or arrival time disagrees with the speeds (+1 each for a
   /// nonzero t_0 and a travel_time other than the last arrival time).
   std::size_t inconsistencies = 0;

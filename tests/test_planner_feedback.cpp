@@ -6,13 +6,18 @@
 // judges each straight edge alone and cannot see them). Without feedback the
 // plan is infeasible; with it the failing stretches are excluded and the
 // plan ends feasible, which verify_profile and a fresh evaluation at other
-// stations confirm independently.
+// stations confirm independently. A built chute steeper than atan μ: the
+// lattice's braking rule refuses it itself; without that rule the lattice
+// takes it and the feedback loop removes it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
+#include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/grid_window.hpp"
@@ -90,6 +95,122 @@ TEST(PlannerFeedback, ExcludingTheFailingStretchesGivesADrivableTrajectory) {
   finer.station_spacing = 0.5 * default_station_spacing(surface, problem.vehicle);
   const Trajectory fresh =
       evaluate_trajectory(surface, problem.vehicle, trajectory.path->curve(), finer);
+  ASSERT_TRUE(fresh.feasible()) << fresh.message;
+  EXPECT_NEAR(fresh.travel_time(), trajectory.travel_time(), 0.01 * trajectory.travel_time());
+}
+
+/// A plateau 8 m above a plain, the drop a tanh step whose length grows from
+/// 3 m on the line y = 0 to 12 m far from it, with a 0.5 m channel along
+/// y = 0: a chute at 53° (steeper than atan 0.7 = 35°) on the direct route,
+/// concave below its steepest point, and gentler ramps to either side.
+/// 97 x 113 nodes at 0.25 m, x in [0, 24], y in [-14, 14].
+BPatch chute_surface() {
+  ElevationGrid grid(97, 113, 0.25, 0.0, -14.0);
+  for (std::size_t j = 0; j < grid.nrows(); ++j) {
+    for (std::size_t i = 0; i < grid.ncols(); ++i) {
+      const Vec2 p = grid.node_position(i, j);
+      const double length = 3.0 + 9.0 * (1.0 - std::exp(-p.y() * p.y() / 32.0));
+      const double channel = 0.5 * std::exp(-p.y() * p.y() / (2.0 * 1.5 * 1.5));
+      grid.at(i, j) = 4.0 * (1.0 - std::tanh((p.x() - 12.0) / length)) - channel;
+    }
+  }
+  return BPatch::interpolate(grid);
+}
+
+/// Issue #12's point-mass UGV.
+Vehicle chute_ugv() {
+  Vehicle ugv;
+  ugv.friction = 0.7;
+  ugv.cg_height = 0.06;
+  ugv.half_track = 0.124;
+  ugv.max_speed = 7.0;
+  ugv.max_accel = 3.0;
+  ugv.max_decel = 5.0;
+  return ugv;
+}
+
+const Vec2 kChuteStart{2.0, 0.0}, kChuteGoal{18.0, 0.0};
+
+/// Whether the best plan avoids the chute: every candidate vertex on ground
+/// gentler than atan μ.
+void expect_candidates_off_the_chute(const BPatch& surface, const PlannerResult& result,
+                                     double friction) {
+  for (const CandidatePath& candidate : result.global.candidates) {
+    for (const Vec2& vertex : candidate.vertices) {
+      EXPECT_LT(surface.evaluate(vertex).gradient.norm(), friction)
+          << "a candidate vertex at (" << vertex.x() << ", " << vertex.y() << ") is on the chute";
+    }
+  }
+}
+
+TEST(PlannerFeedback, TheChuteIsSteeperThanAtanMuConcaveBelowAndCannotBeDrivenStraight) {
+  const BPatch surface = chute_surface();
+  const Vehicle ugv = chute_ugv();
+  EXPECT_GT(surface.evaluate({12.0, 0.0}).gradient.norm(), 1.2 * ugv.friction);  // 53° vs 35°
+  EXPECT_GT(surface.evaluate({14.0, 0.0}).hessian(0, 0), 0.0);  // concave below the steepest point
+  const Trajectory direct = evaluate_trajectory(
+      surface, ugv, Curve2::interpolate({kChuteStart, {10.0, 0.0}, kChuteGoal}), {});
+  EXPECT_FALSE(direct.feasible()) << "the straight descent of the chute should not be drivable";
+}
+
+/// The lattice's own braking rule refuses the chute: down a straight edge
+/// the slope is steepest where the edge's normal curvature is zero (the
+/// chute's inflection), and there no speed lets the vehicle brake
+/// (global_search.hpp, rule (c)). So the first search already routes round
+/// it and the feedback loop has nothing to do.
+TEST(PlannerFeedback, TheLatticeBrakingRuleRefusesTheChuteItself) {
+  const BPatch surface = chute_surface();
+  const Vehicle ugv = chute_ugv();
+  PlannerOptions options;
+  options.local.max_evaluations = 20;
+  options.local.more_control_points.clear();
+  const PlannerResult result =
+      plan(PlanningProblem(surface, ugv, kChuteStart, kChuteGoal), options);
+  ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
+  EXPECT_EQ(result.feedback_rounds, 0u);
+  EXPECT_TRUE(result.excluded.empty());
+  expect_candidates_off_the_chute(surface, result, ugv.friction);
+  EXPECT_TRUE(result.candidates.at(*result.best_candidate).followable);
+  const ProfileVerification check = verify_profile(*result.best()->limits, result.best()->profile);
+  EXPECT_TRUE(check.passed()) << check.message;
+}
+
+/// Without the braking rule the lattice's best corridor goes straight down
+/// the chute, which no profile drives: the feedback loop finds that from the
+/// candidate's initial fit, excludes the stretch and searches again until
+/// the corridors keep off the chute, and the plan ends feasible and verified.
+TEST(PlannerFeedback, WithoutTheBrakingRuleTheFeedbackLoopRemovesTheChute) {
+  const BPatch surface = chute_surface();
+  const Vehicle ugv = chute_ugv();
+  const PlanningProblem problem(surface, ugv, kChuteStart, kChuteGoal);
+  PlannerOptions options;
+  options.global.braking_rule = false;
+  options.local.max_evaluations = 20;
+  options.local.more_control_points.clear();
+
+  PlannerOptions first_search = options;
+  first_search.feedback_rounds = 0;
+  first_search.global.candidates = 1;
+  const PlannerResult blind = plan(problem, first_search);
+  ASSERT_FALSE(blind.global.candidates.empty());
+  double steepest = 0.0;
+  for (const Vec2& vertex : blind.global.candidates.front().vertices)
+    steepest = std::max(steepest, surface.evaluate(vertex).gradient.norm());
+  EXPECT_GT(steepest, ugv.friction) << "the best corridor should take the chute";
+  EXPECT_FALSE(blind.candidates.front().followable);
+
+  const PlannerResult result = plan(problem, options);
+  ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
+  EXPECT_GE(result.feedback_rounds, 1u);
+  ASSERT_FALSE(result.excluded.empty());
+  const CandidateOutcome& best = result.candidates.at(*result.best_candidate);
+  EXPECT_TRUE(best.followable);
+  const Trajectory& trajectory = *result.best();
+  const ProfileVerification check = verify_profile(*trajectory.limits, trajectory.profile);
+  EXPECT_TRUE(check.passed()) << check.message;
+  TrajectoryOptions finer;
+  finer.station_spacing = 0.5 * default_station_spacing(surface, ugv);
+  const Trajectory fresh = evaluate_trajectory(surface, ugv, trajectory.path->curve(), finer);
   ASSERT_TRUE(fresh.feasible()) << fresh.message;
   EXPECT_NEAR(fresh.travel_time(), trajectory.travel_time(), 0.01 * trajectory.travel_time());
 }

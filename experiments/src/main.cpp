@@ -546,6 +546,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "summary: feedback_rounds, excluded_regions, optima[].followable")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
+  plan->add_flag("!--no-braking-rule", plan_request.braking_rule,
+                 "global search: keep the lattice edges on which the vehicle could not brake at "
+                 "any speed (by default they are untraversable); the feedback loop then removes "
+                 "those no profile drives. For studying the rule and the loop");
   plan->add_option("--v0", plan_request.start_speed, "speed at the start [m/s], >= 0, --stage full")
       ->capture_default_str();
   plan->add_option("--v1", plan_request.end_speed, "speed at the goal [m/s], >= 0, --stage full")

@@ -1015,17 +1015,19 @@ void write_report(const std::vector<ProfileRun>& runs, const ProfileRun& check_r
   for (const ProfileRun* run : {&runs[0], &runs[1]}) {
     const ProfileVerification& check = run->verification;
     const ProfileAnalysis& c = run->analysis;
-    report.bullet(
-        "`" + run->spec->name + "`: v > v_max at " + std::to_string(check.speed_violations) +
-        " stations (largest v − v_max " + fmt("%.3g", check.worst_speed.amount) +
-        " m/s); s̈ needing a contact force outside the admissible set at " +
-        std::to_string(check.acceleration_violations) + " step ends (largest distance " +
-        fmt("%.3g", check.worst_acceleration.amount) + " m/s² in force per unit mass, checked at both ends of every step at their profile speeds); stations with no "
-        "admissible s̈ at their profile speed (on the limit curve up to rounding): " +
-        std::to_string(check.inadmissible_states) + "; on v_max in " +
-        std::to_string(c.touch_segments) + " stretches (" + std::to_string(c.touching) +
-        " stations), including " + std::to_string(c.dips_touched) + " of the " +
-        std::to_string(c.dips) + " local minima of v_max.");
+    report.bullet("`" + run->spec->name + "`: v > v_max at " +
+                  std::to_string(check.speed_violations) + " stations (largest v − v_max " +
+                  fmt("%.3g", check.worst_speed.amount) +
+                  " m/s); s̈ needing a contact force outside the admissible set at " +
+                  std::to_string(check.acceleration_violations) + " step ends (largest distance " +
+                  fmt("%.3g", check.worst_acceleration.amount) +
+                  " m/s² in force per unit mass, checked at both ends of every step at their "
+                  "profile speeds); stations with no "
+                  "admissible s̈ at their profile speed (on the limit curve up to rounding): " +
+                  std::to_string(check.inadmissible_states) + "; on v_max in " +
+                  std::to_string(c.touch_segments) + " stretches (" + std::to_string(c.touching) +
+                  " stations), including " + std::to_string(c.dips_touched) + " of the " +
+                  std::to_string(c.dips) + " local minima of v_max.");
   }
   report.heading("What the figures show")
       .paragraph(commentary(runs, check_run, convergence, setup))

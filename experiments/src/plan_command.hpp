@@ -48,6 +48,8 @@ struct PlanRequest {
   double time_limit = std::numeric_limits<double>::infinity();
   /// PlannerOptions::feedback_rounds (>= 0).
   int feedback_rounds = 8;
+  /// GlobalSearchOptions::braking_rule (false: --no-braking-rule).
+  bool braking_rule = true;
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
   // The local stage (--stage full only).

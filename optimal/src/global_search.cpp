@@ -45,9 +45,10 @@ TangentialForces tangential_forces(const AdmissibleSet& set, const StationGeomet
   return out;
 }
 
+/// `braking_rule`: GlobalSearchOptions::braking_rule (rule (c) applied).
 EdgeCost edge_cost_impl(const BPatch& terrain, const AdmissibleSet& set, const Vec2& a,
                         const Vec2& b, int stations, const SurfacePoint* at_a,
-                        const SurfacePoint* at_b) {
+                        const SurfacePoint* at_b, bool braking_rule = true) {
   const Vec2 d1 = b - a;
   EdgeCost out;
   double forward_sum = 0.0;
@@ -70,8 +71,8 @@ EdgeCost edge_cost_impl(const BPatch& terrain, const AdmissibleSet& set, const V
     // Forwards: cannot climb if W_drive < g k_t, cannot stop if W_brake < −g k_t.
     const TangentialForces forces = tangential_forces(set, g, window);
     const double weight = set.gravity() * g.k_t;
-    if (forces.drive < weight || forces.brake < -weight) forward_ok = false;
-    if (forces.drive < -weight || forces.brake < weight) backward_ok = false;
+    if (forces.drive < weight || (braking_rule && forces.brake < -weight)) forward_ok = false;
+    if (forces.drive < -weight || (braking_rule && forces.brake < weight)) backward_ok = false;
   }
   const double h = 1.0 / (stations - 1) / 3.0;
   const double time = forward_sum * h;
@@ -136,8 +137,12 @@ struct TileMask {
 class Lattice {
  public:
   Lattice(const BPatch& terrain, const AdmissibleSet& set, double spacing, int connectivity,
-          const TileMask* mask = nullptr)
-      : terrain_(terrain), set_(set), spacing_(spacing), offsets_(neighbour_offsets(connectivity)) {
+          bool braking_rule, const TileMask* mask = nullptr)
+      : terrain_(terrain),
+        set_(set),
+        spacing_(spacing),
+        braking_rule_(braking_rule),
+        offsets_(neighbour_offsets(connectivity)) {
     origin_ = Vec2(terrain.x_min(), terrain.y_min());
     nx_ =
         static_cast<std::size_t>(std::floor((terrain.x_max() - terrain.x_min()) / spacing + 1e-9)) +
@@ -361,7 +366,7 @@ class Lattice {
     if (on_data_[a] && on_data_[b]) {
       const Vec2 pa = position(a), pb = position(b);
       c = edge_cost_impl(terrain_, set_, pa, pb, stations_for((pb - pa).norm()), &surface_[a],
-                         &surface_[b]);
+                         &surface_[b], braking_rule_);
     }
     forward_[slot] = c.forward;
     backward_[slot] = c.backward;
@@ -378,6 +383,7 @@ class Lattice {
   const BPatch& terrain_;
   const AdmissibleSet& set_;
   double spacing_;
+  bool braking_rule_;
   std::vector<std::pair<int, int>> offsets_;
   std::size_t half_ = 0, nx_ = 0, ny_ = 0, size_ = 0;
   Vec2 origin_;
@@ -530,7 +536,7 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
                                   const TileMask* mask) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto stop = [&options] { return options.stop && options.stop(); };
-  Lattice lattice(terrain, set, spacing, options.connectivity, mask);
+  Lattice lattice(terrain, set, spacing, options.connectivity, options.braking_rule, mask);
   GlobalSearchResult result;
   result.nodes = lattice.size();
   result.nx = lattice.nx();

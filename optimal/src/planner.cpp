@@ -309,7 +309,12 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
     // A disc round each failure; near the start or the goal (whose nodes
     // are kept, and whose approach a disc would cut off) only the
     // candidate's own vertices near it, so that it must come another way.
+    // A failure inside a disc of an earlier round means the search went
+    // round the disc and the fit still fails there (a long stretch such as
+    // a chute): that disc doubles instead.
+    const std::vector<ExcludedRegion> before = global.excluded;
     std::vector<ExcludedRegion> added;
+    bool widened = false;
     const auto inside = [](const Vec2& q, const std::vector<ExcludedRegion>& regions) {
       return std::any_of(regions.begin(), regions.end(), [&](const ExcludedRegion& e) {
         return (q - e.centre).norm() <= e.radius;
@@ -318,12 +323,23 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
     const auto add = [&](const Vec2& centre, double r) {
       if (!inside(centre, global.excluded) && !inside(centre, added)) added.push_back({centre, r});
     };
+    const auto add_or_widen = [&](const Vec2& centre, double r) {
+      if (inside(centre, added)) return;
+      for (std::size_t e = 0; e < before.size(); ++e) {
+        if ((centre - before[e].centre).norm() <= before[e].radius) {
+          global.excluded[e].radius = 2.0 * before[e].radius;
+          widened = true;
+          return;
+        }
+      }
+      added.push_back({centre, r});
+    };
     for (std::size_t c = 0; c < failures.size(); ++c) {
       if (!failures[c]) continue;
       const Vec2 p = *failures[c];
       const double margin = radius + spacing;
       if ((p - problem.start).norm() > margin && (p - problem.goal).norm() > margin) {
-        add(p, radius);
+        add_or_widen(p, radius);
         continue;
       }
       // Those within the radius, and at least the nearest (the last edge
@@ -336,15 +352,18 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
       }
       if (nearest != 0) add(vertices[nearest], 0.5 * spacing);
     }
-    if (added.empty()) break;
+    if (added.empty() && !widened) break;
     global.excluded.insert(global.excluded.end(), added.begin(), added.end());
     ++result.feedback_rounds;
     GlobalSearchResult next =
         global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global);
     if (next.status == GlobalSearchStatus::kUnreachable) {
-      // The new discs closed the last corridor (a pass narrower than they
-      // are): exclude only the node nearest to each failure instead.
-      bool shrunk = false;
+      // The new or widened discs closed the last corridor (a pass narrower
+      // than they are): keep the earlier discs as they were and exclude
+      // only the node nearest to each new failure instead.
+      std::copy(before.begin(), before.end(), global.excluded.begin());
+      if (added.empty()) break;
+      bool shrunk = widened;
       for (auto r = global.excluded.end() - static_cast<long>(added.size());
            r != global.excluded.end(); ++r) {
         shrunk = shrunk || r->radius > 0.5 * spacing;

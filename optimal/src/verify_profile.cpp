@@ -171,10 +171,11 @@ ProfileVerification verify_profile(const VelocityLimits& limits, const TimeOptim
     msg << " (first at station " << out.first_inadmissible << ": "
         << to_string(out.inadmissible_constraint) << ")";
   }
-  msg << ", " << out.acceleration_violations << " step ends whose s̈ needs an inadmissible force (worst "
-      << out.worst_acceleration.amount << " m/s² outside the force set at station " << out.worst_acceleration.station
-      << "), " << out.inconsistencies << " inconsistent steps (worst time error "
-      << out.worst_time.amount << " s at station " << out.worst_time.station << ")";
+  msg << ", " << out.acceleration_violations
+      << " step ends whose s̈ needs an inadmissible force (worst " << out.worst_acceleration.amount
+      << " m/s² outside the force set at station " << out.worst_acceleration.station << "), "
+      << out.inconsistencies << " inconsistent steps (worst time error " << out.worst_time.amount
+      << " s at station " << out.worst_time.station << ")";
   out.message = msg.str();
   return out;
 }

@@ -119,6 +119,14 @@ struct GlobalSearchOptions {
   /// (PlannerOptions::feedback_rounds) puts here the stretches of a
   /// candidate that no continuous profile can drive. Empty by default.
   std::vector<ExcludedRegion> excluded;
+  /// Rule (c) of the file comment: an edge on which the vehicle could not
+  /// brake at any admissible speed is untraversable. false leaves such edges
+  /// to the local stage (the lattice then judges only speed limits and
+  /// climbing): the initial fit of a candidate that takes one has no
+  /// admissible profile, and the planner's feedback loop
+  /// (PlannerOptions::feedback_rounds) excludes it and searches again. For
+  /// studying the rule and the loop; default true.
+  bool braking_rule = true;
   /// Throws InputError naming the field.
   void validate() const;
 };

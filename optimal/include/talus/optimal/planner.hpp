@@ -28,7 +28,9 @@
 /// stations (the final ones, by default). While some candidate fails and the budget
 /// (feedback_rounds) lasts, a disc of feedback_radius round the station where
 /// its profile fails is excluded from the lattice (GlobalSearchOptions::
-/// excluded) and the global search runs again. The round with the most
+/// excluded) and the global search runs again; a failure inside a disc of an
+/// earlier round (the search went round it and the fit still fails there, as
+/// down a long chute) doubles that disc instead. The round with the most
 /// followable candidates is kept (the last of equals); the result reports
 /// the rounds run and the regions excluded.
 ///
@@ -113,7 +115,8 @@ struct PlannerOptions {
   /// with the stretches where candidates cannot be followed excluded (see
   /// the file comment); 0 = the global stage's candidates as they are.
   std::size_t feedback_rounds = 8;
-  /// Radius of each excluded disc [m] (>= 0); 0 = two lattice spacings.
+  /// Radius of each excluded disc [m] (>= 0) when first excluded (it doubles
+  /// each round a failure falls inside it again); 0 = two lattice spacings.
   double feedback_radius = 0.0;
   /// Station spacing [m] of the final evaluation of every path (>= 0);
   /// 0 = default_station_spacing(surface, vehicle) (trajectory.hpp), one

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
@@ -117,18 +118,6 @@ BPatch chute_surface() {
   return BPatch::interpolate(grid);
 }
 
-/// Issue #12's point-mass UGV.
-Vehicle chute_ugv() {
-  Vehicle ugv;
-  ugv.friction = 0.7;
-  ugv.cg_height = 0.06;
-  ugv.half_track = 0.124;
-  ugv.max_speed = 7.0;
-  ugv.max_accel = 3.0;
-  ugv.max_decel = 5.0;
-  return ugv;
-}
-
 const Vec2 kChuteStart{2.0, 0.0}, kChuteGoal{18.0, 0.0};
 
 /// Whether the best plan avoids the chute: every candidate vertex on ground
@@ -145,7 +134,7 @@ void expect_candidates_off_the_chute(const BPatch& surface, const PlannerResult&
 
 TEST(PlannerFeedback, TheChuteIsSteeperThanAtanMuConcaveBelowAndCannotBeDrivenStraight) {
   const BPatch surface = chute_surface();
-  const Vehicle ugv = chute_ugv();
+  const Vehicle ugv = experiments::battery_point_mass_ugv();                     // issue #12's UGV
   EXPECT_GT(surface.evaluate({12.0, 0.0}).gradient.norm(), 1.2 * ugv.friction);  // 53° vs 35°
   EXPECT_GT(surface.evaluate({14.0, 0.0}).hessian(0, 0), 0.0);  // concave below the steepest point
   const Trajectory direct = evaluate_trajectory(
@@ -160,7 +149,7 @@ TEST(PlannerFeedback, TheChuteIsSteeperThanAtanMuConcaveBelowAndCannotBeDrivenSt
 /// it and the feedback loop has nothing to do.
 TEST(PlannerFeedback, TheLatticeBrakingRuleRefusesTheChuteItself) {
   const BPatch surface = chute_surface();
-  const Vehicle ugv = chute_ugv();
+  const Vehicle ugv = experiments::battery_point_mass_ugv();  // issue #12's UGV
   PlannerOptions options;
   options.local.max_evaluations = 20;
   options.local.more_control_points.clear();
@@ -181,7 +170,7 @@ TEST(PlannerFeedback, TheLatticeBrakingRuleRefusesTheChuteItself) {
 /// the corridors keep off the chute, and the plan ends feasible and verified.
 TEST(PlannerFeedback, WithoutTheBrakingRuleTheFeedbackLoopRemovesTheChute) {
   const BPatch surface = chute_surface();
-  const Vehicle ugv = chute_ugv();
+  const Vehicle ugv = experiments::battery_point_mass_ugv();  // issue #12's UGV
   const PlanningProblem problem(surface, ugv, kChuteStart, kChuteGoal);
   PlannerOptions options;
   options.global.braking_rule = false;

@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/terrain_generators.hpp"
@@ -142,20 +143,9 @@ TEST(VerifyProfile, AStepBeyondTheBrakeLimitIsOutOfBounds) {
 /// physics. So the profile verifies, because the check measures force; the
 /// s̈ interval alone would have rejected it.
 TEST(VerifyProfile, AStepIntoTheTipOfASlidingLimitIsMeasuredInForce) {
-  FractalTerrainOptions terrain;  // the battery's terrain of seed 17
-  terrain.undulation_amplitude = 1.0;
-  terrain.undulation_wavelength = 30.0;
-  terrain.peaks = 6;
-  terrain.peak_height = 1.0;
-  terrain.seed = 17;
-  const BPatch surface = BPatch::interpolate(generate_fractal_terrain(terrain));
-  Vehicle ugv;  // the battery's point-mass UGV
-  ugv.friction = 0.7;
-  ugv.cg_height = 0.06;
-  ugv.half_track = 0.124;
-  ugv.max_speed = 7.0;
-  ugv.max_accel = 3.0;
-  ugv.max_decel = 5.0;
+  const BPatch surface =
+      BPatch::interpolate(generate_fractal_terrain(experiments::battery_terrain(17)));
+  const Vehicle ugv = experiments::battery_point_mass_ugv();
   std::vector<double> breakpoints;
   for (int i = 0; i <= 13; ++i) breakpoints.push_back(i / 13.0);
   const std::vector<Vec2> control_points{{2, 2},

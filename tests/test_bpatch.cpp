@@ -8,6 +8,7 @@
 #include "talus/bspline/detail/smoothing_solver.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/terrain_generators.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus {
@@ -69,17 +70,19 @@ TEST(BPatch, InterpolationReproducesBicubicPolynomialsWithDerivatives) {
   }
 }
 
+/// The falling factorial a (a − 1) ... (a − k + 1): d^k/dx^k x^a = falling(a, k) x^(a−k).
+double falling(int a, int k) {
+  double f = 1.0;
+  for (int i = 0; i < k; ++i) f *= a - i;
+  return f;
+}
+
 /// ∂^(p+q) bicubic / ∂x^p ∂y^q, term by term: x^a -> a!/(a-p)! x^(a-p).
 double bicubic_derivative(double x, double y, int p, int q) {
   const double c[4][4] = {{1.0, -0.5, 0.2, 0.01},
                           {0.3, 0.07, -0.02, 0.003},
                           {-0.04, 0.01, 0.005, -0.001},
                           {0.002, -0.0007, 0.0003, 0.0001}};
-  const auto falling = [](int a, int k) {
-    double f = 1.0;
-    for (int i = 0; i < k; ++i) f *= a - i;
-    return f;
-  };
   double z = 0.0;
   for (int a = p; a < 4; ++a)
     for (int b = q; b < 4; ++b)
@@ -176,6 +179,89 @@ TEST(BPatch, SurfaceIsTwiceContinuouslyDifferentiableAcrossCellEdges) {
     EXPECT_NEAR(left.gradient.x(), right.gradient.x(), 1e-7);
     EXPECT_NEAR(left.hessian(0, 0), right.hessian(0, 0), 1e-6);
   }
+}
+
+// A biquintic polynomial: all 36 monomials x^a y^b, a, b <= 5, small
+// coefficients so that the terms stay comparable on [0, 5]².
+double biquintic_derivative(double x, double y, int p, int q) {
+  double z = 0.0;
+  for (int a = p; a < 6; ++a)
+    for (int b = q; b < 6; ++b) {
+      const double c = std::pow(-0.35, a) * std::pow(0.3, b) * (1.0 + 0.1 * (a - b));
+      z += c * falling(a, p) * falling(b, q) * std::pow(x, a - p) * std::pow(y, b - q);
+    }
+  return z;
+}
+
+TEST(BPatchQuintic, InterpolationReproducesBiquinticPolynomialsToTheThirdDerivative) {
+  // Zero sixth differences at the ends hold for the control values of any
+  // quintic, so the degree-5 interpolant is the polynomial itself, boundary
+  // cells included, with all its derivatives.
+  const ElevationGrid grid = sample(
+      [](double x, double y) { return biquintic_derivative(x, y, 0, 0); }, 11, 9, 0.5, 0.0, 0.0);
+  const BPatch patch = BPatch::interpolate(grid, 5);
+  EXPECT_EQ(patch.degree(), 5);
+  EXPECT_EQ(patch.control_points().rows(), 15);
+  EXPECT_EQ(patch.control_points().cols(), 13);
+  EXPECT_LT(patch.residuals(grid).max_node_residual, 1e-12);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> ux(patch.x_min(), patch.x_max()),
+      uy(patch.y_min(), patch.y_max());
+  for (int k = 0; k < 200; ++k) {
+    const double x = ux(rng), y = uy(rng);
+    const SurfacePoint sp = patch.evaluate({x, y});
+    const Eigen::Vector4d d3 = patch.third_derivatives({x, y});
+    EXPECT_NEAR(sp.z, biquintic_derivative(x, y, 0, 0), 1e-11);
+    EXPECT_NEAR(patch.elevation({x, y}), sp.z, 1e-14);
+    EXPECT_NEAR(sp.gradient.x(), biquintic_derivative(x, y, 1, 0), 1e-10);
+    EXPECT_NEAR(sp.gradient.y(), biquintic_derivative(x, y, 0, 1), 1e-10);
+    EXPECT_NEAR(sp.hessian(0, 0), biquintic_derivative(x, y, 2, 0), 1e-9);
+    EXPECT_NEAR(sp.hessian(0, 1), biquintic_derivative(x, y, 1, 1), 1e-9);
+    EXPECT_NEAR(sp.hessian(1, 1), biquintic_derivative(x, y, 0, 2), 1e-9);
+    EXPECT_NEAR(d3[0], biquintic_derivative(x, y, 3, 0), 1e-8);
+    EXPECT_NEAR(d3[1], biquintic_derivative(x, y, 2, 1), 1e-8);
+    EXPECT_NEAR(d3[2], biquintic_derivative(x, y, 1, 2), 1e-8);
+    EXPECT_NEAR(d3[3], biquintic_derivative(x, y, 0, 3), 1e-8);
+  }
+}
+
+TEST(BPatchQuintic, ThirdDerivativesAreContinuousAcrossCellEdgesWhereTheBicubicOnesJump) {
+  // The reason for degree 5: the curvature's gradient along a path (what the
+  // simultaneous NLP's Jacobian holds) is continuous. Across a knot line the
+  // bicubic's third derivatives jump by O(1) on rough ground.
+  FractalTerrainOptions options;
+  options.shape = {33, 33, 0.25, 0.0, 0.0};
+  options.height_scale = 1.0;
+  options.seed = 4;
+  const ElevationGrid grid = generate_fractal_terrain(options);
+  const BPatch cubic = BPatch::interpolate(grid), quintic = BPatch::interpolate(grid, 5);
+  EXPECT_LT(quintic.residuals(grid).max_node_residual, 1e-12);
+  const double e = 1e-9;
+  double cubic_jump = 0.0, quintic_jump = 0.0;
+  for (std::size_t i = 2; i + 2 < grid.ncols(); i += 3) {
+    const double edge = grid.node_position(i, 0).x();
+    for (const double y : {1.1, 3.7, 6.3}) {
+      const Vec2 left(edge - e, y), right(edge + e, y);
+      cubic_jump = std::max(
+          cubic_jump, (cubic.third_derivatives(left) - cubic.third_derivatives(right)).norm());
+      quintic_jump =
+          std::max(quintic_jump,
+                   (quintic.third_derivatives(left) - quintic.third_derivatives(right)).norm());
+      EXPECT_NEAR(quintic.evaluate(left).hessian(0, 0), quintic.evaluate(right).hessian(0, 0),
+                  1e-5);
+    }
+  }
+  EXPECT_GT(cubic_jump, 1.0);
+  EXPECT_LT(quintic_jump, 1e-3);
+}
+
+TEST(BPatchQuintic, OnlyDegreesThreeAndFive) {
+  const ElevationGrid grid = sample(bicubic, 8, 8, 1.0);
+  EXPECT_THROW(BPatch::interpolate(grid, 4), InputError);
+  EXPECT_THROW(BPatch::interpolate(grid, 7), InputError);
+  EXPECT_EQ(BPatch::interpolate(grid).degree(), 3);
+  EXPECT_NO_THROW(BPatch::interpolate(sample(bicubic, 6, 6, 1.0), 5));
+  EXPECT_THROW(BPatch::interpolate(sample(bicubic, 5, 8, 1.0), 5), InputError);  // needs 6 a side
 }
 
 TEST(BPatch, PointsOffTheMapAreInputErrors) {

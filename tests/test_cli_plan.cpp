@@ -133,6 +133,7 @@ TEST(CliPlan, FlatPlaneSameRowCostsDistanceOverMaxSpeed) {
   EXPECT_EQ(j.at("lattice_spacing"), 1.0);  // 0 = the cell size
   EXPECT_EQ(j.at("connectivity"), 16);
   EXPECT_EQ(j.at("braking_rule"), true);
+  EXPECT_EQ(j.at("surface_degree"), 3);
   EXPECT_GT(j.at("edges_evaluated").get<std::size_t>(), 0u);
   EXPECT_GT(j.at("expanded").get<std::size_t>(), 0u);
   for (const PlanVertex& v : plan_candidate(read_plan_candidates(dir + "/candidates.csv"), 0)) {
@@ -163,18 +164,20 @@ TEST(CliPlan, FlatPlaneSameRowCostsDistanceOverMaxSpeed) {
   EXPECT_EQ(rows, 61u * 41u);
 
   // The lattice options reach the search: 2.5 m spacing, 8 neighbours, and a
-  // start off the lattice snaps to the nearest node (and the braking rule,
-  // which changes nothing on flat ground, is reported off).
+  // start off the lattice snaps to the nearest node (and the braking rule
+  // off and the biquintic surface, which change nothing on flat ground, are
+  // reported).
   const nlohmann::json coarse =
       run_plan_ok("--terrain " + quoted(terrain) + " --start 5.4,19.3 --goal 55,20 --vehicle " +
                       quoted(plan_vehicle("v10.yaml", 10.0)) +
                       " --stage global --lattice-spacing 2.5 --connectivity 8 --candidates 1"
-                      " --no-braking-rule",
+                      " --no-braking-rule --surface-degree 5",
                   scratch_file("coarse_out"));
   EXPECT_EQ(coarse.at("nodes"), 25 * 17);
   EXPECT_EQ(coarse.at("lattice_spacing"), 2.5);
   EXPECT_EQ(coarse.at("connectivity"), 8);
   EXPECT_EQ(coarse.at("braking_rule"), false);
+  EXPECT_EQ(coarse.at("surface_degree"), 5);
   EXPECT_EQ(coarse.at("start_node"), nlohmann::json::array({5.0, 20.0}));
   ASSERT_EQ(coarse.at("candidates").size(), 1u);
   EXPECT_NEAR(coarse.at("candidates")[0].at("cost_seconds").get<double>(), expected,
@@ -468,6 +471,11 @@ TEST(CliPlan, BadInputGivesOneLineOnStderrAndExitCodeOne) {
        "--candidates"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --smoothing -1" + tail,
        "--smoothing"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --surface-degree 4" + tail,
+       "--surface-degree must be 3 (bicubic) or 5 (biquintic), got 4"},
+      {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 +
+           " --surface-degree 5 --smoothing 1" + tail,
+       "drop --smoothing"},
       {"--terrain /nonexistent.asc --start 5,20 --goal 55,20" + v10 + tail, "/nonexistent.asc"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --stage fast --out " +
            quoted(dir),

@@ -489,6 +489,11 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
   plan->add_option("--smoothing", plan_request.smoothing,
                    "curvature weight lambda > 0 of the smoothing fit; without it the surface "
                    "interpolates every node");
+  plan->add_option("--surface-degree", plan_request.surface_degree,
+                   "degree of the interpolating B-patch: 3 (bicubic) or 5 (biquintic: "
+                   "curvature with continuous derivatives, so the simultaneous NLP and --polish "
+                   "converge far more often on rough ground; not with --smoothing)")
+      ->capture_default_str();
   plan->add_option("--control-points", plan_request.control_points,
                    "control points of each optimised clamped cubic (4 to 64; start and goal "
                    "fixed), --stage full")

@@ -107,6 +107,15 @@ void check_plan_options(const PlanRequest& request) {
     throw InputError("--smoothing must be a positive finite number (lambda), got " +
                      format_number(*request.smoothing));
   }
+  if (request.surface_degree != 3 && request.surface_degree != 5) {
+    throw InputError("--surface-degree must be 3 (bicubic) or 5 (biquintic), got " +
+                     std::to_string(request.surface_degree));
+  }
+  if (request.surface_degree == 5 && request.smoothing) {
+    throw InputError(
+        "--surface-degree 5 is an interpolating fit: drop --smoothing (the "
+        "smoothing fit is bicubic)");
+  }
   if (request.output_dir.empty()) throw InputError("no output folder given (--out DIR)");
   std::error_code error;
   if (std::filesystem::exists(request.output_dir, error) &&
@@ -472,7 +481,7 @@ PlanOutcome plan(const PlanRequest& request) {
   outcome.surface = std::make_shared<const BPatch>([&] {
     try {
       return request.smoothing ? BPatch::fit_smoothing(grid, *request.smoothing)
-                               : BPatch::interpolate(grid);
+                               : BPatch::interpolate(grid, request.surface_degree);
     } catch (const InputError& e) {
       throw InputError(request.terrain + ": " + e.what());
     }
@@ -543,6 +552,7 @@ PlanOutcome plan(const PlanRequest& request) {
   summary["reachable_nodes"] = result.reachable_nodes;
   summary["vehicle_max_speed"] = vehicle.max_speed;
   summary["fit"] = request.smoothing ? "smoothing" : "interpolating";
+  summary["surface_degree"] = request.surface_degree;
   summary["crs"] = terrain.crs.known() ? nlohmann::json(terrain.crs.label()) : nullptr;
   summary["smoothing"] =
       request.smoothing ? nlohmann::json(*request.smoothing) : nlohmann::json(nullptr);

@@ -22,7 +22,7 @@ namespace talus::experiments {
 
 /// `talus plan --terrain T.asc --start X,Y --goal X,Y --vehicle V.yaml
 /// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
-/// [--smoothing LAMBDA] [--control-points M] [--more-control-points M2,...]
+/// [--smoothing LAMBDA | --surface-degree 5] [--control-points M] [--more-control-points M2,...]
 /// [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa] [--formulation nested|simultaneous]
 /// [--restarts R] [--polish] [--v0 A]
 /// [--v1 B] [--time-limit SECONDS] [--resolution full|multi] [--threads N] --out DIR`.
@@ -52,6 +52,8 @@ struct PlanRequest {
   bool braking_rule = true;
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
+  /// Degree of the interpolating B-patch: 3 (bicubic) or 5 (biquintic, no smoothing).
+  int surface_degree = 3;
   // The local stage (--stage full only).
   long long control_points = 8;  ///< of each optimised clamped cubic (4 to 64)
   /// PathOptimizerOptions::more_control_points (each 4 to 64; its default,
@@ -126,7 +128,7 @@ struct PlanOutcome {
 /// candidates [{cost_seconds, length_m, vertices}], nodes, edges_evaluated,
 /// expanded, reachable_nodes, search_seconds, start_node and goal_node ([x, y]
 /// of the snapped lattice nodes), start, goal, lattice_spacing, lattice
-/// ([nx, ny]), connectivity, candidates_requested, stage, fit, smoothing,
+/// ([nx, ny]), connectivity, candidates_requested, stage, fit, surface_degree, smoothing,
 /// vehicle_max_speed, files, fit_seconds and seconds.
 ///
 /// With --stage full, each candidate (its first and last vertices replaced by

@@ -52,8 +52,10 @@ void bind_surface(py::module_& m) {
       "The smooth terrain surface z(x, y): a bicubic B-spline over an elevation grid "
       "(talus::BPatch). Evaluation methods take numbers or arrays x, y (broadcast together) "
       "and raise InputError at the first point outside the domain.")
-      .def_static("interpolate", &BPatch::interpolate, py::arg("grid"),
-                  "Interpolating fit, exact at every node (a grid without NODATA, >= 4 x 4).")
+      .def_static("interpolate", &BPatch::interpolate, py::arg("grid"), py::arg("degree") = 3,
+                  "Interpolating fit, exact at every node (a grid without NODATA, >= 4 x 4; "
+                  "degree 3, bicubic, or 5, biquintic, >= 6 x 6).")
+      .def_property_readonly("degree", &BPatch::degree)
       .def_static("fit_smoothing", &BPatch::fit_smoothing, py::arg("grid"), py::arg("smoothing"),
                   "Smoothing fit with curvature weight lambda > 0 (dimensionless).")
       .def_property_readonly("x_min", &BPatch::x_min)

@@ -46,6 +46,19 @@ def test_a_bicubic_is_reproduced_with_its_derivatives():
     assert np.allclose(hess[:, 0, 0], 0.06 * x, atol=1e-11)
     assert np.allclose(hess[:, 0, 1], -0.04 * y + 0.1, atol=1e-11)
     assert np.allclose(hess[:, 1, 1], -0.04 * x, atol=1e-11)
+    assert surface.degree == 3
+
+
+def test_the_biquintic_fit_reproduces_a_quintic_and_other_degrees_are_input_errors():
+    def f(x, y):
+        return 1e-4 * x**5 - 2e-3 * x**2 * y**3 + 0.1 * x * y + y
+
+    surface = talus.BPatch.interpolate(grid_of(f), degree=5)
+    assert surface.degree == 5
+    x, y = np.array([1.3, 3.7, 5.9]), np.array([-1.9, 0.4, 1.8])
+    assert np.allclose(surface.height(x, y), f(x, y), atol=1e-11)
+    with pytest.raises(talus.InputError):
+        talus.BPatch.interpolate(grid_of(f), degree=4)
 
 
 def test_a_point_outside_the_domain_is_an_input_error():

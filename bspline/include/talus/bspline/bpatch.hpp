@@ -55,8 +55,11 @@ class BPatch {
  public:
   /// Interpolating fit. A grid with NODATA nodes is an InputError naming the
   /// first one; fill it first (fill_voids) if that is what you want.
-  /// Needs at least 4 × 4 nodes.
-  static BPatch interpolate(const ElevationGrid& grid);
+  /// Needs at least 4 × 4 nodes (6 × 6 for degree 5). `degree` 3 (default: the bicubic B-patch,
+  /// C²) or 5 (biquintic, C⁴: curvatures with continuous derivatives, which
+  /// the simultaneous NLP's constraint Jacobian needs to converge; about
+  /// twice the evaluation cost); anything else is an InputError.
+  static BPatch interpolate(const ElevationGrid& grid, int degree = 3);
   /// Smoothing fit with curvature weight lambda > 0 (see the file comment);
   /// NODATA nodes are left out of the data term. Throws InputError for
   /// lambda <= 0 or fewer than 3 valid nodes, SolverError if CHOLMOD (the
@@ -70,10 +73,14 @@ class BPatch {
   double cellsize() const { return h_; }
   std::size_t ncols() const { return ncols_; }
   std::size_t nrows() const { return nrows_; }
-  /// Number of bicubic pieces, (ncols - 1) (nrows - 1).
+  /// Polynomial degree in each direction: 3 (bicubic) or 5 (biquintic;
+  /// interpolate() only, fit_smoothing() is bicubic).
+  int degree() const { return degree_; }
+  /// Number of polynomial pieces, (ncols - 1) (nrows - 1).
   std::size_t patches() const { return (ncols_ - 1) * (nrows_ - 1); }
-  /// (ncols + 2) × (nrows + 2) control values, entry (a, b) weighting the basis
-  /// functions centred on node (a - 1, b - 1).
+  /// (ncols + degree − 1) × (nrows + degree − 1) control values, entry (a, b)
+  /// weighting the basis functions centred on node (a − (degree − 1)/2,
+  /// b − (degree − 1)/2).
   const Eigen::MatrixXd& control_points() const { return control_; }
 
   bool contains(const Vec2& p) const;
@@ -87,7 +94,8 @@ class BPatch {
   /// p is outside the domain or not finite.
   SurfacePoint evaluate(const Vec2& p) const;
   /// Third derivatives (z_xxx, z_xxy, z_xyy, z_yyy) [1/m²] at p, as the
-  /// bicubic piece holding p has them (they jump across cell edges). For
+  /// piece holding p has them (degree 3: they jump across cell edges;
+  /// degree 5: continuous). For
   /// differentiating curvatures with respect to position. Same errors as
   /// evaluate().
   Eigen::Vector4d third_derivatives(const Vec2& p) const;
@@ -96,10 +104,12 @@ class BPatch {
   BPatchFitReport residuals(const ElevationGrid& grid) const;
 
  private:
-  BPatch(const ElevationGrid& grid, Eigen::MatrixXd control);
+  BPatch(const ElevationGrid& grid, Eigen::MatrixXd control, int degree = 3);
+  SurfacePoint evaluate_quintic(std::size_t i, std::size_t j, double tu, double tv) const;
   void locate(const Vec2& p, std::size_t& i, std::size_t& j, double& tu, double& tv) const;
   [[noreturn]] void throw_outside(const Vec2& p) const;
 
+  int degree_ = 3;
   std::size_t ncols_ = 0, nrows_ = 0;
   double h_ = 1.0, inverse_h_ = 1.0, x_min_ = 0.0, y_min_ = 0.0;
   Eigen::MatrixXd control_;

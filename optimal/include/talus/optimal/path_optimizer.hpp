@@ -161,7 +161,9 @@ struct PathOptimizerOptions {
   /// default for its cost: on the fractal battery (8-point fits only) it
   /// converged on 49 of 75 candidates (none converge without it; 55 at 300
   /// iterations, where the rest still stall with the limits binding on rough
-  /// ground) for 0.3-2.1 s per candidate (median 0.7 s), which tripled the
+  /// ground: the bicubic surface's curvature has a gradient that jumps at
+  /// every knot line; on the biquintic BPatch::interpolate(grid, 5) 67 of 74
+  /// converge) for 0.3-2.1 s per candidate (median 0.7 s), which tripled the
   /// median planning time (1.1 to 3.2 s, two plans sharing two cores); on the
   /// README's Mount St. Helens plan (1400 NLP stations) it took 26 s for no gain.
   bool polish = false;

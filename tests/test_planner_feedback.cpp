@@ -8,11 +8,15 @@
 // plan ends feasible, which verify_profile and a fresh evaluation at other
 // stations confirm independently. A built chute steeper than atan μ: the
 // lattice's braking rule refuses it itself; without that rule the lattice
-// takes it and the feedback loop removes it.
+// takes it and the feedback loop removes it. And the agreement of the local
+// stage's stations with the final ones (planner.hpp, step 3): an optimum
+// that has no profile at the final stations gives way to the fastest of the
+// optimiser's other points there.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -202,6 +206,53 @@ TEST(PlannerFeedback, WithoutTheBrakingRuleTheFeedbackLoopRemovesTheChute) {
   const Trajectory fresh = evaluate_trajectory(surface, ugv, trajectory.path->curve(), finer);
   ASSERT_TRUE(fresh.feasible()) << fresh.message;
   EXPECT_NEAR(fresh.travel_time(), trajectory.travel_time(), 0.01 * trajectory.travel_time());
+}
+
+// Fractal battery seed 14, the lattice's best corridor (issue #12): the
+// default local stage's best point (the 36-point fit's optimum, 13.02 s at
+// its search stations, equally spaced in the curve parameter) has no
+// admissible profile at the final stations (equally spaced in arc length):
+// from 5.2 m on the vehicle cannot brake enough, a profile on the edge of
+// admissibility. The planner reports the 12-point fit's optimum instead
+// (13.09 s) rather than the initial fit (14.25 s).
+TEST(PlannerStations, AnOptimumWithoutAProfileAtTheFinalStationsGivesWayToTheFastestAttempt) {
+  const BPatch surface =
+      BPatch::interpolate(generate_fractal_terrain(experiments::battery_terrain(14)));
+  const Vehicle ugv = experiments::battery_point_mass_ugv();
+  const PlanningProblem problem(surface, ugv, experiments::kBatteryStart,
+                                experiments::kBatteryGoal);
+  PlannerOptions options;
+  options.global.candidates = 1;
+  const PlannerResult result = plan(problem, options);
+  ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
+  const CandidateOutcome& outcome = result.candidates.front();
+  ASSERT_TRUE(outcome.optimization.has_value());
+  const OptimizedPath& optimization = *outcome.optimization;
+  const TrajectoryOptions final_stations;  // the planner's default spacing
+
+  // The case exercises the rule: the optimiser's own best disagrees.
+  const Trajectory own = evaluate_trajectory(surface, ugv, optimization.curve, final_stations);
+  EXPECT_FALSE(own.travel_time() <= optimization.travel_time * (1.0 + kStageDisagreement))
+      << "the best point's final time " << own.travel_time() << " s agrees with its search time "
+      << optimization.travel_time << " s";
+
+  // The reported point is another attempt's, the fastest of them all at the
+  // final stations by a fresh evaluation, and faster than the initial fit.
+  ASSERT_TRUE(outcome.reported_attempt.has_value());
+  EXPECT_NE(*outcome.reported_attempt, optimization.best_attempt);
+  EXPECT_FALSE(outcome.kept_initial);
+  double fastest = std::numeric_limits<double>::infinity();
+  for (const LocalAttempt& attempt : optimization.attempts) {
+    if (!attempt.curve) continue;
+    fastest = std::min(
+        fastest, evaluate_trajectory(surface, ugv, *attempt.curve, final_stations).travel_time());
+  }
+  ASSERT_TRUE(outcome.feasible()) << outcome.trajectory.message;
+  EXPECT_NEAR(outcome.trajectory.travel_time(), fastest, 1e-9 * fastest);
+  EXPECT_LT(outcome.trajectory.travel_time(), outcome.initial.travel_time());
+  const ProfileVerification check =
+      verify_profile(*outcome.trajectory.limits, outcome.trajectory.profile);
+  EXPECT_TRUE(check.passed()) << check.message;
 }
 
 TEST(PlannerFeedback, ANegativeRadiusIsAnInputError) {

@@ -234,6 +234,8 @@ nlohmann::json optimum_json(const CandidateOutcome& c, const std::string& solver
   entry["travel_time_search_spacing"] = finite_or_null(o ? o->travel_time : kNaN);
   entry["initial_time_search_spacing"] = finite_or_null(o ? o->initial_time : kNaN);
   entry["kept_initial"] = c.kept_initial;
+  entry["reported_attempt"] =
+      c.reported_attempt ? nlohmann::json(*c.reported_attempt) : nlohmann::json(nullptr);
   entry["followable"] = c.followable;
   entry["solver"] = solver;
   entry["solver_status"] = o ? nlohmann::json(o->solver_status) : nlohmann::json(nullptr);

@@ -467,6 +467,7 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
                                               stations, options, started);
     out.attempts.push_back(
         {"fit", out.solver_status, out.converged, out.travel_time, out.iterations, out.seconds});
+    if (std::isfinite(out.travel_time)) out.attempts.back().curve = out.curve;
     for (std::size_t r = 1; r <= options.restarts && !out.attempts.back().converged; ++r) {
       if (out_of_time()) break;
       detail::BoxProblem restart = problem;
@@ -479,6 +480,7 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
                                                  control_points, stations, options, started);
       out.attempts.push_back({r == 1 ? "resume" : "perturbed", next.solver_status, next.converged,
                               next.travel_time, next.iterations, seconds_since(attempt_started)});
+      if (std::isfinite(next.travel_time)) out.attempts.back().curve = next.curve;
       out.iterations += next.iterations;
       out.evaluations += next.evaluations;
       out.gradient_evaluations += next.gradient_evaluations;
@@ -537,6 +539,8 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
     attempts.push_back({r == 0 ? "fit" : (r == 1 ? "resume" : "perturbed"), run.status,
                         converged_status(run.status), tracked.best_value(), run.iterations,
                         seconds_since(attempt_started)});
+    if (std::isfinite(tracked.best_value()) && tracked.best().size() == best.size())
+      attempts.back().curve = objective->curve(tracked.best());
     // Ties go to the later attempt: it converged (or not) at the same point.
     if (!(tracked.best_value() > best_time) && tracked.best().size() == best.size()) {
       best = tracked.best();
@@ -551,6 +555,7 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
                                      stations, first, last, options);
     attempts.push_back({"polish", p.run.status, p.run.converged, p.travel_time, p.run.iterations,
                         seconds_since(polish_started)});
+    if (std::isfinite(p.travel_time)) attempts.back().curve = objective->curve(p.run.variables);
     iterations += p.run.iterations;
     const bool faster = p.travel_time < best_time;
     const bool close = p.run.converged &&

@@ -60,6 +60,24 @@ Followability check_followable(const PlanningProblem& problem, const PathOptimiz
   return {fit.admissible(), fit.failure_point};
 }
 
+/// Step 3 of the file comment when the optimum disagrees: every other
+/// attempt's point evaluated at the final stations, the fastest there
+/// replacing outcome.trajectory.
+void report_fastest_attempt(const PlanningProblem& problem, const TrajectoryOptions& evaluation,
+                            const OptimizedPath& optimization, TimeOptimalProfileSolver& workspace,
+                            CandidateOutcome& outcome) {
+  for (std::size_t k = 0; k < optimization.attempts.size(); ++k) {
+    const LocalAttempt& attempt = optimization.attempts[k];
+    if (k == optimization.best_attempt || !attempt.curve) continue;
+    Trajectory trajectory = evaluate_trajectory(*problem.surface, problem.vehicle, *attempt.curve,
+                                                evaluation, &workspace);
+    if (trajectory.travel_time() < outcome.trajectory.travel_time()) {
+      outcome.trajectory = std::move(trajectory);
+      outcome.reported_attempt = k;
+    }
+  }
+}
+
 /// Optimises candidate `c` and evaluates the optimum and its initial fit.
 CandidateOutcome optimise_candidate(const PlanningProblem& problem,
                                     const PathOptimizerOptions& local,
@@ -85,8 +103,14 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
                                                : initial_fit(polyline, local.control_points),
                           evaluation, &workspace);
   if (outcome.optimization) {
-    outcome.trajectory = evaluate_trajectory(surface, problem.vehicle, outcome.optimization->curve,
-                                             evaluation, &workspace);
+    const OptimizedPath& optimization = *outcome.optimization;
+    outcome.trajectory =
+        evaluate_trajectory(surface, problem.vehicle, optimization.curve, evaluation, &workspace);
+    outcome.reported_attempt = optimization.best_attempt;
+    if (!(outcome.trajectory.travel_time() <=
+          optimization.travel_time * (1.0 + kStageDisagreement))) {
+      report_fastest_attempt(problem, evaluation, optimization, workspace, outcome);
+    }
   } else {
     outcome.trajectory.message = outcome.optimizer_message;
   }
@@ -97,6 +121,7 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
       !(outcome.trajectory.travel_time() <= outcome.initial.travel_time())) {
     outcome.trajectory = outcome.initial;
     outcome.kept_initial = true;
+    outcome.reported_attempt.reset();
   }
   timings.evaluation += seconds_since(evaluation_started);
   outcome.seconds = seconds_since(started);
@@ -243,6 +268,9 @@ std::string PlannerResult::brief_report() const {
       }
     }
     if (c.kept_initial) report << "; kept the initial fit";
+    if (c.optimization && c.reported_attempt && *c.reported_attempt != c.optimization->best_attempt)
+      report << "; the optimum disagreed at the final stations, reported attempt "
+             << *c.reported_attempt;
     if (c.time_limited) report << "; cut short by the time limit";
     report << "\n";
   }

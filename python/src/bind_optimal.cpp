@@ -342,6 +342,7 @@ void bind_planner(py::module_& m) {
       .def_readonly("initial", &CandidateOutcome::initial)
       .def_readonly("trajectory", &CandidateOutcome::trajectory)
       .def_readonly("kept_initial", &CandidateOutcome::kept_initial)
+      .def_readonly("reported_attempt", &CandidateOutcome::reported_attempt)
       .def_readonly("seconds", &CandidateOutcome::seconds)
       .def("feasible", &CandidateOutcome::feasible);
 

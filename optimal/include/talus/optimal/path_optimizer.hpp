@@ -211,6 +211,10 @@ struct LocalAttempt {
   double seconds = 0.0;        ///< wall time of this attempt
   /// M of the fit this attempt started from (more_control_points).
   std::size_t control_points = 0;
+  /// This attempt's best point; empty when it evaluated none with an
+  /// admissible profile. The planner re-evaluates these at its own stations
+  /// when the returned point disagrees there (planner.hpp).
+  std::optional<Curve2> curve = std::nullopt;
 };
 
 /// A locally optimised path with the solver's diagnostics.

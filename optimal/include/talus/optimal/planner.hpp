@@ -13,9 +13,11 @@
 ///    coarsens it on long paths);
 /// 3. every optimum and its initial fit re-evaluated with
 ///    evaluate_trajectory() at PlannerOptions::station_spacing; an optimum
-///    slower there than its own initial fit (possible only when the search
-///    ran at coarser stations) is replaced by the fit, so no candidate's
-///    result is slower than where it started;
+///    more than kStageDisagreement slower there than at the search's
+///    stations (or without an admissible profile there) gives way to the
+///    fastest there of every attempt's point (LocalAttempt::curve), and one
+///    slower than its own initial fit is replaced by the fit, so no
+///    candidate's result is slower than where it started;
 /// 4. the fastest feasible trajectory is the result.
 ///
 /// Stages that agree (feedback from the local stage to the global one): the
@@ -148,6 +150,16 @@ enum class PlannerStatus {
 std::string_view to_string(PlannerStatus status);
 
 /// One candidate through the local stage.
+/// Relative excess of a local optimum's travel time at the final stations
+/// over its time at the search's stations beyond which the two are said to
+/// disagree (step 3 of the file comment). The search spaces its stations
+/// equally in the curve parameter, the final evaluation in arc length: on
+/// the fractal battery an optimum's two times differ by 0.02-0.2 % where
+/// they agree, while an optimum pushed onto the edge of admissibility can
+/// lose its profile altogether (seed 14: 13.02 s at the search's stations,
+/// none at the final ones).
+inline constexpr double kStageDisagreement = 0.005;
+
 struct CandidateOutcome {
   std::size_t candidate = 0;  ///< index into GlobalSearchResult::candidates
   /// The optimiser's result with its diagnostics; empty when it refused the
@@ -161,6 +173,11 @@ struct CandidateOutcome {
   /// the optimiser failed), at station_spacing.
   Trajectory trajectory;
   bool kept_initial = false;  ///< trajectory is the initial fit
+  /// Index into optimization->attempts of the point trajectory is: the
+  /// optimiser's best_attempt unless that one disagreed at station_spacing
+  /// (step 3 of the file comment); empty when trajectory is the initial fit
+  /// or there is no optimisation.
+  std::optional<std::size_t> reported_attempt;
   /// The followability check passed: the optimiser's initial path
   /// (fit_initial_path) has an admissible profile at the search's stations.
   bool followable = false;

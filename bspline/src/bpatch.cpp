@@ -15,7 +15,7 @@ namespace talus {
 namespace {
 
 /// Degree 3 needs 4 nodes a side; degree 5 needs 6, or its end rows repeat.
-void require_fit_size(const ElevationGrid& grid, int degree = 3) {
+void require_fit_size(const ElevationGrid& grid, int degree) {
   const std::size_t least = degree == 5 ? 6 : 4;
   if (grid.ncols() < least || grid.nrows() < least) {
     std::ostringstream msg;

@@ -270,6 +270,7 @@ void bind_planner(py::module_& m) {
       .def_readonly("converged", &OptimizedPath::converged)
       .def_readonly("nlp_travel_time", &OptimizedPath::nlp_travel_time)
       .def_readonly("phase", &OptimizedPath::phase)
+      .def_readonly("best_attempt", &OptimizedPath::best_attempt)
       .def_readonly("solver_failed", &OptimizedPath::solver_failed)
       .def_readonly("iterations", &OptimizedPath::iterations)
       .def_readonly("evaluations", &OptimizedPath::evaluations)

@@ -69,6 +69,8 @@ def test_the_result_reads_like_the_cpp_result(planned):
     (outcome,) = planned.candidates
     assert outcome.feasible() and outcome.trajectory.travel_time() == planned.travel_time()
     assert outcome.optimization.travel_time <= outcome.optimization.initial_time
+    # The optimum agrees at the final stations: it is the point reported.
+    assert outcome.reported_attempt == outcome.optimization.best_attempt
     assert planned.travel_time() <= planned.global_travel_time()
     fields = planned.global_search
     assert fields.cost_from_start.shape == (fields.ny, fields.nx)

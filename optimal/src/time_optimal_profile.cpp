@@ -41,13 +41,23 @@ struct Step {
 };
 
 /// Largest (or smallest) x in [a, b] with feasible(x), given feasible(a) and
-/// not feasible(b): bisection on the convex set's boundary, used only in the
-/// rare steps where the closed-form candidate is not the extreme (the limit
-/// curve tangent to the braking curve).
+/// not feasible(b): bisection on the convex set's boundary, used in the steps
+/// where the closed-form candidate is not the extreme (the limit curve tangent
+/// to the braking curve, or the rounding slack of the admissible set past it).
+/// The boundary usually lies within 1e-8 (relative) of a, so steps growing
+/// from 1e-10 bracket it first: about 20 feasibility tests instead of 45.
 template <typename Feasible>
 double bisect_boundary(double a, double b, Feasible&& feasible) {
-  for (int iteration = 0; iteration < 200 && std::abs(b - a) > 1e-13 * (1.0 + std::abs(a));
-       ++iteration) {
+  const double tolerance = 1e-13 * (1.0 + std::abs(a));
+  for (double step = 1e-10 * (1.0 + std::abs(a)); 8.0 * step < std::abs(b - a); step *= 8.0) {
+    const double probe = a + std::copysign(step, b - a);
+    if (!feasible(probe)) {
+      b = probe;
+      break;
+    }
+    a = probe;
+  }
+  for (int iteration = 0; iteration < 200 && std::abs(b - a) > tolerance; ++iteration) {
     const double mid = 0.5 * (a + b);
     (feasible(mid) ? a : b) = mid;
   }

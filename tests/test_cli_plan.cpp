@@ -357,15 +357,16 @@ TEST(CliPlan, FullStageAroundAHillIsNoSlowerThanTheGlobalCandidates) {
 }
 
 // With --polish each candidate's last solve is the polish, listed in its
-// attempts with its status; without it only the nested solve. From one fit
-// (--more-control-points 0), then with the default further start at 16.
+// attempts with its status; without it only the nested solve. From one
+// 8-point fit and one solve, then with a further start at 10, then the
+// defaults: a 16-point fit, two restarts and no further start.
 TEST(CliPlan, PolishAddsTheNlpAsTheLastAttempt) {
   const std::string terrain =
       generate_terrain("hill_polish.asc", "gaussian-hills --hill 30,20,8,5 " + kPlanShape);
   const std::string shared =
       "--terrain " + quoted(terrain) + " --start 5,20 --goal 55,20 --vehicle " +
       quoted(point_mass_vehicle("slippery.yaml", 0.4, 10.0)) + " --candidates 1 --no-figures";
-  const std::string args = shared + " --more-control-points 0";
+  const std::string args = shared + " --control-points 8 --restarts 0 --more-control-points 0";
   const nlohmann::json polished = run_plan_full_ok(args + " --polish", scratch_file("polish_on"));
   EXPECT_EQ(polished.at("polish"), true);
   const nlohmann::json& attempts = polished.at("optima").at(0).at("attempts");
@@ -379,20 +380,25 @@ TEST(CliPlan, PolishAddsTheNlpAsTheLastAttempt) {
   EXPECT_EQ(only.at(0).at("start"), "fit");
   // A further start from a 10-point fit adds its solve, tagged with its M.
   const nlohmann::json more =
-      run_plan_full_ok(shared + " --more-control-points 10", scratch_file("more_points"));
+      run_plan_full_ok(shared + " --control-points 8 --restarts 0 --more-control-points 10",
+                       scratch_file("more_points"));
   const nlohmann::json& starts = more.at("optima").at(0).at("attempts");
   ASSERT_EQ(starts.size(), 2u) << starts.dump();
   EXPECT_EQ(starts.at(0).at("control_points"), 8);
   EXPECT_EQ(starts.at(1).at("control_points"), 10);
   EXPECT_LE(more.at("travel_time").get<double>(), plain.at("travel_time").get<double>() + 1e-9);
   EXPECT_EQ(plain.at("more_control_points").size(), 0u);
-  // The default: a further start at 16 beside the 8-point fit.
+  // The defaults: the 16-point fit's solve, then a resume and a perturbed
+  // restart (the nested solver stops on a cap here), no further start.
   const nlohmann::json defaults = run_plan_full_ok(shared, scratch_file("default_starts"));
-  EXPECT_EQ(defaults.at("more_control_points"), nlohmann::json::array({16}));
-  const nlohmann::json& two = defaults.at("optima").at(0).at("attempts");
-  ASSERT_EQ(two.size(), 2u) << two.dump();
-  EXPECT_EQ(two.at(0).at("control_points"), 8);
-  EXPECT_EQ(two.at(1).at("control_points"), 16);
+  EXPECT_EQ(defaults.at("more_control_points").size(), 0u);
+  EXPECT_EQ(defaults.at("restarts"), 2);
+  const nlohmann::json& three = defaults.at("optima").at(0).at("attempts");
+  ASSERT_EQ(three.size(), 3u) << three.dump();
+  EXPECT_EQ(three.at(0).at("start"), "fit");
+  EXPECT_EQ(three.at(1).at("start"), "resume");
+  EXPECT_EQ(three.at(2).at("start"), "perturbed");
+  for (const nlohmann::json& attempt : three) EXPECT_EQ(attempt.at("control_points"), 16);
   // The polish never returns a path slower than the fit.
   const nlohmann::json& o = polished.at("optima").at(0);
   EXPECT_LE(o.at("travel_time").get<double>(), o.at("initial_time").get<double>());

@@ -186,6 +186,7 @@ TEST(PathOptimizerRestarts, ResumeThenPerturbAndKeepTheBestOfEveryAttempt) {
   PathOptimizerOptions options;
   options.max_evaluations = 10;
   options.more_control_points.clear();  // one fit
+  options.restarts = 0;                 // one solve
   ASSERT_FALSE(options.polish);         // the restarts alone (the default)
   const OptimizedPath single = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   ASSERT_EQ(single.attempts.size(), 1u);
@@ -230,6 +231,7 @@ TEST(PathOptimizerPolish, ConvergesFromTheNestedPointOnTheSmoothHill) {
   const HillCase hill;
   PathOptimizerOptions options;
   options.more_control_points.clear();  // one fit
+  options.restarts = 0;                 // one nested solve, then the polish
   options.polish = false;
   const OptimizedPath nested = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   ASSERT_FALSE(nested.converged) << nested.solver_status;
@@ -261,6 +263,7 @@ TEST(PathOptimizerMoreControlPoints, KeepsTheFasterOfTheStartsAndListsEverySolve
   const HillCase hill;
   PathOptimizerOptions options;
   options.more_control_points.clear();
+  options.control_points = 8;
   const OptimizedPath eight = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);
   options.control_points = 12;
   const OptimizedPath twelve = optimize_path(hill.terrain, hill.vehicle, hill.candidate, options);

@@ -51,9 +51,14 @@ PlanningProblem switchback_problem(const BPatch& surface) {
                          {388538.655454, 3797372.827628}, {389438.655454, 3798452.827628});
 }
 
+/// 8-point fits, one solve each: fits that cut the switchbacks' corners,
+/// whose failures the feedback loop is about (a 16-point fit follows more
+/// of them).
 PlannerOptions quick_options(std::size_t feedback_rounds) {
   PlannerOptions options;
   options.feedback_rounds = feedback_rounds;
+  options.local.control_points = 8;
+  options.local.restarts = 0;
   options.local.max_evaluations = 20;
   return options;
 }
@@ -209,11 +214,11 @@ TEST(PlannerFeedback, WithoutTheBrakingRuleTheFeedbackLoopRemovesTheChute) {
 }
 
 // Fractal battery seed 14, the lattice's best corridor (issue #12): the
-// default local stage's best point (the 36-point fit's optimum, 13.02 s at
-// its search stations, equally spaced in the curve parameter) has no
-// admissible profile at the final stations (equally spaced in arc length):
-// from 5.2 m on the vehicle cannot brake enough, a profile on the edge of
-// admissibility. The planner reports the 12-point fit's optimum instead
+// local stage from an 8-point fit and a further start at 16, no restart (the
+// default before 16 points with two restarts): its best point (the 36-point fit's optimum, 13.02 s
+// at its search stations, equally spaced in the curve parameter) has no admissible profile at the
+// final stations (equally spaced in arc length): from 5.2 m on the vehicle cannot brake enough, a
+// profile on the edge of admissibility. The planner reports the 12-point fit's optimum instead
 // (13.09 s) rather than the initial fit (14.25 s).
 TEST(PlannerStations, AnOptimumWithoutAProfileAtTheFinalStationsGivesWayToTheFastestAttempt) {
   const BPatch surface =
@@ -223,6 +228,9 @@ TEST(PlannerStations, AnOptimumWithoutAProfileAtTheFinalStationsGivesWayToTheFas
                                 experiments::kBatteryGoal);
   PlannerOptions options;
   options.global.candidates = 1;
+  options.local.control_points = 8;
+  options.local.more_control_points = {16};
+  options.local.restarts = 0;
   const PlannerResult result = plan(problem, options);
   ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
   const CandidateOutcome& outcome = result.candidates.front();

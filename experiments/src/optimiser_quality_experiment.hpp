@@ -6,7 +6,7 @@
 /// diagonal): the default plan's success, the fraction of local
 /// optimisations that converge by the solver's own status, its travel time
 /// against a multistart reference (the best plan over formulations × solvers
-/// × 8-16 control points, with restarts and the polish; on the DEMs, the
+/// × 8-24 control points, with restarts and the polish; on the DEMs, the
 /// default with the polish), its planning time, and a
 /// verification of every best trajectory (verify_profile and a fresh
 /// evaluation of its curve). Per configuration: the nested-against-

@@ -55,10 +55,11 @@ struct PlanRequest {
   /// Degree of the interpolating B-patch: 3 (bicubic) or 5 (biquintic, no smoothing).
   int surface_degree = 3;
   // The local stage (--stage full only).
-  long long control_points = 8;  ///< of each optimised clamped cubic (4 to 64)
+  /// Of each optimised clamped cubic (4 to 64; PathOptimizerOptions's default).
+  long long control_points = static_cast<long long>(PathOptimizerOptions{}.control_points);
   /// PathOptimizerOptions::more_control_points (each 4 to 64; its default,
-  /// a further start at 16); a single 0 = none.
-  std::vector<long long> more_control_points = {16};
+  /// none); a single 0 = none.
+  std::vector<long long> more_control_points = {};
   std::string solver = "ipopt";  ///< ipopt, nlopt-lbfgs or nlopt-bobyqa (parse_path_solver)
   /// nested or simultaneous (parse_path_formulation; PathOptimizerOptions::formulation).
   std::string formulation = "nested";

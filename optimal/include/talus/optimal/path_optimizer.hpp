@@ -74,11 +74,15 @@ PathFormulation parse_path_formulation(std::string_view name);
 struct PathOptimizerOptions {
   PathFormulation formulation = PathFormulation::kNested;
   PathSolver solver = PathSolver::kIpopt;  ///< of the nested formulation
-  /// Of the clamped cubic path (>= 4). 8 from the control-point study of the
-  /// shiller-gwo experiment: from 5 to 16 points the optimum changes by less
-  /// than 1 % on its cases (not at all on West Bijou), and the local stage's
-  /// time grows with M; winding candidates get more (adaptive_control_points).
-  std::size_t control_points = 8;
+  /// Of the clamped cubic path (>= 4). 16 with two restarts (below): on the
+  /// 25-seed fractal battery of optimiser-quality that found paths within 1 %
+  /// of the fastest of eight local-stage configurations on 15 seeds, against
+  /// 10 for an 8-point fit with a further start at 16 (median excess 0.58 %
+  /// against 1.22 %, worst 4.0 % against 5.4 %), at a median plan time of
+  /// 1.3 s against 1.0 s; on the README's Mount St. Helens plan it was 3 %
+  /// faster (1075 s against 1109 s) and took less time. Winding candidates
+  /// get more (adaptive_control_points).
+  std::size_t control_points = 16;
   /// Grow M by half (up to max_control_points) while the fit to the
   /// candidate has no admissible profile: winding candidates need more.
   /// Simultaneous formulation: only while the fit leaves the measured data
@@ -140,8 +144,10 @@ struct PathOptimizerOptions {
   /// restart_perturbation (seeded by `seed`; a draw without an admissible
   /// profile is drawn again at half the size, up to four times). Restarting
   /// stops at the first attempt that converges. The best point over every
-  /// attempt is the result; OptimizedPath::attempts lists them.
-  std::size_t restarts = 0;
+  /// attempt is the result; OptimizedPath::attempts lists them. 2 by default
+  /// (see control_points): the nested objective's kinks stop Ipopt on a cap
+  /// at a point from which a fresh start, and a perturbed one, often go on.
+  std::size_t restarts = 2;
   /// Standard deviation of the restarts' lateral moves [m] (>= 0); 0 = two
   /// cells of the terrain.
   double restart_perturbation = 0.0;
@@ -182,13 +188,12 @@ struct PathOptimizerOptions {
   /// restarts, polish) again from a fit with each of these control-point
   /// counts; the fastest result is returned and OptimizedPath::attempts lists
   /// every start's solves (LocalAttempt::control_points). A count whose fit
-  /// leaves the data or has no admissible profile is skipped. {16} by
-  /// default: on the 25-seed fractal battery (optimiser-quality's) the plan
-  /// within 1 % of the fastest over every configuration tried went from 9
-  /// to 21 cases, its median excess from 2.5 % to 0, its worst from 14.8 %
-  /// to 4.3 %, for a median planning time of 1.8 s instead of 1.1 s (one
-  /// core); 16 alone was slower than 8 on four of seeds 1-10.
-  std::vector<std::size_t> more_control_points = {16};
+  /// leaves the data or has no admissible profile is skipped. None by
+  /// default: a start at 24 after the default's (16, two restarts) found
+  /// paths within 1 % of the battery's fastest on 20 seeds instead of 15 but
+  /// took 2.5 s per plan instead of 1.3 s; one at 8 before it, 17 seeds in
+  /// 2.5 s.
+  std::vector<std::size_t> more_control_points = {};
   ProfileOptions speeds;  ///< start and end speeds
   /// Throws InputError naming the field.
   void validate() const;

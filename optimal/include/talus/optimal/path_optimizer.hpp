@@ -74,14 +74,14 @@ PathFormulation parse_path_formulation(std::string_view name);
 struct PathOptimizerOptions {
   PathFormulation formulation = PathFormulation::kNested;
   PathSolver solver = PathSolver::kIpopt;  ///< of the nested formulation
-  /// Of the clamped cubic path (>= 4). 16 with two restarts (below): on the
-  /// 25-seed fractal battery of optimiser-quality that found paths within 1 %
-  /// of the fastest of eight local-stage configurations on 15 seeds, against
-  /// 10 for an 8-point fit with a further start at 16 (median excess 0.58 %
-  /// against 1.22 %, worst 4.0 % against 5.4 %), at a median plan time of
-  /// 1.3 s against 1.0 s; on the README's Mount St. Helens plan it was 3 %
-  /// faster (1075 s against 1109 s) and took less time. Winding candidates
-  /// get more (adaptive_control_points).
+  /// Of the clamped cubic path (>= 4). 16 with two restarts (below): in
+  /// `talus experiment optimiser-quality` (25 fractal seeds) that plan is
+  /// within 1 % of the multistart reference on 17 seeds, against 10 for the
+  /// former default, an 8-point fit with a further start at 16 (median
+  /// excess 0 against 1.26 %, worst 4.7 % against 5.7 %), at a median plan
+  /// time of 1.3 s against 0.9 s; on the README's Mount St. Helens plan it
+  /// was 3 % faster (1075 s against 1109 s) and took less time. Winding
+  /// candidates get more (adaptive_control_points).
   std::size_t control_points = 16;
   /// Grow M by half (up to max_control_points) while the fit to the
   /// candidate has no admissible profile: winding candidates need more.
@@ -189,10 +189,10 @@ struct PathOptimizerOptions {
   /// counts; the fastest result is returned and OptimizedPath::attempts lists
   /// every start's solves (LocalAttempt::control_points). A count whose fit
   /// leaves the data or has no admissible profile is skipped. None by
-  /// default: a start at 24 after the default's (16, two restarts) found
-  /// paths within 1 % of the battery's fastest on 20 seeds instead of 15 but
-  /// took 2.5 s per plan instead of 1.3 s; one at 8 before it, 17 seeds in
-  /// 2.5 s.
+  /// default: against optimiser-quality's reference, a start at 24 after the
+  /// default's (16, two restarts each) was within 1 % on 22 seeds instead of
+  /// 17 but took 2.5 s per plan instead of 1.3 s; one at 8 before it, 18
+  /// seeds in 2.5 s.
   std::vector<std::size_t> more_control_points = {};
   ProfileOptions speeds;  ///< start and end speeds
   /// Throws InputError naming the field.

@@ -321,6 +321,38 @@ TEST(PathOptimizerRestarts, ANegativePerturbationIsAnInputError) {
   EXPECT_THROW(options.validate(), InputError);
 }
 
+// A candidate within half a cell of the map's edge (the box's margin): the
+// solvers start from the fit itself, never from a copy clamped into the box
+// (on battery seed 1 with the rigid-body UGV the clamp took away the
+// admissible profile of two of three candidates running along the edge).
+TEST(PathOptimizer, StartsFromTheFitOfACandidateAlongTheMapsEdge) {
+  const BPatch flat = BPatch::interpolate(
+      terrain_test::grid_from_function([](double, double) { return 0.0; }, 0, 0, 20, 10, 1.0));
+  ASSERT_NEAR(flat.y_min(), 0.0, 1e-12);
+  const std::vector<Vec2> along_edge = {{2, 0.2}, {10, 0.2}, {18, 0.2}};
+  for (const PathFormulation formulation :
+       {PathFormulation::kNested, PathFormulation::kSimultaneous}) {
+    PathOptimizerOptions options;
+    options.formulation = formulation;
+    options.control_points = 6;
+    options.restarts = 0;
+    const InitialPath fit = fit_initial_path(flat, point_mass_rover(0.5), along_edge, options);
+    ASSERT_TRUE(fit.curve && fit.admissible());
+    const OptimizedPath best = optimize_path(flat, point_mass_rover(0.5), along_edge, options);
+    const auto& fitted = fit.curve->control_points();
+    const auto& started = best.initial_curve.control_points();
+    ASSERT_EQ(started.size(), fitted.size());
+    for (std::size_t i = 0; i < fitted.size(); ++i) {
+      EXPECT_NEAR(started[i].x(), fitted[i].x(), 1e-12) << i;
+      EXPECT_NEAR(started[i].y(), 0.2, 1e-9) << i;  // not the margin's 0.5
+    }
+    // The straight line along the edge is already optimal: the box lets it
+    // stay there and never beyond it.
+    EXPECT_LE(best.travel_time, best.initial_time);
+    for (const Vec2& c : best.curve.control_points()) EXPECT_GE(c.y(), 0.2 - 1e-9);
+  }
+}
+
 TEST(PathOptimizer, BadInputIsAnInputError) {
   const BPatch flat = BPatch::interpolate(
       terrain_test::grid_from_function([](double, double) { return 0.0; }, 0, 0, 20, 20, 1.0));

@@ -368,6 +368,31 @@ FigureLink spread_figure(const std::vector<Case>& cases,
           plot.name(".png")};
 }
 
+/// One row per plan (the default, then each configuration planned on the
+/// case) at full precision, so a new local stage can be compared against a
+/// stored reference without re-running it. Configuration 0 is the default,
+/// k the k-th reference configuration, as in spread_above_reference.dat.
+std::string runs_csv(const std::vector<Case>& cases,
+                     const std::vector<Configuration>& configurations) {
+  std::string csv =
+      "case,configuration,name,status,travel_time,reference_time,above_reference_percent,"
+      "converged,optimisations,plan_seconds,feedback_rounds,verified\n";
+  const auto row = [&](const Case& c, std::size_t k, const std::string& name, const Run& r) {
+    csv += "\"" + c.problem.name + "\"," + std::to_string(k) + ",\"" + name + "\"," +
+           std::string(to_string(r.status)) + "," + csv_number(r.travel_time, 10) + "," +
+           csv_number(c.reference_time, 10) + "," + csv_number(c.above_percent(r)) + "," +
+           std::to_string(r.converged) + "," + std::to_string(r.optimisations) + "," +
+           csv_number(r.seconds, 4) + "," + std::to_string(r.feedback_rounds) + "," +
+           (r.verified ? "1" : "0") + "\n";
+  };
+  for (const Case& c : cases) {
+    row(c, 0, "default", c.default_run);
+    for (std::size_t k = 0; k < c.reference.size(); ++k)
+      row(c, k + 1, configurations[k].name, c.reference[k]);
+  }
+  return csv;
+}
+
 }  // namespace
 
 void run_optimiser_quality(const ExperimentContext& context) {
@@ -501,9 +526,11 @@ void run_optimiser_quality(const ExperimentContext& context) {
       report.bullet(c.problem.name + ": " + std::string(to_string(c.default_run.status)) + ": " +
                     c.default_run.message);
   const std::vector<FigureLink> links = {spread_figure(cases, reference, context.output_dir)};
+  write_text_file(context.output_dir / "runs.csv", runs_csv(cases, reference));
   summary.set("wall_seconds", seconds_since(start), "s");
   report.paragraph("Wall time: " + sig3(seconds_since(start)) + " s.");
-  report.write(context.output_dir, "spread_above_reference.dat", links);
+  report.write(context.output_dir, "runs.csv (every plan: travel time, reference, status, "
+               "convergence, time), spread_above_reference.dat", links);
 }
 
 }  // namespace talus::experiments

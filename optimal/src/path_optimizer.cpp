@@ -153,7 +153,7 @@ Polish polish_nested_optimum(const BPatch& terrain, const Vehicle& vehicle,
 }
 
 /// The simultaneous formulation from the box problem's start (the initial
-/// fit clamped into the box); `objective` (the nested one, same stations)
+/// fit); `objective` (the nested one, same stations)
 /// re-evaluates the initial fit and the NLP's result exactly.
 OptimizedPath optimize_simultaneous(const BPatch& terrain, const Vehicle& vehicle,
                                     PathTimeObjective& objective, const detail::BoxProblem& box,
@@ -432,7 +432,13 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
     problem.lower[i + 1] = terrain.y_min() + margin;
     problem.upper[i + 1] = terrain.y_max() - margin;
   }
-  problem.start = problem.start.cwiseMax(problem.lower).cwiseMin(problem.upper);
+  // A candidate along the map's edge has fit control points outside that
+  // margin: the box grows to hold them (the fit's profile was evaluated, so
+  // its stations are on the data). Clamping them instead moved the path, and
+  // on battery seed 1 with the rigid-body UGV two of three followable
+  // candidates lost their admissible profile that way.
+  problem.lower = problem.lower.cwiseMin(problem.start);
+  problem.upper = problem.upper.cwiseMax(problem.start);
   problem.max_iterations = options.max_iterations;
   problem.max_evaluations = options.max_evaluations;
   problem.relative_tolerance = options.relative_tolerance;
@@ -500,10 +506,9 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
     out.seconds = seconds_since(started);
     return out;
   }
-  // The start clamped into the bounds is the solvers' first point.
-  initial_time = objective->evaluate(problem.start);
+  // The fit is the solvers' first point (the box holds it).
   if (!std::isfinite(initial_time)) {
-    throw InputError("the initial path leaves the map's interior or has no admissible profile");
+    throw InputError("the initial path has no admissible profile at the search's stations");
   }
   const auto solve = [&options](detail::TrackedObjective& tracked, const detail::BoxProblem& box) {
     switch (options.solver) {

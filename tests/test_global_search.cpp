@@ -438,5 +438,79 @@ TEST(GlobalSearchThreads, StopIsPolledBetweenTheBatchesOfEdgeCosts) {
   EXPECT_LE(r.edges_evaluated, 2u * 8u + 2u * 16u);
 }
 
+/// Candidates, costs and cost fields of two searches are identical.
+void expect_same_search(const GlobalSearchResult& a, const GlobalSearchResult& b) {
+  ASSERT_EQ(a.status, b.status) << a.message << " / " << b.message;
+  ASSERT_EQ(a.candidates.size(), b.candidates.size());
+  for (std::size_t c = 0; c < a.candidates.size(); ++c) {
+    EXPECT_EQ(a.candidates[c].cost_seconds, b.candidates[c].cost_seconds) << c;
+    EXPECT_EQ(a.candidates[c].length_m, b.candidates[c].length_m) << c;
+    EXPECT_EQ(a.candidates[c].vertices, b.candidates[c].vertices) << c;
+  }
+  EXPECT_EQ(a.cost_from_start, b.cost_from_start);
+  EXPECT_EQ(a.cost_to_goal, b.cost_to_goal);
+  EXPECT_EQ(a.expanded, b.expanded);
+}
+
+// A workspace keeps the lattice's edge costs between searches on one terrain and vehicle:
+// a search with other excluded regions (the planner's feedback rounds) computes no edge
+// again, gives exactly the search without a workspace, and a region excluded before is not
+// excluded after.
+TEST(GlobalSearchWorkspace, ReusesTheEdgeCostsAndGivesTheSearchWithoutIt) {
+  const BPatch terrain = bumps();
+  const Vehicle v = point_mass_rover(0.3);
+  GlobalSearchOptions options;
+  options.candidates = 3;
+  GlobalSearchWorkspace workspace;
+  const GlobalSearchResult first = global_search(terrain, v, {3, 30}, {77, 30}, options, workspace);
+  expect_same_search(first, global_search(terrain, v, {3, 30}, {77, 30}, options));
+  ASSERT_EQ(first.status, GlobalSearchStatus::kOk);
+  EXPECT_GT(first.edges_evaluated, 0u);
+  EXPECT_EQ(workspace.lattices(), 1u);
+
+  // Exclude a disc on the best candidate's middle: another route, no edge recomputed.
+  const std::vector<Vec2>& best = first.candidates.front().vertices;
+  options.excluded = {{best[best.size() / 2], 6.0}};
+  const GlobalSearchResult round = global_search(terrain, v, {3, 30}, {77, 30}, options, workspace);
+  const GlobalSearchResult fresh = global_search(terrain, v, {3, 30}, {77, 30}, options);
+  expect_same_search(round, fresh);
+  EXPECT_NE(round.candidates.front().vertices, best);
+  EXPECT_EQ(round.edges_evaluated, 0u);
+  EXPECT_GT(fresh.edges_evaluated, 0u);
+
+  // Without the disc again: the first search, from the cache.
+  options.excluded.clear();
+  expect_same_search(global_search(terrain, v, {3, 30}, {77, 30}, options, workspace), first);
+
+  // Another start and goal reuse it too; another vehicle or connectivity starts afresh.
+  expect_same_search(global_search(terrain, v, {5, 10}, {70, 50}, options, workspace),
+                     global_search(terrain, v, {5, 10}, {70, 50}, options));
+  const Vehicle slippery = point_mass_rover(0.2);
+  const GlobalSearchResult other =
+      global_search(terrain, slippery, {3, 30}, {77, 30}, options, workspace);
+  expect_same_search(other, global_search(terrain, slippery, {3, 30}, {77, 30}, options));
+  EXPECT_GT(other.edges_evaluated, 0u);
+  options.connectivity = 8;
+  expect_same_search(global_search(terrain, slippery, {3, 30}, {77, 30}, options, workspace),
+                     global_search(terrain, slippery, {3, 30}, {77, 30}, options));
+  EXPECT_EQ(workspace.lattices(), 1u);
+  workspace.clear();
+  EXPECT_EQ(workspace.lattices(), 0u);
+}
+
+// Coarse to fine: the coarse lattice is kept, the corridors are not; same result.
+TEST(GlobalSearchWorkspace, MultiResolutionKeepsTheCoarseLattice) {
+  const BPatch terrain = bumps();
+  const Vehicle v = point_mass_rover(0.3);
+  GlobalSearchOptions options;
+  options.resolution = GlobalSearchResolution::kMulti;
+  GlobalSearchWorkspace workspace;
+  for (int round = 0; round < 2; ++round) {
+    const GlobalSearchResult r = global_search(terrain, v, {3, 30}, {77, 30}, options, workspace);
+    expect_same_search(r, global_search(terrain, v, {3, 30}, {77, 30}, options));
+  }
+  EXPECT_GE(workspace.lattices(), 1u);
+}
+
 }  // namespace
 }  // namespace talus

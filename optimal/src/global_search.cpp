@@ -193,14 +193,16 @@ class Lattice {
     }
     surface_.resize(size_);
     on_data_.assign(size_, 0);
+    excluded_.assign(size_, 0);
     forward_.assign(size_ * half_, std::numeric_limits<double>::quiet_NaN());
     backward_.assign(size_ * half_, std::numeric_limits<double>::quiet_NaN());
   }
 
-  /// Samples the surface at every node; false if `stop` cut it short
-  /// (polled every `interval` nodes).
+  /// Samples the surface at every node (once: a later call returns true at
+  /// once); false if `stop` cut it short (polled every `interval` nodes).
   template <typename Stop>
   bool sample(Stop&& stop, std::size_t interval) {
+    if (sampled_) return true;
     for (std::size_t n = 0; n < size_; ++n) {
       if (n % interval == 0 && stop()) return false;
       if (!exists(static_cast<std::uint32_t>(n))) continue;
@@ -208,13 +210,16 @@ class Lattice {
       on_data_[n] = terrain_.on_data(p);
       if (on_data_[n]) surface_[n] = terrain_.evaluate(p);
     }
+    sampled_ = true;
     return true;
   }
 
-  /// Marks every node within `regions` as off the data (so every edge at it
-  /// is untraversable), except the nodes `keep_a` and `keep_b`.
+  /// Makes every edge at a node within `regions` untraversable, except at
+  /// the nodes `keep_a` and `keep_b`, in place of the previous call's
+  /// regions. The edge costs themselves stay cached (a mask, not a cost).
   void exclude(const std::vector<ExcludedRegion>& regions, std::uint32_t keep_a,
                std::uint32_t keep_b) {
+    excluded_.assign(size_, 0);
     for (const ExcludedRegion& region : regions) {
       const Vec2 lo =
           (region.centre - origin_) / spacing_ - Vec2::Constant(region.radius / spacing_);
@@ -227,7 +232,7 @@ class Lattice {
              ++i) {
           const std::uint32_t n = node_at(i, j);
           if (n == kNoNode || n == keep_a || n == keep_b) continue;
-          if ((position(n) - region.centre).norm() <= region.radius) on_data_[n] = 0;
+          if ((position(n) - region.centre).norm() <= region.radius) excluded_[n] = 1;
         }
       }
     }
@@ -373,9 +378,11 @@ class Lattice {
     return true;
   }
 
-  /// Forward/backward costs of the positive edge a -> b (offset k < half).
+  /// Forward/backward costs of the positive edge a -> b (offset k < half);
+  /// +inf both ways at an excluded node.
   std::pair<double, double> ensure(std::uint32_t a, std::uint32_t b, std::size_t k) {
     evaluated_ += compute(a, b, k) ? 1 : 0;
+    if (excluded_[a] || excluded_[b]) return {kInf, kInf};
     const std::size_t slot = static_cast<std::size_t>(a) * half_ + k;
     return {forward_[slot], backward_[slot]};
   }
@@ -396,7 +403,8 @@ class Lattice {
   std::vector<std::size_t> row_start_;
   std::vector<std::uint32_t> full_index_;
   std::vector<SurfacePoint> surface_;
-  std::vector<unsigned char> on_data_;
+  bool sampled_ = false;
+  std::vector<unsigned char> on_data_, excluded_;
   std::vector<double> forward_, backward_;
   std::size_t evaluated_ = 0;
 };
@@ -530,13 +538,19 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 /// The search of one lattice: the whole grid, or the corridor `mask`.
 /// Throws InputError for an untraversable start or goal node.
+/// `cached`: a whole-map lattice at `spacing` whose samples and costs a
+/// workspace keeps (mask is then null), or null for a lattice of this search.
 GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
                                   const AdmissibleSet& set, const Vec2& start, const Vec2& goal,
                                   const GlobalSearchOptions& options, double spacing,
-                                  const TileMask* mask) {
+                                  const TileMask* mask, Lattice* cached = nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto stop = [&options] { return options.stop && options.stop(); };
-  Lattice lattice(terrain, set, spacing, options.connectivity, options.braking_rule, mask);
+  std::optional<Lattice> own;
+  Lattice& lattice = cached != nullptr ? *cached
+                                       : own.emplace(terrain, set, spacing, options.connectivity,
+                                                     options.braking_rule, mask);
+  const std::size_t evaluated_before = lattice.edges_evaluated();
   GlobalSearchResult result;
   result.nodes = lattice.size();
   result.nx = lattice.nx();
@@ -546,7 +560,7 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
   const auto finish = [&](GlobalSearchStatus status, std::string message) {
     result.status = status;
     result.message = std::move(message);
-    result.edges_evaluated = lattice.edges_evaluated();
+    result.edges_evaluated = lattice.edges_evaluated() - evaluated_before;
     result.search_seconds = seconds_since(t0);
     return std::move(result);
   };
@@ -784,8 +798,55 @@ TileMask corridor_tiles(const std::vector<CandidatePath>& candidates, const Vec2
 
 }  // namespace
 
-GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
-                                 const Vec2& goal, const GlobalSearchOptions& options) {
+struct GlobalSearchWorkspace::Impl {
+  const BPatch* terrain = nullptr;
+  std::optional<Vehicle> vehicle;
+  int connectivity = 0;
+  bool braking_rule = true;
+  std::unique_ptr<AdmissibleSet> set;                                 // the lattices refer to it
+  std::vector<std::pair<double, std::unique_ptr<Lattice>>> lattices;  // by spacing
+
+  /// Drops the lattices unless they were made for these.
+  void bind(const BPatch& t, const Vehicle& v, const GlobalSearchOptions& options) {
+    if (terrain == &t && vehicle && *vehicle == v && connectivity == options.connectivity &&
+        braking_rule == options.braking_rule) {
+      return;
+    }
+    lattices.clear();
+    set = std::make_unique<AdmissibleSet>(v);
+    terrain = &t;
+    vehicle = v;
+    connectivity = options.connectivity;
+    braking_rule = options.braking_rule;
+  }
+  /// The whole-map lattice at `spacing`, made on first use.
+  Lattice& lattice(double spacing) {
+    for (auto& [s, l] : lattices)
+      if (s == spacing) return *l;
+    auto made = std::make_unique<Lattice>(*terrain, *set, spacing, connectivity, braking_rule);
+    lattices.emplace_back(spacing, std::move(made));
+    return *lattices.back().second;
+  }
+};
+
+GlobalSearchWorkspace::GlobalSearchWorkspace() : impl_(std::make_unique<Impl>()) {}
+GlobalSearchWorkspace::~GlobalSearchWorkspace() = default;
+GlobalSearchWorkspace::GlobalSearchWorkspace(GlobalSearchWorkspace&&) noexcept = default;
+GlobalSearchWorkspace& GlobalSearchWorkspace::operator=(GlobalSearchWorkspace&&) noexcept = default;
+std::size_t GlobalSearchWorkspace::lattices() const {
+  return impl_ ? impl_->lattices.size() : 0;
+}
+void GlobalSearchWorkspace::clear() {
+  if (impl_) impl_->lattices.clear();
+}
+
+namespace {
+
+/// global_search() with the whole-map lattices from `workspace` when it is
+/// not null (bound to this terrain, vehicle and options by the caller).
+GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
+                          const Vec2& goal, const GlobalSearchOptions& options,
+                          GlobalSearchWorkspace::Impl* workspace) {
   const auto t0 = std::chrono::steady_clock::now();
   options.validate();
   vehicle.validate();
@@ -813,7 +874,11 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
 
   const double spacing =
       options.lattice_spacing > 0.0 ? options.lattice_spacing : terrain.cellsize();
-  const AdmissibleSet set(vehicle);
+  std::optional<AdmissibleSet> own_set;
+  const AdmissibleSet& set = workspace != nullptr ? *workspace->set : own_set.emplace(vehicle);
+  const auto whole_map = [workspace](double at) {
+    return workspace != nullptr ? &workspace->lattice(at) : nullptr;
+  };
   if (options.stop && options.stop()) {
     GlobalSearchResult result;
     result.status = GlobalSearchStatus::kStopped;
@@ -822,8 +887,8 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
     return result;
   }
   if (options.resolution == GlobalSearchResolution::kFull) {
-    GlobalSearchResult result =
-        search_lattice(terrain, vehicle, set, start, goal, options, spacing, nullptr);
+    GlobalSearchResult result = search_lattice(terrain, vehicle, set, start, goal, options, spacing,
+                                               nullptr, whole_map(spacing));
     result.corridor_width = 0.0;
     return result;
   }
@@ -844,7 +909,7 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   if (coarse_fits) {
     try {
       coarse.emplace(search_lattice(terrain, vehicle, set, start, goal, coarse_options,
-                                    coarse_spacing, nullptr));
+                                    coarse_spacing, nullptr, whole_map(coarse_spacing)));
     } catch (const InputError& e) {
       fallback = std::string("the coarse search failed (") + e.what() + ")";
     }
@@ -875,7 +940,8 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   std::size_t widenings = 0;
   double radius = options.corridor_width > 0.0 ? options.corridor_width : 4.0 * coarse_spacing;
   if (!fallback.empty()) {
-    result = search_lattice(terrain, vehicle, set, start, goal, options, spacing, nullptr);
+    result = search_lattice(terrain, vehicle, set, start, goal, options, spacing, nullptr,
+                            whole_map(spacing));
     result.fell_back_to_full = true;
     if (result.status == GlobalSearchStatus::kOk) result.message = fallback + ": full search";
   } else {
@@ -891,7 +957,7 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
           corridor_tiles(coarse->candidates, start, goal, origin, nx, ny, spacing, radius);
       const bool whole = mask.all();
       result = search_lattice(terrain, vehicle, set, start, goal, options, spacing,
-                              whole ? nullptr : &mask);
+                              whole ? nullptr : &mask, whole ? whole_map(spacing) : nullptr);
       expanded += result.expanded;
       edges += result.edges_evaluated;
       const bool touches = result.corridor_width < 0.0;
@@ -913,6 +979,23 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
   result.cost_to_goal.clear();
   result.search_seconds = seconds_since(t0);
   return result;
+}
+
+}  // namespace
+
+GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
+                                 const Vec2& goal, const GlobalSearchOptions& options) {
+  return search(terrain, vehicle, start, goal, options, nullptr);
+}
+
+GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
+                                 const Vec2& goal, const GlobalSearchOptions& options,
+                                 GlobalSearchWorkspace& workspace) {
+  options.validate();
+  vehicle.validate();  // before the workspace's AdmissibleSet is made of it
+  if (!workspace.impl_) workspace.impl_ = std::make_unique<GlobalSearchWorkspace::Impl>();
+  workspace.impl_->bind(terrain, vehicle, options);
+  return search(terrain, vehicle, start, goal, options, workspace.impl_.get());
 }
 
 }  // namespace talus

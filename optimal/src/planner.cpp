@@ -320,7 +320,7 @@ std::vector<bool> check_candidates(const PlanningProblem& problem,
 /// exclusions in result.excluded) and returns their followability.
 std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerOptions& options,
                                   const PathOptimizerOptions& local, GlobalSearchOptions global,
-                                  PlannerResult& result) {
+                                  GlobalSearchWorkspace& workspace, PlannerResult& result) {
   const double spacing =
       result.global.spacing > 0.0 ? result.global.spacing : problem.surface->cellsize();
   const double radius = options.feedback_radius > 0.0 ? options.feedback_radius : 2.0 * spacing;
@@ -330,6 +330,7 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
     return static_cast<std::size_t>(std::count(f.begin(), f.end(), true));
   };
   GlobalSearchResult kept_global = result.global;
+  std::size_t edges_evaluated = result.global.edges_evaluated;
   std::vector<bool> kept = followable;
   std::vector<ExcludedRegion> kept_excluded = global.excluded;
   while (count(followable) < followable.size() &&
@@ -383,8 +384,9 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
     if (added.empty() && !widened) break;
     global.excluded.insert(global.excluded.end(), added.begin(), added.end());
     ++result.feedback_rounds;
-    GlobalSearchResult next =
-        global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global);
+    GlobalSearchResult next = global_search(*problem.surface, problem.vehicle, problem.start,
+                                            problem.goal, global, workspace);
+    edges_evaluated += next.edges_evaluated;
     if (next.status == GlobalSearchStatus::kUnreachable) {
       // The new or widened discs closed the last corridor (a pass narrower
       // than they are): keep the earlier discs as they were and exclude
@@ -398,8 +400,9 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
         r->radius = std::min(r->radius, 0.5 * spacing);
       }
       if (shrunk) {
-        next =
-            global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global);
+        next = global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global,
+                             workspace);
+        edges_evaluated += next.edges_evaluated;
       }
     }
     if (next.status != GlobalSearchStatus::kOk) break;  // no corridor left, or stopped
@@ -412,6 +415,7 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
     result.global = std::move(next);
   }
   result.global = std::move(kept_global);
+  result.global.edges_evaluated = edges_evaluated;
   result.excluded = std::move(kept_excluded);
   return kept;
 }
@@ -457,8 +461,10 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   if (limited) {
     global.stop = [&expired, user = options.global.stop] { return (user && user()) || expired(); };
   }
-  result.global =
-      global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global);
+  // The feedback rounds search the same lattice again: its edge costs are kept.
+  GlobalSearchWorkspace search_workspace;
+  result.global = global_search(*problem.surface, problem.vehicle, problem.start, problem.goal,
+                                global, search_workspace);
 
   PathOptimizerOptions local = options.local;
   local.speeds = {problem.start_speed, problem.end_speed};
@@ -477,7 +483,7 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   TimeOptimalProfileSolver workspace;
   std::vector<bool> followable;
   if (options.optimize && result.global.status == GlobalSearchStatus::kOk) {
-    followable = feedback_rounds(problem, options, local, global, result);
+    followable = feedback_rounds(problem, options, local, global, search_workspace, result);
   }
   result.seconds.global = seconds_since(global_started);
   bool global_cut = false;

@@ -208,9 +208,11 @@ void bind_global_search(py::module_& m) {
         return cost_field(r, r.cost_to_goal);
       });
 
-  m.def("global_search", &global_search, py::arg("surface"), py::arg("vehicle"), py::arg("start"),
-        py::arg("goal"), py::arg("options") = GlobalSearchOptions{},
-        py::call_guard<py::gil_scoped_release>());
+  m.def("global_search",
+        py::overload_cast<const BPatch&, const Vehicle&, const Vec2&, const Vec2&,
+                          const GlobalSearchOptions&>(&global_search),
+        py::arg("surface"), py::arg("vehicle"), py::arg("start"), py::arg("goal"),
+        py::arg("options") = GlobalSearchOptions{}, py::call_guard<py::gil_scoped_release>());
 }
 
 void bind_planner(py::module_& m) {

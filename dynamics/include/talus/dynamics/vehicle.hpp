@@ -46,6 +46,7 @@ struct VehicleBody {
   double cornering_stiffness = 8.0;
   /// Throws InputError naming the field.
   void validate() const;
+  bool operator==(const VehicleBody&) const = default;
 };
 
 /// The defaults above for a vehicle of this mass and geometry.
@@ -79,6 +80,8 @@ struct Vehicle {
 
   /// Throws InputError naming the field, its value and what is expected.
   void validate() const;
+  /// Field by field (NaN fields compare unequal).
+  bool operator==(const Vehicle&) const = default;
 };
 
 /// Reads a vehicle from a YAML (or JSON) file: unknown keys, missing required

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -204,5 +205,45 @@ inline double default_candidate_separation(const Vec2& start_node, const Vec2& g
 
 GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
                                  const Vec2& goal, const GlobalSearchOptions& options);
+
+/// Edge costs kept between global searches (a per-query workspace; the
+/// terrain and vehicle stay immutable). Searches on one terrain and vehicle
+/// with the same lattice spacing, connectivity and braking rule share their
+/// lattice's surface samples and edge costs: only the excluded regions,
+/// start, goal and extraction options may differ. The planner's feedback
+/// rounds use one, so each round after the first is a graph search over
+/// known costs (Big Tujunga with the rover: 8 rounds, each a 2 s search
+/// from scratch without it). Results are exactly those of searches without
+/// a workspace; GlobalSearchResult::edges_evaluated counts only the edges
+/// the search itself computed. Lattices of the whole map are kept (with
+/// kMulti: the coarse one; the corridors are not). A workspace used with
+/// another terrain (by address), vehicle, connectivity or braking rule drops
+/// what it held. Not for concurrent use from several threads.
+class GlobalSearchWorkspace {
+ public:
+  GlobalSearchWorkspace();
+  ~GlobalSearchWorkspace();
+  GlobalSearchWorkspace(GlobalSearchWorkspace&&) noexcept;
+  GlobalSearchWorkspace& operator=(GlobalSearchWorkspace&&) noexcept;
+  GlobalSearchWorkspace(const GlobalSearchWorkspace&) = delete;
+  GlobalSearchWorkspace& operator=(const GlobalSearchWorkspace&) = delete;
+
+  /// Lattices held (one per lattice spacing searched in full).
+  std::size_t lattices() const;
+  /// Drops every lattice.
+  void clear();
+
+  struct Impl;  ///< defined in global_search.cpp
+
+ private:
+  std::unique_ptr<Impl> impl_;
+  friend GlobalSearchResult global_search(const BPatch&, const Vehicle&, const Vec2&, const Vec2&,
+                                          const GlobalSearchOptions&, GlobalSearchWorkspace&);
+};
+
+/// global_search() reusing `workspace`'s edge costs (same result).
+GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
+                                 const Vec2& goal, const GlobalSearchOptions& options,
+                                 GlobalSearchWorkspace& workspace);
 
 }  // namespace talus

@@ -199,6 +199,9 @@ struct PlannerTimings {
 struct PlannerResult {
   PlannerStatus status = PlannerStatus::kUnreachable;
   std::string message;  ///< why, when not kOk; empty otherwise
+  /// The global search whose candidates were optimised (after feedback
+  /// rounds, the kept round's); its edges_evaluated counts the edge costs
+  /// computed by every search of the plan (the rounds share them).
   GlobalSearchResult global;
   std::vector<CandidateOutcome> candidates;   ///< in the global search's order
   std::optional<std::size_t> best_candidate;  ///< the fastest feasible one

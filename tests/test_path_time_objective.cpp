@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "fractal_battery.hpp"
 #include "talus/core/error.hpp"
 #include "talus/optimal/path_time_objective.hpp"
 #include "terrain_test_support.hpp"
@@ -126,6 +127,35 @@ TEST(PathTimeObjective, GradientWithBrakesOnlyMovingEndsAndUtmCoordinates) {
   EXPECT_LT((gradient - fd).norm() / fd.norm(), 1e-4) << gradient.transpose() << "\n"
                                                       << fd.transpose();
   EXPECT_EQ(objective.finite_difference_fallbacks(), 0u);
+}
+
+// A 16-point path of the optimiser on battery seed 2 whose profile rides the tip of a sliding
+// limit: a station a few 1e-9 below the lateral limit, where the step's control sits on the
+// edge of a friction ellipse only sqrt(1e-9) wide. That station is pinned by the ellipse, not
+// by f_t = 0 nor by the speed limit; before the adjoint tried the ellipse first, the system
+// was singular there and the gradient came from finite differences (66 such fallbacks over the
+// 25 battery plans, 2 after).
+TEST(PathTimeObjective, AStationAtTheEdgeOfATipOfTheSlidingLimitKeepsTheAdjointGradient) {
+  const BPatch terrain =
+      BPatch::interpolate(generate_fractal_terrain(experiments::battery_terrain(2)));
+  PathTimeObjective objective(terrain, experiments::battery_point_mass_ugv(),
+                              experiments::kBatteryStart, experiments::kBatteryGoal, 16, 1793, {});
+  const std::vector<double> point = {
+      4.8006015604918026, 3.9961784414680657, 6.7728746421058883, 3.1306739766234832,
+      5.7654721870557859, 9.0670620077550037, 4.7995032902675021, 18.50941737981525,
+      4.2118975078538412, 18.028224388214255, 7.7192823732873848, 21.151528172847115,
+      13.75378473511643,  23.75784206756326,  13.939659491555245, 21.76331859789061,
+      15.155664284950092, 22.601583264572987, 15.63299139219402,  24.83111682620407,
+      16.313152822083815, 27.636916886774472, 18.29833979291076,  28.475168981290551,
+      22.906117018912909, 27.348703694255565, 25.416763802106846, 26.772812399354706};
+  const Eigen::VectorXd z = Eigen::Map<const Eigen::VectorXd>(point.data(), 28);
+  Eigen::VectorXd gradient;
+  ASSERT_TRUE(std::isfinite(objective.evaluate(z, &gradient)));
+  EXPECT_EQ(objective.finite_difference_fallbacks(), 0u);
+  // Measured 2e-7 at a 1e-6 m step (a 1e-5 m step crosses an active-set change).
+  const Eigen::VectorXd fd = central_differences(objective, z, 1e-6);
+  EXPECT_LT((gradient - fd).norm() / fd.norm(), 1e-4) << gradient.transpose() << "\n"
+                                                      << fd.transpose();
 }
 
 TEST(PathTimeObjective, OffTheMapIsInfinite) {

@@ -156,21 +156,27 @@ class Problem {
   }
 
   /// Appends the control conditions step j touches, at either end: the
-  /// friction ellipse (or f_t = 0 where it is exhausted, plus the tangent
-  /// condition where the step's line touches it), then the vehicle's
-  /// traction conditions.
+  /// friction ellipse (plus the tangent condition where the step's line
+  /// touches it), else f_t = 0 where lateral friction is exhausted, then the
+  /// vehicle's traction conditions. The ellipse comes first even near
+  /// exhaustion: a state a few 1e-9 below the tip of a sliding limit leaves
+  /// f_t a range about sqrt(1e-9) of the force scale wide, and a step whose
+  /// control ends on that range's edge pins the state by the ellipse (taking
+  /// f_t = 0 there left such states without an equation on the battery).
   void active_step_equations(std::size_t j, std::vector<Equation>& out) const {
     for (std::size_t station : {j, j + 1}) {
       const auto add = [&](Equation e) {
         e.residual = residual(e);
-        if (e.residual > control_tolerance(j, station)) return;
+        if (e.residual > control_tolerance(j, station)) return false;
         out.push_back(e);
         if (e.kind == Kind::kFriction && tangent(j, station)) {
           e.kind = Kind::kTangentControl;
           out.push_back(e);
         }
+        return true;
       };
-      add({friction_exhausted(station) ? Kind::kTractionZero : Kind::kFriction, station, j, false});
+      if (!add({Kind::kFriction, station, j, false}) && friction_exhausted(station))
+        add({Kind::kTractionZero, station, j, false});
       for (const ForceCondition& c : c_.traction_conditions())
         add({Kind::kTraction, station, j, false, 0.0, &c});
     }

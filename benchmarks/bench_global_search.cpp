@@ -8,7 +8,11 @@
 // report the corridor's nodes and how often it widened. "FieldsThreads/N/T"
 // is "Fields" with the edge costs computed up front on T threads
 // (GlobalSearchOptions::threads; T = 1 is the serial search itself, so the
-// ratio T = 2 / T = 1 of one run is the speed-up).
+// ratio T = 2 / T = 1 of one run is the speed-up). "Round/N/W" is one of the
+// planner's feedback rounds: "Fields" again with a disc of 4 lattice spacings
+// excluded on the best candidate, from scratch (W = 0) or with a
+// GlobalSearchWorkspace that already holds the lattice's edge costs (W = 1):
+// W = 1 / W = 0 of one run is what sharing the costs saves per round.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -86,6 +90,34 @@ void BM_GlobalSearchFieldsThreads(benchmark::State& state) {
   run(state, 3, true, talus::GlobalSearchResolution::kFull,
       static_cast<std::size_t>(state.range(1)));
 }
+void BM_GlobalSearchRound(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const bool warm = state.range(1) != 0;
+  const Case& c = terrain_case(n);
+  const double w = c.terrain.x_max() - c.terrain.x_min();
+  const talus::Vec2 start(0.1 * w, 0.1 * w), goal(0.9 * w, 0.9 * w);
+  talus::GlobalSearchOptions options;
+  options.candidates = 3;
+  talus::GlobalSearchWorkspace workspace;
+  const talus::GlobalSearchResult first =
+      talus::global_search(c.terrain, c.vehicle, start, goal, options, workspace);
+  if (first.status != talus::GlobalSearchStatus::kOk) {
+    state.SkipWithError(first.message.c_str());
+    return;
+  }
+  const std::vector<talus::Vec2>& best = first.candidates[0].vertices;
+  options.excluded = {{best[best.size() / 2], 4.0 * c.terrain.cellsize()}};
+  talus::GlobalSearchResult result;
+  for (auto _ : state) {
+    result = warm ? talus::global_search(c.terrain, c.vehicle, start, goal, options, workspace)
+                  : talus::global_search(c.terrain, c.vehicle, start, goal, options);
+    benchmark::DoNotOptimize(result.candidates.data());
+  }
+  state.counters["edges"] = static_cast<double>(result.edges_evaluated);
+  state.counters["best_cost_s"] =
+      result.candidates.empty() ? 0.0 : result.candidates[0].cost_seconds;
+}
+
 BENCHMARK(BM_GlobalSearchFields)
     ->Arg(128)
     ->Arg(256)
@@ -93,6 +125,11 @@ BENCHMARK(BM_GlobalSearchFields)
     ->Arg(1024)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
+BENCHMARK(BM_GlobalSearchRound)
+    ->Args({512, 0})
+    ->Args({512, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK(BM_GlobalSearchFieldsThreads)
     ->Args({512, 1})
     ->Args({512, 2})

@@ -163,6 +163,14 @@ void bind_profile(py::module_& m) {
 }
 
 void bind_global_search(py::module_& m) {
+  py::class_<ExcludedRegion>(m, "ExcludedRegion", "a disc whose lattice nodes the search avoids")
+      .def(py::init([](const Vec2& centre, double radius) {
+             return ExcludedRegion{centre, radius};
+           }),
+           py::arg("centre"), py::arg("radius"))
+      .def_readwrite("centre", &ExcludedRegion::centre, "[m]")
+      .def_readwrite("radius", &ExcludedRegion::radius, "[m] (> 0)");
+
   py::class_<GlobalSearchOptions>(m, "GlobalSearchOptions")
       .def(py::init<>())
       .def_readwrite("lattice_spacing", &GlobalSearchOptions::lattice_spacing, "[m]; 0 = cell size")
@@ -171,6 +179,7 @@ void bind_global_search(py::module_& m) {
       .def_readwrite("distinctness", &GlobalSearchOptions::distinctness, "[m]; 0 = automatic")
       .def_readwrite("max_cost_ratio", &GlobalSearchOptions::max_cost_ratio)
       .def_readwrite("cost_fields", &GlobalSearchOptions::cost_fields)
+      .def_readwrite("excluded", &GlobalSearchOptions::excluded, "list of ExcludedRegion")
       .def("validate", &GlobalSearchOptions::validate);
 
   py::enum_<GlobalSearchStatus>(m, "GlobalSearchStatus")
@@ -213,6 +222,22 @@ void bind_global_search(py::module_& m) {
                           const GlobalSearchOptions&>(&global_search),
         py::arg("surface"), py::arg("vehicle"), py::arg("start"), py::arg("goal"),
         py::arg("options") = GlobalSearchOptions{}, py::call_guard<py::gil_scoped_release>());
+
+  py::class_<GlobalSearchWorkspace>(m, "GlobalSearchWorkspace",
+                                    "Edge costs kept between global searches of one surface "
+                                    "and vehicle (same results, each later search a graph "
+                                    "search only); it keeps every surface it served alive")
+      .def(py::init<>())
+      .def("lattices", &GlobalSearchWorkspace::lattices)
+      .def("clear", &GlobalSearchWorkspace::clear);
+  // keep_alive<6, 1>: the workspace refers to the surface (its lattices hold
+  // references to it), so the surface lives at least as long as the workspace.
+  m.def("global_search",
+        py::overload_cast<const BPatch&, const Vehicle&, const Vec2&, const Vec2&,
+                          const GlobalSearchOptions&, GlobalSearchWorkspace&>(&global_search),
+        py::arg("surface"), py::arg("vehicle"), py::arg("start"), py::arg("goal"),
+        py::arg("options"), py::arg("workspace"), py::keep_alive<6, 1>(),
+        py::call_guard<py::gil_scoped_release>());
 }
 
 void bind_planner(py::module_& m) {

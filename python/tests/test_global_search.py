@@ -1,0 +1,42 @@
+"""The global search through the bindings with a workspace: the same candidates as a
+search without one, edge costs kept between searches of one surface and vehicle
+(a later search computes none), excluded regions, and the surface kept alive."""
+import gc
+import weakref
+
+import talus
+
+START, GOAL = (557000.0, 4373500.0), (557800.0, 4374200.0)  # about 1.07 km on West Bijou
+
+
+def same(a, b):
+    assert a.status == b.status
+    assert [c.cost_seconds for c in a.candidates] == [c.cost_seconds for c in b.candidates]
+    assert all((x.vertices == y.vertices).all() for x, y in zip(a.candidates, b.candidates))
+
+
+def test_a_workspace_keeps_the_edge_costs_and_changes_no_result(west_bijou, rover):
+    surface = talus.BPatch.interpolate(talus.read_esri_ascii(str(west_bijou)))
+    vehicle = talus.load_vehicle(str(rover))
+    options = talus.GlobalSearchOptions()
+    workspace = talus.GlobalSearchWorkspace()
+    first = talus.global_search(surface, vehicle, START, GOAL, options, workspace)
+    assert first.status == talus.GlobalSearchStatus.OK
+    assert first.edges_evaluated > 0 and workspace.lattices() == 1
+    same(first, talus.global_search(surface, vehicle, START, GOAL, options))
+
+    middle = first.candidates[0].vertices[len(first.candidates[0].vertices) // 2]
+    options.excluded = [talus.ExcludedRegion(tuple(middle), 100.0)]
+    again = talus.global_search(surface, vehicle, START, GOAL, options, workspace)
+    assert again.edges_evaluated == 0
+    same(again, talus.global_search(surface, vehicle, START, GOAL, options))
+    assert not (again.candidates[0].vertices.shape == first.candidates[0].vertices.shape
+                and (again.candidates[0].vertices == first.candidates[0].vertices).all())
+
+    # The workspace keeps the surface alive; clear() drops the lattices.
+    probe = weakref.ref(surface)
+    del surface
+    gc.collect()
+    assert probe() is not None
+    workspace.clear()
+    assert workspace.lattices() == 0

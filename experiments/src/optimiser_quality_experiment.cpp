@@ -529,8 +529,10 @@ void run_optimiser_quality(const ExperimentContext& context) {
   write_text_file(context.output_dir / "runs.csv", runs_csv(cases, reference));
   summary.set("wall_seconds", seconds_since(start), "s");
   report.paragraph("Wall time: " + sig3(seconds_since(start)) + " s.");
-  report.write(context.output_dir, "runs.csv (every plan: travel time, reference, status, "
-               "convergence, time), spread_above_reference.dat", links);
+  report.write(context.output_dir,
+               "runs.csv (every plan: travel time, reference, status, "
+               "convergence, time), spread_above_reference.dat",
+               links);
 }
 
 }  // namespace talus::experiments

@@ -348,7 +348,7 @@ class Lattice {
           const auto [i, j] = coords(a);
           for (std::size_t k = 0; k < half_; ++k) {
             const std::uint32_t b = node_at(i + offsets_[k].first, j + offsets_[k].second);
-            if (b != kNoNode) count += compute(a, b, k) ? 1 : 0;
+            if (b != kNoNode && !excluded_[a] && !excluded_[b]) count += compute(a, b, k) ? 1 : 0;
           }
         }
       }
@@ -381,8 +381,8 @@ class Lattice {
   /// Forward/backward costs of the positive edge a -> b (offset k < half);
   /// +inf both ways at an excluded node.
   std::pair<double, double> ensure(std::uint32_t a, std::uint32_t b, std::size_t k) {
+    if (excluded_[a] || excluded_[b]) return {kInf, kInf};  // not computed: no search needs it
     evaluated_ += compute(a, b, k) ? 1 : 0;
-    if (excluded_[a] || excluded_[b]) return {kInf, kInf};
     const std::size_t slot = static_cast<std::size_t>(a) * half_ + k;
     return {forward_[slot], backward_[slot]};
   }

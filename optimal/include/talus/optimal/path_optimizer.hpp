@@ -76,10 +76,10 @@ struct PathOptimizerOptions {
   PathSolver solver = PathSolver::kIpopt;  ///< of the nested formulation
   /// Of the clamped cubic path (>= 4). 16 with two restarts (below): in
   /// `talus experiment optimiser-quality` (25 fractal seeds) that plan is
-  /// within 1 % of the multistart reference on 17 seeds, against 10 for the
+  /// within 1 % of the multistart reference on 18 seeds, against 12 for the
   /// former default, an 8-point fit with a further start at 16 (median
-  /// excess 0 against 1.26 %, worst 4.7 % against 5.7 %), at a median plan
-  /// time of 1.3 s against 0.9 s; on the README's Mount St. Helens plan it
+  /// excess 0.29 % against 1.07 %, worst 5.3 % against 5.7 %), at a median
+  /// plan time of 1.3 s against 0.9 s; on the README's Mount St. Helens plan it
   /// was 3 % faster (1075 s against 1109 s) and took less time. Winding
   /// candidates get more (adaptive_control_points).
   std::size_t control_points = 16;

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <map>
@@ -13,6 +14,7 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
+#include "talus/core/output_file.hpp"
 
 namespace talus {
 namespace {
@@ -290,11 +292,13 @@ void write_esri_ascii(const ElevationGrid& grid, std::ostream& out, double nodat
 }
 
 void write_esri_ascii(const ElevationGrid& grid, const std::string& path, double nodata_value) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError(path + ": cannot open file for writing");
-  write_esri_ascii(grid, out, nodata_value);
-  out.close();
-  if (!out) throw InputError(path + ": write failed");
+  write_file_atomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out) throw Error(printable(path, 200) + ": cannot open file for writing");
+    write_esri_ascii(grid, out, nodata_value);
+    out.close();
+    if (!out) throw Error(printable(path, 200) + ": write failed (disk full?)");
+  });
 }
 
 }  // namespace talus

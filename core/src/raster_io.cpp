@@ -1,17 +1,16 @@
 #include "talus/core/raster_io.hpp"
 
-#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 #include <sstream>
 #include <system_error>
 
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/input_file.hpp"
+#include "talus/core/output_file.hpp"
 
 #ifdef TALUS_WITH_GDAL
 #include "gdal_raster.hpp"
@@ -34,30 +33,6 @@ bool has_asc_extension(const std::string& path) {
                    "reads ESRI ASCII grids (.asc) only");
 }
 
-#endif
-
-#ifdef TALUS_WITH_GDAL
-/// Runs `write(temporary)` and renames the temporary file over `path`; the
-/// temporary file is removed if anything fails.
-void write_atomically(const std::string& path,
-                      const std::function<void(const std::string&)>& write) {
-  const std::filesystem::path target(path);
-  std::string name = ".";  // hidden, beside the target (same file system: rename is atomic)
-  name += target.filename().string();
-  name += ".partial-";
-  name += std::to_string(::getpid());
-  const std::filesystem::path temporary = target.parent_path() / name;
-  try {
-    write(temporary.string());
-    std::error_code ec;
-    std::filesystem::rename(temporary, target, ec);
-    if (ec) throw InputError(path + ": cannot write the file (" + ec.message() + ")");
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw;
-  }
-}
 #endif
 
 }  // namespace
@@ -179,8 +154,9 @@ void RasterLayers::validate() const {
 void write_geotiff(const RasterLayers& layers, const std::string& path) {
   layers.validate();
 #ifdef TALUS_WITH_GDAL
-  write_atomically(
-      path, [&](const std::string& file) { detail::gdal_write_geotiff(layers, file, path); });
+  write_file_atomically(path, [&](const std::filesystem::path& file) {
+    detail::gdal_write_geotiff(layers, file.string(), path);
+  });
 #else
   no_gdal(printable(path, 200) + ": cannot write a GeoTIFF");
 #endif
@@ -193,8 +169,9 @@ void write_png(const RgbaImage& image, const std::string& path) {
                      std::to_string(image.width) + " x " + std::to_string(image.height));
   }
 #ifdef TALUS_WITH_GDAL
-  write_atomically(path,
-                   [&](const std::string& file) { detail::gdal_write_png(image, file, path); });
+  write_file_atomically(path, [&](const std::filesystem::path& file) {
+    detail::gdal_write_png(image, file.string(), path);
+  });
 #else
   no_gdal(printable(path, 200) + ": cannot write a PNG");
 #endif

@@ -8,6 +8,7 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
+#include "talus/core/output_file.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -57,6 +58,7 @@ std::string format_number(double value) {
 void check_output_is_not_an_input(const std::string& option, const std::string& output,
                                   const std::vector<std::pair<std::string, std::string>>& inputs) {
   namespace fs = std::filesystem;
+  require_regular_output(output, option);
   std::error_code error;
   for (const auto& [input_option, input] : inputs) {
     const bool same =

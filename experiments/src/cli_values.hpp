@@ -15,7 +15,8 @@ namespace talus::experiments {
 /// each allowed, a leading '+' too), or nothing.
 std::optional<std::vector<double>> parse_numbers(const std::string& text, std::size_t count);
 
-/// InputError when `output` (the value of `option`) is the same file as one
+/// InputError when `output` (the value of `option`) exists and is not a
+/// regular file (a device, FIFO, socket or folder), or is the same file as one
 /// of `inputs` ({option, path}): writing it would destroy that input.
 void check_output_is_not_an_input(const std::string& option, const std::string& output,
                                   const std::vector<std::pair<std::string, std::string>>& inputs);

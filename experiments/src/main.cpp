@@ -21,6 +21,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/input_file.hpp"
+#include "talus/core/output_file.hpp"
 #include "talus/core/output_folder.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
@@ -180,6 +181,7 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
                        talus::printable(unknown[0]) + "' (see --help)");
     }
     const std::string name = kind->get_name();
+    talus::require_regular_output(o.output, "-o");  // before the generator's work
     ElevationGrid grid;
     if (name == "fractal") grid = generate_fractal_terrain(o.fractal);
     if (name == "plane") grid = generate_plane(o.plane);
@@ -573,7 +575,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
   CLI::App* simulate = app.add_subcommand(
       "simulate",
       "drive a planned trajectory (the trajectory.csv of `talus plan`) with the rigid-body "
-      "vehicle simulation (4 spring-damper wheels, Dugoff tyres, CVODE BDF; pure pursuit and "
+      "vehicle simulation (4 spring-damper wheels, brush tyres, CVODE BDF; pure pursuit and "
       "speed PI) and report the margins it kept (peak lateral load ratio, minimum normal load, "
       "peak slip) and any failure (rollover, side_slip, loss_of_contact, stall). Writes "
       "DIR/trace.csv and DIR/summary.json; exit code 2 when the goal was not reached");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "ipopt_lock.hpp"
 #include "ipopt_status.hpp"
 #include "local_solvers.hpp"
 
@@ -127,6 +128,7 @@ class PathNlp : public Ipopt::TNLP {
 }  // namespace
 
 SolverRun run_ipopt(TrackedObjective& objective, const BoxProblem& problem) {
+  const auto ipopt_lock = detail::lock_ipopt();  // before the SmartPtrs: released after them
   Ipopt::SmartPtr<PathNlp> nlp = new PathNlp(objective, problem);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   auto options = app->Options();

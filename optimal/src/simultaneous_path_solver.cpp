@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "ipopt_lock.hpp"
 #include "ipopt_status.hpp"
 #include "station_derivatives.hpp"
 #include "talus/core/error.hpp"
@@ -573,6 +574,7 @@ std::vector<std::vector<std::size_t>> probe_groups(
 }
 
 SimultaneousRun run_simultaneous(const SimultaneousProblem& problem) {
+  const auto ipopt_lock = detail::lock_ipopt();  // before the SmartPtrs: released after them
   Ipopt::SmartPtr<SimultaneousNlp> nlp = new SimultaneousNlp(problem);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   auto options = app->Options();

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 
 #include <csignal>
 #include <filesystem>
@@ -238,6 +239,40 @@ TEST(CliRobustness, OutputFoldersHoldOneCompleteResult) {
     EXPECT_EQ(e.path().filename().string().rfind(".talus-staging-", 0), std::string::npos)
         << "staging folder left: " << e.path();
   }
+}
+
+TEST(CliRobustness, OutputsOntoDevicesAndFifosAreRefusedAndLeftAlone) {
+  // A private copy of /dev/null (never the real one: the tests run as root)
+  // and a FIFO. Each -o command refuses them with one line, and the node is
+  // still the same device afterwards (rename(2) would have replaced it).
+  const std::string node = scratch_file("robust_null");
+  fs::remove(node);
+  const bool have_node = ::mknod(node.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0;
+  const std::string fifo = scratch_file("robust_out.fifo");
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::vector<std::pair<std::string, std::string>> targets = {{fifo, "a FIFO"}};
+  if (have_node) targets.push_back({node, "a character device"});
+  for (const auto& [target, kind] : targets) {
+    struct stat before {};
+    ASSERT_EQ(::stat(target.c_str(), &before), 0);
+    const std::string inputs = " --terrain " + quoted(flat()) + " --path " + quoted(path_file()) +
+                               " --vehicle " + quoted(vehicle()) + " -o " + quoted(target);
+    for (const std::string& args :
+         {"profile" + inputs, "limits" + inputs,
+          "terrain generate plane --ncols 5 --nrows 5 -o " + quoted(target)}) {
+      const RunResult r = run_capped(args);
+      EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.err;
+      EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+      EXPECT_NE(r.err.find(kind + ", not a regular file"), std::string::npos) << r.err;
+      struct stat after {};
+      ASSERT_EQ(::stat(target.c_str(), &after), 0) << args << " removed " << target;
+      EXPECT_EQ(after.st_mode, before.st_mode) << args;
+      EXPECT_EQ(after.st_ino, before.st_ino) << args << " replaced " << target;
+      EXPECT_EQ(after.st_rdev, before.st_rdev) << args;
+    }
+  }
+  if (!have_node) GTEST_SKIP() << "mknod needs root: only the FIFO case ran";
 }
 
 TEST(CliRobustness, AnInterruptedPlanExits130AndLeavesThePreviousResult) {

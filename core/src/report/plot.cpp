@@ -1,7 +1,6 @@
 #include "talus/core/report/plot.hpp"
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <string>
@@ -127,24 +126,6 @@ void close_output_file(std::ofstream& out, const std::filesystem::path& path) {
   const bool ok = static_cast<bool>(out);
   out.close();
   if (!ok || out.fail()) throw Error("writing " + path.string() + " failed");
-}
-
-void write_text_file(const std::filesystem::path& path, std::string_view text) {
-  // Beside the target, then renamed over it: an interrupted write never
-  // leaves a truncated file under the final name.
-  std::filesystem::path temporary = path;
-  temporary += ".talus-tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out = open_output_file(temporary);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    close_output_file(out, temporary);
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw Error("writing " + path.string() + " failed (cannot rename into place)");
-  }
 }
 
 }  // namespace talus

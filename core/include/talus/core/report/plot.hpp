@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "talus/core/output_file.hpp"  // write_text_file, for the figures' callers
+
 namespace talus {
 
 /// The terminal line of every figure (GnuplotFigure::canvas), so all share one look.
@@ -49,9 +51,5 @@ std::ofstream open_output_file(const std::filesystem::path& path);
 /// failed (disk full, permissions), so a truncated data file never goes
 /// unnoticed into a figure.
 void close_output_file(std::ofstream& out, const std::filesystem::path& path);
-
-/// Writes `text` to `path` atomically: into a temporary file beside it, then
-/// renamed over it, so no reader ever sees it half-written.
-void write_text_file(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace talus

@@ -269,7 +269,7 @@ TEST(RasterIo, WrittenGeoTiffHasTheGridBandsNamesAndNodata) {
   EXPECT_FALSE(back.grid.valid(1, 1));  // a[5]: column 1, row 1 from the south
   // No temporary file is left beside it.
   for (const auto& entry : fs::directory_iterator(scratch())) {
-    EXPECT_EQ(entry.path().filename().string().find(".partial-"), std::string::npos);
+    EXPECT_EQ(entry.path().filename().string().find(".talus-tmp-"), std::string::npos);
   }
 }
 

@@ -141,6 +141,8 @@ TEST(VehicleSimulation, SteadyCorneringSlidesAtMuG) {
   std::cout << "cornering: peak lateral acceleration " << peak << " m/s^2 = " << peak / mu_g
             << " mu g; " << r.brief_report() << "\n";
   EXPECT_EQ(r.status, SimulationStatus::kSideSlip) << r.message;
+  // A sustained slide: the run ends once the slip has lasted side_slip_time.
+  EXPECT_GE(r.diagnostics.longest_side_slip, o.side_slip_time - 1e-9) << r.brief_report();
   EXPECT_NEAR(peak / mu_g, 1.0, 0.04);
   EXPECT_LE(peak, mu_g * 1.001);
 }
@@ -149,10 +151,14 @@ TEST(VehicleSimulation, SteadyCorneringSlidesAtMuG) {
 /// the vehicle at rest across it for 3 s. Friction 3 (no sliding before
 /// tipping) and a heavily overdamped suspension (damping ratio 5: the chassis
 /// creeps into its equilibrium roll without overshoot, so the test is
-/// quasi-static; the equilibrium does not depend on the damping).
-VehicleSimulationResult tilt(double beta) {
+/// quasi-static; the equilibrium does not depend on the damping). The
+/// suspension is `stiffness_scale` times the UGV's. `strict`: the uphill
+/// wheels' lift ends the run as rollover (the onset, which quasi-statically is
+/// the tip angle); otherwise the default, physical event.
+VehicleSimulationResult tilt(double beta, bool strict = true, double stiffness_scale = 1.0) {
   Vehicle v = ugv();
   v.friction = 3.0;
+  v.body->suspension_stiffness *= stiffness_scale;
   v.body->suspension_damping =
       2.0 * 5.0 * std::sqrt(v.body->suspension_stiffness * v.body->mass / 4.0);
   const double slope = std::tan(beta);
@@ -160,7 +166,101 @@ VehicleSimulationResult tilt(double beta) {
   VehicleSimulationOptions o;
   o.end_time = 3.0;
   o.output_interval = 0.0;
+  o.side_lift_is_rollover = strict;
   return simulate_vehicle(plane, v, resting_state(plane, v, Vec2(0, 0), 0.0), constant(0, 0), o);
+}
+
+TEST(VehicleFailureEvents, RolloverIsAtTheStaticTipAngleNotAtWheelLift) {
+  // A stiff suspension (100 x: 0.16 mm static deflection), so the vehicle's
+  // tip angle is the rigid atan(b/h) to a few hundredths of a degree.
+  const Vehicle v = ugv();
+  const double tip = std::atan(v.half_track / v.cg_height), degree = kPi / 180.0;
+  const VehicleSimulationResult stands = tilt(tip - degree, false, 100.0);
+  const VehicleSimulationResult tips = tilt(tip + degree, false, 100.0);
+  std::cout << "tip angle " << tip / degree << " deg; -1 deg: " << stands.brief_report()
+            << "\n+1 deg: " << tips.brief_report() << "\n";
+  EXPECT_EQ(stands.status, SimulationStatus::kReachedEndTime) << stands.message;
+  EXPECT_EQ(tips.status, SimulationStatus::kRollover) << tips.message;
+  EXPECT_NEAR(stands.diagnostics.roll_limit, tip, 1e-12);
+  EXPECT_NE(tips.message.find("roll relative to the terrain"), std::string::npos) << tips.message;
+  // With the UGV's own soft suspension the uphill wheels lift a few degrees
+  // below the rigid tip angle: at 3 degrees below it they are off the ground
+  // (the onset), yet the vehicle leans on its downhill wheels and stands.
+  const VehicleSimulationResult lifted = tilt(tip - 3.0 * degree, false, 1.0);
+  const VehicleSimulationResult strict = tilt(tip - 3.0 * degree, true, 1.0);
+  EXPECT_EQ(strict.status, SimulationStatus::kRollover) << strict.message;
+  EXPECT_NE(strict.message.find("wheels left the ground"), std::string::npos) << strict.message;
+  if (lifted.status == SimulationStatus::kReachedEndTime) {
+    EXPECT_GT(lifted.diagnostics.side_lift_time, 1.0) << lifted.brief_report();
+  } else {
+    // Past the compliant vehicle's own tip angle: then it is a real rollover.
+    EXPECT_EQ(lifted.status, SimulationStatus::kRollover) << lifted.message;
+  }
+}
+
+/// A vehicle dropped flat onto level ground with every wheel `clearance` clear
+/// of it, moving up at `rise` [m/s] and forward at 2 m/s.
+VehicleSimulationResult drop(double clearance, double rise, const VehicleSimulationOptions& o) {
+  const BPatch flat = surface_of([](double, double) { return 0.0; }, 8.0, 1.0);
+  const Vehicle v = ugv();
+  VehicleState s = resting_state(flat, v, Vec2(-4.0, 0.0), 0.0, 2.0);
+  // resting_state compresses each spring by its static share: undo it, then lift.
+  s.position.z() += v.body->mass * v.gravity / (4.0 * v.body->suspension_stiffness) + clearance;
+  s.velocity.z() = rise;
+  return simulate_vehicle(flat, v, s, constant(0.0, 0.0), o);
+}
+
+TEST(VehicleFailureEvents, AHopIsNotLossOfContactButASustainedFlightIs) {
+  VehicleSimulationOptions o;
+  o.end_time = 1.0;
+  o.output_interval = 0.0;
+  // A 1 cm drop: airborne for sqrt(2 h / g) = 45 ms, never r/2 = 3 cm clear.
+  const VehicleSimulationResult hop = drop(0.01, 0.0, o);
+  EXPECT_EQ(hop.status, SimulationStatus::kReachedEndTime) << hop.message;
+  EXPECT_NEAR(hop.diagnostics.longest_airborne, std::sqrt(2.0 * 0.01 / 9.81), 0.012)
+      << hop.brief_report();
+  // The strict event ends the same run at once.
+  VehicleSimulationOptions strict = o;
+  strict.airborne_time = 0.0;
+  const VehicleSimulationResult at_once = drop(0.01, 0.0, strict);
+  EXPECT_EQ(at_once.status, SimulationStatus::kLossOfContact) << at_once.message;
+  EXPECT_LT(at_once.end_time, 0.011);
+  // A flight of 2 v / g = 0.24 s (apex 7 cm up; the clearance bound raised
+  // out of the way) ends when it has lasted airborne_time.
+  VehicleSimulationOptions high_bound = o;
+  high_bound.airborne_clearance = 1.0;
+  const VehicleSimulationResult flight = drop(0.0, 1.2, high_bound);
+  EXPECT_EQ(flight.status, SimulationStatus::kLossOfContact) << flight.message;
+  EXPECT_NEAR(flight.end_time, o.airborne_time, 0.011) << flight.message;
+  // The same flight with the default bound ends as it rises past half the
+  // wheel radius (3 cm).
+  const VehicleSimulationResult leap = drop(0.0, 1.2, o);
+  EXPECT_EQ(leap.status, SimulationStatus::kLossOfContact) << leap.message;
+  EXPECT_NE(leap.message.find("clear of the ground"), std::string::npos) << leap.message;
+  const double rise_to_clearance =  // 1.2 t - g t^2 / 2 = 0.03
+      (1.2 - std::sqrt(1.2 * 1.2 - 2.0 * 9.81 * 0.03)) / 9.81;
+  EXPECT_NEAR(leap.end_time, rise_to_clearance, 0.005);
+}
+
+TEST(VehicleFailureEvents, AMomentarySideSlipIsNotAFailureButASustainedOneIs) {
+  const BPatch flat = surface_of([](double, double) { return 0.0; }, 12.0, 1.0);
+  const Vehicle v = ugv();
+  VehicleSimulationOptions o;
+  o.end_time = 1.5;
+  o.output_interval = 0.0;
+  // A sideways kick: v = (3, 2) m/s, side slip 0.59 rad > 0.5, which the
+  // tyres take out within a tenth of a second.
+  VehicleState kicked = resting_state(flat, v, Vec2(-6.0, 0.0), 0.0, 3.0);
+  kicked.velocity.y() = 2.0;
+  const VehicleSimulationResult recovers = simulate_vehicle(flat, v, kicked, constant(0, 0), o);
+  EXPECT_EQ(recovers.status, SimulationStatus::kReachedEndTime) << recovers.message;
+  EXPECT_GT(recovers.diagnostics.longest_side_slip, 0.0) << recovers.brief_report();
+  EXPECT_LT(recovers.diagnostics.longest_side_slip, 0.2) << recovers.brief_report();
+  VehicleSimulationOptions strict = o;
+  strict.side_slip_time = 0.0;
+  const VehicleSimulationResult strict_run =
+      simulate_vehicle(flat, v, kicked, constant(0, 0), strict);
+  EXPECT_EQ(strict_run.status, SimulationStatus::kSideSlip) << strict_run.message;
 }
 
 TEST(VehicleSimulation, TiltTableTipsNearAtanBOverH) {
@@ -228,6 +328,7 @@ VehicleSimulationResult crest(double radius, double speed) {
   VehicleSimulationOptions o;
   o.end_time = 10.0;
   o.output_interval = 0.0;
+  o.airborne_time = 0.0;  // the strict event: the first instant all four wheels are off
   return simulate_vehicle(hill, v, s, hold, o);
 }
 

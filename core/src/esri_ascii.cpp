@@ -294,7 +294,7 @@ void write_esri_ascii(const ElevationGrid& grid, std::ostream& out, double nodat
 void write_esri_ascii(const ElevationGrid& grid, const std::string& path, double nodata_value) {
   write_file_atomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream out(temporary, std::ios::binary);
-    if (!out) throw Error(printable(path, 200) + ": cannot open file for writing");
+    if (!out) throw InputError(printable(path, 200) + ": cannot open file for writing");
     write_esri_ascii(grid, out, nodata_value);
     out.close();
     if (!out) throw Error(printable(path, 200) + ": write failed (disk full?)");

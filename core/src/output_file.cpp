@@ -90,11 +90,10 @@ void write_file_atomically(const fs::path& path,
   require_regular_output(path);
   const fs::path target = resolved_target(path);
   std::error_code error;
-  if (target.has_parent_path()) {
-    fs::create_directories(target.parent_path(), error);
-    if (error) {
-      throw Error("cannot create folder " + quoted(target.parent_path()) + ": " + error.message());
-    }
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(folder, error)) {
+    throw InputError(quoted(path) + ": its folder " + quoted(folder) +
+                     " does not exist; create it first");
   }
   const fs::path temporary = temporary_beside(target);
   try {
@@ -116,6 +115,14 @@ void write_file_atomically(const fs::path& path,
 }
 
 void write_text_file(const fs::path& path, std::string_view text) {
+  // Data files of a figure or report go into folders made on the way.
+  if (path.has_parent_path()) {
+    std::error_code error;
+    fs::create_directories(path.parent_path(), error);
+    if (error) {
+      throw Error("cannot create folder " + quoted(path.parent_path()) + ": " + error.message());
+    }
+  }
   write_file_atomically(path, [&](const fs::path& temporary) {
     std::ofstream out(temporary, std::ios::out | std::ios::trunc | std::ios::binary);
     if (!out) {

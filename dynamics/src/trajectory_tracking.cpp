@@ -86,6 +86,22 @@ class Polyline {
   std::vector<double> s_;
 };
 
+/// Sine of the terrain's grade along `forward` (unit, horizontal) at `cg`: the
+/// chord between the ground points one half-wheelbase behind and ahead (the
+/// axles'), each clamped to the map. > 0 uphill.
+double terrain_grade(const BPatch& surface, const Vec2& cg, const Vec2& forward,
+                     double half_wheelbase) {
+  const auto ground = [&](const Vec2& p) {
+    return surface
+        .evaluate(Vec2(std::clamp(p.x(), surface.x_min(), surface.x_max()),
+                       std::clamp(p.y(), surface.y_min(), surface.y_max())))
+        .z;
+  };
+  const double rise = ground(cg + half_wheelbase * forward) - ground(cg - half_wheelbase * forward);
+  const double run = 2.0 * half_wheelbase;
+  return rise / std::sqrt(rise * rise + run * run);
+}
+
 TrackingStatus from_simulation(SimulationStatus s) {
   switch (s) {
     case SimulationStatus::kRollover:
@@ -140,6 +156,8 @@ void TrackingOptions::validate() const {
   require(speed_ki >= 0.0 && speed_ki < inf, "speed_ki", speed_ki, ">= 0");
   require(integral_limit >= 0.0 && integral_limit < inf, "integral_limit", integral_limit, ">= 0");
   require(min_speed > 0.0 && min_speed < inf, "min_speed", min_speed, "positive");
+  require(speed_preview_time >= 0.0 && speed_preview_time < inf, "speed_preview_time",
+          speed_preview_time, ">= 0");
   require(goal_tolerance >= 0.0 && goal_tolerance < inf, "goal_tolerance", goal_tolerance, ">= 0");
   require(time_factor >= 1.0 && time_factor < inf, "time_factor", time_factor, ">= 1");
   require(time_margin >= 0.0 && time_margin < inf, "time_margin", time_margin, ">= 0");
@@ -241,19 +259,24 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
     const double distance = std::max(to_target.norm(), 1e-6);
     c.steering = std::clamp(std::atan(2.0 * wheelbase * std::sin(alpha) / distance),
                             -options.max_steering, options.max_steering);
-    // Speed PI with the weight's feed-forward.
-    const double error = desired(driver->s) - v;
+    // Speed PI at the preview station, with the weight's feed-forward.
+    // The preview station where the plan is slower (braking ahead), else the
+    // projection: an acceleration is not anticipated, which would put the
+    // vehicle above the plan's speed at the station it is on.
+    const double ahead = driver->s + options.speed_preview_time * std::max(0.0, v);
+    const double preview = desired(ahead) < desired(driver->s) ? ahead : driver->s;
+    const double error = desired(preview) - v;
     const double dt = std::max(0.0, t - driver->last_t);
     driver->last_t = t;
     driver->integral = std::clamp(driver->integral + options.speed_ki * error * dt,
                                   -options.integral_limit, options.integral_limit);
     // The planned acceleration v dv/ds at the desired speed (zero on the floor).
-    const double planned = options.speed_scale * path.speed(driver->s);
+    const double planned = options.speed_scale * path.speed(preview);
     const double feed_forward = planned > options.min_speed
-                                    ? planned * options.speed_scale * path.speed_slope(driver->s)
+                                    ? planned * options.speed_scale * path.speed_slope(preview)
                                     : 0.0;
-    c.drive_force =
-        m * (g * forward3.z() + feed_forward + options.speed_kp * error + driver->integral);
+    c.drive_force = m * (g * terrain_grade(surface, cg, forward, vehicle.half_wheelbase) +
+                         feed_forward + options.speed_kp * error + driver->integral);
     return c;
   };
 

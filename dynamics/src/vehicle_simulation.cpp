@@ -24,7 +24,7 @@ namespace talus {
 namespace {
 
 constexpr int kStates = 12;
-constexpr int kRoots = 8;
+constexpr int kRoots = 9;
 enum RootIndex {
   kRootRoll = 0,
   kRootPitch,
@@ -33,7 +33,8 @@ enum RootIndex {
   kRootAllLift,
   kRootSideSlip,
   kRootStall,
-  kRootDomain
+  kRootDomain,
+  kRootClearance
 };
 
 // RAII owners for the SUNDIALS C objects (destroyed in reverse order of declaration).
@@ -70,6 +71,31 @@ Mat3 euler_rotation(double roll, double pitch, double yaw) {
   return r;
 }
 
+/// The brush tyre's lateral force (Pacejka, Tire and Vehicle Dynamics, ch. 3:
+/// parabolic pressure, pure side slip) for cornering stiffness `ca` = C_α [N/rad],
+/// slip tan α and `f_max` the friction the longitudinal force leaves [N]:
+/// F_y = −C_α tan α (1 − x + x²/3) with x = C_α |tan α| / (3 f_max) below full
+/// sliding (x < 1), and −f_max sign(α) from there on. It reaches the friction
+/// circle at the finite slip tan α_sl = 3 f_max / C_α (the planner's envelope,
+/// reached), with a continuous slope there (C¹, which BDF steps through).
+double brush_lateral_force(double ca, double tan_alpha, double f_max) {
+  if (f_max <= 0.0) return 0.0;
+  const double x = ca * std::abs(tan_alpha) / (3.0 * f_max);
+  const double magnitude = x < 1.0 ? ca * std::abs(tan_alpha) * (1.0 - x + x * x / 3.0) : f_max;
+  return -std::copysign(magnitude, tan_alpha);
+}
+
+/// Dugoff's lateral force (Dugoff, Fancher, Segel 1970, pure side slip), with
+/// the same arguments: linear while 2 C_α |tan α| <= f_max, then
+/// f_max (1 − λ/2), λ = f_max / (2 C_α |tan α|): it tends to f_max only as the
+/// slip grows without bound.
+double dugoff_lateral_force(double ca, double tan_alpha, double f_max) {
+  const double linear = 2.0 * ca * std::abs(tan_alpha);
+  if (linear <= f_max) return -ca * tan_alpha;
+  const double lambda = f_max / linear;
+  return -std::copysign(f_max * (1.0 - 0.5 * lambda), tan_alpha);
+}
+
 /// What one evaluation of the model gives besides the derivative.
 struct Evaluation {
   std::array<WheelContact, 4> wheels;
@@ -94,7 +120,16 @@ class Model {
     corners_ = {Vec3(l, b, z), Vec3(l, -b, z), Vec3(-l, b, z), Vec3(-l, -b, z)};
     max_drive_ = m * vehicle.max_accel;
     max_brake_ = m * vehicle.max_decel;
+    const double h = vehicle.cg_height;
+    roll_limit_ = options.roll_limit > 0.0 ? options.roll_limit : std::atan2(b, h);
+    pitch_limit_ = options.pitch_limit > 0.0 ? options.pitch_limit : std::atan2(l, h);
+    clearance_ =
+        options.airborne_clearance > 0.0 ? options.airborne_clearance : 0.5 * body_.wheel_radius;
   }
+
+  double roll_limit() const { return roll_limit_; }
+  double pitch_limit() const { return pitch_limit_; }
+  double clearance() const { return clearance_; }
 
   void set_controls(const VehicleControls& c) {
     controls_ = c;
@@ -184,14 +219,10 @@ class Model {
       if (controls_.drive_force < 0.0) fx *= vx / vreg;
       fx = std::clamp(fx, -limit, limit);
       const double f_max = std::sqrt(std::max(0.0, limit * limit - fx * fx));
-      const double tan_alpha = vy / vreg;
       const double ca = body_.cornering_stiffness * load;
-      double fy = -ca * tan_alpha;
-      const double linear = 2.0 * ca * std::abs(tan_alpha);
-      if (linear > f_max) {
-        const double lambda = f_max / linear;
-        fy = -std::copysign(f_max * (1.0 - 0.5 * lambda), tan_alpha);
-      }
+      const double fy = options_.tyre == TyreModel::kBrush
+                            ? brush_lateral_force(ca, vy / vreg, f_max)
+                            : dugoff_lateral_force(ca, vy / vreg, f_max);
       wc.longitudinal_force = fx;
       wc.lateral_force = fy;
       const Vec3 f = load * normal[i] + fx * tx[i] + fy * ty[i];
@@ -229,9 +260,8 @@ class Model {
 
   /// The root functions (RootIndex order); each decreases through 0 at its event.
   void roots(const double* y, const Evaluation& ev, double* g) const {
-    const double sin_limit = std::sin(options_.roll_limit);
-    g[kRootRoll] = sin_limit - std::abs(ev.roll_sin);
-    g[kRootPitch] = sin_limit - std::abs(ev.pitch_sin);
+    g[kRootRoll] = std::sin(roll_limit_) - std::abs(ev.roll_sin);
+    g[kRootPitch] = std::sin(pitch_limit_) - std::abs(ev.pitch_sin);
     const auto& cm = ev.contact_measure;
     g[kRootLeftLift] =
         options_.side_lift_is_rollover ? std::max(cm[kFrontLeft], cm[kRearLeft]) : 1.0;
@@ -245,6 +275,8 @@ class Model {
         std::abs(vy);
     g[kRootStall] = stall_armed && controls_.drive_force > 0.0 ? vx - options_.stall_speed : 1.0;
     g[kRootDomain] = ev.domain_margin;
+    // Every wheel more than the clearance above the ground: e < -clearance for all.
+    g[kRootClearance] = clearance_ + std::max({cm[0], cm[1], cm[2], cm[3]});
   }
 
   /// Set by the callbacks when they catch an exception.
@@ -258,6 +290,7 @@ class Model {
   std::array<Vec3, 4> corners_;
   double static_deflection_ = 0.0;
   double max_drive_ = 0.0, max_brake_ = 0.0;
+  double roll_limit_ = 0.0, pitch_limit_ = 0.0, clearance_ = 0.0;
   VehicleControls controls_;
 };
 
@@ -379,8 +412,16 @@ void VehicleSimulationOptions::validate() const {
   require(max_step >= 0.0 && max_step < inf, "max_step", max_step, "finite and >= 0");
   require(tyre_min_speed > 0.0 && tyre_min_speed < inf, "tyre_min_speed", tyre_min_speed,
           "positive");
-  require(roll_limit > 0.0 && roll_limit < std::numbers::pi / 2, "roll_limit", roll_limit,
-          "in (0, pi/2)");
+  require(roll_limit >= 0.0 && roll_limit < std::numbers::pi / 2, "roll_limit", roll_limit,
+          "in [0, pi/2) (0 = the vehicle's static tip angle)");
+  require(pitch_limit >= 0.0 && pitch_limit < std::numbers::pi / 2, "pitch_limit", pitch_limit,
+          "in [0, pi/2) (0 = the vehicle's static tip angle)");
+  require(airborne_time >= 0.0 && airborne_time < inf, "airborne_time", airborne_time,
+          "finite and >= 0");
+  require(airborne_clearance >= 0.0 && airborne_clearance < inf, "airborne_clearance",
+          airborne_clearance, "finite and >= 0");
+  require(side_slip_time >= 0.0 && side_slip_time < inf, "side_slip_time", side_slip_time,
+          "finite and >= 0");
   require(side_slip_limit > 0.0 && side_slip_limit < std::numbers::pi / 2, "side_slip_limit",
           side_slip_limit, "in (0, pi/2)");
   require(side_slip_min_speed > 0.0 && side_slip_min_speed < inf, "side_slip_min_speed",
@@ -421,18 +462,22 @@ double VehicleSimulationResult::real_time_factor() const {
 
 std::string VehicleSimulationResult::brief_report() const {
   const VehicleSimulationDiagnostics& d = diagnostics;
-  char line[512];
+  char line[1536];
   std::snprintf(
       line, sizeof line,
       "simulation: %s at t = %.4g s; peak |LTR| %.3f, min normal load %.4g N (%.3f of "
       "static), peak slip angle %.2f deg, peak side slip %.2f deg, peak speed %.3g m/s%s%s\n"
+      "  margins: peak roll %.1f of %.1f deg, peak pitch %.1f of %.1f deg; longest airborne "
+      "%.3g s, longest side slip beyond its limit %.3g s, one side lifted %.3g s\n"
       "  CVODE BDF: %ld steps, %ld RHS, %ld Jacobians, %ld error-test and %ld Newton "
       "failures; %ld restarts, %zu controller calls; %.3g s wall (%.3g x real time)",
       std::string(to_string(status)).c_str(), end_time, d.peak_lateral_load_ratio,
       d.min_normal_load, d.min_normal_load_ratio, degrees(d.peak_slip_angle),
       degrees(d.peak_side_slip), d.peak_speed, message.empty() ? "" : "; ", message.c_str(),
-      d.steps, d.rhs_evaluations, d.jacobian_evaluations, d.error_test_failures,
-      d.nonlinear_failures, d.restarts, d.controller_calls, seconds, real_time_factor());
+      degrees(d.peak_roll), degrees(d.roll_limit), degrees(d.peak_pitch), degrees(d.pitch_limit),
+      d.longest_airborne, d.longest_side_slip, d.side_lift_time, d.steps, d.rhs_evaluations,
+      d.jacobian_evaluations, d.error_test_failures, d.nonlinear_failures, d.restarts,
+      d.controller_calls, seconds, real_time_factor());
   return line;
 }
 
@@ -454,6 +499,8 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
   Model model(surface, vehicle, options);
   VehicleSimulationResult result;
   VehicleSimulationDiagnostics& diag = result.diagnostics;
+  diag.roll_limit = model.roll_limit();
+  diag.pitch_limit = model.pitch_limit();
   const double static_load = vehicle.body->mass * vehicle.gravity / 4.0;
   diag.min_normal_load = std::numeric_limits<double>::infinity();
 
@@ -516,6 +563,7 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
       diag.peak_side_slip = std::max(diag.peak_side_slip, std::abs(s.side_slip));
     diag.peak_speed = std::max(diag.peak_speed, s.speed);
     diag.peak_roll = std::max(diag.peak_roll, std::asin(std::min(1.0, std::abs(ev.roll_sin))));
+    diag.peak_pitch = std::max(diag.peak_pitch, std::asin(std::min(1.0, std::abs(ev.pitch_sin))));
     if (s.state.velocity.x() > 2.0 * options.stall_speed) model.stall_armed = true;
     return s;
   };
@@ -538,6 +586,26 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
     if (CVodeGetNumNonlinSolvConvFails(mem.get(), &value) == CV_SUCCESS)
       diag.nonlinear_failures += value;
   };
+
+  // Conditions that are failures only once they have lasted (airborne, side
+  // slip), judged at the end of every step (steps end at least every control tick).
+  struct Spell {
+    double& longest;      ///< the diagnostics' longest spell [s]
+    double since = -1.0;  ///< start of the current spell [s]; < 0 outside one
+    /// The condition at the end of the step (t_before, t]; returns the spell's
+    /// length, or -1 outside a spell.
+    double update(bool holds, double t_before, double t) {
+      if (!holds) {
+        since = -1.0;
+        return -1.0;
+      }
+      if (since < 0.0) since = t_before;
+      longest = std::max(longest, t - since);
+      return t - since;
+    }
+  };
+  Spell airborne{diag.longest_airborne};
+  Spell slipping{diag.longest_side_slip};
 
   double t = 0.0;
   call_controller(0.0, yv);
@@ -563,6 +631,7 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
         done = true;
         break;
       }
+      const double t_before = t;
       const int flag = CVode(mem.get(), t_tick, y.get(), &t, CV_ONE_STEP);
       diag.cvode_flag = flag;
       if (flag < 0) {
@@ -591,49 +660,73 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
         }
       }
       VehicleSample now = make_sample(t, yv);
-      if (flag == CV_ROOT_RETURN) {
-        std::array<int, kRoots> found{};
-        CVodeGetRootInfo(mem.get(), found.data());
-        std::ostringstream msg;
-        msg << std::fixed;
-        msg.precision(4);
-        // One side lifting while the other carries (almost) nothing is the
-        // vehicle leaving the ground, not tipping over.
-        const double weight = vehicle.body->mass * vehicle.gravity;
-        const auto& w = now.wheels;
-        const double other_side =
-            found[kRootLeftLift] ? std::max(w[kFrontRight].compression, w[kRearRight].compression)
-                                 : std::max(w[kFrontLeft].compression, w[kRearLeft].compression);
-        const bool airborne =
-            (found[kRootLeftLift] || found[kRootRightLift]) &&
-            (w[0].normal_load + w[1].normal_load + w[2].normal_load + w[3].normal_load <
-                 0.01 * weight ||
-             other_side < 0.01 * model.static_deflection());
-        if (found[kRootAllLift] || airborne) {
-          result.status = SimulationStatus::kLossOfContact;
-          msg << (found[kRootAllLift] ? "all four wheels" : "the vehicle")
+      std::array<int, kRoots> found{};
+      if (flag == CV_ROOT_RETURN) CVodeGetRootInfo(mem.get(), found.data());
+      const auto& w = now.wheels;
+      const auto off = [&](std::size_t i) { return w[i].compression < 0.0; };
+      const double vx = now.state.velocity.x(), vy = now.state.velocity.y();
+      const bool over_slip = std::abs(vy) > std::tan(options.side_slip_limit) *
+                                                std::hypot(vx, options.side_slip_min_speed);
+      const double airborne_for = airborne.update(
+          (off(0) && off(1) && off(2) && off(3)) || found[kRootAllLift] != 0, t_before, t);
+      const double slipping_for =
+          slipping.update(over_slip || found[kRootSideSlip] != 0, t_before, t);
+      if ((off(kFrontLeft) && off(kRearLeft)) || (off(kFrontRight) && off(kRearRight)))
+        diag.side_lift_time += t - t_before;
+
+      // A duration of 0 is the strict event: any spell (found by its root, or
+      // already under way at the start, where no root can find it).
+      const bool airborne_event = found[kRootClearance] || airborne_for >= options.airborne_time;
+      const bool slip_event = slipping_for >= options.side_slip_time;
+      // The strict side-lift event (roots inert unless side_lift_is_rollover).
+      const bool side_lift = found[kRootLeftLift] || found[kRootRightLift];
+      // One side lifting while the other carries (almost) nothing is the
+      // vehicle leaving the ground, not tipping over.
+      const double weight = vehicle.body->mass * vehicle.gravity;
+      const double other_side =
+          found[kRootLeftLift] ? std::max(w[kFrontRight].compression, w[kRearRight].compression)
+                               : std::max(w[kFrontLeft].compression, w[kRearLeft].compression);
+      const bool side_lift_airborne =
+          side_lift && (w[0].normal_load + w[1].normal_load + w[2].normal_load + w[3].normal_load <
+                            0.01 * weight ||
+                        other_side < 0.01 * model.static_deflection());
+      std::ostringstream msg;
+      msg << std::fixed;
+      msg.precision(4);
+      if (airborne_event || side_lift_airborne) {
+        result.status = SimulationStatus::kLossOfContact;
+        if (found[kRootClearance])
+          msg << "every wheel was more than " << model.clearance()
+              << " m clear of the ground at t = " << t << " s";
+        else if (side_lift_airborne || options.airborne_time == 0.0)
+          msg << (side_lift_airborne ? "the vehicle" : "all four wheels")
               << " left the ground at t = " << t << " s";
-        } else if (found[kRootRoll] || found[kRootPitch] || found[kRootLeftLift] ||
-                   found[kRootRightLift]) {
-          result.status = SimulationStatus::kRollover;
-          if (found[kRootLeftLift] || found[kRootRightLift])
-            msg << "both " << (found[kRootLeftLift] ? "left" : "right")
-                << " wheels left the ground at t = " << t << " s";
-          else
-            msg << (found[kRootRoll] ? "roll" : "pitch") << " relative to the terrain reached "
-                << degrees(options.roll_limit) << " deg at t = " << t << " s";
-        } else if (found[kRootSideSlip]) {
-          result.status = SimulationStatus::kSideSlip;
-          msg << "side slip reached " << degrees(options.side_slip_limit) << " deg at t = " << t
-              << " s";
-        } else if (found[kRootStall]) {
-          result.status = SimulationStatus::kStall;
-          msg << "stalled (forward speed below " << options.stall_speed
-              << " m/s while driving) at t = " << t << " s";
-        } else {
-          result.status = SimulationStatus::kLeftTerrain;
-          msg << "a wheel left the terrain's domain at t = " << t << " s";
-        }
+        else
+          msg << "airborne (all four wheels off the ground) for " << airborne_for
+              << " s at t = " << t << " s";
+      } else if (found[kRootRoll] || found[kRootPitch] || side_lift) {
+        result.status = SimulationStatus::kRollover;
+        if (side_lift)
+          msg << "both " << (found[kRootLeftLift] ? "left" : "right")
+              << " wheels left the ground at t = " << t << " s";
+        else
+          msg << (found[kRootRoll] ? "roll" : "pitch") << " relative to the terrain reached "
+              << degrees(found[kRootRoll] ? model.roll_limit() : model.pitch_limit())
+              << " deg at t = " << t << " s";
+      } else if (slip_event) {
+        result.status = SimulationStatus::kSideSlip;
+        msg << "side slip beyond " << degrees(options.side_slip_limit) << " deg";
+        if (options.side_slip_time > 0.0) msg << " for " << slipping_for << " s";
+        msg << " at t = " << t << " s";
+      } else if (found[kRootStall]) {
+        result.status = SimulationStatus::kStall;
+        msg << "stalled (forward speed below " << options.stall_speed
+            << " m/s while driving) at t = " << t << " s";
+      } else if (found[kRootDomain]) {
+        result.status = SimulationStatus::kLeftTerrain;
+        msg << "a wheel left the terrain's domain at t = " << t << " s";
+      }
+      if (!msg.str().empty()) {
         msg << ", c.g. at (" << yv[0] << ", " << yv[1] << ", " << yv[2] << ") m, speed "
             << now.speed << " m/s";
         result.message = msg.str();

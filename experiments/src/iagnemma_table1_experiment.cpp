@@ -332,7 +332,7 @@ void run_iagnemma_table1(const ExperimentContext& context) {
           "; 129 × 129 nodes at 0.24 m = two wheel diameters, fractal dimension 2.05, height "
           "scale 4.2 m = 35 wheel diameters, a 1 m undulation over 30 m and six 1 m peaks) with "
           "the paper's UGV (`data/vehicles/iagnemma_ugv.yaml`: 0.27 m long, half-track "
-          "0.124 m, c.g. height 0.06 m, wheels 0.12 m; mass, inertia, suspension and Dugoff "
+          "0.124 m, c.g. height 0.06 m, wheels 0.12 m; mass, inertia, suspension and brush "
           "tyres are ours) from (2, 2) to (28.5, 28.5).")
       .paragraph(
           "Each run is the layered scheme (`navigate_layered`, as `talus navigate` with its "

@@ -30,13 +30,15 @@ namespace talus {
 void require_regular_output(const std::filesystem::path& path, std::string_view option = {});
 
 /// Calls `write(temporary)`, which must create and fill the file `temporary`,
-/// then moves it over `path` as the contract above says. Creates the target's
-/// parent folders. Throws InputError for a refused target and talus::Error (or
-/// whatever `write` throws) for a failed write, after removing the temporary.
+/// then moves it over `path` as the contract above says. The target's folder
+/// must exist. Throws InputError for a refused target or a missing folder and
+/// talus::Error (or whatever `write` throws) for a failed write, after removing
+/// the temporary.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
 
-/// Writes `text` to `path` with write_file_atomically().
+/// Writes `text` to `path` with write_file_atomically(), creating the folders
+/// on the way to it (figure and report data files).
 void write_text_file(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace talus

@@ -11,14 +11,18 @@
 ///   chassis heading to the line rear axle → look-ahead point (both on the
 ///   horizontal plane) and L the wheelbase, δ = atan(2 L sin α / L_d),
 ///   clipped to ±max_steering.
-/// - speed: PI on the error e = v_des − v_x, v_des = speed_scale · v_ref(s)
-///   (at least min_speed until the goal), plus feed-forward of the weight's
-///   component along the chassis (m g sin of its pitch-up, an IMU's reading)
-///   and of the planned acceleration a_p = v_p dv_p/ds (v_p = speed_scale ·
-///   v_ref, 0 while v_p is below the floor):
-///   F = m (g sin θ_up + a_p + kp e + ki ∫e), the integral clamped to
-///   ±integral_limit (anti-windup). The simulation clips F to the vehicle's
-///   drive and brake limits.
+/// - speed: PI on the error e = v_des − v_x, v_des = speed_scale · v_ref(s_p)
+///   at the preview station s_p = s + speed_preview_time · v_x where the plan
+///   is slower there (a braking zone ahead: the force, which acts with the
+///   loop's lag, is then on time), else s_p = s (an acceleration ahead is not
+///   anticipated: it would take the vehicle above the plan at its station);
+///   at least min_speed until the goal; plus feed-forward of the weight's component along the
+///   heading (g sin θ_up, θ_up the terrain's grade along the chassis heading over the wheelbase:
+///   the chord from the rear to the front axle's ground point, not the chassis pitch, which rides
+///   the suspension's oscillation on wheel-scale ground) and of the planned acceleration a_p = v_p
+///   dv_p/ds at s_p (v_p = speed_scale · v_ref, 0 while v_p is below the floor): F = m (g sin θ_up
+///   + a_p + kp e + ki ∫e), the integral clamped to ±integral_limit (anti-windup). The simulation
+///   clips F to the vehicle's drive and brake limits.
 /// The projection s is the arc length along the reference polyline in the
 /// plane, searched forward from the last one (a window of 2 L_d + 1 m), so
 /// that a path that crosses itself is followed in order. The run ends when
@@ -52,6 +56,13 @@ struct TrackingOptions {
   double speed_ki = 1.0;        ///< [1/s²] (>= 0)
   double integral_limit = 2.0;  ///< bound on ki ∫e [m/s²] (>= 0)
   double min_speed = 0.3;       ///< v_des floor before the goal [m/s] (> 0)
+  /// The speed loop's preview [s] (>= 0): where the plan slows within
+  /// speed_preview_time · v ahead, v_des and a_p are the plan's there.
+  /// 0 (the default) = none, the speed at the projection itself: with a 0.3 s
+  /// preview a plan that brakes and accelerates all along (a plan at its
+  /// limit) was driven up to 20 % slower than planned, since every braking
+  /// zone starts early by the preview.
+  double speed_preview_time = 0.0;
   double goal_tolerance = 0.0;  ///< [m] (>= 0); 0 = 2 half_wheelbase
   /// Time limit: time_factor × the planned travel time (at speed_scale, with
   /// the min_speed floor) + time_margin [s]. time_factor >= 1, time_margin >= 0.

@@ -28,11 +28,17 @@
 ///   between the wheels in proportion to their normal loads, F_x = F_d N_i / ΣN
 ///   (a brake command also times v_x / sqrt(v_x² + v_ε²), so that it stops the
 ///   vehicle and does not reverse it), clipped to μ N. The lateral force is
-///   Dugoff's (Dugoff, Fancher, Segel 1970, pure side slip): F_y = −C_α tan α
-///   f(λ), C_α = cornering_stiffness · N, λ = F_max / (2 C_α |tan α|),
-///   f = 1 for λ >= 1 and λ (2 − λ) below, where F_max = sqrt((μN)² − F_x²)
-///   is what the friction circle leaves beside F_x (longitudinal priority), so
-///   that |(F_x, F_y)| <= μ N always. The contact force N n + F_x t_x + F_y t_y
+///   the brush model's (Pacejka, Tire and Vehicle Dynamics, ch. 3, pure side
+///   slip): F_y = −C_α tan α (1 − x + x²/3), x = C_α |tan α| / (3 F_max),
+///   C_α = cornering_stiffness · N, up to full sliding at tan α_sl =
+///   3 F_max / C_α and −F_max sign(α) beyond, where F_max = sqrt((μN)² − F_x²)
+///   is what the friction circle leaves beside F_x. So |(F_x, F_y)| <= μ N
+///   always, and the tyre reaches the friction circle, the planner's
+///   envelope f_t² + f_q² <= μ² R², at a finite slip (14.7° for the UGV's
+///   μ 0.7 and C_α/N 8 in pure side slip), where Dugoff's model only tends to
+///   it (0.88 μN at 10°; TyreModel::kDugoff, for studies: F_y = −C_α tan α
+///   f(λ), λ = F_max / (2 C_α |tan α|), f = 1 for λ >= 1 and λ (2 − λ)
+///   below). The contact force N n + F_x t_x + F_y t_y
 ///   acts at the contact point c_i − d n.
 /// - Inputs: VehicleControls (steering angle, drive/brake force), from a
 ///   controller called at every control tick and held in between (zero-order
@@ -44,19 +50,36 @@
 ///   of a fraction of a millisecond, the suspension's are a few milliseconds,
 ///   while the motion of interest takes seconds; an explicit method would be
 ///   held to the fastest of them by stability, not accuracy.
-/// - Failures are CVODE root-finding events (located to the integrator's
-///   precision, the run ends there): rollover (the chassis's roll or pitch
-///   relative to the terrain normal under the c.g. beyond Options::roll_limit,
-///   or both wheels of one side off the ground), excessive side slip (body
-///   |v_y| > tan(side_slip_limit) sqrt(v_x² + side_slip_min_speed²)), loss of
-///   contact (all four wheels off, or one side off while the four carry less
-///   than 1 % of the weight or the other side's compression is below 1 % of
-///   the static deflection: airborne, not tipping), stall (forward speed below stall_speed
-///   while driving forward, after it had been above twice that), and a wheel
-///   leaving the terrain's domain. A wheel is "off the ground" when e < 0: the
-///   suspension fully extended and still clear of it (a wheel whose load is
-///   momentarily zero while its damper extends, e > 0, is wheel hop, not an
-///   event; it shows in the minimum normal load). A CVODE error is a status,
+/// - Failures (the defaults are physical events; the strict ones of earlier
+///   versions stay available as options for studies). Each onset is a CVODE
+///   root-finding event, located to the integrator's precision; an event
+///   that must last (airborne, side slip) ends the run at the first step
+///   after it has lasted its time (steps are at most one control period):
+///   - rollover: the chassis's roll (pitch) relative to the terrain normal
+///     under the c.g. beyond Options::roll_limit (pitch_limit), by default
+///     the vehicle's own static tip angle atan(b/h) (atan(l/h)): turned that
+///     far about its contact line, the c.g. is over that line on level ground
+///     and past it on any slope it tips down, so no restoring moment is left.
+///     Two wheels of one side off the ground is the onset (wheel lift), not
+///     rollover, unless Options::side_lift_is_rollover (the strict event);
+///   - loss of contact (airborne): all four wheels off the ground for longer
+///     than Options::airborne_time (0.2 s), or every wheel more than
+///     Options::airborne_clearance clear of it (half the wheel radius by
+///     default); a hop over a crest that lands within the time is not an
+///     event (airborne_time 0 is the strict event: the first instant);
+///   - side slip (loss of control): body |v_y| > tan(side_slip_limit)
+///     sqrt(v_x² + side_slip_min_speed²) for longer than
+///     Options::side_slip_time (0.5 s: a skid that the vehicle recovers from
+///     sooner is not a failure; 0 = the strict event);
+///   - stall: forward speed below stall_speed while driving forward, after
+///     it had been above twice that;
+///   - a wheel leaving the terrain's domain.
+///   A wheel is "off the ground" when e < 0: the wheel (massless, hanging at
+///   the spring's free length: the model has no droop travel beyond it) is
+///   clear of the ground, so its tyre has left it. A wheel whose load is
+///   momentarily zero while its damper extends (e > 0) is wheel hop, not off
+///   the ground; it shows in the minimum normal load. Every run reports its
+///   margins (VehicleSimulationDiagnostics). A CVODE error is a status,
 ///   never a crash.
 #include <array>
 #include <cstddef>
@@ -129,6 +152,12 @@ struct VehicleSample {
   double energy = 0.0;
 };
 
+/// The tyres' lateral force model (both keep |(F_x, F_y)| <= μ N).
+enum class TyreModel {
+  kBrush,   ///< brush model: the friction circle at a finite slip (the default)
+  kDugoff,  ///< Dugoff, Fancher, Segel 1970: tends to it as the slip grows (earlier versions)
+};
+
 struct VehicleSimulationOptions {
   double end_time = 10.0;        ///< simulated time [s] (> 0, finite)
   double control_period = 0.01;  ///< controller call interval [s] (> 0)
@@ -140,15 +169,29 @@ struct VehicleSimulationOptions {
   double absolute_tolerance = 1e-8;  ///< CVODE abstol, every component (> 0)
   /// Most internal CVODE steps in the whole run (>= 1); more is status kSolverFailure.
   long max_steps = 2'000'000;
-  double max_step = 0.0;        ///< CVODE hmax [s] (>= 0; 0 = none)
-  double tyre_min_speed = 0.1;  ///< v_ε of the slip regularisation [m/s] (> 0)
-  /// Rollover when |roll| or |pitch| relative to the terrain exceeds this [rad] (0, π/2).
-  double roll_limit = 0.7853981633974483;
-  /// Rollover also when both wheels of one side leave the ground.
-  bool side_lift_is_rollover = true;
+  double max_step = 0.0;               ///< CVODE hmax [s] (>= 0; 0 = none)
+  double tyre_min_speed = 0.1;         ///< v_ε of the slip regularisation [m/s] (> 0)
+  TyreModel tyre = TyreModel::kBrush;  ///< the lateral force model (see the file's comment)
+  /// Rollover when |roll| relative to the terrain exceeds this [rad], [0, π/2);
+  /// 0 (the default) = the vehicle's static tip angle atan(half_track / cg_height).
+  double roll_limit = 0.0;
+  /// The same for |pitch| [rad], [0, π/2); 0 = atan(half_wheelbase / cg_height).
+  double pitch_limit = 0.0;
+  /// Rollover also when both wheels of one side leave the ground (the strict
+  /// event of earlier versions: wheel lift is the onset of rollover, not rollover).
+  bool side_lift_is_rollover = false;
+  /// Loss of contact when all four wheels have been off the ground this long [s] (>= 0;
+  /// 0 = at the first instant, the strict event).
+  double airborne_time = 0.2;
+  /// ... or at once when every wheel is more than this clear of the ground [m] (>= 0;
+  /// 0 = half the wheel radius).
+  double airborne_clearance = 0.0;
   double side_slip_limit = 0.5;      ///< [rad] (0, π/2)
   double side_slip_min_speed = 0.5;  ///< below about this speed side slip is not judged [m/s] (> 0)
-  double stall_speed = 0.05;         ///< [m/s] (> 0)
+  /// Side slip is a failure when beyond side_slip_limit for this long [s] (>= 0; 0 = the
+  /// strict event, at the first instant).
+  double side_slip_time = 0.5;
+  double stall_speed = 0.05;  ///< [m/s] (> 0)
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -156,9 +199,9 @@ struct VehicleSimulationOptions {
 enum class SimulationStatus {
   kReachedEndTime,  ///< ran to end_time without a failure
   kStopped,         ///< the controller asked to stop (VehicleControls::stop)
-  kRollover,        ///< roll/pitch beyond roll_limit, or one side's wheels off the ground
-  kSideSlip,        ///< body side slip beyond side_slip_limit
-  kLossOfContact,   ///< all four wheels off the ground
+  kRollover,        ///< roll/pitch beyond the tip angle (or side lift, if strict)
+  kSideSlip,        ///< body side slip beyond side_slip_limit for side_slip_time
+  kLossOfContact,   ///< airborne: all four wheels off the ground for airborne_time
   kStall,           ///< forward speed fell below stall_speed while driving forward
   kLeftTerrain,     ///< a wheel left the terrain's domain
   kSolverFailure,   ///< CVODE failed (message has its flag and text) or max_steps
@@ -187,6 +230,15 @@ struct VehicleSimulationDiagnostics {
   double peak_side_slip = 0.0;   ///< max |side slip| above side_slip_min_speed [rad]
   double peak_speed = 0.0;       ///< [m/s]
   double peak_roll = 0.0;        ///< max |roll relative to the terrain| [rad]
+  double peak_pitch = 0.0;       ///< max |pitch relative to the terrain| [rad]
+  double roll_limit = 0.0;       ///< the roll limit in force (the tip angle by default) [rad]
+  double pitch_limit = 0.0;      ///< the pitch limit in force [rad]
+  /// Longest spell with all four wheels off the ground [s] (up to the samples' resolution).
+  double longest_airborne = 0.0;
+  /// Longest spell with the side slip beyond side_slip_limit [s].
+  double longest_side_slip = 0.0;
+  /// Time with both wheels of one side off the ground (wheel lift, the onset of rollover) [s].
+  double side_lift_time = 0.0;
   std::size_t controller_calls = 0;
 };
 
@@ -200,7 +252,8 @@ struct VehicleSimulationResult {
   double seconds = 0.0;  ///< wall time [s]
   /// Simulated per wall second (end_time / seconds).
   double real_time_factor() const;
-  /// Two lines: status, time, margins; CVODE counters and the wall time.
+  /// Three lines: status, time and peaks; the failure events' margins; CVODE
+  /// counters and the wall time.
   std::string brief_report() const;
 };
 

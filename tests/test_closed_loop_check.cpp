@@ -28,6 +28,19 @@ Trajectory s_curve(const BPatch& ground, const Vehicle& vehicle) {
   return evaluate_trajectory(ground, vehicle, Curve2::interpolate(points), TrajectoryOptions{});
 }
 
+/// A hairpin on flat ground: an 8 m straight, then half a circle of radius 1.5 m (planned at
+/// its friction limit, sqrt(mu g r) = 3.2 m/s for the UGV) and back, rest to rest.
+Trajectory hairpin(const BPatch& ground, const Vehicle& vehicle) {
+  std::vector<Curve2::Point> points;
+  for (int i = 0; i <= 8; ++i) points.emplace_back(2.0 + i, 6.0);
+  for (int i = 1; i < 12; ++i) {
+    const double a = -M_PI / 2 + M_PI * i / 12.0;
+    points.emplace_back(10.0 + 1.5 * std::cos(a), 7.5 + 1.5 * std::sin(a));
+  }
+  for (int i = 0; i <= 4; ++i) points.emplace_back(10.0 - i, 9.0);
+  return evaluate_trajectory(ground, vehicle, Curve2::interpolate(points), TrajectoryOptions{});
+}
+
 TEST(ClosedLoopCheck, TheReferenceIsTheTrajectorysStationsAndSpeeds) {
   const BPatch ground = BPatch::interpolate(ElevationGrid(13, 13, 1.0, 0.0, 0.0));
   const Trajectory t = s_curve(ground, ugv());
@@ -81,6 +94,76 @@ TEST(ClosedLoopCheck, BadInputIsAnInputError) {
   Vehicle bodiless = vehicle;
   bodiless.body.reset();
   EXPECT_THROW(check_closed_loop(ground, bodiless, t), InputError);
+}
+
+TEST(ClosedLoopCheck, TheSpeedScaleLimitIsBracketedByAReachingAndAFailingDrive) {
+  const BPatch ground = BPatch::interpolate(ElevationGrid(13, 13, 1.0, 0.0, 0.0));
+  const Vehicle vehicle = ugv();
+  const Trajectory t = hairpin(ground, vehicle);
+  ASSERT_TRUE(t.feasible()) << t.message;
+  SpeedScaleLimitOptions options;
+  options.lowest = 0.5;
+  options.highest = 4.0;  // far above the plan's friction limit: the hairpin must fail there
+  options.tolerance = 0.05;
+  const SpeedScaleLimit limit = find_speed_scale_limit(ground, vehicle, t, options);
+  std::cout << limit.brief_report() << "\n";
+  ASSERT_EQ(limit.status, SpeedScaleLimitStatus::kBracketed);
+  EXPECT_LE(limit.smallest_failing_scale - limit.largest_reaching_scale, options.tolerance);
+  EXPECT_GT(limit.smallest_failing_scale, limit.largest_reaching_scale);
+  ASSERT_NE(limit.largest_reaching_drive(), nullptr);
+  ASSERT_NE(limit.bounding_failure(), nullptr);
+  EXPECT_TRUE(limit.largest_reaching_drive()->reached());
+  EXPECT_FALSE(limit.bounding_failure()->reached());
+  // Bisection from the midpoint: ceil(log2(3.5 / 0.05)) = 7 drives, the ends never driven.
+  EXPECT_EQ(limit.drives.size(), 7u);
+  EXPECT_EQ(limit.drives.front().speed_scale, 0.5 * (options.lowest + options.highest));
+  // Every probe agrees with the bracket: reached at or below s*, failed at or above the failure.
+  for (const ClosedLoopDrive& d : limit.drives) {
+    if (d.speed_scale <= limit.largest_reaching_scale) {
+      EXPECT_TRUE(d.reached()) << d.speed_scale;
+    }
+    if (d.speed_scale >= limit.smallest_failing_scale) {
+      EXPECT_FALSE(d.reached()) << d.speed_scale;
+    }
+  }
+}
+
+TEST(ClosedLoopCheck, TheSpeedScaleLimitSaysWhenTheBracketIsTooLowOrTooHigh) {
+  const BPatch ground = BPatch::interpolate(ElevationGrid(13, 13, 1.0, 0.0, 0.0));
+  const Vehicle vehicle = ugv();
+  const Trajectory t = hairpin(ground, vehicle);
+  ASSERT_TRUE(t.feasible()) << t.message;
+  SpeedScaleLimitOptions slow;  // far inside every limit: the highest end is driven and reached
+  slow.lowest = 0.3;
+  slow.highest = 0.5;
+  slow.tolerance = 0.1;
+  const SpeedScaleLimit reaches = find_speed_scale_limit(ground, vehicle, t, slow);
+  EXPECT_EQ(reaches.status, SpeedScaleLimitStatus::kReachesHighest) << reaches.brief_report();
+  EXPECT_EQ(reaches.largest_reaching_scale, 0.5);
+  EXPECT_EQ(reaches.bounding_failure(), nullptr);
+  ASSERT_NE(reaches.largest_reaching_drive(), nullptr);
+  EXPECT_TRUE(reaches.largest_reaching_drive()->reached());
+
+  SpeedScaleLimitOptions
+      fast;  // 2.5 times the hairpin's friction limit speed: the lowest end fails
+  fast.lowest = 2.5;
+  fast.highest = 3.0;
+  fast.tolerance = 0.5;
+  const SpeedScaleLimit fails = find_speed_scale_limit(ground, vehicle, t, fast);
+  EXPECT_EQ(fails.status, SpeedScaleLimitStatus::kFailsLowest) << fails.brief_report();
+  EXPECT_TRUE(std::isnan(fails.largest_reaching_scale));
+  EXPECT_EQ(fails.smallest_failing_scale, 2.5);
+  ASSERT_NE(fails.bounding_failure(), nullptr);
+  EXPECT_FALSE(fails.bounding_failure()->reached());
+  EXPECT_EQ(fails.largest_reaching_drive(), nullptr);
+
+  SpeedScaleLimitOptions bad;
+  bad.lowest = 1.0;
+  bad.highest = 1.0;
+  EXPECT_THROW(find_speed_scale_limit(ground, vehicle, t, bad), InputError);
+  bad.highest = 2.0;
+  bad.tolerance = 0.0;
+  EXPECT_THROW(find_speed_scale_limit(ground, vehicle, t, bad), InputError);
 }
 
 }  // namespace

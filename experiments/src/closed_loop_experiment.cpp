@@ -44,6 +44,7 @@ struct Case {
   double plan_seconds = 0.0;
   ReferenceTrajectory reference;
   std::vector<ClosedLoopDrive> drives;  ///< one per kScales entry when the plan is feasible
+  SpeedScaleLimit limit;                ///< s* by bisection on [0.5, 1.5] (when planned)
   bool planned() const { return !drives.empty(); }
 };
 
@@ -67,6 +68,9 @@ Case run_case(std::string terrain, const BPatch& surface, const Vehicle& vehicle
   ClosedLoopResult driven = check_closed_loop(surface, vehicle, *best, options);
   c.reference = std::move(driven.reference);
   c.drives = std::move(driven.drives);
+  SpeedScaleLimitOptions limit_options;
+  limit_options.tracking = options.tracking;
+  c.limit = find_speed_scale_limit(surface, vehicle, *best, limit_options);
   return c;
 }
 
@@ -93,6 +97,32 @@ double time_ratio(const ClosedLoopDrive& d) {
   return d.reached() ? d.result.travel_time / d.result.planned_time : kNaN;
 }
 
+/// s* for statistics: the bracket's end when it was never left (>= 1.5 counts as 1.5, < 0.5 as
+/// 0.5), so that medians over the battery exist.
+double s_star_value(const SpeedScaleLimit& limit) {
+  return limit.status == SpeedScaleLimitStatus::kFailsLowest ? limit.smallest_failing_scale
+                                                             : limit.largest_reaching_scale;
+}
+
+/// "1.23", ">= 1.5" or "< 0.5".
+std::string s_star_text(const SpeedScaleLimit& limit) {
+  switch (limit.status) {
+    case SpeedScaleLimitStatus::kReachesHighest:
+      return "≥ " + sig3(limit.largest_reaching_scale);
+    case SpeedScaleLimitStatus::kFailsLowest:
+      return "< " + sig3(limit.smallest_failing_scale);
+    case SpeedScaleLimitStatus::kBracketed:
+      break;
+  }
+  return fmt("%.3f", limit.largest_reaching_scale);
+}
+
+/// The failure at the smallest failing scale, "–" when none failed.
+std::string bounding_failure_text(const SpeedScaleLimit& limit) {
+  const ClosedLoopDrive* failure = limit.bounding_failure();
+  return failure != nullptr ? std::string(to_string(failure->result.status)) : "–";
+}
+
 double degrees(double radians) {
   return radians * 180.0 / M_PI;
 }
@@ -117,6 +147,94 @@ Table case_table(const std::vector<Case>& cases) {
     }
   }
   return table;
+}
+
+/// s* of every planned case, one table row each, with the margins of its drive at 100 %.
+Table s_star_table(const std::vector<Case>& cases) {
+  Table table({"terrain", "s*", "smallest failing scale", "bounding failure", "drives", "at 100 %",
+               "peak LTR at 100 %", "min N / (mg/4) at 100 %", "peak side slip at 100 % [deg]",
+               "roll limit margin at 100 % [deg]"});
+  for (const Case& c : cases) {
+    if (!c.planned()) continue;
+    const ClosedLoopDrive& one = c.drives[1];  // kScales[1] == 1.0
+    const VehicleSimulationDiagnostics& m = one.result.simulation.diagnostics;
+    table.row({c.terrain, s_star_text(c.limit),
+               std::isfinite(c.limit.smallest_failing_scale)
+                   ? fmt("%.3f", c.limit.smallest_failing_scale)
+                   : "–",
+               bounding_failure_text(c.limit), std::to_string(c.limit.drives.size()),
+               std::string(to_string(one.result.status)), sig3(m.peak_lateral_load_ratio),
+               sig3(m.min_normal_load_ratio), sig3(degrees(m.peak_side_slip)),
+               sig3(degrees(m.roll_limit - m.peak_roll))});
+  }
+  return table;
+}
+
+/// s* of every planned case, sorted, against the targets 1 and 1.2.
+FigureLink s_star_figure(const std::vector<Case>& cases, const std::vector<Case>& dems,
+                         const fs::path& dir) {
+  GnuplotFigure plot(dir, "s_star");
+  auto data = open_output_file(plot.file(".dat"));
+  PlotItems items;
+  std::size_t block = 0;
+  for (const auto& [group, title] : {std::pair{&cases, std::string("fractal battery (UGV)")},
+                                     std::pair{&dems, std::string("real DEMs (rover)")}}) {
+    std::vector<double> values;
+    for (const Case& c : *group)
+      if (c.planned()) values.push_back(s_star_value(c.limit));
+    std::sort(values.begin(), values.end());
+    data << "# " << title << ": rank s_star (sorted; bracket ends stand for beyond them)\n";
+    for (std::size_t k = 0; k < values.size(); ++k)
+      data << k + 1 << " " << csv_number(values[k]) << "\n";
+    data << "\n\n";
+    items.push_back(gnuplot_string(plot.name(".dat")) + " index " + std::to_string(block++) +
+                    " using 1:2 with linespoints pt 7 title " + gnuplot_string(title));
+  }
+  close_output_file(data, plot.file(".dat"));
+  items.push_back("1 with lines dt 2 lc rgb 'black' title 'planned speed (s = 1)'");
+  items.push_back("1.2 with lines dt 3 lc rgb 'gray40' title 'target median (1.2)'");
+  plot.describe("largest speed scale driven to the goal, per plan, sorted", plot.name(".dat"))
+      .canvas(1000, 600)
+      .title("Largest speed scale s* at which each plan is driven to the goal");
+  plot << "set xlabel 'plan (sorted by s*)'\nset ylabel 's* [-]'\nset grid\n"
+       << "set yrange [0.45:1.55]\nset key bottom right\n";
+  plot.plot(items);
+  plot.render();
+  return {"s* per plan, sorted", plot.name(".png")};
+}
+
+/// Summary numbers of s* over `cases` under `prefix`.
+void summarise_s_star(ExperimentSummary& summary, const std::vector<Case>& cases,
+                      const std::string& prefix) {
+  std::vector<double> values;
+  std::size_t at_least_one = 0;
+  std::array<std::size_t, 8> bounded_by{};
+  for (const Case& c : cases) {
+    if (!c.planned()) continue;
+    values.push_back(s_star_value(c.limit));
+    if (c.limit.status != SpeedScaleLimitStatus::kFailsLowest &&
+        c.limit.largest_reaching_scale >= 1.0)
+      ++at_least_one;
+    if (const ClosedLoopDrive* failure = c.limit.bounding_failure())
+      ++bounded_by[static_cast<std::size_t>(failure->result.status)];
+  }
+  summary.set(prefix + "s_star_cases", static_cast<double>(values.size()), "count",
+              "planned cases whose s* was searched (bisection on [0.5, 1.5] to 0.02)");
+  summary.set(prefix + "s_star_at_least_1", static_cast<double>(at_least_one), "count",
+              "plans driven to the goal at 100 % of their speed and at every bisection probe "
+              "up to s*");
+  summary.set(prefix + "s_star_median", values.empty() ? kNaN : upper_median(values), "1",
+              "upper median of s* (>= 1.5 counts as 1.5, < 0.5 as 0.5)");
+  summary.set(prefix + "s_star_min",
+              values.empty() ? kNaN : *std::min_element(values.begin(), values.end()), "1");
+  if (!prefix.empty()) return;
+  for (const TrackingStatus status :
+       {TrackingStatus::kTimeout, TrackingStatus::kRollover, TrackingStatus::kSideSlip,
+        TrackingStatus::kLossOfContact, TrackingStatus::kStall, TrackingStatus::kLeftTerrain,
+        TrackingStatus::kSolverFailure})
+    summary.set("s_star_bounded_by_" + std::string(to_string(status)),
+                static_cast<double>(bounded_by[static_cast<std::size_t>(status)]), "count",
+                "plans whose smallest failing scale failed so");
 }
 
 /// Peak lateral load ratio and minimum normal load ratio against the speed scale, one line
@@ -327,8 +445,11 @@ void run_closed_loop_plans(const ExperimentContext& context) {
   summary.set("normal_load_worse_at_110_cases", static_cast<double>(load_down), "count");
   summary.set("slip_worse_at_110_cases", static_cast<double>(slip_up), "count");
 
+  summarise_s_star(summary, cases, "");
+  summarise_s_star(summary, dems, "dem_");
+
   const fs::path& out = context.output_dir;
-  std::vector<FigureLink> links = {margin_figure(cases, out)};
+  std::vector<FigureLink> links = {margin_figure(cases, out), s_star_figure(cases, dems, out)};
   // The representative trace: the first plan driven to the goal at 90 %, else the first plan.
   auto representative = std::find_if(cases.begin(), cases.end(), [](const Case& c) {
     return c.planned() && c.drives.front().reached();
@@ -404,6 +525,16 @@ void run_closed_loop_plans(const ExperimentContext& context) {
                  std::to_string(progress_gain) + " of " + std::to_string(planned) +
                  " plans the 110 % drive got more than 1 % of the path further than the 90 % "
                  "one. Progress is the fraction of the path's length reached.")
+      .heading("How fast each plan can be driven: s*")
+      .paragraph(
+          "For every plan, s* is the largest multiple of its profile speed at which the "
+          "simulated UGV still reaches the goal: `find_speed_scale_limit` bisects on [0.5, 1.5] "
+          "from 1.0 down to a bracket of 0.02 (six drives) and names the failure at the "
+          "smallest failing scale. s* ≥ 1 means the plan is drivable as planned; s* close to 1 "
+          "that it is also tight (issue #35's targets: s* ≥ 1 on 24 of 25 plans, median s* ≤ "
+          "1.2). The margins are those of the 100 % drive; the roll limit margin is the "
+          "vehicle's static tip angle less the peak roll.")
+      .table(s_star_table(cases))
       .heading("Per case")
       .table(case_table(cases));
   add_failure_bullets(report, cases);
@@ -431,19 +562,21 @@ void run_closed_loop_plans(const ExperimentContext& context) {
           "(`data/vehicles/rover_sim.yaml`: `rover_rigid.yaml`'s limits with a 300 kg "
           "simulation body of our choosing), from 10 % to 90 % of each DEM's diagonal, traced "
           "every second; quick runs take West Bijou only.")
-      .table(case_table(dems));
+      .table(case_table(dems))
+      .table(s_star_table(dems));
   add_failure_bullets(report, dems);
   double plan_seconds = 0.0, sim_seconds = 0.0;
   for (const std::vector<Case>* group : {&cases, &dems})
     for (const Case& c : *group) {
       plan_seconds += c.plan_seconds;
       for (const ClosedLoopDrive& d : c.drives) sim_seconds += d.result.seconds;
+      for (const ClosedLoopDrive& d : c.limit.drives) sim_seconds += d.result.seconds;
     }
   summary.set("plan_seconds_total", plan_seconds, "s");
   summary.set("simulation_seconds_total", sim_seconds, "s");
   report.paragraph("Wall time: planning " + sig3(plan_seconds) + " s, simulation " +
                    sig3(sim_seconds) + " s, total " + sig3(seconds_since(start)) + " s.");
-  report.write(out, "margins_vs_speed_scale.dat, speed_trace.dat", links);
+  report.write(out, "margins_vs_speed_scale.dat, s_star.dat, speed_trace.dat", links);
 }
 
 }  // namespace talus::experiments

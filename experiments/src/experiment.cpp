@@ -102,7 +102,7 @@ std::vector<Experiment> all_experiments() {
       {"closed-loop-plans",
        "the planner's trajectories for the Iagnemma UGV on the fractal battery driven by the "
        "rigid-body simulation at 90, 100 and 110 % of their profile speed: failures, margins "
-       "kept and travel time against the plan",
+       "kept and travel time against the plan; each plan's largest drivable speed scale s*",
        run_closed_loop_plans},
       {"iagnemma-table1",
        "Table I of Iagnemma-Shimoda-Shiller (IROS 2008): near-optimal (model-based lookahead) "

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "talus/core/error.hpp"
@@ -72,6 +73,99 @@ ClosedLoopResult check_closed_loop(const BPatch& surface, const Vehicle& vehicle
     result.drives.push_back(
         {scale, track_trajectory(surface, vehicle, result.reference, tracking)});
   }
+  return result;
+}
+
+void SpeedScaleLimitOptions::validate() const {
+  if (!(lowest > 0.0) || !std::isfinite(lowest) || !(highest > lowest) || !std::isfinite(highest)) {
+    throw InputError("SpeedScaleLimitOptions: need 0 < lowest < highest (finite), got lowest " +
+                     std::to_string(lowest) + ", highest " + std::to_string(highest));
+  }
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
+    throw InputError("SpeedScaleLimitOptions.tolerance: must be finite and > 0, got " +
+                     std::to_string(tolerance));
+  }
+  tracking.validate();
+}
+
+std::string_view to_string(SpeedScaleLimitStatus status) {
+  switch (status) {
+    case SpeedScaleLimitStatus::kBracketed:
+      return "bracketed";
+    case SpeedScaleLimitStatus::kReachesHighest:
+      return "reaches_highest";
+    case SpeedScaleLimitStatus::kFailsLowest:
+      return "fails_lowest";
+  }
+  return "unknown";
+}
+
+namespace {
+const ClosedLoopDrive* drive_at(const std::vector<ClosedLoopDrive>& drives, double scale) {
+  for (const ClosedLoopDrive& d : drives)
+    if (d.speed_scale == scale) return &d;
+  return nullptr;
+}
+}  // namespace
+
+const ClosedLoopDrive* SpeedScaleLimit::bounding_failure() const {
+  return drive_at(drives, smallest_failing_scale);
+}
+
+const ClosedLoopDrive* SpeedScaleLimit::largest_reaching_drive() const {
+  return drive_at(drives, largest_reaching_scale);
+}
+
+std::string SpeedScaleLimit::brief_report() const {
+  char line[256];
+  const ClosedLoopDrive* failure = bounding_failure();
+  std::snprintf(line, sizeof line, "s* = %.3f (%s; smallest failing scale %.3f%s%s), %zu drives",
+                largest_reaching_scale, std::string(to_string(status)).c_str(),
+                smallest_failing_scale, failure != nullptr ? ": " : "",
+                failure != nullptr ? std::string(to_string(failure->result.status)).c_str() : "",
+                drives.size());
+  return line;
+}
+
+SpeedScaleLimit find_speed_scale_limit(const BPatch& surface, const Vehicle& vehicle,
+                                       const Trajectory& trajectory,
+                                       const SpeedScaleLimitOptions& options) {
+  options.validate();
+  const ReferenceTrajectory reference = reference_trajectory(trajectory);
+  SpeedScaleLimit result;
+  auto drive = [&](double scale) {
+    TrackingOptions tracking = options.tracking;
+    tracking.speed_scale = scale;
+    result.drives.push_back({scale, track_trajectory(surface, vehicle, reference, tracking)});
+    return result.drives.back().reached();
+  };
+  // Invariant: every scale at or below `reach` is taken to reach, every scale at or above
+  // `fail` to fail; the ends are assumptions until driven.
+  double reach = options.lowest, fail = options.highest;
+  bool reach_driven = false, fail_driven = false;
+  while (fail - reach > options.tolerance) {
+    const double mid = 0.5 * (reach + fail);
+    if (drive(mid)) {
+      reach = mid;
+      reach_driven = true;
+    } else {
+      fail = mid;
+      fail_driven = true;
+    }
+  }
+  if (!fail_driven && drive(options.highest)) {
+    result.status = SpeedScaleLimitStatus::kReachesHighest;
+    result.largest_reaching_scale = options.highest;
+    return result;
+  }
+  if (!reach_driven && !drive(options.lowest)) {
+    result.status = SpeedScaleLimitStatus::kFailsLowest;
+    result.smallest_failing_scale = options.lowest;
+    return result;
+  }
+  result.status = SpeedScaleLimitStatus::kBracketed;
+  result.largest_reaching_scale = reach;
+  result.smallest_failing_scale = fail;
   return result;
 }
 

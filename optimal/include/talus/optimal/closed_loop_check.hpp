@@ -5,7 +5,10 @@
 /// speed, to see how much of "at the limit" a point-mass plan keeps once
 /// suspension and tyres are real. The `closed-loop-plans` experiment runs it
 /// on every plan of its battery.
+#include <cstddef>
+#include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
@@ -50,5 +53,59 @@ struct ClosedLoopResult {
 ClosedLoopResult check_closed_loop(const BPatch& surface, const Vehicle& vehicle,
                                    const Trajectory& trajectory,
                                    const ClosedLoopOptions& options = {});
+
+/// Options of find_speed_scale_limit.
+struct SpeedScaleLimitOptions {
+  /// The bracket of speed scales searched: 0 < lowest < highest (finite).
+  double lowest = 0.5;
+  double highest = 1.5;
+  /// Bisection stops when the bracket is at most this wide (> 0): 0.02
+  /// takes six drives on the default bracket.
+  double tolerance = 0.02;
+  /// The tracking controller and simulation; speed_scale is replaced per drive.
+  TrackingOptions tracking;
+  /// Throws InputError naming the field.
+  void validate() const;
+};
+
+enum class SpeedScaleLimitStatus {
+  kBracketed,       ///< reaches at largest_reaching_scale, fails within tolerance above it
+  kReachesHighest,  ///< the drive at `highest` reached the goal: s* >= highest
+  kFailsLowest,     ///< the drive at `lowest` failed: s* < lowest
+};
+/// "bracketed", "reaches_highest", "fails_lowest".
+std::string_view to_string(SpeedScaleLimitStatus status);
+
+/// The largest speed scale s* at which a trajectory is still driven to the
+/// goal, and the failure that bounds it.
+struct SpeedScaleLimit {
+  SpeedScaleLimitStatus status = SpeedScaleLimitStatus::kFailsLowest;
+  /// s*: the largest scale driven to the goal (NaN when kFailsLowest).
+  double largest_reaching_scale = std::numeric_limits<double>::quiet_NaN();
+  /// The smallest scale that failed (+inf when kReachesHighest).
+  double smallest_failing_scale = std::numeric_limits<double>::infinity();
+  /// Every drive in the order driven; the first is at the bracket's midpoint.
+  std::vector<ClosedLoopDrive> drives;
+  /// The drive at smallest_failing_scale (null when kReachesHighest): its
+  /// status and message name the failure that bounds s*.
+  const ClosedLoopDrive* bounding_failure() const;
+  /// The drive at largest_reaching_scale (null when kFailsLowest).
+  const ClosedLoopDrive* largest_reaching_drive() const;
+  /// One line: s*, the bracket and the bounding failure.
+  std::string brief_report() const;
+};
+
+/// Bisection on the speed scale between options.lowest and options.highest:
+/// each step drives `trajectory` at the bracket's midpoint and keeps the half
+/// where reaching turns into failing, until the bracket is within tolerance;
+/// the ends themselves are driven only when the bisection never left them
+/// (to tell s* >= highest and s* < lowest from a bracket). Reaching is
+/// assumed to fail above one scale and hold below it; where it does not (a
+/// faster drive that gets past a hazard a slower one meets), s* is one
+/// reach-to-fail transition, and `drives` shows every probe. InputError as
+/// check_closed_loop.
+SpeedScaleLimit find_speed_scale_limit(const BPatch& surface, const Vehicle& vehicle,
+                                       const Trajectory& trajectory,
+                                       const SpeedScaleLimitOptions& options = {});
 
 }  // namespace talus

@@ -115,7 +115,30 @@ TEST(VehicleSimulation, RestsAtStaticLoad) {
   for (const WheelContact& w : r.final.wheels)
     EXPECT_NEAR(w.normal_load, v.body->mass * v.gravity / 4.0, 1e-4);
   EXPECT_NEAR(r.final.state.yaw, 0.3, 1e-9);
+  // At rest on level ground the tyres carry no tangential force and the wheels the weight.
+  EXPECT_NEAR(r.final.normal_load_ratio, 1.0, 1e-6);
+  EXPECT_NEAR(r.diagnostics.min_total_normal_load_ratio, 1.0, 1e-6);
+  EXPECT_LT(r.diagnostics.peak_friction_utilisation, 1e-6);
   std::cout << r.brief_report() << "\n";
+}
+
+// Parked across a side slope of tan(beta) = 0.5 mu (below sliding): the tyres hold the
+// weight's downhill component, m g sin(beta), against mu m g cos(beta) of friction, so the
+// vehicle uses tan(beta) / mu = 0.5 of its envelope, the point-mass planner's measure.
+TEST(VehicleSimulation, FrictionUtilisationOnASideSlopeIsTanBetaOverMu) {
+  const Vehicle v = ugv();
+  const double slope = 0.5 * v.friction;
+  const BPatch plane = surface_of([slope](double, double y) { return slope * y; }, 3.0, 0.5);
+  VehicleSimulationOptions o;
+  o.end_time = 3.0;
+  const VehicleSimulationResult r =
+      simulate_vehicle(plane, v, resting_state(plane, v, Vec2(0, 0), 0.0), constant(0, 0), o);
+  ASSERT_EQ(r.status, SimulationStatus::kReachedEndTime) << r.message;
+  std::cout << "side slope: utilisation " << r.final.friction_utilisation << ", normal load "
+            << r.final.normal_load_ratio << " m g\n";
+  // The tyres' static slip creeps the vehicle downhill, so a small residual speed remains.
+  EXPECT_NEAR(r.final.friction_utilisation, 0.5, 0.01);
+  EXPECT_NEAR(r.final.normal_load_ratio, 1.0 / std::sqrt(1.0 + slope * slope), 0.01);
 }
 
 // Constant steering, speed slowly rising: the lateral acceleration saturates
@@ -145,6 +168,10 @@ TEST(VehicleSimulation, SteadyCorneringSlidesAtMuG) {
   EXPECT_GE(r.diagnostics.longest_side_slip, o.side_slip_time - 1e-9) << r.brief_report();
   EXPECT_NEAR(peak / mu_g, 1.0, 0.04);
   EXPECT_LE(peak, mu_g * 1.001);
+  // The slide is the envelope used up: utilisation reaches 1 (to the tyres' transient).
+  EXPECT_GT(r.diagnostics.peak_friction_utilisation, 0.98) << r.brief_report();
+  EXPECT_LE(r.diagnostics.peak_friction_utilisation, 1.0 + 1e-12);
+  EXPECT_LE(r.diagnostics.peak_wheel_friction_utilisation, 1.0 + 1e-12);
 }
 
 /// Tilt-table run: a plane of side slope `beta` (rising to the vehicle's left),
@@ -261,6 +288,25 @@ TEST(VehicleFailureEvents, AMomentarySideSlipIsNotAFailureButASustainedOneIs) {
   const VehicleSimulationResult strict_run =
       simulate_vehicle(flat, v, kicked, constant(0, 0), strict);
   EXPECT_EQ(strict_run.status, SimulationStatus::kSideSlip) << strict_run.message;
+}
+
+// Full steering lock at speed on flat ground, driving on: the vehicle spins out, its forward
+// speed falling through zero while it slides sideways. That is loss of control (side slip),
+// not a stall, whose forward speed is lost while the vehicle does not slide.
+TEST(VehicleFailureEvents, ASpinOutIsSideSlipNotStall) {
+  const BPatch flat = surface_of([](double, double) { return 0.0; }, 12.0, 1.0);
+  const Vehicle v = ugv();
+  VehicleSimulationOptions o;
+  o.end_time = 4.0;
+  o.output_interval = 0.01;
+  const VehicleSimulationResult r =
+      simulate_vehicle(flat, v, resting_state(flat, v, Vec2(0.0, -4.0), 0.0, 6.0),
+                       constant(0.6, 0.5 * v.body->mass * v.gravity), o);
+  double min_forward = std::numeric_limits<double>::infinity();
+  for (const VehicleSample& s : r.trace) min_forward = std::min(min_forward, s.state.velocity.x());
+  std::cout << "spin-out: " << r.message << "; lowest forward speed " << min_forward << " m/s\n";
+  EXPECT_EQ(r.status, SimulationStatus::kSideSlip) << r.message;
+  EXPECT_LT(min_forward, o.stall_speed);  // the forward speed was lost, as in a stall
 }
 
 TEST(VehicleSimulation, TiltTableTipsNearAtanBOverH) {

@@ -102,9 +102,13 @@ struct Evaluation {
   std::array<double, 4> contact_measure{};  ///< e: < 0 off the ground, suspension fully extended
   double total_load = 0.0;
   double lateral_load_ratio = 0.0;
-  double roll_sin = 0.0;       ///< body y · terrain normal under the c.g.
-  double pitch_sin = 0.0;      ///< body x · the same
-  double domain_margin = 0.0;  ///< smallest distance of a wheel inside the domain [m]
+  /// |Σ tyre force on the tangent planes| / (μ ΣN): the vehicle's use of its friction
+  /// envelope, the point-mass planner's |(f_t, f_q)| / (μ R); 0 when nothing is loaded.
+  double friction_utilisation = 0.0;
+  double wheel_friction_utilisation = 0.0;  ///< max over loaded wheels of |(F_x, F_y)| / (μ N)
+  double roll_sin = 0.0;                    ///< body y · terrain normal under the c.g.
+  double pitch_sin = 0.0;                   ///< body x · the same
+  double domain_margin = 0.0;               ///< smallest distance of a wheel inside the domain [m]
   double energy = 0.0;
 };
 
@@ -205,6 +209,8 @@ class Model {
     }
 
     Vec3 force(0.0, 0.0, -m * g), moment = Vec3::Zero();
+    Vec3 tyre_force = Vec3::Zero();
+    out.wheel_friction_utilisation = 0.0;
     double left = 0.0, right = 0.0;
     for (std::size_t i = 0; i < 4; ++i) {
       WheelContact& wc = out.wheels[i];
@@ -225,11 +231,16 @@ class Model {
                             : dugoff_lateral_force(ca, vy / vreg, f_max);
       wc.longitudinal_force = fx;
       wc.lateral_force = fy;
+      tyre_force += fx * tx[i] + fy * ty[i];
+      out.wheel_friction_utilisation =
+          std::max(out.wheel_friction_utilisation, std::hypot(fx, fy) / limit);
       const Vec3 f = load * normal[i] + fx * tx[i] + fy * ty[i];
       force += f;
       moment += arm[i].cross(f);
     }
     out.lateral_load_ratio = out.total_load > 0.0 ? (right - left) / out.total_load : 0.0;
+    out.friction_utilisation =
+        out.total_load > 0.0 ? tyre_force.norm() / (mu * out.total_load) : 0.0;
     const Vec2 cg(std::clamp(p.x(), surface_.x_min(), surface_.x_max()),
                   std::clamp(p.y(), surface_.y_min(), surface_.y_max()));
     const SurfacePoint under = surface_.evaluate(cg);
@@ -468,14 +479,16 @@ std::string VehicleSimulationResult::brief_report() const {
       "simulation: %s at t = %.4g s; peak |LTR| %.3f, min normal load %.4g N (%.3f of "
       "static), peak slip angle %.2f deg, peak side slip %.2f deg, peak speed %.3g m/s%s%s\n"
       "  margins: peak roll %.1f of %.1f deg, peak pitch %.1f of %.1f deg; longest airborne "
-      "%.3g s, longest side slip beyond its limit %.3g s, one side lifted %.3g s\n"
+      "%.3g s, longest side slip beyond its limit %.3g s, one side lifted %.3g s; friction "
+      "utilisation %.3f (wheel %.3f), min total normal load %.3f m g\n"
       "  CVODE BDF: %ld steps, %ld RHS, %ld Jacobians, %ld error-test and %ld Newton "
       "failures; %ld restarts, %zu controller calls; %.3g s wall (%.3g x real time)",
       std::string(to_string(status)).c_str(), end_time, d.peak_lateral_load_ratio,
       d.min_normal_load, d.min_normal_load_ratio, degrees(d.peak_slip_angle),
       degrees(d.peak_side_slip), d.peak_speed, message.empty() ? "" : "; ", message.c_str(),
       degrees(d.peak_roll), degrees(d.roll_limit), degrees(d.peak_pitch), degrees(d.pitch_limit),
-      d.longest_airborne, d.longest_side_slip, d.side_lift_time, d.steps, d.rhs_evaluations,
+      d.longest_airborne, d.longest_side_slip, d.side_lift_time, d.peak_friction_utilisation,
+      d.peak_wheel_friction_utilisation, d.min_total_normal_load_ratio, d.steps, d.rhs_evaluations,
       d.jacobian_evaluations, d.error_test_failures, d.nonlinear_failures, d.restarts,
       d.controller_calls, seconds, real_time_factor());
   return line;
@@ -503,6 +516,8 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
   diag.pitch_limit = model.pitch_limit();
   const double static_load = vehicle.body->mass * vehicle.gravity / 4.0;
   diag.min_normal_load = std::numeric_limits<double>::infinity();
+  diag.min_total_normal_load_ratio = std::numeric_limits<double>::infinity();
+  const double weight = vehicle.body->mass * vehicle.gravity;
 
   std::string cvode_message;
   ContextPtr ctx;
@@ -550,6 +565,8 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
     s.speed = s.state.velocity.norm();
     s.side_slip = std::atan2(s.state.velocity.y(), std::abs(s.state.velocity.x()));
     s.energy = ev.energy;
+    s.friction_utilisation = ev.friction_utilisation;
+    s.normal_load_ratio = ev.total_load / weight;
     // Diagnostics.
     if (ev.total_load > 0.0)
       diag.peak_lateral_load_ratio =
@@ -562,6 +579,14 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
     if (std::hypot(s.state.velocity.x(), s.state.velocity.y()) > options.side_slip_min_speed)
       diag.peak_side_slip = std::max(diag.peak_side_slip, std::abs(s.side_slip));
     diag.peak_speed = std::max(diag.peak_speed, s.speed);
+    diag.min_total_normal_load_ratio =
+        std::min(diag.min_total_normal_load_ratio, s.normal_load_ratio);
+    if (s.normal_load_ratio >= kUtilisationLoadFloor) {
+      diag.peak_friction_utilisation =
+          std::max(diag.peak_friction_utilisation, ev.friction_utilisation);
+      diag.peak_wheel_friction_utilisation =
+          std::max(diag.peak_wheel_friction_utilisation, ev.wheel_friction_utilisation);
+    }
     diag.peak_roll = std::max(diag.peak_roll, std::asin(std::min(1.0, std::abs(ev.roll_sin))));
     diag.peak_pitch = std::max(diag.peak_pitch, std::asin(std::min(1.0, std::abs(ev.pitch_sin))));
     if (s.state.velocity.x() > 2.0 * options.stall_speed) model.stall_armed = true;
@@ -671,6 +696,12 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
           (off(0) && off(1) && off(2) && off(3)) || found[kRootAllLift] != 0, t_before, t);
       const double slipping_for =
           slipping.update(over_slip || found[kRootSideSlip] != 0, t_before, t);
+      // Stall is forward speed lost while moving no faster sideways: a vehicle whose
+      // forward speed falls while it slides sideways has spun out, which is side slip,
+      // judged by its own time. The root finds the onset; polling catches a stall that
+      // begins while a slide ends (no root crossing then).
+      const bool stalled_now =
+          model.stall_armed && model.controls().drive_force > 0.0 && vx < options.stall_speed;
       if ((off(kFrontLeft) && off(kRearLeft)) || (off(kFrontRight) && off(kRearRight)))
         diag.side_lift_time += t - t_before;
 
@@ -682,7 +713,6 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
       const bool side_lift = found[kRootLeftLift] || found[kRootRightLift];
       // One side lifting while the other carries (almost) nothing is the
       // vehicle leaving the ground, not tipping over.
-      const double weight = vehicle.body->mass * vehicle.gravity;
       const double other_side =
           found[kRootLeftLift] ? std::max(w[kFrontRight].compression, w[kRearRight].compression)
                                : std::max(w[kFrontLeft].compression, w[kRearLeft].compression);
@@ -718,7 +748,7 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
         msg << "side slip beyond " << degrees(options.side_slip_limit) << " deg";
         if (options.side_slip_time > 0.0) msg << " for " << slipping_for << " s";
         msg << " at t = " << t << " s";
-      } else if (found[kRootStall]) {
+      } else if (!over_slip && (found[kRootStall] || stalled_now)) {
         result.status = SimulationStatus::kStall;
         msg << "stalled (forward speed below " << options.stall_speed
             << " m/s while driving) at t = " << t << " s";
@@ -766,6 +796,7 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
   result.final = result.trace.back();
   accumulate_counters();
   if (!std::isfinite(diag.min_normal_load)) diag.min_normal_load = 0.0;
+  if (!std::isfinite(diag.min_total_normal_load_ratio)) diag.min_total_normal_load_ratio = 0.0;
   diag.min_normal_load_ratio = diag.min_normal_load / static_load;
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -72,7 +72,9 @@
 ///     Options::side_slip_time (0.5 s: a skid that the vehicle recovers from
 ///     sooner is not a failure; 0 = the strict event);
 ///   - stall: forward speed below stall_speed while driving forward, after
-///     it had been above twice that;
+///     it had been above twice that, and not in side slip beyond
+///     side_slip_limit (a vehicle that loses its forward speed while sliding
+///     sideways has spun out: that is side slip, judged by its own time);
 ///   - a wheel leaving the terrain's domain.
 ///   A wheel is "off the ground" when e < 0: the wheel (massless, hanging at
 ///   the spring's free length: the model has no droop travel beyond it) is
@@ -150,7 +152,18 @@ struct VehicleSample {
   double speed = 0.0;      ///< |velocity| [m/s]
   /// Kinetic + gravitational (m g z) + spring energy [J].
   double energy = 0.0;
+  /// |Σ tyre force on the tangent planes| / (μ ΣN) [-]: how much of its friction envelope
+  /// the vehicle uses, the point-mass planner's |(f_t, f_q)| / (μ R); at most 1 (every
+  /// tyre keeps |(F_x, F_y)| <= μ N), 0 with no wheel loaded.
+  double friction_utilisation = 0.0;
+  double normal_load_ratio = 0.0;  ///< ΣN / (m g) [-]: 1 at rest on level ground, 0 airborne
 };
+
+/// Samples carrying less than this fraction of the weight (ΣN < 0.05 m g: the vehicle all
+/// but airborne) do not count towards the peak friction utilisations, where any tyre force
+/// is a large fraction of a vanishing envelope; the airborne and minimum-load diagnostics
+/// report those instants.
+inline constexpr double kUtilisationLoadFloor = 0.05;
 
 /// The tyres' lateral force model (both keep |(F_x, F_y)| <= μ N).
 enum class TyreModel {
@@ -202,7 +215,7 @@ enum class SimulationStatus {
   kRollover,        ///< roll/pitch beyond the tip angle (or side lift, if strict)
   kSideSlip,        ///< body side slip beyond side_slip_limit for side_slip_time
   kLossOfContact,   ///< airborne: all four wheels off the ground for airborne_time
-  kStall,           ///< forward speed fell below stall_speed while driving forward
+  kStall,           ///< forward speed fell below stall_speed while driving forward, not sliding
   kLeftTerrain,     ///< a wheel left the terrain's domain
   kSolverFailure,   ///< CVODE failed (message has its flag and text) or max_steps
 };
@@ -239,6 +252,12 @@ struct VehicleSimulationDiagnostics {
   double longest_side_slip = 0.0;
   /// Time with both wheels of one side off the ground (wheel lift, the onset of rollover) [s].
   double side_lift_time = 0.0;
+  /// max VehicleSample::friction_utilisation over samples with ΣN >= kUtilisationLoadFloor m g.
+  double peak_friction_utilisation = 0.0;
+  /// max over those samples and loaded wheels of |(F_x, F_y)| / (μ N) [-].
+  double peak_wheel_friction_utilisation = 0.0;
+  /// min ΣN / (m g) [-] (0: airborne at some instant).
+  double min_total_normal_load_ratio = 0.0;
   std::size_t controller_calls = 0;
 };
 

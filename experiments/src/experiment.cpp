@@ -9,6 +9,7 @@
 #include "global_search_experiment.hpp"
 #include "hait_experiments.hpp"
 #include "iagnemma_table1_experiment.hpp"
+#include "model_agreement_experiment.hpp"
 #include "optimal_profile_experiment.hpp"
 #include "optimiser_quality_experiment.hpp"
 #include "shiller_gwo_experiment.hpp"
@@ -104,6 +105,12 @@ std::vector<Experiment> all_experiments() {
        "rigid-body simulation at 90, 100 and 110 % of their profile speed: failures, margins "
        "kept and travel time against the plan; each plan's largest drivable speed scale s*",
        run_closed_loop_plans},
+      {"model-agreement",
+       "canonical manoeuvres (flat and banked circle, crest, side slope, straight drive and "
+       "brake) planned for the Iagnemma UGV and driven by the rigid-body simulation at several "
+       "speed scales: planned limit against the closed form, the simulator's friction and "
+       "contact utilisation against the scale, the largest scale still driven",
+       run_model_agreement},
       {"iagnemma-table1",
        "Table I of Iagnemma-Shimoda-Shiller (IROS 2008): near-optimal (model-based lookahead) "
        "against standard potential-field navigation of the paper's UGV on 25 fractal terrains "

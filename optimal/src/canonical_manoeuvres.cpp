@@ -1,0 +1,188 @@
+#include "talus/optimal/canonical_manoeuvres.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+#include "talus/core/elevation_grid.hpp"
+#include "talus/core/error.hpp"
+#include "talus/core/terrain_generators.hpp"
+
+namespace talus {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kCellSize = 0.25;  // [m]: fine enough for the UGV's 0.27 m wheelbase
+constexpr double kCircleRadius = 2.0;
+constexpr double kBankSlope = 0.2;  // tan θ of the banked circle
+constexpr double kHillHeight = 0.4, kHillWidth = 1.0;
+
+GridShape grid(double width, double height) {
+  GridShape g;
+  g.cellsize = kCellSize;
+  g.ncols = static_cast<std::size_t>(std::lround(width / kCellSize)) + 1;
+  g.nrows = static_cast<std::size_t>(std::lround(height / kCellSize)) + 1;
+  return g;
+}
+
+/// Points every ~0.5 m from a to b, a included, b excluded.
+void append_straight(std::vector<Curve2::Point>& points, const Vec2& a, const Vec2& b) {
+  const auto n = std::max<long>(1, std::lround((b - a).norm() / 0.5));
+  for (long i = 0; i < n; ++i) points.push_back(a + (b - a) * (static_cast<double>(i) / n));
+}
+
+/// Lead-in along y = 12 − R from x = 3 to 12, 1.5 laps anticlockwise round (12, 12), run-out
+/// along y = 12 + R back to x = 4: 9 m + 6 π R + 8 m.
+Curve2 circle_path(double& key_from, double& key_to) {
+  const Vec2 centre(12.0, 12.0);
+  const double r = kCircleRadius;
+  std::vector<Curve2::Point> points;
+  append_straight(points, Vec2(3.0, 12.0 - r), Vec2(12.0, 12.0 - r));
+  const int per_lap = 32;
+  for (int i = 0; i < 3 * per_lap / 2; ++i) {
+    const double a = -0.5 * kPi + 2.0 * kPi * i / per_lap;
+    points.push_back(centre + r * Vec2(std::cos(a), std::sin(a)));
+  }
+  append_straight(points, Vec2(12.0, 12.0 + r), Vec2(4.0, 12.0 + r));
+  points.push_back(Vec2(4.0, 12.0 + r));
+  // The middle lap, clear of the entry and exit transients.
+  key_from = 9.0 + 0.25 * 2.0 * kPi * r;
+  key_to = 9.0 + 1.25 * 2.0 * kPi * r;
+  return Curve2::interpolate(points);
+}
+
+/// A straight path along y = y0 from x0 to x1 (collinear points: the interpolant is exact).
+Curve2 straight_path(double x0, double x1, double y0) {
+  std::vector<Curve2::Point> points;
+  append_straight(points, Vec2(x0, y0), Vec2(x1, y0));
+  points.push_back(Vec2(x1, y0));
+  return Curve2::interpolate(points);
+}
+
+void require_finite_drive(const Vehicle& v, CanonicalManoeuvre m) {
+  if (!std::isfinite(v.max_accel) || !std::isfinite(v.max_decel))
+    throw InputError(std::string("make_canonical_manoeuvre(") + std::string(to_string(m)) +
+                     "): the vehicle needs a finite max_accel and max_decel");
+}
+
+}  // namespace
+
+std::string_view to_string(CanonicalManoeuvre manoeuvre) {
+  switch (manoeuvre) {
+    case CanonicalManoeuvre::kFlatCircle:
+      return "flat-circle";
+    case CanonicalManoeuvre::kBankedCircle:
+      return "banked-circle";
+    case CanonicalManoeuvre::kCrest:
+      return "crest";
+    case CanonicalManoeuvre::kSideSlope:
+      return "side-slope";
+    case CanonicalManoeuvre::kStraightDriveBrake:
+      return "straight-drive-brake";
+  }
+  return "unknown";
+}
+
+std::vector<CanonicalManoeuvre> all_canonical_manoeuvres() {
+  return {CanonicalManoeuvre::kFlatCircle, CanonicalManoeuvre::kBankedCircle,
+          CanonicalManoeuvre::kCrest, CanonicalManoeuvre::kSideSlope,
+          CanonicalManoeuvre::kStraightDriveBrake};
+}
+
+ManoeuvreCase make_canonical_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
+  vehicle.validate();
+  const double g = vehicle.gravity, mu = vehicle.friction;
+  switch (manoeuvre) {
+    case CanonicalManoeuvre::kFlatCircle: {
+      PlaneOptions plane;
+      plane.shape = grid(24.0, 24.0);
+      double from = 0.0, to = 0.0;
+      Curve2 path = circle_path(from, to);
+      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)), std::move(path));
+      c.key_from = from;
+      c.key_to = to;
+      c.analytic_limit = std::sqrt(mu * g * kCircleRadius);
+      c.description = "flat ground, a circle of radius 2 m: v = sqrt(mu g R)";
+      return c;
+    }
+    case CanonicalManoeuvre::kBankedCircle: {
+      // A cone z = tan θ ρ round (12, 12): every horizontal circle is banked at θ, and the
+      // lead-in and run-out climb no more steeply than θ (a bowl's walls steepen beyond
+      // what the drive limit climbs from rest).
+      ElevationGrid cone(grid(24.0, 24.0).ncols, grid(24.0, 24.0).nrows, kCellSize, 0.0, 0.0);
+      for (std::size_t j = 0; j < cone.nrows(); ++j)
+        for (std::size_t i = 0; i < cone.ncols(); ++i)
+          cone.set(i, j, kBankSlope * (cone.node_position(i, j) - Vec2(12.0, 12.0)).norm());
+      double from = 0.0, to = 0.0;
+      Curve2 path = circle_path(from, to);
+      ManoeuvreCase c(manoeuvre, BPatch::interpolate(cone), std::move(path));
+      c.key_from = from;
+      c.key_to = to;
+      const double theta = std::atan(kBankSlope);
+      const double denominator = std::cos(theta) - mu * std::sin(theta);
+      if (!(denominator > 0.0))
+        throw InputError("make_canonical_manoeuvre(banked-circle): mu tan(theta) >= 1, no limit");
+      c.analytic_limit =
+          std::sqrt(g * kCircleRadius * (std::sin(theta) + mu * std::cos(theta)) / denominator);
+      c.description =
+          "a horizontal circle of radius 2 m round the apex of the cone z = 0.2 rho (bank "
+          "tan theta = 0.2): v^2 = g R (sin theta + mu cos theta) / (cos theta - mu sin theta)";
+      return c;
+    }
+    case CanonicalManoeuvre::kCrest: {
+      GaussianHillsOptions hills;
+      hills.shape = grid(24.0, 12.0);
+      hills.hills = {GaussianHill{Vec2(12.0, 6.0), kHillHeight, kHillWidth}};
+      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_gaussian_hills(hills)),
+                      straight_path(2.0, 22.0, 6.0));
+      c.analytic_limit = std::sqrt(g * kHillWidth * kHillWidth / kHillHeight);
+      c.key_from = 9.9;  // the hill's top, x = 12
+      c.key_to = 10.1;
+      c.description =
+          "straight over the top of a Gaussian hill 0.4 m high, sigma 1 m (crest radius "
+          "sigma^2 / H = 2.5 m): v = sqrt(g sigma^2 / H)";
+      return c;
+    }
+    case CanonicalManoeuvre::kSideSlope: {
+      if (!(mu > 0.0)) throw InputError("make_canonical_manoeuvre(side-slope): needs mu > 0");
+      PlaneOptions plane;
+      plane.shape = grid(20.0, 12.0);
+      plane.slope = std::atan(0.9 * mu);
+      plane.aspect = 0.5 * kPi;  // rises to the north: the path along x is on the contour
+      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)),
+                      straight_path(3.0, 17.0, 6.0));
+      const double theta = plane.slope;
+      const double bound =
+          g * std::cos(theta) * std::sqrt(mu * mu - std::tan(theta) * std::tan(theta));
+      c.limit_kind = AnalyticLimitKind::kAcceleration;
+      c.analytic_limit = std::min(bound, vehicle.max_accel);
+      c.analytic_brake_limit = std::min(bound, vehicle.max_decel);
+      c.key_from = 0.0;
+      c.key_to = 14.0;
+      c.description =
+          "straight along the contour of a plane with tan theta = 0.9 mu: the tangential "
+          "acceleration is bounded by g cos theta sqrt(mu^2 - tan^2 theta) both ways";
+      return c;
+    }
+    case CanonicalManoeuvre::kStraightDriveBrake: {
+      require_finite_drive(vehicle, manoeuvre);
+      PlaneOptions plane;
+      plane.shape = grid(20.0, 8.0);
+      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)),
+                      straight_path(3.0, 17.0, 4.0));
+      c.limit_kind = AnalyticLimitKind::kAcceleration;
+      c.analytic_limit = std::min(vehicle.max_accel, mu * g);
+      c.analytic_brake_limit = std::min(vehicle.max_decel, mu * g);
+      c.key_from = 0.0;
+      c.key_to = 14.0;
+      c.description =
+          "straight on flat ground, rest to rest: min(max_accel, mu g) and "
+          "min(max_decel, mu g)";
+      return c;
+    }
+  }
+  throw InputError("make_canonical_manoeuvre: unknown manoeuvre");
+}
+
+}  // namespace talus

@@ -26,6 +26,8 @@ PathFrame lift_to_surface(const Vec2& position, const SurfacePoint& surface, con
   f.k_t = g.k_t;
   f.k_q = g.k_q;
   f.k_r = g.k_r;
+  const double d1_norm = d1.norm();
+  f.kappa_planar = (d1.x() * d2.y() - d1.y() * d2.x()) / (d1_norm * d1_norm * d1_norm);
   return f;
 }
 

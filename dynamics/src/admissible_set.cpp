@@ -73,11 +73,12 @@ AdmissibleSet::AdmissibleSet(const Vehicle& vehicle)
     : AdmissibleSet(vehicle_physics(vehicle.model).admissible_set(vehicle)) {}
 
 AdmissibleSet::AdmissibleSet(double gravity, double friction, double max_speed,
-                             const ForceConditions& conditions)
+                             double max_curvature, const ForceConditions& conditions)
     : gravity_(gravity),
       friction_(friction),
       max_speed_(max_speed),
       max_speed_squared_(max_speed * max_speed),
+      max_curvature_(max_curvature),
       conditions_(conditions) {
   // The lateral envelope: every symmetric pair m R ± f_q >= 0 tightens lambda.
   lateral_ratio_ = friction;
@@ -200,6 +201,12 @@ SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
       empty = c.constraint;
     }
   }
+  // Steering is geometry, not a speed: a turn tighter than the vehicle can steer has no
+  // admissible speed, named so unless a force condition already failed there.
+  if (!any_empty && std::abs(s.kappa_planar) > max_curvature_) {
+    any_empty = true;
+    empty = Constraint::kSteering;
+  }
   if (any_empty) {
     out.upper_binding = out.lower_binding = empty;
     lower = kInfinity;
@@ -215,6 +222,7 @@ SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
 }
 
 SquaredSpeedInterval AdmissibleSet::squared_speeds(const StationGeometry& s) const {
+  if (std::abs(s.kappa_planar) > max_curvature_) return {kInfinity, 0.0};  // steering: empty
   SquaredSpeedInterval out = lateral_pair(lateral_ratio_, gravity_, s);
   for (const ForceCondition& c : extra_speed_.all())
     out = intersect(out, speed_condition(c, gravity_, s));

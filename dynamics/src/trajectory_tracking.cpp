@@ -145,13 +145,18 @@ void ReferenceTrajectory::validate() const {
   }
 }
 
+double tracking_steering_limit(const TrackingOptions& options, const Vehicle& vehicle) {
+  if (options.max_steering > 0.0) return options.max_steering;
+  return std::isfinite(vehicle.max_steering) ? vehicle.max_steering : kDefaultTrackingSteering;
+}
+
 void TrackingOptions::validate() const {
   const double inf = std::numeric_limits<double>::infinity();
   require(speed_scale > 0.0 && speed_scale < inf, "speed_scale", speed_scale, "positive");
   require(lookahead_time >= 0.0 && lookahead_time < inf, "lookahead_time", lookahead_time, ">= 0");
   require(min_lookahead >= 0.0 && min_lookahead < inf, "min_lookahead", min_lookahead, ">= 0");
-  require(max_steering > 0.0 && max_steering < std::numbers::pi / 2, "max_steering", max_steering,
-          "in (0, pi/2)");
+  require(max_steering >= 0.0 && max_steering < std::numbers::pi / 2, "max_steering", max_steering,
+          "in [0, pi/2)");
   require(speed_kp >= 0.0 && speed_kp < inf, "speed_kp", speed_kp, ">= 0");
   require(speed_ki >= 0.0 && speed_ki < inf, "speed_ki", speed_ki, ">= 0");
   require(integral_limit >= 0.0 && integral_limit < inf, "integral_limit", integral_limit, ">= 0");
@@ -237,6 +242,7 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
     double last_t = 0.0;
   };
   auto driver = std::make_shared<DriverState>();
+  const double max_steering = tracking_steering_limit(options, vehicle);
   const VehicleController controller = [&, driver](double t, const VehicleState& state) {
     const Mat3 rot = state.rotation();
     const Vec3 forward3 = rot.col(0);
@@ -257,8 +263,8 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
     const double alpha = std::atan2(forward.x() * to_target.y() - forward.y() * to_target.x(),
                                     forward.dot(to_target));
     const double distance = std::max(to_target.norm(), 1e-6);
-    c.steering = std::clamp(std::atan(2.0 * wheelbase * std::sin(alpha) / distance),
-                            -options.max_steering, options.max_steering);
+    c.steering = std::clamp(std::atan(2.0 * wheelbase * std::sin(alpha) / distance), -max_steering,
+                            max_steering);
     // Speed PI at the preview station, with the weight's feed-forward.
     // The preview station where the plan is slower (braking ahead), else the
     // projection: an acceleration is not anticipated, which would put the

@@ -3,6 +3,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -86,7 +88,18 @@ void Vehicle::validate() const {
   require_positive("max_speed", max_speed, true);
   require_positive("max_accel", max_accel, true);
   require_positive("max_decel", max_decel, true);
+  if (!(std::isinf(max_steering) && max_steering > 0.0) &&
+      !(max_steering > 0.0 && max_steering < 0.5 * std::numbers::pi)) {
+    std::ostringstream msg;
+    msg << "Vehicle.max_steering must be in (0, pi/2) rad (or +inf: none), got " << max_steering;
+    throw InputError(msg.str());
+  }
   if (body) body->validate();
+}
+
+double Vehicle::max_curvature() const {
+  if (!std::isfinite(max_steering)) return std::numeric_limits<double>::infinity();
+  return std::tan(max_steering) / (2.0 * half_wheelbase);
 }
 
 Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
@@ -103,6 +116,7 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
                                                "max_speed",
                                                "max_accel",
                                                "max_decel",
+                                               "max_steering",
                                                "mass",
                                                "inertia_roll",
                                                "inertia_pitch",
@@ -118,12 +132,12 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>("");
     if (!kKnown.count(key)) {
-      throw InputError(
-          source + ": unknown key '" + printable(key) +
-          "' (known: model, gravity, friction, cg_height, half_track, "
-          "half_wheelbase, max_speed, max_accel, max_decel; and for the simulation mass, "
-          "inertia_roll, inertia_pitch, inertia_yaw, wheel_radius, "
-          "suspension_stiffness, suspension_damping, cornering_stiffness)");
+      throw InputError(source + ": unknown key '" + printable(key) +
+                       "' (known: model, gravity, friction, cg_height, half_track, "
+                       "half_wheelbase, max_speed, max_accel, max_decel, max_steering; and for the "
+                       "simulation mass, "
+                       "inertia_roll, inertia_pitch, inertia_yaw, wheel_radius, "
+                       "suspension_stiffness, suspension_damping, cornering_stiffness)");
     }
     seen.insert(key);
   }
@@ -140,10 +154,12 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
                      printable(model) + "'");
   }
   std::vector<std::string> required = {"friction", "cg_height", "half_track"};
-  if (v.model == VehicleModel::kRigidBody) required.push_back("half_wheelbase");
+  if (v.model == VehicleModel::kRigidBody || seen.count("max_steering"))
+    required.push_back("half_wheelbase");
   for (const std::string& key : required) {
     if (!seen.count(key)) {
-      throw InputError(source + ": missing required key '" + key + "' for model " + model);
+      throw InputError(source + ": missing required key '" + key + "' for model " + model +
+                       (v.model == VehicleModel::kPointMass ? " with max_steering" : ""));
     }
   }
   const auto number = [&](const char* key, double& field) {
@@ -157,6 +173,7 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   number("max_speed", v.max_speed);
   number("max_accel", v.max_accel);
   number("max_decel", v.max_decel);
+  number("max_steering", v.max_steering);
   if (seen.count("mass")) {
     double mass = 0.0;
     number("mass", mass);

@@ -34,7 +34,8 @@ AdmissibleSet VehiclePhysics::admissible_set(const Vehicle& vehicle) const {
                              "' breaks the ForceCondition contract (admissible_set.hpp)");
     }
   }
-  return AdmissibleSet(vehicle.gravity, vehicle.friction, vehicle.max_speed, conditions);
+  return AdmissibleSet(vehicle.gravity, vehicle.friction, vehicle.max_speed,
+                       vehicle.max_curvature(), conditions);
 }
 
 const VehiclePhysics& vehicle_physics(VehicleModel model) {

@@ -21,6 +21,8 @@ std::string_view to_string(Constraint constraint) {
       return "drive";
     case Constraint::kBrake:
       return "brake";
+    case Constraint::kSteering:
+      return "steering";
   }
   return "unknown";
 }

@@ -213,8 +213,8 @@ nlohmann::json terrain_traversability(const TraversabilityRequest& request) {
   out["untraversable_nodes"] = map.untraversable_nodes;
   out["blocked_nodes"] = map.blocked_nodes;
   out["min_speed_limit"] = std::isfinite(lowest) ? nlohmann::json(lowest) : nullptr;
-  out["binding_codes"] = {"none",      "sliding",   "tipover", "contact",
-                          "max_speed", "pitchover", "drive",   "brake"};
+  out["binding_codes"] = {"none",      "sliding", "tipover", "contact", "max_speed",
+                          "pitchover", "drive",   "brake",   "steering"};
   out["fit"] = request.smoothing ? "smoothing" : "interpolating";
   out["map_seconds"] = map.seconds;
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

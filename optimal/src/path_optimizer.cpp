@@ -343,8 +343,10 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
   const double search_spacing = search_station_spacing(options, terrain, vehicle);
   const std::size_t limit = control_point_limit(options, polyline.size());
   std::size_t control_points = options.control_points;
+  bool shrinking = false;  // once a fit turned too tightly, only coarser fits are tried
   while (true) {
     InitialPath out;
+    Constraint binding = Constraint::kNone;
     out.control_points = control_points;
     out.curve.emplace(fit_clamped_cubic(
         resample_polyline(polyline, std::max<std::size_t>(10 * control_points, polyline.size())),
@@ -362,6 +364,7 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
       out.failure = objective.profile().message;
       out.on_data = stays_on_data(terrain, *out.curve, out.stations);
       if (!out.admissible()) {
+        binding = objective.profile().infeasible_binding;
         std::size_t k = std::min(objective.profile().infeasible_station, out.stations - 1);
         // A start or end speed the path cannot connect to (reported at its
         // end) is caused where the vehicle must keep its speed up: the
@@ -384,7 +387,17 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
       out.failure = e.what();
     }
     if (out.admissible() || (stop_on_data && out.on_data)) return out;
-    if (!options.adaptive_control_points || control_points >= limit) return out;
+    if (!options.adaptive_control_points) return out;
+    // A fit that turns tighter than the vehicle steers (often where the lattice path
+    // leaves the start or meets the goal at a kink) needs fewer control points, not more:
+    // more follow the kink more closely.
+    if (binding == Constraint::kSteering || shrinking) {
+      if (control_points <= 4) return out;
+      shrinking = true;
+      control_points = std::max<std::size_t>(4, control_points * 2 / 3);
+      continue;
+    }
+    if (control_points >= limit) return out;
     control_points = std::min(limit, control_points + control_points / 2);
   }
 }

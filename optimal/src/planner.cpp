@@ -384,8 +384,19 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
     if (added.empty() && !widened) break;
     global.excluded.insert(global.excluded.end(), added.begin(), added.end());
     ++result.feedback_rounds;
-    GlobalSearchResult next = global_search(*problem.surface, problem.vehicle, problem.start,
-                                            problem.goal, global, workspace);
+    // Discs round failures next to the start (or goal) can close every edge out of its
+    // node, which global_search refuses as bad input: for the loop that is a closed corridor.
+    const auto search_again = [&] {
+      try {
+        return global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global,
+                             workspace);
+      } catch (const InputError&) {
+        GlobalSearchResult closed;
+        closed.status = GlobalSearchStatus::kUnreachable;
+        return closed;
+      }
+    };
+    GlobalSearchResult next = search_again();
     edges_evaluated += next.edges_evaluated;
     if (next.status == GlobalSearchStatus::kUnreachable) {
       // The new or widened discs closed the last corridor (a pass narrower
@@ -400,8 +411,7 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
         r->radius = std::min(r->radius, 0.5 * spacing);
       }
       if (shrunk) {
-        next = global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global,
-                             workspace);
+        next = search_again();
         edges_evaluated += next.edges_evaluated;
       }
     }

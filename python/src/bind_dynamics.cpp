@@ -64,10 +64,12 @@ py::dict vehicle_to_dict(const Vehicle& v) {
   d["friction"] = v.friction;
   d["cg_height"] = v.cg_height;
   d["half_track"] = v.half_track;
-  if (v.model == VehicleModel::kRigidBody) d["half_wheelbase"] = v.half_wheelbase;
+  if (v.model == VehicleModel::kRigidBody || std::isfinite(v.max_steering))
+    d["half_wheelbase"] = v.half_wheelbase;
   if (std::isfinite(v.max_speed)) d["max_speed"] = v.max_speed;
   if (std::isfinite(v.max_accel)) d["max_accel"] = v.max_accel;
   if (std::isfinite(v.max_decel)) d["max_decel"] = v.max_decel;
+  if (std::isfinite(v.max_steering)) d["max_steering"] = v.max_steering;
   if (v.body) {  // every key, defaults included: the dict says exactly what the simulation uses
     const VehicleBody& b = *v.body;
     d["mass"] = b.mass;
@@ -217,7 +219,8 @@ void bind_dynamics(py::module_& m) {
                   "A vehicle from the keys of a vehicle file, checked by the file reader: "
                   "unknown or missing keys and bad values raise InputError naming `source`.")
       .def("to_dict", &vehicle_to_dict,
-           "The keys of a vehicle file (unlimited max_speed/max_accel/max_decel omitted; "
+           "The keys of a vehicle file (unlimited max_speed/max_accel/max_decel/max_steering "
+           "omitted; "
            "the body keys mass, inertia_*, wheel_radius, suspension_*, cornering_stiffness "
            "when the vehicle has a body).")
       .def_readwrite("model", &Vehicle::model)
@@ -229,6 +232,9 @@ void bind_dynamics(py::module_& m) {
       .def_readwrite("max_speed", &Vehicle::max_speed)
       .def_readwrite("max_accel", &Vehicle::max_accel)
       .def_readwrite("max_decel", &Vehicle::max_decel)
+      .def_readwrite("max_steering", &Vehicle::max_steering)
+      .def("max_curvature", &Vehicle::max_curvature,
+           "tan(max_steering) / (2 half_wheelbase) [1/m]; inf without a steering limit")
       .def("validate", &Vehicle::validate)
       .def("__repr__", [](const Vehicle& v) {
         return "talus.Vehicle.from_dict(" + py::repr(vehicle_to_dict(v)).cast<std::string>() + ")";

@@ -40,6 +40,9 @@ struct PathFrame {
   double kappa_n = 0.0;                    ///< normal curvature [1/m]
   double kappa_g = 0.0;                    ///< geodesic curvature [1/m]
   double k_t = 0.0, k_q = 0.0, k_r = 0.0;  ///< vertical unit vector in (t, q, r)
+  /// Signed curvature of the planar (horizontal) curve [1/m], > 0 turning left: what a
+  /// steering angle turns in plan (Vehicle::max_steering).
+  double kappa_planar = 0.0;
 };
 
 /// Frame of the lifted curve at a point with planar position `position`,

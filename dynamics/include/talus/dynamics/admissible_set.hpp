@@ -156,7 +156,7 @@ class AdmissibleSet {
 
  private:
   friend class VehiclePhysics;
-  AdmissibleSet(double gravity, double friction, double max_speed,
+  AdmissibleSet(double gravity, double friction, double max_speed, double max_curvature,
                 const ForceConditions& conditions);
   TangentialForceRange traction_range(double normal, double f_q, double half_width) const;
 
@@ -169,6 +169,9 @@ class AdmissibleSet {
   };
 
   double gravity_ = 9.81, friction_ = 0.0, max_speed_ = 0.0, max_speed_squared_ = 0.0;
+  /// Vehicle::max_curvature(): a station turning tighter (|κ_planar| above it) has no admissible
+  /// speed (binding kSteering); +inf without a steering limit.
+  double max_curvature_ = std::numeric_limits<double>::infinity();
   double lateral_ratio_ = 0.0;
   ForceConditions conditions_, speed_, extra_speed_, traction_;
   /// One constraint of speed_limits(), with the shape of its speed

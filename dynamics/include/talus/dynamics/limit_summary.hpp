@@ -19,8 +19,8 @@
 
 namespace talus {
 
-/// Number of enumerators of talus::Constraint (kNone … kBrake).
-inline constexpr std::size_t kConstraintCount = 8;
+/// Number of enumerators of talus::Constraint (kNone … kSteering).
+inline constexpr std::size_t kConstraintCount = 9;
 
 /// Index of `constraint` in arrays of kConstraintCount entries.
 constexpr std::size_t constraint_index(Constraint constraint) {

@@ -39,6 +39,10 @@
 
 namespace talus {
 
+/// The steering limit of a vehicle file without max_steering [rad]: a typical
+/// car-like front axle.
+inline constexpr double kDefaultTrackingSteering = 0.6;
+
 /// A planned trajectory: planar points and the planned speed at each.
 struct ReferenceTrajectory {
   std::vector<Vec2> points;   ///< (x, y) [m], at least 2, consecutive points distinct
@@ -51,7 +55,9 @@ struct TrackingOptions {
   double speed_scale = 1.0;     ///< multiplies the planned speed (> 0): 0.9, 1.0, 1.1, ...
   double lookahead_time = 0.4;  ///< L_d per unit speed [s] (>= 0)
   double min_lookahead = 0.0;   ///< [m] (>= 0); 0 = 4 half_wheelbase (two wheelbases)
-  double max_steering = 0.6;    ///< [rad] (0, π/2)
+  /// [rad] [0, π/2); 0 (the default) = the vehicle's max_steering, or
+  /// kDefaultTrackingSteering for a vehicle without one.
+  double max_steering = 0.0;
   double speed_kp = 4.0;        ///< [1/s] (>= 0)
   double speed_ki = 1.0;        ///< [1/s²] (>= 0)
   double integral_limit = 2.0;  ///< bound on ki ∫e [m/s²] (>= 0)
@@ -116,6 +122,10 @@ struct TrackingResult {
 /// segment, at the first point's planned speed × speed_scale. InputError for
 /// invalid input (reference, options, a vehicle without body, a start off
 /// the domain); the run's failures are statuses.
+/// The tracker's steering limit: options.max_steering when > 0, else the
+/// vehicle's max_steering when it has one, else kDefaultTrackingSteering [rad].
+double tracking_steering_limit(const TrackingOptions& options, const Vehicle& vehicle);
+
 TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
                                 const ReferenceTrajectory& reference,
                                 const TrackingOptions& options = {});

@@ -73,11 +73,23 @@ struct Vehicle {
   /// [max_decel] brake limit [m/s^2] (> 0, a positive number); omitted =
   /// unlimited. Bounds f_t >= -max_decel, the braking force per unit mass.
   double max_decel = std::numeric_limits<double>::infinity();
+  /// [max_steering] front-wheel steering limit δ_max [rad] (in (0, π/2)); omitted =
+  /// unlimited. A kinematic bicycle of wheelbase 2 l turns no tighter than
+  /// max_curvature() = tan δ_max / (2 l): the planner's paths keep the curvature of
+  /// their horizontal projection within it (a station beyond it is untraversable, binding
+  /// `steering`), and the simulation's tracker, which steers in plan, at most δ_max.
+  /// In plan, not on the surface (the geodesic curvature): a straight line in plan
+  /// lifted over wheel-scale bumps with a cross slope has a geodesic curvature beyond
+  /// the UGV's 2.53 1/m on the fractal battery, which the chassis, spanning the bumps,
+  /// does not steer. A point_mass vehicle with max_steering needs half_wheelbase.
+  double max_steering = std::numeric_limits<double>::infinity();
   /// Mass, inertia, suspension and tyres (the keys of VehicleBody); empty when
   /// the file has no `mass`. Only the simulation needs it; the speed limits
   /// ignore it.
   std::optional<VehicleBody> body;
 
+  /// tan(max_steering) / (2 half_wheelbase) [1/m]; +inf without a steering limit.
+  double max_curvature() const;
   /// Throws InputError naming the field, its value and what is expected.
   void validate() const;
   /// Field by field (NaN fields compare unequal).

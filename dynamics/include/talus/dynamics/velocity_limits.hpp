@@ -49,17 +49,22 @@ enum class Constraint : std::uint8_t {
   kPitchover,  ///< longitudinal tip-over (rigid body): |f_t| <= (l/h) R
   kDrive,      ///< drive limit max_accel
   kBrake,      ///< brake limit max_decel
+  kSteering,   ///< the path turns tighter than the steering limit: |κ_planar| >
+               ///< Vehicle::max_curvature()
 };
 /// Lower-case name as used in CSV files: none, sliding, tipover, contact,
-/// max_speed, pitchover, drive, brake.
+/// max_speed, pitchover, drive, brake, steering.
 std::string_view to_string(Constraint constraint);
 
 /// The path geometry one station's limits depend on (see surface_path.hpp).
 struct StationGeometry {
   double kappa_n = 0.0, kappa_g = 0.0;     ///< [1/m]
   double k_t = 0.0, k_q = 0.0, k_r = 1.0;  ///< vertical unit vector in (t, q, r)
+  /// Curvature of the path's horizontal projection [1/m]: the steering limit's measure
+  /// (PathFrame::kappa_planar).
+  double kappa_planar = 0.0;
   static StationGeometry from(const PathFrame& frame) {
-    return {frame.kappa_n, frame.kappa_g, frame.k_t, frame.k_q, frame.k_r};
+    return {frame.kappa_n, frame.kappa_g, frame.k_t, frame.k_q, frame.k_r, frame.kappa_planar};
   }
 };
 

@@ -84,7 +84,8 @@ struct PathOptimizerOptions {
   /// candidates get more (adaptive_control_points).
   std::size_t control_points = 16;
   /// Grow M by half (up to max_control_points) while the fit to the
-  /// candidate has no admissible profile: winding candidates need more.
+  /// candidate has no admissible profile: winding candidates need more (a fit
+  /// that turns tighter than the vehicle steers gets fewer: fit_initial_path).
   /// Simultaneous formulation: only while the fit leaves the measured data
   /// (it starts from a fit without an admissible profile).
   bool adaptive_control_points = true;
@@ -287,7 +288,10 @@ std::size_t control_point_limit(const PathOptimizerOptions& options, std::size_t
 /// least-squares fit (to the polyline resampled at 10 points per control
 /// point, ends exact) with options.control_points, grown by half up to
 /// control_point_limit() (when adaptive_control_points) while its profile
-/// at the search's stations is not admissible.
+/// at the search's stations is not admissible; once a fit fails on the
+/// vehicle's steering limit (Constraint::kSteering), shrunk by a third (down
+/// to 4) instead, while it still fails: a fit that turns too tightly follows
+/// the lattice's kinks, and more control points follow them closer.
 struct InitialPath {
   std::optional<Curve2> curve;     ///< the last fit tried; empty if none was lifted
   std::size_t control_points = 0;  ///< its M

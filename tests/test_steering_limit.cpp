@@ -1,0 +1,134 @@
+// The steering limit (Vehicle::max_steering, issue #35 item 4): the vehicle file's key and its
+// checks, the admissible set's `steering` binding at exactly tan(δ_max) / (2 l), a path that
+// needs more steering than the vehicle has is refused by evaluate_trajectory (and one within it
+// is not), and the simulation's tracker steers within the vehicle's own limit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "talus/bspline/bpatch.hpp"
+#include "talus/core/elevation_grid.hpp"
+#include "talus/core/error.hpp"
+#include "talus/dynamics/trajectory_tracking.hpp"
+#include "talus/dynamics/vehicle.hpp"
+#include "talus/dynamics/velocity_limits.hpp"
+#include "talus/optimal/trajectory.hpp"
+
+namespace talus {
+namespace {
+
+/// The Iagnemma UGV with a 0.6 rad steering limit (2.53 1/m at its 0.27 m wheelbase).
+Vehicle ugv() {
+  Vehicle v = load_vehicle(std::string(TALUS_DATA_DIR) + "/vehicles/iagnemma_ugv.yaml");
+  v.max_steering = 0.6;
+  return v;
+}
+
+TEST(SteeringLimit, TheVehicleFileGivesItAndItsCurvature) {
+  const Vehicle v = ugv();
+  EXPECT_NEAR(v.max_curvature(), std::tan(0.6) / 0.27, 1e-12);  // 2.53 1/m
+  const std::string base = "model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n";
+  EXPECT_TRUE(std::isinf(parse_vehicle(base, "t").max_curvature()));  // none: as before
+  EXPECT_EQ(parse_vehicle(base + "half_wheelbase: 1.2\nmax_steering: 0.5\n", "s").max_steering,
+            0.5);
+  const Vehicle steered =
+      parse_vehicle(base + "half_wheelbase: 1.2\nmax_steering: 0.5\n", "steered");
+  EXPECT_NEAR(steered.max_curvature(), std::tan(0.5) / 2.4, 1e-12);
+  // A point mass with a steering limit needs its wheelbase.
+  try {
+    parse_vehicle(base + "max_steering: 0.5\n", "nowheelbase.yaml");
+    FAIL() << "accepted max_steering without half_wheelbase";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("half_wheelbase"), std::string::npos) << e.what();
+  }
+  for (const char* bad : {"0", "-0.3", "1.5708", "2", ".nan"})
+    EXPECT_THROW(parse_vehicle(base + "half_wheelbase: 1\nmax_steering: " + bad + "\n", "bad"),
+                 InputError)
+        << bad;
+}
+
+TEST(SteeringLimit, AStationTurningTighterIsUntraversableNamedSteering) {
+  const Vehicle v = ugv();
+  const double k = v.max_curvature();
+  // Flat ground, slow enough for friction: just inside the limit the turn has a speed limit,
+  // just beyond it none, whichever way it turns.
+  const SpeedLimits inside = speed_limits(v, {0.0, 0.999 * k, 0.0, 0.0, 1.0, 0.999 * k});
+  EXPECT_TRUE(inside.traversable);
+  EXPECT_NEAR(inside.v_max, std::sqrt(v.friction * v.gravity / (0.999 * k)), 1e-9);
+  for (const double sign : {1.0, -1.0}) {
+    const StationGeometry turn{0.0, sign * 1.001 * k, 0.0, 0.0, 1.0, sign * 1.001 * k};
+    const SpeedLimits beyond = speed_limits(v, turn);
+    EXPECT_FALSE(beyond.traversable);
+    EXPECT_EQ(beyond.upper_binding, Constraint::kSteering);
+    EXPECT_EQ(beyond.v_max, 0.0);
+    EXPECT_TRUE(admissible_squared_speeds(v, turn).empty());
+    // The measure is the curvature in plan: the same geodesic curvature from a straight line
+    // in plan over a bump with a cross slope is not steering.
+    EXPECT_TRUE(speed_limits(v, {0.0, sign * 1.001 * k, 0.0, 0.0, 1.0, 0.0}).traversable);
+  }
+  EXPECT_EQ(to_string(Constraint::kSteering), "steering");
+  Vehicle free = v;
+  free.max_steering = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(speed_limits(free, {0.0, 0.1, 0.0, 0.0, 1.0, 10.0 * k}).traversable);
+}
+
+/// Half a circle of radius r on flat ground between two straights.
+Curve2 u_turn(double r) {
+  std::vector<Curve2::Point> points;
+  for (int i = 0; i <= 4; ++i) points.emplace_back(1.0 + 0.5 * i, 4.0);
+  for (int i = 1; i < 16; ++i) {
+    const double a = -M_PI / 2 + M_PI * i / 16.0;
+    points.emplace_back(3.0 + r * std::cos(a), 4.0 + r + r * std::sin(a));
+  }
+  for (int i = 0; i <= 4; ++i) points.emplace_back(3.0 - 0.5 * i, 4.0 + 2.0 * r);
+  return Curve2::interpolate(points);
+}
+
+TEST(SteeringLimit, APathNeedingMoreSteeringIsRefused) {
+  const BPatch flat = BPatch::interpolate(ElevationGrid(9, 9, 1.0, 0.0, 0.0));
+  const Vehicle v = ugv();  // minimum turning radius 0.395 m
+  const Trajectory wide = evaluate_trajectory(flat, v, u_turn(0.6), TrajectoryOptions{});
+  EXPECT_TRUE(wide.feasible()) << wide.message;
+  const Trajectory tight = evaluate_trajectory(flat, v, u_turn(0.3), TrajectoryOptions{});
+  ASSERT_FALSE(tight.feasible());
+  EXPECT_EQ(tight.profile.infeasible_binding, Constraint::kSteering);
+  EXPECT_NE(tight.message.find("steering"), std::string::npos) << tight.message;
+  Vehicle free = v;  // without a steering limit the same turn is driven slowly
+  free.max_steering = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(evaluate_trajectory(flat, free, u_turn(0.3), TrajectoryOptions{}).feasible());
+}
+
+TEST(SteeringLimit, TheTrackerSteersWithinTheVehiclesLimit) {
+  Vehicle v = ugv();
+  TrackingOptions o;
+  EXPECT_EQ(tracking_steering_limit(o, v), 0.6);
+  v.max_steering = 0.35;
+  EXPECT_EQ(tracking_steering_limit(o, v), 0.35);
+  v.max_steering = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(tracking_steering_limit(o, v), kDefaultTrackingSteering);
+  o.max_steering = 0.2;  // an explicit option wins
+  EXPECT_EQ(tracking_steering_limit(o, v), 0.2);
+  // Driven round a turn too tight for a 0.35 rad limit, the tracker never commands more.
+  const BPatch flat = BPatch::interpolate(ElevationGrid(9, 9, 1.0, 0.0, 0.0));
+  v.max_steering = 0.35;
+  ReferenceTrajectory r;
+  for (int i = 0; i <= 40; ++i) {
+    const double a = -M_PI / 2 + M_PI * i / 40.0;
+    r.points.emplace_back(3.0 + 0.5 * std::cos(a), 4.5 + 0.5 * std::sin(a));
+    r.speed.push_back(0.5);
+  }
+  TrackingOptions drive;
+  drive.simulation.output_interval = 0.01;
+  const TrackingResult result = track_trajectory(flat, v, r, drive);
+  double peak = 0.0;
+  for (const VehicleSample& s : result.simulation.trace)
+    peak = std::max(peak, std::abs(s.controls.steering));
+  EXPECT_GT(peak, 0.3) << result.brief_report();  // the turn needed the whole lock
+  EXPECT_LE(peak, 0.35 + 1e-12);
+}
+
+}  // namespace
+}  // namespace talus

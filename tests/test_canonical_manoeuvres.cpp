@@ -22,34 +22,6 @@ Vehicle ugv() {
   return load_vehicle(std::string(TALUS_DATA_DIR) + "/vehicles/iagnemma_ugv.yaml");
 }
 
-/// Planar arc length of every station of `t`.
-std::vector<double> planar_arc_length(const Trajectory& t) {
-  std::vector<double> s(t.limits->size(), 0.0);
-  for (std::size_t k = 1; k < s.size(); ++k) {
-    const Vec3 a = t.limits->frame(k - 1).point, b = t.limits->frame(k).point;
-    s[k] = s[k - 1] + std::hypot(b.x() - a.x(), b.y() - a.y());
-  }
-  return s;
-}
-
-struct KeySection {
-  double v_min = 1e300, v_max = 0.0;  ///< planned speed [m/s]
-  double a_min = 0.0, a_max = 0.0;    ///< planned tangential acceleration [m/s²]
-};
-
-KeySection key_section(const ManoeuvreCase& m, const Trajectory& t) {
-  const std::vector<double> s = planar_arc_length(t);
-  KeySection key;
-  for (std::size_t k = 0; k < s.size(); ++k) {
-    if (s[k] < m.key_from || s[k] > m.key_to) continue;
-    key.v_min = std::min(key.v_min, t.profile.v[k]);
-    key.v_max = std::max(key.v_max, t.profile.v[k]);
-    key.a_min = std::min(key.a_min, t.profile.a[k]);
-    key.a_max = std::max(key.a_max, t.profile.a[k]);
-  }
-  return key;
-}
-
 class CanonicalManoeuvreTest : public ::testing::TestWithParam<CanonicalManoeuvre> {};
 
 // The point-mass closed forms, met by the rigid-body UGV's profile on the interpolated terrain:
@@ -60,17 +32,19 @@ TEST_P(CanonicalManoeuvreTest, TheProfileMeetsTheClosedForm) {
   const ManoeuvreCase m = make_canonical_manoeuvre(GetParam(), vehicle);
   const Trajectory t = evaluate_trajectory(m.surface, vehicle, m.path, TrajectoryOptions{});
   ASSERT_TRUE(t.feasible()) << t.message;
-  const KeySection key = key_section(m, t);
+  const ManoeuvreKeySection key = measure_key_section(m, t);
   std::cout << to_string(GetParam()) << ": analytic " << m.analytic_limit << " / "
-            << m.analytic_brake_limit << "; key section v " << key.v_min << " .. " << key.v_max
-            << ", a " << key.a_min << " .. " << key.a_max << "\n";
+            << m.analytic_brake_limit << "; key section (" << key.stations << " stations) v "
+            << key.v_min << " .. " << key.v_max << ", a -" << key.decel_max << " .. "
+            << key.accel_max << "\n";
+  ASSERT_GT(key.stations, 0u);
   if (m.limit_kind == AnalyticLimitKind::kSpeed) {
     const double tolerance = GetParam() == CanonicalManoeuvre::kCrest ? 0.015 : 0.01;
     EXPECT_NEAR(key.v_min / m.analytic_limit, 1.0, tolerance);
     EXPECT_NEAR(key.v_max / m.analytic_limit, 1.0, tolerance);
   } else {
-    EXPECT_NEAR(key.a_max, m.analytic_limit, 1e-6 * m.analytic_limit);
-    EXPECT_NEAR(key.a_min, -m.analytic_brake_limit, 1e-6 * m.analytic_brake_limit);
+    EXPECT_NEAR(key.accel_max, m.analytic_limit, 1e-6 * m.analytic_limit);
+    EXPECT_NEAR(key.decel_max, m.analytic_brake_limit, 1e-6 * m.analytic_brake_limit);
   }
 }
 
@@ -133,6 +107,8 @@ TEST(CanonicalManoeuvres, AVehicleWithoutWhatAManoeuvreNeedsIsAnInputError) {
   EXPECT_NO_THROW(make_canonical_manoeuvre(CanonicalManoeuvre::kBankedCircle, slippery));
   slippery.friction = 6.0;
   EXPECT_THROW(make_canonical_manoeuvre(CanonicalManoeuvre::kBankedCircle, slippery), InputError);
+  const ManoeuvreCase flat = make_canonical_manoeuvre(CanonicalManoeuvre::kFlatCircle, ugv());
+  EXPECT_THROW(measure_key_section(flat, Trajectory{}), InputError);  // no profile
 }
 
 INSTANTIATE_TEST_SUITE_P(All, CanonicalManoeuvreTest,

@@ -15,6 +15,7 @@
 #include "talus/dynamics/trajectory_tracking.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
+#include "talus/optimal/path_optimizer.hpp"
 #include "talus/optimal/trajectory.hpp"
 
 namespace talus {
@@ -43,6 +44,13 @@ TEST(SteeringLimit, TheVehicleFileGivesItAndItsCurvature) {
     FAIL() << "accepted max_steering without half_wheelbase";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("half_wheelbase"), std::string::npos) << e.what();
+  }
+  // Another missing key is not blamed on a steering limit the file does not have.
+  try {
+    parse_vehicle("model: point_mass\ncg_height: 0.5\nhalf_track: 0.6\n", "nofriction.yaml");
+    FAIL() << "accepted a file without friction";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("max_steering"), std::string::npos) << e.what();
   }
   for (const char* bad : {"0", "-0.3", "1.5708", "2", ".nan"})
     EXPECT_THROW(parse_vehicle(base + "half_wheelbase: 1\nmax_steering: " + bad + "\n", "bad"),
@@ -99,6 +107,29 @@ TEST(SteeringLimit, APathNeedingMoreSteeringIsRefused) {
   Vehicle free = v;  // without a steering limit the same turn is driven slowly
   free.max_steering = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(evaluate_trajectory(flat, free, u_turn(0.3), TrajectoryOptions{}).feasible());
+}
+
+// A lattice-like corridor that leaves the start with a right-angle kink: the 16-point fit
+// follows the kink tighter than the UGV steers; the fit then gets fewer control points (not
+// more, as for a winding corridor) until it turns within the limit.
+TEST(SteeringLimit, AFitTurningTooTightlyGetsFewerControlPoints) {
+  const BPatch flat = BPatch::interpolate(ElevationGrid(13, 13, 1.0, 0.0, 0.0));
+  std::vector<Vec2> corridor = {Vec2(1.0, 1.0), Vec2(1.24, 1.0)};
+  for (int i = 1; i <= 10; ++i) corridor.emplace_back(1.24, 1.0 + 0.24 * i);
+  PathOptimizerOptions options;
+  Vehicle free = ugv();
+  free.max_steering = std::numeric_limits<double>::infinity();
+  const InitialPath loose = fit_initial_path(flat, free, corridor, options);
+  ASSERT_TRUE(loose.admissible()) << loose.failure;
+  EXPECT_EQ(loose.control_points, options.control_points);
+  const InitialPath steered = fit_initial_path(flat, ugv(), corridor, options);
+  EXPECT_TRUE(steered.admissible()) << steered.failure;
+  EXPECT_LT(steered.control_points, options.control_points);
+  // The 16-point fit itself needed more steering than the UGV has.
+  options.adaptive_control_points = false;
+  const InitialPath fixed = fit_initial_path(flat, ugv(), corridor, options);
+  EXPECT_FALSE(fixed.admissible());
+  EXPECT_NE(fixed.failure.find("steering"), std::string::npos) << fixed.failure;
 }
 
 TEST(SteeringLimit, TheTrackerSteersWithinTheVehiclesLimit) {

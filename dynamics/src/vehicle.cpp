@@ -88,8 +88,8 @@ void Vehicle::validate() const {
   require_positive("max_speed", max_speed, true);
   require_positive("max_accel", max_accel, true);
   require_positive("max_decel", max_decel, true);
-  if (!(std::isinf(max_steering) && max_steering > 0.0) &&
-      !(max_steering > 0.0 && max_steering < 0.5 * std::numbers::pi)) {
+  const bool unlimited = max_steering == std::numeric_limits<double>::infinity();
+  if (!unlimited && !(max_steering > 0.0 && max_steering < 0.5 * std::numbers::pi)) {
     std::ostringstream msg;
     msg << "Vehicle.max_steering must be in (0, pi/2) rad (or +inf: none), got " << max_steering;
     throw InputError(msg.str());
@@ -158,8 +158,9 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
     required.push_back("half_wheelbase");
   for (const std::string& key : required) {
     if (!seen.count(key)) {
+      const bool for_steering = key == "half_wheelbase" && v.model == VehicleModel::kPointMass;
       throw InputError(source + ": missing required key '" + key + "' for model " + model +
-                       (v.model == VehicleModel::kPointMass ? " with max_steering" : ""));
+                       (for_steering ? " with max_steering" : ""));
     }
   }
   const auto number = [&](const char* key, double& field) {

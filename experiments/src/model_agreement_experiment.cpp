@@ -37,6 +37,7 @@ struct Drive {
 };
 
 struct Outcome {
+  CanonicalManoeuvre manoeuvre = CanonicalManoeuvre::kFlatCircle;
   std::string name, description;
   AnalyticLimitKind kind = AnalyticLimitKind::kSpeed;
   double analytic = kNaN, analytic_brake = kNaN;
@@ -45,7 +46,7 @@ struct Outcome {
   SpeedScaleLimit limit;                        ///< speed kind only (bisection)
   /// The utilisation that the manoeuvre's limit is about: friction, or contact on the crest.
   double utilisation(const Drive& d) const {
-    return name == "crest" ? d.contact_utilisation : d.friction_utilisation;
+    return manoeuvre == CanonicalManoeuvre::kCrest ? d.contact_utilisation : d.friction_utilisation;
   }
   /// The smallest scale whose drive used its whole envelope (NaN if none did).
   double saturating_scale() const {
@@ -64,6 +65,7 @@ Outcome run_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle,
                       const std::vector<double>& scales, double tolerance) {
   const ManoeuvreCase m = make_canonical_manoeuvre(manoeuvre, vehicle);
   Outcome out;
+  out.manoeuvre = manoeuvre;
   out.name = std::string(to_string(manoeuvre));
   out.description = m.description;
   out.kind = m.limit_kind;
@@ -71,25 +73,12 @@ Outcome run_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle,
   out.analytic_brake = m.analytic_brake_limit;
   const Trajectory t = evaluate_trajectory(m.surface, vehicle, m.path, TrajectoryOptions{});
   if (!t.feasible()) return out;
-  // The key section, by planar arc length.
-  double s = 0.0, v_sum = 0.0, a_max = 0.0, a_min = 0.0;
-  std::size_t n = 0;
-  for (std::size_t k = 0; k < t.limits->size(); ++k) {
-    if (k > 0) {
-      const Vec3 a = t.limits->frame(k - 1).point, b = t.limits->frame(k).point;
-      s += std::hypot(b.x() - a.x(), b.y() - a.y());
-    }
-    if (s < m.key_from || s > m.key_to) continue;
-    v_sum += t.profile.v[k];
-    ++n;
-    a_max = std::max(a_max, t.profile.a[k]);
-    a_min = std::min(a_min, t.profile.a[k]);
-  }
+  const ManoeuvreKeySection key = measure_key_section(m, t);
   if (m.limit_kind == AnalyticLimitKind::kSpeed) {
-    out.planned = n > 0 ? v_sum / static_cast<double>(n) : kNaN;
+    out.planned = key.v_mean;
   } else {
-    out.planned = a_max;
-    out.planned_brake = -a_min;
+    out.planned = key.accel_max;
+    out.planned_brake = key.decel_max;
   }
   ClosedLoopOptions options;
   options.speed_scales = scales;

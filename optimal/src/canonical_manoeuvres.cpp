@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -183,6 +184,35 @@ ManoeuvreCase make_canonical_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehic
     }
   }
   throw InputError("make_canonical_manoeuvre: unknown manoeuvre");
+}
+
+ManoeuvreKeySection measure_key_section(const ManoeuvreCase& manoeuvre,
+                                        const Trajectory& trajectory) {
+  if (!trajectory.feasible() || trajectory.limits == nullptr)
+    throw InputError("measure_key_section: the trajectory has no feasible profile");
+  const VelocityLimits& limits = *trajectory.limits;
+  ManoeuvreKeySection key;
+  key.v_min = std::numeric_limits<double>::infinity();
+  double planar = 0.0, v_sum = 0.0;
+  for (std::size_t k = 0; k < limits.size(); ++k) {
+    if (k > 0) {
+      const Vec3 a = limits.frame(k - 1).point, b = limits.frame(k).point;
+      planar += std::hypot(b.x() - a.x(), b.y() - a.y());
+    }
+    if (planar < manoeuvre.key_from || planar > manoeuvre.key_to) continue;
+    const double v = trajectory.profile.v[k], a = trajectory.profile.a[k];
+    ++key.stations;
+    v_sum += v;
+    key.v_min = std::min(key.v_min, v);
+    key.v_max = std::max(key.v_max, v);
+    key.accel_max = std::max(key.accel_max, a);
+    key.decel_max = std::max(key.decel_max, -a);
+  }
+  if (key.stations == 0)
+    throw InputError("measure_key_section: no station on the key section of " +
+                     std::string(to_string(manoeuvre.manoeuvre)));
+  key.v_mean = v_sum / static_cast<double>(key.stations);
+  return key;
 }
 
 }  // namespace talus

@@ -20,6 +20,7 @@
 ///   max_decel (when below μ g).
 /// Every path starts and ends at rest with a straight lead-in, so the
 /// manoeuvre is entered at its limit speed.
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -28,6 +29,7 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/dynamics/vehicle.hpp"
+#include "talus/optimal/trajectory.hpp"
 
 namespace talus {
 
@@ -73,5 +75,18 @@ struct ManoeuvreCase {
 /// width 1 m, a 14 m slope) and suit small and full-size vehicles below
 /// about 6 m/s. InputError when the vehicle lacks what the manoeuvre needs.
 ManoeuvreCase make_canonical_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle);
+
+/// A planned profile on the manoeuvre's key section (stations with planar arc
+/// length in [key_from, key_to]), to compare with the closed form.
+struct ManoeuvreKeySection {
+  std::size_t stations = 0;                       ///< stations on the key section
+  double v_mean = 0.0, v_min = 0.0, v_max = 0.0;  ///< planned speed [m/s]
+  /// Largest planned tangential acceleration and largest deceleration (>= 0) [m/s²].
+  double accel_max = 0.0, decel_max = 0.0;
+};
+/// Measures `trajectory` (feasible, planned along `manoeuvre.path`) on the key
+/// section. InputError when it is infeasible or no station lies on the section.
+ManoeuvreKeySection measure_key_section(const ManoeuvreCase& manoeuvre,
+                                        const Trajectory& trajectory);
 
 }  // namespace talus

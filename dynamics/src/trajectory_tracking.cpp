@@ -28,6 +28,16 @@ class Polyline {
     s_.resize(points_.size(), 0.0);
     for (std::size_t i = 1; i < points_.size(); ++i)
       s_[i] = s_[i - 1] + (points_[i] - points_[i - 1]).norm();
+    // Each segment's heading, unwrapped along the path, so that a difference
+    // of two is the turning angle between them.
+    heading_.resize(points_.size() - 1);
+    for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
+      const Vec2 d = points_[k + 1] - points_[k];
+      const double raw = std::atan2(d.y(), d.x());
+      heading_[k] = k == 0 ? raw
+                           : heading_[k - 1] + std::remainder(raw - heading_[k - 1],
+                                                              2.0 * std::numbers::pi);
+    }
   }
   double length() const { return s_.back(); }
   std::size_t size() const { return points_.size(); }
@@ -58,6 +68,24 @@ class Polyline {
     return (speed_[k + 1] - speed_[k]) / (s_[k + 1] - s_[k]);
   }
 
+  /// Unit tangent of the segment containing s.
+  Vec2 tangent(double s) const {
+    const std::size_t k = segment(std::clamp(s, 0.0, length()));
+    return (points_[k + 1] - points_[k]).normalized();
+  }
+
+  /// Curvature at s [1/m], > 0 turning left: the turning angle between the
+  /// segments at s − w and s + w (clamped to the path) over the arc length
+  /// between their midpoints, w at least two segments' worth.
+  double curvature(double s, double w) const {
+    const std::size_t k0 = segment(std::clamp(s - w, 0.0, length()));
+    const std::size_t k1 = segment(std::clamp(s + w, 0.0, length()));
+    const std::size_t a = std::min(k0, k1 > 0 ? k1 - 1 : 0), b = std::max(k1, a + 1);
+    if (b >= heading_.size()) return 0.0;  // a single segment: straight
+    const double span = 0.5 * (s_[b] + s_[b + 1]) - 0.5 * (s_[a] + s_[a + 1]);
+    return (heading_[b] - heading_[a]) / span;
+  }
+
   /// Nearest point of the polyline to p among the segments meeting
   /// [s_from, s_to]: its arc length and signed distance (> 0 left).
   std::pair<double, double> project(const Vec2& p, double s_from, double s_to) const {
@@ -84,6 +112,7 @@ class Polyline {
   std::vector<Vec2> points_;
   std::vector<double> speed_;
   std::vector<double> s_;
+  std::vector<double> heading_;  // per segment [rad], unwrapped
 };
 
 /// Sine of the terrain's grade along `forward` (unit, horizontal) at `cg`: the
@@ -101,6 +130,10 @@ double terrain_grade(const BPatch& surface, const Vec2& cg, const Vec2& forward,
   const double run = 2.0 * half_wheelbase;
   return rise / std::sqrt(rise * rise + run * run);
 }
+
+/// Below this planar speed [m/s] the side slip is taken as 0 and the
+/// yaw-rate feedback is off: the velocity's direction is noise there.
+constexpr double kCourseSpeedFloor = 0.3;
 
 TrackingStatus from_simulation(SimulationStatus s) {
   switch (s) {
@@ -157,6 +190,9 @@ void TrackingOptions::validate() const {
   require(min_lookahead >= 0.0 && min_lookahead < inf, "min_lookahead", min_lookahead, ">= 0");
   require(max_steering >= 0.0 && max_steering < std::numbers::pi / 2, "max_steering", max_steering,
           "in [0, pi/2)");
+  require(slip_filter_time > 0.0 && slip_filter_time < inf, "slip_filter_time", slip_filter_time,
+          "positive");
+  require(yaw_rate_gain >= 0.0 && yaw_rate_gain < inf, "yaw_rate_gain", yaw_rate_gain, ">= 0");
   require(speed_kp >= 0.0 && speed_kp < inf, "speed_kp", speed_kp, ">= 0");
   require(speed_ki >= 0.0 && speed_ki < inf, "speed_ki", speed_ki, ">= 0");
   require(integral_limit >= 0.0 && integral_limit < inf, "integral_limit", integral_limit, ">= 0");
@@ -167,6 +203,17 @@ void TrackingOptions::validate() const {
   require(time_factor >= 1.0 && time_factor < inf, "time_factor", time_factor, ">= 1");
   require(time_margin >= 0.0 && time_margin < inf, "time_margin", time_margin, ">= 0");
   simulation.validate();
+}
+
+std::string_view to_string(SteeringLaw law) {
+  return law == SteeringLaw::kCurvature ? "curvature" : "pure_pursuit";
+}
+
+SteeringLaw parse_steering_law(std::string_view name) {
+  if (name == "curvature") return SteeringLaw::kCurvature;
+  if (name == "pure_pursuit") return SteeringLaw::kPurePursuit;
+  throw InputError("unknown steering law '" + std::string(name) +
+                   "' (choices: curvature, pure_pursuit)");
 }
 
 std::string_view to_string(TrackingStatus status) {
@@ -240,9 +287,53 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
     double s = 0.0;
     double integral = 0.0;
     double last_t = 0.0;
+    double slip = 0.0, slip_t = 0.0;
   };
   auto driver = std::make_shared<DriverState>();
   const double max_steering = tracking_steering_limit(options, vehicle);
+  // Pure pursuit from the rear axle.
+  const auto pure_pursuit_steering = [&](const Vec2& cg, const Vec2& forward, double lookahead) {
+    const Vec2 rear = cg - vehicle.half_wheelbase * forward;
+    const Vec2 to_target = path.point(driver->s + lookahead) - rear;
+    const double alpha = std::atan2(forward.x() * to_target.y() - forward.y() * to_target.x(),
+                                    forward.dot(to_target));
+    const double distance = std::max(to_target.norm(), 1e-6);
+    return std::atan(2.0 * wheelbase * std::sin(alpha) / distance);
+  };
+  // The path's curvature fed forward, cross-track and course feedback, then
+  // yaw-rate feedback (file comment).
+  const double curvature_window = vehicle.half_wheelbase;
+  const auto curvature_steering = [&](double t, const VehicleState& state, const Vec2& forward,
+                                      double cross_track, double lookahead) {
+    const Mat3 rot = state.rotation();
+    const Vec3 velocity = rot * state.velocity;
+    const Vec2 planar(velocity.x(), velocity.y());
+    const double speed = planar.norm();
+    // The side-slip angle β (chassis heading to velocity), low-pass filtered:
+    // heading + filtered β is the course without the lateral dynamics' fast
+    // part, which destabilised a loop closed on the raw course.
+    const double slip = speed > kCourseSpeedFloor
+                            ? std::atan2(forward.x() * planar.y() - forward.y() * planar.x(),
+                                         forward.dot(planar))
+                            : 0.0;
+    const double dt = std::max(0.0, t - driver->slip_t);
+    driver->slip_t = t;
+    driver->slip += (1.0 - std::exp(-dt / options.slip_filter_time)) * (slip - driver->slip);
+    const Vec2 tangent = path.tangent(driver->s);
+    const double course_error = std::atan2(tangent.x() * forward.y() - tangent.y() * forward.x(),
+                                           tangent.dot(forward)) +
+                                driver->slip;
+    const double wanted = path.curvature(driver->s, curvature_window) -
+                          cross_track / (lookahead * lookahead) -
+                          2.0 * std::sin(course_error) / lookahead;
+    double kappa = wanted;
+    if (speed > kCourseSpeedFloor) {
+      const double yaw_rate = (rot * state.angular_velocity).z();
+      kappa += options.yaw_rate_gain * (wanted - yaw_rate / speed);
+    }
+    const double half = 0.5 * wheelbase * kappa;
+    return std::atan(wheelbase * kappa / std::sqrt(std::max(1.0 - half * half, 0.25)));
+  };
   const VehicleController controller = [&, driver](double t, const VehicleState& state) {
     const Mat3 rot = state.rotation();
     const Vec3 forward3 = rot.col(0);
@@ -250,21 +341,18 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
     const Vec2 cg(state.position.x(), state.position.y());
     const double v = state.velocity.x();
     const double lookahead = std::max(min_lookahead, options.lookahead_time * std::abs(v));
-    driver->s = path.project(cg, driver->s - 0.5, driver->s + 2.0 * lookahead + 1.0).first;
+    const auto [s, cross_track] =
+        path.project(cg, driver->s - 0.5, driver->s + 2.0 * lookahead + 1.0);
+    driver->s = s;
     VehicleControls c;
     if (driver->s >= path.length() - goal_tolerance) {
       c.stop = true;
       return c;
     }
-    // Pure pursuit from the rear axle.
-    const Vec2 rear = cg - vehicle.half_wheelbase * forward;
-    const Vec2 target = path.point(driver->s + lookahead);
-    const Vec2 to_target = target - rear;
-    const double alpha = std::atan2(forward.x() * to_target.y() - forward.y() * to_target.x(),
-                                    forward.dot(to_target));
-    const double distance = std::max(to_target.norm(), 1e-6);
-    c.steering = std::clamp(std::atan(2.0 * wheelbase * std::sin(alpha) / distance), -max_steering,
-                            max_steering);
+    const double steering = options.steering_law == SteeringLaw::kCurvature
+                                ? curvature_steering(t, state, forward, cross_track, lookahead)
+                                : pure_pursuit_steering(cg, forward, lookahead);
+    c.steering = std::clamp(steering, -max_steering, max_steering);
     // Speed PI at the preview station, with the weight's feed-forward.
     // The preview station where the plan is slower (braking ahead), else the
     // projection: an acceleration is not anticipated, which would put the

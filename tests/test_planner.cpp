@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
@@ -195,6 +196,52 @@ TEST(Planner, GlobalStageOnlyReturnsCandidatesWithoutTrajectories) {
   EXPECT_EQ(result.global.candidates.size(), 2u);
   EXPECT_TRUE(result.candidates.empty());
   EXPECT_EQ(result.best(), nullptr);
+}
+
+/// The direction of travel [rad] of `curve` at parameter t (0 or 1).
+double heading_at(const Curve2& curve, double t) {
+  Curve2::Derivatives d;
+  curve.derivatives(t, 1, d);
+  return std::atan2(d(1, 1), d(0, 1));
+}
+
+TEST(Planner, AHeadingGivenAtTheStartOrTheGoalIsKept) {
+  // On flat ground the free plan is the straight line east (heading 0 at
+  // both ends); with headings of 0.6 rad (leaving north-east) and -0.9 rad
+  // (arriving south-east) the path bends, with its end tangents exactly
+  // along them, with every solver family.
+  const BPatch surface = surface_of([](double, double) { return 0.0; });
+  PlanningProblem problem(surface, point_mass_rover(0.7), {5, 20}, {55, 20});
+  problem.start_heading = 0.6;
+  problem.goal_heading = -0.9;
+  // The nested formulation with both solver families; the simultaneous NLP
+  // pins the same coordinates through the same bounds but needs minutes on
+  // this plane, so it is not run here.
+  for (const PathFormulation formulation : {PathFormulation::kNested}) {
+    for (const PathSolver solver : {PathSolver::kIpopt, PathSolver::kNloptBobyqa}) {
+      PlannerOptions options = quick_options(1);
+      options.local.formulation = formulation;
+      options.local.solver = solver;
+      options.local.restarts = 0;
+      const PlannerResult result = plan(problem, options);
+      SCOPED_TRACE(std::string(to_string(formulation)) + " " + std::string(to_string(solver)));
+      ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
+      const Curve2& path = result.best()->path->curve();
+      EXPECT_NEAR(heading_at(path, 0.0), 0.6, 1e-9);
+      EXPECT_NEAR(heading_at(path, 1.0), -0.9, 1e-9);
+      // The optimiser moved the rest of the path (it is not the fit).
+      const CandidateOutcome& outcome = result.candidates[*result.best_candidate];
+      ASSERT_TRUE(outcome.optimization);
+      EXPECT_LT(outcome.trajectory.travel_time(), outcome.initial.travel_time());
+    }
+  }
+  // Free headings give the straight line.
+  const PlannerResult free =
+      plan(PlanningProblem(surface, point_mass_rover(0.7), {5, 20}, {55, 20}), quick_options(1));
+  ASSERT_EQ(free.status, PlannerStatus::kOk);
+  EXPECT_NEAR(heading_at(free.best()->path->curve(), 0.0), 0.0, 1e-6);
+  problem.start_heading = std::nan("");
+  EXPECT_THROW(plan(problem, quick_options(1)), InputError);
 }
 
 TEST(Planner, InvalidInputThrowsInputError) {

@@ -561,6 +561,13 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->capture_default_str();
   plan->add_option("--v1", plan_request.end_speed, "speed at the goal [m/s], >= 0, --stage full")
       ->capture_default_str();
+  plan->add_option("--start-heading", plan_request.start_heading,
+                   "heading the path leaves the start with [rad], counter-clockwise from east; "
+                   "kept exactly by the local stage (the global stage's corridors do not see "
+                   "it). Default: free");
+  plan->add_option("--goal-heading", plan_request.goal_heading,
+                   "heading the path arrives at the goal with [rad], counter-clockwise from "
+                   "east; as --start-heading. Default: free");
   plan->add_option("--out", plan_request.output_dir, "output folder (created if needed)")
       ->required();
   plan->add_flag("!--no-figures", plan_request.figures,

@@ -72,6 +72,13 @@ void check_plan_options(const PlanRequest& request) {
                        format_number(speed));
     }
   }
+  for (const auto& [option, heading] : {std::pair{"--start-heading", request.start_heading},
+                                         std::pair{"--goal-heading", request.goal_heading}}) {
+    if (heading && !std::isfinite(*heading)) {
+      throw InputError(std::string(option) + " must be a finite angle [rad], got " +
+                       format_number(*heading));
+    }
+  }
   if (request.candidates < 1) {
     throw InputError("--candidates must be at least 1, got " + std::to_string(request.candidates));
   }
@@ -393,6 +400,10 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   summary["more_control_points"] = options.local.more_control_points;
   summary["start_speed"] = request.start_speed;
   summary["end_speed"] = request.end_speed;
+  summary["start_heading"] =
+      request.start_heading ? nlohmann::json(*request.start_heading) : nlohmann::json(nullptr);
+  summary["goal_heading"] =
+      request.goal_heading ? nlohmann::json(*request.goal_heading) : nlohmann::json(nullptr);
   summary["station_spacing"] =
       resolve_station_spacing(options.station_spacing, *problem.surface, problem.vehicle);
   summary["search_station_spacing"] =
@@ -494,6 +505,8 @@ PlanOutcome plan(const PlanRequest& request) {
   if (request.stage == kPlanStageFull) {  // the global stage ignores speeds
     problem.start_speed = request.start_speed;
     problem.end_speed = request.end_speed;
+    problem.start_heading = request.start_heading;
+    problem.goal_heading = request.goal_heading;
   }
   const PlannerOptions options = planner_options(request);
   outcome.result = talus::plan(problem, options);

@@ -68,6 +68,8 @@ struct PlanRequest {
   bool polish = false;       ///< --polish: PathOptimizerOptions::polish
   double start_speed = 0.0;  ///< --v0 [m/s] (finite, >= 0, <= max_speed)
   double end_speed = 0.0;    ///< --v1 [m/s]
+  std::optional<double> start_heading;  ///< --start-heading [rad] (finite)
+  std::optional<double> goal_heading;   ///< --goal-heading [rad] (finite)
   /// --rasters: also write cost_to_go.tif and trajectory.geojson (see plan()).
   bool rasters = false;
   /// false (--no-figures): no plan.png and profile.png (sweeps draw their own).

@@ -329,10 +329,51 @@ void PathOptimizerOptions::validate() const {
     throw InputError("PathOptimizerOptions.restart_perturbation must be >= 0 [m] (0 = two cells)");
   }
   speeds.validate();
+  for (const auto& [heading, name] : {std::pair{start_heading, "start_heading"},
+                                      std::pair{goal_heading, "goal_heading"}}) {
+    if (heading && !std::isfinite(*heading))
+      throw InputError(std::string("PathOptimizerOptions.") + name + " must be finite");
+  }
 }
 
 std::size_t control_point_limit(const PathOptimizerOptions& options, std::size_t vertices) {
   return std::max(options.max_control_points, std::min(vertices / 2, kMaxCorridorControlPoints));
+}
+
+namespace {
+
+/// The fewest control points a fit may have: one free beyond the pinned ones.
+std::size_t fewest_control_points(const PathOptimizerOptions& options) {
+  return options.start_heading && options.goal_heading ? 5 : 4;
+}
+
+/// `points` (a clamped cubic's control points) with the end headings of
+/// `options` imposed: P_1 on the ray from P_0 along the start heading, P_{M-2}
+/// on the ray into P_{M-1} along the goal heading, each at the fit's own
+/// distance from its end (at least `floor`).
+std::vector<Vec2> with_end_headings(std::vector<Vec2> points, const PathOptimizerOptions& options,
+                                    double floor) {
+  const std::size_t m = points.size();
+  if (options.start_heading) {
+    const Vec2 h(std::cos(*options.start_heading), std::sin(*options.start_heading));
+    points[1] = points[0] + std::max(floor, (points[1] - points[0]).norm()) * h;
+  }
+  if (options.goal_heading) {
+    const Vec2 h(std::cos(*options.goal_heading), std::sin(*options.goal_heading));
+    points[m - 2] = points[m - 1] - std::max(floor, (points[m - 1] - points[m - 2]).norm()) * h;
+  }
+  return points;
+}
+
+}  // namespace
+
+Curve2 fit_candidate(const BPatch& terrain, const std::vector<Vec2>& polyline,
+                     std::size_t control_points, const PathOptimizerOptions& options) {
+  const Curve2 fit = fit_clamped_cubic(
+      resample_polyline(polyline, std::max<std::size_t>(10 * control_points, polyline.size())),
+      control_points);
+  return Curve2(fit.knots(),
+                with_end_headings(fit.control_points(), options, terrain.cellsize()));
 }
 
 InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
@@ -342,15 +383,13 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
   if (polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
   const double search_spacing = search_station_spacing(options, terrain, vehicle);
   const std::size_t limit = control_point_limit(options, polyline.size());
-  std::size_t control_points = options.control_points;
+  std::size_t control_points = std::max(options.control_points, fewest_control_points(options));
   bool shrinking = false;  // once a fit turned too tightly, only coarser fits are tried
   while (true) {
     InitialPath out;
     Constraint binding = Constraint::kNone;
     out.control_points = control_points;
-    out.curve.emplace(fit_clamped_cubic(
-        resample_polyline(polyline, std::max<std::size_t>(10 * control_points, polyline.size())),
-        control_points));
+    out.curve.emplace(fit_candidate(terrain, polyline, control_points, options));
     // The station count is fixed for the whole search, from the initial
     // path's length: the objective must not jump when the length crosses a
     // multiple of the spacing.
@@ -392,9 +431,10 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
     // leaves the start or meets the goal at a kink) needs fewer control points, not more:
     // more follow the kink more closely.
     if (binding == Constraint::kSteering || shrinking) {
-      if (control_points <= 4) return out;
+      const std::size_t fewest = fewest_control_points(options);
+      if (control_points <= fewest) return out;
       shrinking = true;
-      control_points = std::max<std::size_t>(4, control_points * 2 / 3);
+      control_points = std::max(fewest, control_points * 2 / 3);
       continue;
     }
     if (control_points >= limit) return out;
@@ -452,6 +492,13 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
   // candidates lost their admissible profile that way.
   problem.lower = problem.lower.cwiseMin(problem.start);
   problem.upper = problem.upper.cwiseMax(problem.start);
+  // A heading pins its control point (the fit put it on the ray): equal
+  // bounds, which every solver treats as a fixed variable.
+  const auto pin = [&](long i) {
+    problem.lower.segment<2>(i) = problem.upper.segment<2>(i) = problem.start.segment<2>(i);
+  };
+  if (options.start_heading) pin(0);
+  if (options.goal_heading) pin(n - 2);
   problem.max_iterations = options.max_iterations;
   problem.max_evaluations = options.max_evaluations;
   problem.relative_tolerance = options.relative_tolerance;
@@ -465,7 +512,11 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
   }
   // BOBYQA's trust region must fit in the box twice over (NLopt refuses
   // otherwise): elongated or tiny domains cap it.
-  const double narrowest = (problem.upper - problem.lower).minCoeff();
+  double narrowest = std::numeric_limits<double>::infinity();  // of the free coordinates
+  for (long i = 0; i < n; ++i) {
+    const double width = problem.upper[i] - problem.lower[i];
+    if (width > 0.0) narrowest = std::min(narrowest, width);
+  }
   problem.initial_step =
       std::min(std::max(0.1 * (initial_polyline.back() - initial_polyline.front()).norm(),
                         terrain.cellsize()),

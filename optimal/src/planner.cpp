@@ -28,12 +28,6 @@ std::string point_text(const Vec2& p) {
 /// The optimiser's own initial fit to `polyline` with `control_points`:
 /// used when the optimiser refused the candidate, so that its outcome still
 /// says how the candidate itself drives.
-Curve2 initial_fit(const std::vector<Vec2>& polyline, std::size_t control_points) {
-  return fit_clamped_cubic(
-      resample_polyline(polyline, std::max<std::size_t>(10 * control_points, polyline.size())),
-      control_points);
-}
-
 /// Candidate `c` from the exact start to the exact goal (both snap to the
 /// same node when they share a lattice cell: then the straight segment).
 std::vector<Vec2> candidate_polyline(const PlanningProblem& problem,
@@ -100,7 +94,7 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
   outcome.initial =
       evaluate_trajectory(surface, problem.vehicle,
                           outcome.optimization ? outcome.optimization->initial_curve
-                                               : initial_fit(polyline, local.control_points),
+                                               : fit_candidate(surface, polyline, local.control_points, local),
                           evaluation, &workspace);
   if (outcome.optimization) {
     const OptimizedPath& optimization = *outcome.optimization;
@@ -150,6 +144,11 @@ void PlanningProblem::validate() const {
   if (start == goal) {
     throw InputError("PlanningProblem: start and goal are the same point " + point_text(start) +
                      "; there is nothing to plan");
+  }
+  for (const auto& [name, heading] :
+       {std::pair{"start_heading", start_heading}, std::pair{"goal_heading", goal_heading}}) {
+    if (heading && !std::isfinite(*heading))
+      throw InputError(std::string("PlanningProblem.") + name + " must be finite (radians)");
   }
   for (const auto& [name, speed] :
        {std::pair{"start_speed", start_speed}, std::pair{"end_speed", end_speed}}) {
@@ -478,6 +477,8 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
 
   PathOptimizerOptions local = options.local;
   local.speeds = {problem.start_speed, problem.end_speed};
+  local.start_heading = problem.start_heading;
+  local.goal_heading = problem.goal_heading;
   // The local stage searches at the stations the result is reported at, so
   // an improvement it finds is one the final evaluation sees (on Mount St.
   // Helens the optimiser's default, five times coarser, found optima that

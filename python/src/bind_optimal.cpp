@@ -6,6 +6,7 @@
 /// objects keep those surfaces alive (py::keep_alive), and everything read out
 /// of a result keeps the result alive.
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -310,14 +311,19 @@ void bind_planner(py::module_& m) {
   py::class_<PlanningProblem>(m, "PlanningProblem",
                               "What to plan (talus::PlanningProblem); keeps its surface alive.")
       .def(py::init([](const BPatch& surface, const Vehicle& vehicle, const Vec2& start,
-                       const Vec2& goal, double start_speed, double end_speed) {
+                       const Vec2& goal, double start_speed, double end_speed,
+                       std::optional<double> start_heading, std::optional<double> goal_heading) {
              PlanningProblem p(surface, vehicle, start, goal);
              p.start_speed = start_speed;
              p.end_speed = end_speed;
+             p.start_heading = start_heading;
+             p.goal_heading = goal_heading;
              return p;
            }),
            py::arg("surface"), py::arg("vehicle"), py::arg("start"), py::arg("goal"),
-           py::arg("start_speed") = 0.0, py::arg("end_speed") = 0.0, py::keep_alive<1, 2>())
+           py::arg("start_speed") = 0.0, py::arg("end_speed") = 0.0,
+           py::arg("start_heading") = py::none(), py::arg("goal_heading") = py::none(),
+           py::keep_alive<1, 2>())
       .def_property_readonly(
           "surface", [](const PlanningProblem& p) -> const BPatch& { return *p.surface; },
           py::return_value_policy::reference_internal)
@@ -326,6 +332,10 @@ void bind_planner(py::module_& m) {
       .def_readwrite("goal", &PlanningProblem::goal)
       .def_readwrite("start_speed", &PlanningProblem::start_speed)
       .def_readwrite("end_speed", &PlanningProblem::end_speed)
+      .def_readwrite("start_heading", &PlanningProblem::start_heading,
+                     "[rad] counter-clockwise from east, or None (free)")
+      .def_readwrite("goal_heading", &PlanningProblem::goal_heading,
+                     "[rad] counter-clockwise from east, or None (free)")
       .def("validate", &PlanningProblem::validate);
 
   py::enum_<PlannerStage>(m, "PlannerStage")

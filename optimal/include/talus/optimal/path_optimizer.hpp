@@ -196,6 +196,16 @@ struct PathOptimizerOptions {
   /// seeds in 2.5 s.
   std::vector<std::size_t> more_control_points = {};
   ProfileOptions speeds;  ///< start and end speeds
+  /// The path's heading at its start and at its goal [rad], counter-clockwise
+  /// from east (the direction of travel in the plane); empty = free. A given
+  /// heading pins the second (next-to-last) control point on the ray from
+  /// the start (to the goal) along it, at the initial fit's own distance
+  /// (at least a cell): the clamped cubic's end tangent is along P_1 − P_0,
+  /// so the heading holds exactly at every iterate of every solver; the
+  /// distance itself is not optimised. With both headings a fit has at least
+  /// 5 control points (one free).
+  std::optional<double> start_heading;
+  std::optional<double> goal_heading;
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -284,13 +294,20 @@ inline constexpr std::size_t kMaxCorridorControlPoints = 256;
 /// keeping it in the corridor.
 std::size_t control_point_limit(const PathOptimizerOptions& options, std::size_t vertices);
 
+/// The clamped cubic least-squares fit with `control_points` (>= 4) to
+/// `polyline` resampled at 10 points per control point, ends exact, with the
+/// end headings of `options` pinned (PathOptimizerOptions::start_heading).
+Curve2 fit_candidate(const BPatch& terrain, const std::vector<Vec2>& polyline,
+                     std::size_t control_points, const PathOptimizerOptions& options);
+
 /// The optimiser's initial path for a candidate polyline: the clamped cubic
 /// least-squares fit (to the polyline resampled at 10 points per control
-/// point, ends exact) with options.control_points, grown by half up to
+/// point, ends exact, end headings pinned when given) with
+/// options.control_points, grown by half up to
 /// control_point_limit() (when adaptive_control_points) while its profile
 /// at the search's stations is not admissible; once a fit fails on the
 /// vehicle's steering limit (Constraint::kSteering), shrunk by a third (down
-/// to 4) instead, while it still fails: a fit that turns too tightly follows
+/// to 4, or 5 with both headings) instead, while it still fails: a fit that turns too tightly follows
 /// the lattice's kinks, and more control points follow them closer.
 struct InitialPath {
   std::optional<Curve2> curve;     ///< the last fit tried; empty if none was lifted

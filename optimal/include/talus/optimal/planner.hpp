@@ -87,6 +87,13 @@ struct PlanningProblem {
   Vec2 goal;                 ///< [m], in the surface's domain
   double start_speed = 0.0;  ///< ṡ at the start [m/s], in [0, max_speed]
   double end_speed = 0.0;    ///< ṡ at the goal [m/s], in [0, max_speed]
+  /// The heading the path leaves the start with and arrives at the goal with
+  /// [rad], counter-clockwise from east (finite; any value, taken modulo 2π);
+  /// empty = free. The local stage keeps them exactly (the fit's end control
+  /// points pinned: PathOptimizerOptions::start_heading); the global stage's
+  /// corridors do not see them.
+  std::optional<double> start_heading;
+  std::optional<double> goal_heading;
   /// Throws InputError naming what is wrong.
   void validate() const;
 };

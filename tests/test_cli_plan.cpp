@@ -298,6 +298,41 @@ TEST(CliPlan, FullStageWithStartAndEndSpeedsMatchesTheClosedForm) {
   EXPECT_EQ(j.value("end_speed", -1.0), 2.0);
 }
 
+TEST(CliPlan, StartAndGoalHeadingsAreKeptAndEchoed) {
+  // Leaving north-east (0.6 rad) and arriving south-east (-0.9 rad) on flat ground: the end
+  // tangents of trajectory.csv, extrapolated from the first (last) two steps' chords (each
+  // chord's heading is the tangent's half a step in), point along them.
+  const std::string dir = scratch_file("full_headings_out");
+  const nlohmann::json j = run_plan_full_ok(
+      "--terrain " + quoted(plan_flat_terrain()) + " --start 5,20 --goal 55,20 --vehicle " +
+          quoted(plan_vehicle("v10.yaml", 10.0)) +
+          " --candidates 1 --start-heading 0.6 --goal-heading -0.9",
+      dir);
+  EXPECT_EQ(j.value("start_heading", 0.0), 0.6);
+  EXPECT_EQ(j.value("goal_heading", 0.0), -0.9);
+  const std::vector<ProfileRow> rows = read_profile_csv(dir + "/trajectory.csv");
+  ASSERT_GT(rows.size(), 100u);
+  const auto heading = [&](std::size_t a, std::size_t b) {
+    return std::atan2(rows[b].y - rows[a].y, rows[b].x - rows[a].x);
+  };
+  const std::size_t n = rows.size();
+  EXPECT_NEAR(1.5 * heading(0, 1) - 0.5 * heading(1, 2), 0.6, 0.01);
+  EXPECT_NEAR(1.5 * heading(n - 2, n - 1) - 0.5 * heading(n - 3, n - 2), -0.9, 0.01);
+  // Without them the keys are null, and a heading must be a finite number.
+  const nlohmann::json free = run_plan_full_ok(
+      "--terrain " + quoted(plan_flat_terrain()) + " --start 5,20 --goal 55,20 --vehicle " +
+          quoted(plan_vehicle("v10.yaml", 10.0)) + " --candidates 1",
+      scratch_file("full_free_heading_out"));
+  EXPECT_TRUE(free.at("start_heading").is_null());
+  EXPECT_TRUE(free.at("goal_heading").is_null());
+  const RunResult bad =
+      run_talus("plan --terrain " + quoted(plan_flat_terrain()) +
+                " --start 5,20 --goal 55,20 --vehicle " + quoted(plan_vehicle("v10.yaml", 10.0)) +
+                " --start-heading inf --out " + quoted(scratch_file("bad_heading_out")));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--start-heading"), std::string::npos) << bad.err;
+}
+
 TEST(CliPlan, SmoothingFitAndLbfgsKeepTheFlatPlaneClosedForm) {
   // A smoothing fit of a plane is the plane, and every solver keeps the straight line: the
   // closed-form rest-to-rest time of FullStageOnFlatPlaneMatchesRestToRestStraightLine.

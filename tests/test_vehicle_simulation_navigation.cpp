@@ -145,6 +145,27 @@ TEST(NavigationLookahead, SafeSpeedsBrakeAheadOfTheCrestsContactLimit) {
   EXPECT_THROW(safe_speed_profile(ground, ugv(), {Vec2(0, 0)}), InputError);
 }
 
+// A prediction turning at the UGV's steering limit (the bicycle saturated): the cubic through
+// its points overshoots that curvature a little; the safe speed is the sliding limit
+// sqrt(mu g / kappa) = 1.65 m/s everywhere, not 0 where the overshoot is (it was, at the
+// first point, before the steering check was left out of the prediction's limits).
+TEST(NavigationLookahead, APredictionAtTheSteeringLimitIsNotUntraversable) {
+  const Vehicle vehicle = ugv();
+  ASSERT_TRUE(std::isfinite(vehicle.max_steering));
+  const double kappa = vehicle.max_curvature();
+  std::vector<Vec2> points;
+  Vec2 p(2.0, 0.0);
+  double heading = 0.0;
+  for (int k = 0; k < 20; ++k) {
+    points.push_back(p);
+    heading += 0.15 * kappa;
+    p += 0.15 * Vec2(std::cos(heading), std::sin(heading));
+  }
+  const std::vector<double> safe = safe_speed_profile(flat(), vehicle, points);
+  const double sliding = std::sqrt(vehicle.friction * vehicle.gravity / kappa);
+  for (std::size_t k = 0; k < safe.size(); ++k) EXPECT_NEAR(safe[k], sliding, 0.05 * sliding) << k;
+}
+
 /// Flat ground at 0.2 m cells, 26 m x 24 m (past a hazard the waypoint
 /// field steers along the arc through the goal, metres wide), with a 1 m x 1 m block 0.3 m high
 /// centred on (6, 0): a step five times the UGV's wheel radius.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -51,7 +52,13 @@ std::vector<double> safe_speed_profile(const BPatch& surface, const Vehicle& veh
   const SurfacePath& path = *lifted;
   // Stations equally spaced in arc length, at least two per predicted point.
   const std::size_t stations = std::max<std::size_t>(8, 2 * distinct.size());
-  const VelocityLimits limits(vehicle, path, stations);
+  // The prediction turns within the steering limit by construction (a
+  // kinematic bicycle); the cubic through its points overshoots that
+  // curvature by a little on saturated arcs, which the steering check would
+  // call untraversable and cap to 0. So the limits here leave steering out.
+  Vehicle unsteered = vehicle;
+  unsteered.max_steering = std::numeric_limits<double>::infinity();
+  const VelocityLimits limits(unsteered, path, stations);
   std::vector<double> envelope(stations);
   envelope.back() = limits.limits(stations - 1).v_max;
   for (std::size_t k = stations - 1; k-- > 0;) {

@@ -502,7 +502,8 @@ void run_closed_loop_plans(const ExperimentContext& context) {
           std::to_string(seeds) +
           ") from (2, 2) to (28.5, 28.5) with `talus::plan` (default options) on the "
           "interpolating B-patch, then drives the best trajectory with `track_trajectory` (6-DOF "
-          "chassis, spring–damper wheels, brush tyres on CVODE; pure pursuit and a speed PI with "
+          "chassis, spring–damper wheels, brush tyres on CVODE; the curvature steering law and a "
+          "speed PI with "
           "feed-forward) at 90, 100 and 110 % of its profile speed on the same surface.")
       .paragraph(
           "Margins are the simulation's peaks over the run: |LTR| = |N_right − N_left| / ΣN "

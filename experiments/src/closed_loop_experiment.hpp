@@ -3,7 +3,7 @@
 /// `talus experiment closed-loop-plans` (issue #16, item 3): the planner's
 /// time-optimal trajectories for the Iagnemma UGV on the fractal battery of
 /// Iagnemma, Shimoda & Shiller (IROS 2008, §V) driven by the rigid-body
-/// simulation (track_trajectory: pure pursuit and speed PI) at 90, 100 and
+/// simulation (track_trajectory: curvature steering law and speed PI) at 90, 100 and
 /// 110 % of their profile speed: status, failure kind, the margins kept
 /// (peak lateral load ratio, minimum normal load, peak slip) and the travel
 /// time against the planned one, per case and speed scale.

@@ -582,8 +582,9 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
   CLI::App* simulate = app.add_subcommand(
       "simulate",
       "drive a planned trajectory (the trajectory.csv of `talus plan`) with the rigid-body "
-      "vehicle simulation (4 spring-damper wheels, brush tyres, CVODE BDF; pure pursuit and "
-      "speed PI) and report the margins it kept (peak lateral load ratio, minimum normal load, "
+      "vehicle simulation (4 spring-damper wheels, brush tyres, CVODE BDF; curvature steering "
+      "law and speed PI) and report the margins it kept (peak lateral load ratio, minimum normal "
+      "load, "
       "peak slip) and any failure (rollover, side_slip, loss_of_contact, stall). Writes "
       "DIR/trace.csv and DIR/summary.json; exit code 2 when the goal was not reached");
   simulate->add_option("--terrain", simulate_request.terrain, ex::kTerrainHelp)->required();
@@ -601,6 +602,12 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
   simulate
       ->add_option("--speed-scale", simulate_request.speed_scale,
                    "drive at this multiple of the planned speed (> 0)")
+      ->capture_default_str();
+  simulate
+      ->add_option("--steering-law", simulate_request.steering_law,
+                   "the tracker's steering: curvature (reference curvature with lateral, course "
+                   "and yaw-rate feedback) or pure_pursuit")
+      ->check(CLI::IsMember({std::string("curvature"), std::string("pure_pursuit")}))
       ->capture_default_str();
   simulate->add_option("--smoothing", simulate_request.smoothing,
                        "lambda of the smoothing fit (use the plan's); default interpolating fit");

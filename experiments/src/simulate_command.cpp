@@ -166,6 +166,7 @@ SimulateOutcome simulate(const SimulateRequest& request) {
 
   TrackingOptions options;
   options.speed_scale = request.speed_scale;
+  options.steering_law = parse_steering_law(request.steering_law);
   options.simulation.output_interval = request.trace_interval;
   SimulateOutcome outcome;
   outcome.result = track_trajectory(surface, vehicle, reference, options);
@@ -185,6 +186,7 @@ SimulateOutcome simulate(const SimulateRequest& request) {
   summary["travel_time"] = r.travel_time;
   summary["planned_time"] = r.planned_time;
   summary["speed_scale"] = request.speed_scale;
+  summary["steering_law"] = std::string(to_string(options.steering_law));
   summary["margins"] = {{"peak_lateral_load_ratio", d.peak_lateral_load_ratio},
                         {"min_normal_load", d.min_normal_load},
                         {"min_normal_load_ratio", d.min_normal_load_ratio},

@@ -24,6 +24,8 @@ struct SimulateRequest {
   std::string trajectory;
   std::string output_dir;    ///< --out
   double speed_scale = 1.0;  ///< TrackingOptions::speed_scale (> 0)
+  /// --steering-law: curvature | pure_pursuit (TrackingOptions::steering_law).
+  std::string steering_law = "curvature";
   /// lambda of the smoothing fit (as the plan's --smoothing); none = interpolating fit.
   std::optional<double> smoothing;
   double trace_interval = 0.02;  ///< trace.csv sample interval [s] (> 0)

@@ -18,6 +18,9 @@ constexpr double kCellSize = 0.25;  // [m]: fine enough for the UGV's 0.27 m whe
 constexpr double kCircleRadius = 2.0;
 constexpr double kBankSlope = 0.2;  // tan θ of the banked circle
 constexpr double kHillHeight = 0.4, kHillWidth = 1.0;
+constexpr double kSlalomHalfAmplitude = 0.4;   // B [m]: the path swings 0 .. 2 B sideways
+constexpr double kSlalomCurvatureShare = 0.9;  // apex curvature / the steering limit
+constexpr int kSlalomPeriods = 2;
 
 GridShape grid(double width, double height) {
   GridShape g;
@@ -61,6 +64,39 @@ Curve2 straight_path(double x0, double x1, double y0) {
   return Curve2::interpolate(points);
 }
 
+/// Lead-in along y = 4 from x = 2 to 5, `kSlalomPeriods` periods of
+/// y = 4 + B (1 − cos k (x − 5)), run-out to 4 m beyond. The key section is the
+/// middle apex (u = 2π/k, curving like the entry), ±0.05 m of planar arc length.
+Curve2 slalom_path(double k, double& key_from, double& key_to, double& width) {
+  const double x0 = 5.0, wavelength = 2.0 * kPi / k;
+  const double x1 = x0 + kSlalomPeriods * wavelength;
+  std::vector<Curve2::Point> points;
+  append_straight(points, Vec2(2.0, 4.0), Vec2(x0, 4.0));
+  const auto y = [&](double x) {
+    return 4.0 + kSlalomHalfAmplitude * (1.0 - std::cos(k * (x - x0)));
+  };
+  const int per_period = 24;
+  for (int i = 0; i < kSlalomPeriods * per_period; ++i) {
+    const double x = x0 + wavelength * i / per_period;
+    points.push_back(Vec2(x, y(x)));
+  }
+  append_straight(points, Vec2(x1, 4.0), Vec2(x1 + 4.0, 4.0));
+  points.push_back(Vec2(x1 + 4.0, 4.0));
+  // Planar arc length to the middle apex, from the analytic curve (the
+  // interpolant matches it to well under the window).
+  double apex = x0 - 2.0;
+  const int steps = 4000;
+  const double x_apex = x0 + wavelength;
+  for (int i = 0; i < steps; ++i) {
+    const double a = x0 + (x_apex - x0) * i / steps, b = x0 + (x_apex - x0) * (i + 1) / steps;
+    apex += std::hypot(b - a, y(b) - y(a));
+  }
+  key_from = apex - 0.05;
+  key_to = apex + 0.05;
+  width = x1 + 6.0;
+  return Curve2::interpolate(points);
+}
+
 void require_finite_drive(const Vehicle& v, CanonicalManoeuvre m) {
   if (!std::isfinite(v.max_accel) || !std::isfinite(v.max_decel))
     throw InputError(std::string("make_canonical_manoeuvre(") + std::string(to_string(m)) +
@@ -81,14 +117,19 @@ std::string_view to_string(CanonicalManoeuvre manoeuvre) {
       return "side-slope";
     case CanonicalManoeuvre::kStraightDriveBrake:
       return "straight-drive-brake";
+    case CanonicalManoeuvre::kSlalom:
+      return "slalom";
   }
   return "unknown";
 }
 
 std::vector<CanonicalManoeuvre> all_canonical_manoeuvres() {
-  return {CanonicalManoeuvre::kFlatCircle, CanonicalManoeuvre::kBankedCircle,
-          CanonicalManoeuvre::kCrest, CanonicalManoeuvre::kSideSlope,
-          CanonicalManoeuvre::kStraightDriveBrake};
+  return {CanonicalManoeuvre::kFlatCircle,
+          CanonicalManoeuvre::kBankedCircle,
+          CanonicalManoeuvre::kCrest,
+          CanonicalManoeuvre::kSideSlope,
+          CanonicalManoeuvre::kStraightDriveBrake,
+          CanonicalManoeuvre::kSlalom};
 }
 
 ManoeuvreCase make_canonical_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
@@ -180,6 +221,28 @@ ManoeuvreCase make_canonical_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehic
       c.description =
           "straight on flat ground, rest to rest: min(max_accel, mu g) and "
           "min(max_decel, mu g)";
+      return c;
+    }
+    case CanonicalManoeuvre::kSlalom: {
+      const double kappa_max = vehicle.max_curvature();
+      if (!(kappa_max >= 0.05))
+        throw InputError(
+            "make_canonical_manoeuvre(slalom): the vehicle needs a steering limit (max_steering) "
+            "of at least 0.05 1/m; it has " +
+            std::to_string(kappa_max) + " 1/m");
+      const double apex_curvature = kSlalomCurvatureShare * kappa_max;
+      const double k = std::sqrt(apex_curvature / kSlalomHalfAmplitude);
+      double from = 0.0, to = 0.0, width = 0.0;
+      Curve2 path = slalom_path(k, from, to, width);
+      PlaneOptions plane;
+      plane.shape = grid(width, 8.0);
+      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)), std::move(path));
+      c.key_from = from;
+      c.key_to = to;
+      c.analytic_limit = std::sqrt(mu * g / apex_curvature);
+      c.description =
+          "flat ground, a slalom y = B (1 - cos k u) with B = 0.4 m and apex curvature B k^2 = 0.9 "
+          "of the steering limit: v = sqrt(mu g / (B k^2)) at each apex";
       return c;
     }
   }

@@ -126,3 +126,24 @@ def test_bad_input_raises_input_error(west_bijou, rover):
     options.global_search.connectivity = 12
     with pytest.raises(talus.InputError, match="connectivity"):
         talus.plan(talus.PlanningProblem(surface, vehicle, START, GOAL), options)
+
+
+def test_start_and_goal_headings_are_kept(rover):
+    # Flat ground: the free plan runs due east; with headings the clamped curve's first and
+    # last control-point legs lie along them (the end tangents).
+    surface = talus.BPatch.interpolate(talus.ElevationGrid(61, 41, 1.0, 0.0, 0.0))
+    vehicle = talus.load_vehicle(str(rover))
+    problem = talus.PlanningProblem(surface, vehicle, (5.0, 20.0), (55.0, 20.0),
+                                    start_heading=0.6, goal_heading=-0.9)
+    assert problem.start_heading == 0.6 and problem.goal_heading == -0.9
+    options = talus.PlannerOptions()
+    options.global_search.candidates = 1
+    result = talus.plan(problem, options)
+    assert result.status == talus.PlannerStatus.OK, result.brief_report()
+    p = result.best().path.curve().control_points
+    assert np.arctan2(*(p[1] - p[0])[::-1]) == pytest.approx(0.6, abs=1e-9)
+    assert np.arctan2(*(p[-1] - p[-2])[::-1]) == pytest.approx(-0.9, abs=1e-9)
+    assert talus.PlanningProblem(surface, vehicle, (5.0, 20.0), (55.0, 20.0)).start_heading is None
+    problem.start_heading = float("nan")
+    with pytest.raises(talus.InputError):
+        talus.plan(problem, options)

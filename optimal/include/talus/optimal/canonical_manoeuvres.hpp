@@ -17,7 +17,10 @@
 ///   the friction left beside the weight's downhill component bounds the
 ///   tangential acceleration to g cos θ sqrt(μ² − tan² θ), both ways;
 /// - straight drive and brake on flat ground: the vehicle's max_accel and
-///   max_decel (when below μ g).
+///   max_decel (when below μ g);
+/// - slalom at the steering limit on flat ground: y = B (1 − cos k u) with
+///   B = 0.4 m and k chosen so that the apexes' curvature B k² is 0.9 of the
+///   vehicle's max_curvature(): v = sqrt(μ g / (B k²)) at every apex.
 /// Every path starts and ends at rest with a straight lead-in, so the
 /// manoeuvre is entered at its limit speed.
 #include <cstddef>
@@ -38,9 +41,10 @@ enum class CanonicalManoeuvre {
   kBankedCircle,
   kCrest,
   kSideSlope,
-  kStraightDriveBrake
+  kStraightDriveBrake,
+  kSlalom
 };
-/// "flat-circle", "banked-circle", "crest", "side-slope", "straight-drive-brake".
+/// "flat-circle", "banked-circle", "crest", "side-slope", "straight-drive-brake", "slalom".
 std::string_view to_string(CanonicalManoeuvre manoeuvre);
 /// Every manoeuvre, in declaration order.
 std::vector<CanonicalManoeuvre> all_canonical_manoeuvres();
@@ -70,10 +74,12 @@ struct ManoeuvreCase {
 };
 
 /// Builds `manoeuvre` for `vehicle` (gravity and friction; the side slope
-/// needs μ > 0 and the straight run finite max_accel and max_decel). The
-/// dimensions are fixed (radius 2 m circles, a cone of slope 0.2, a 0.4 m hill of
-/// width 1 m, a 14 m slope) and suit small and full-size vehicles below
-/// about 6 m/s. InputError when the vehicle lacks what the manoeuvre needs.
+/// needs μ > 0, the straight run finite max_accel and max_decel, the slalom a
+/// steering limit of at least 0.05 1/m). The dimensions are fixed (radius 2 m
+/// circles, a cone of slope 0.2, a 0.4 m hill of width 1 m, a 14 m slope)
+/// except the slalom's wavelength, set by the steering limit (2.6 m for the
+/// UGV's 2.53 1/m); they suit small and full-size vehicles below about
+/// 6 m/s. InputError when the vehicle lacks what the manoeuvre needs.
 ManoeuvreCase make_canonical_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle);
 
 /// A planned profile on the manoeuvre's key section (stations with planar arc

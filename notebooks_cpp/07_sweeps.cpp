@@ -12,9 +12,9 @@
 #include <sys/wait.h>
 
 #include "notebook.hpp"
-#include "talus/core/report/plot.hpp"
-#include "talus/core/sweep/sweep_config.hpp"
-#include "talus/core/sweep/sweep_runner.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/sweep/sweep_config.hpp"
+#include "talus/sweep/sweep_runner.hpp"
 
 using namespace talus;
 using namespace talus::notebooks;

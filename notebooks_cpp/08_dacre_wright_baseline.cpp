@@ -19,7 +19,7 @@
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
-#include "talus/kinematic/dacre_wright/dacre_wright_outputs.hpp"
+#include "talus/report/dacre_wright_outputs.hpp"
 
 using namespace talus;
 using namespace talus::notebooks;

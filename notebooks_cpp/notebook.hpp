@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The small frame every notebook shares: its command line, its Markdown page
-/// (talus::Report, core/report) with the narration also echoed to stdout, the
+/// (talus::Report, talus::report) with the narration also echoed to stdout, the
 /// facts it checks (a failed check makes the program exit 1, so its CTest
 /// fails), and two figure kinds drawn with the project's gnuplot layer: line
 /// plots of curves along s, and maps of routes over shaded relief.
@@ -22,7 +22,7 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
-#include "talus/core/report/report.hpp"
+#include "talus/report/report.hpp"
 #include "talus/core/types.hpp"
 
 namespace talus::notebooks {

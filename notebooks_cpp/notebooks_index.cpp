@@ -10,7 +10,7 @@
 #include <string>
 
 #include "talus/core/error.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 
 namespace {
 

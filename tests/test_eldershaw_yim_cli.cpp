@@ -15,7 +15,7 @@
 #include "cli_test_support.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/core/sweep/mpi_session.hpp"
+#include "talus/sweep/mpi_session.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
 #include "talus/kinematic/eldershaw_yim/legged_robot.hpp"
 

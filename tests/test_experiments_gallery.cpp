@@ -7,7 +7,7 @@
 
 #include "talus/bspline/relief.hpp"
 #include "talus/core/error.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -15,8 +15,8 @@
 
 #include "cli_test_support.hpp"
 #include "talus/core/error.hpp"
-#include "talus/core/sweep/mpi_session.hpp"
-#include "talus/core/sweep/sweep_config.hpp"
+#include "talus/sweep/mpi_session.hpp"
+#include "talus/sweep/sweep_config.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <fstream>
 #include <numbers>
 
-#include "talus/core/report/number_format.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus::experiments {
 

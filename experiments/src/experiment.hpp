@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "talus/core/report/experiment_summary.hpp"
+#include "talus/report/experiment_summary.hpp"
 
 namespace talus::experiments {
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "talus/core/report/figure.hpp"
-#include "talus/core/report/number_format.hpp"
-#include "talus/core/report/plot.hpp"
-#include "talus/core/report/report.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/canonical_manoeuvres.hpp"

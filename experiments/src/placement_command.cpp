@@ -9,7 +9,7 @@
 #include "cli_values.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/placement_query.hpp"
 #include "talus/kinematic/hait/robot.hpp"

@@ -20,11 +20,11 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/output_folder.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/vehicle.hpp"
-#include "talus/optimal/plan_figures.hpp"
+#include "talus/report/plan_figures.hpp"
 #include "talus/optimal/planner.hpp"
 #include "terrain_input.hpp"
 

@@ -10,7 +10,7 @@
 #include "cli_values.hpp"
 #include "limits_command.hpp"
 #include "talus/core/error.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "talus/core/error.hpp"
-#include "talus/core/sweep/mpi_session.hpp"
-#include "talus/core/sweep/sweep_config.hpp"
-#include "talus/core/sweep/sweep_runner.hpp"
+#include "talus/sweep/mpi_session.hpp"
+#include "talus/sweep/sweep_config.hpp"
+#include "talus/sweep/sweep_runner.hpp"
 #include "talus/dynamics/vehicle.hpp"
 
 namespace talus::experiments {

@@ -11,13 +11,13 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
-#include "talus/core/report/figure.hpp"
-#include "talus/core/report/number_format.hpp"
-#include "talus/core/report/plot.hpp"
-#include "talus/core/report/report.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 #include "talus/core/sample_statistics.hpp"
-#include "talus/core/sweep/sweep_config.hpp"
-#include "talus/core/sweep/sweep_runner.hpp"
+#include "talus/sweep/sweep_config.hpp"
+#include "talus/sweep/sweep_runner.hpp"
 #include "talus/dynamics/vehicle.hpp"
 
 namespace talus::experiments {

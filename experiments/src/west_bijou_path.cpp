@@ -3,7 +3,7 @@
 #include <string>
 
 #include "talus/core/error.hpp"
-#include "talus/core/report/number_format.hpp"
+#include "talus/report/number_format.hpp"
 
 namespace talus::experiments {
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "talus/core/sweep/case_dealer.hpp"
+#include "talus/sweep/case_dealer.hpp"
 
 namespace talus {
 

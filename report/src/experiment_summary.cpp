@@ -1,8 +1,8 @@
-#include "talus/core/report/experiment_summary.hpp"
+#include "talus/report/experiment_summary.hpp"
 
 #include <cmath>
 
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 

@@ -1,8 +1,8 @@
-#include "talus/core/report/figure.hpp"
+#include "talus/report/figure.hpp"
 
 #include <utility>
 
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 namespace {

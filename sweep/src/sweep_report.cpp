@@ -4,10 +4,10 @@
 #include <optional>
 #include <sstream>
 
-#include "talus/core/report/figure.hpp"
-#include "talus/core/report/plot.hpp"
-#include "talus/core/report/report.hpp"
-#include "talus/core/sweep/sweep_runner.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
+#include "talus/sweep/sweep_runner.hpp"
 
 namespace talus {
 namespace {

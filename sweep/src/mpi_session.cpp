@@ -1,4 +1,4 @@
-#include "talus/core/sweep/mpi_session.hpp"
+#include "talus/sweep/mpi_session.hpp"
 
 #include <dlfcn.h>
 #include <sys/prctl.h>

@@ -1,14 +1,14 @@
-#include "talus/optimal/plan_figures.hpp"
+#include "talus/report/plan_figures.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 
-#include "talus/bspline/map_frame.hpp"
-#include "talus/bspline/relief_raster.hpp"
-#include "talus/core/report/figure.hpp"
-#include "talus/core/report/number_format.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/map_frame.hpp"
+#include "talus/report/relief_raster.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 namespace {

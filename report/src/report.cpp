@@ -1,9 +1,9 @@
-#include "talus/core/report/report.hpp"
+#include "talus/report/report.hpp"
 
 #include <utility>
 
 #include "talus/core/error.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 

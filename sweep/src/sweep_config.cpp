@@ -1,4 +1,4 @@
-#include "talus/core/sweep/sweep_config.hpp"
+#include "talus/sweep/sweep_config.hpp"
 
 #include <yaml-cpp/yaml.h>
 

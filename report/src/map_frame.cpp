@@ -1,11 +1,11 @@
-#include "talus/bspline/map_frame.hpp"
+#include "talus/report/map_frame.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "talus/core/report/number_format.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 

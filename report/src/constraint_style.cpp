@@ -1,4 +1,4 @@
-#include "talus/dynamics/constraint_style.hpp"
+#include "talus/report/constraint_style.hpp"
 
 #include <sstream>
 

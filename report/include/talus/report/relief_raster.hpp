@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "talus/bspline/bpatch.hpp"
-#include "talus/bspline/map_frame.hpp"
+#include "talus/report/map_frame.hpp"
 #include "talus/bspline/relief.hpp"
 #include "talus/bspline/surface_raster.hpp"
 

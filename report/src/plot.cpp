@@ -1,4 +1,4 @@
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 
 #include <sys/wait.h>
 

@@ -1,12 +1,12 @@
-#include "talus/kinematic/dacre_wright/dacre_wright_outputs.hpp"
+#include "talus/report/dacre_wright_outputs.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
 
-#include "talus/core/report/number_format.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 namespace {

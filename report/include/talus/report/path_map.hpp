@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "talus/bspline/map_frame.hpp"
+#include "talus/report/map_frame.hpp"
 #include "talus/core/types.hpp"
 
 namespace talus {

@@ -1,10 +1,10 @@
-#include "talus/bspline/path_map.hpp"
+#include "talus/report/path_map.hpp"
 
 #include <fstream>
 #include <sstream>
 
-#include "talus/core/report/number_format.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 

@@ -37,8 +37,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "talus/core/sweep/case_dealer.hpp"
-#include "talus/core/sweep/sweep_config.hpp"
+#include "talus/sweep/case_dealer.hpp"
+#include "talus/sweep/sweep_config.hpp"
 
 namespace talus {
 

@@ -1,12 +1,12 @@
-#include "talus/bspline/relief_raster.hpp"
+#include "talus/report/relief_raster.hpp"
 
 #include <algorithm>
 #include <fstream>
 #include <ostream>
 #include <tuple>
 
-#include "talus/core/report/number_format.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 namespace {

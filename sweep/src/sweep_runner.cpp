@@ -1,4 +1,4 @@
-#include "talus/core/sweep/sweep_runner.hpp"
+#include "talus/sweep/sweep_runner.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -24,7 +24,7 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
-#include "talus/core/report/plot.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus {
 namespace {

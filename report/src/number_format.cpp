@@ -1,4 +1,4 @@
-#include "talus/core/report/number_format.hpp"
+#include "talus/report/number_format.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -121,5 +121,20 @@ TEST(RobustReaders, TheMemoryBudgetFollowsTheEnvironmentAndRefusesWithAdvice) {
   EXPECT_GT(memory_budget(), std::size_t{10} << 20);
 }
 
+// A value that is not a positive number of MiB within range is refused, naming the variable:
+// before, 1e30 wrapped to a budget of 0 MiB and abc, -1 and nan were silently ignored.
+TEST(RobustReaders, AMemoryLimitThatIsNoNumberOfMiBIsAnInputError) {
+  for (const char* bad : {"abc", "-1", "nan", "0", "1e30", "10MB", ""}) {
+    ::setenv("TALUS_MEMORY_LIMIT_MB", bad, 1);
+    const std::string what = error_of([] { memory_budget(); });
+    EXPECT_NE(what.find("TALUS_MEMORY_LIMIT_MB must be a number of MiB in (0, 1e12]"),
+              std::string::npos)
+        << bad << ": " << what;
+  }
+  ::setenv("TALUS_MEMORY_LIMIT_MB", "1e12", 1);
+  EXPECT_EQ(memory_budget(), static_cast<std::size_t>(1e12 * 1024.0 * 1024.0));
+  ::unsetenv("TALUS_MEMORY_LIMIT_MB");
+}
+
 }  // namespace
 }  // namespace talus

@@ -11,8 +11,10 @@ namespace talus {
 
 /// The budget [bytes]: 3/4 of the smaller of the physical memory and the
 /// process's address-space limit (RLIMIT_AS, e.g. `prlimit --as`). The
-/// environment variable TALUS_MEMORY_LIMIT_MB, if set to a positive number,
-/// replaces it.
+/// environment variable TALUS_MEMORY_LIMIT_MB, when set, replaces it: a number
+/// of MiB in (0, 1e12] (1e12 MiB keeps the byte count within std::size_t);
+/// anything else (text, a sign, NaN, 0, 1e30) is an InputError naming the
+/// variable, not ignored or wrapped.
 std::size_t memory_budget();
 
 /// Throws InputError "<what> needs about N MiB, more than the memory budget of

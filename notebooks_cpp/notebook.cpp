@@ -7,13 +7,13 @@
 #include <fstream>
 #include <iostream>
 
-#include "talus/report/map_frame.hpp"
-#include "talus/report/relief_raster.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/report/figure.hpp"
+#include "talus/report/map_frame.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/relief_raster.hpp"
 
 namespace talus::notebooks {
 

@@ -22,8 +22,8 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/types.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::notebooks {
 

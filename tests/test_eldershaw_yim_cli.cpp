@@ -15,9 +15,9 @@
 #include "cli_test_support.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/sweep/mpi_session.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
 #include "talus/kinematic/eldershaw_yim/legged_robot.hpp"
+#include "talus/sweep/mpi_session.hpp"
 
 namespace talus::cli_test {
 namespace {

@@ -34,9 +34,9 @@ class Polyline {
     for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
       const Vec2 d = points_[k + 1] - points_[k];
       const double raw = std::atan2(d.y(), d.x());
-      heading_[k] = k == 0 ? raw
-                           : heading_[k - 1] + std::remainder(raw - heading_[k - 1],
-                                                              2.0 * std::numbers::pi);
+      heading_[k] =
+          k == 0 ? raw
+                 : heading_[k - 1] + std::remainder(raw - heading_[k - 1], 2.0 * std::numbers::pi);
     }
   }
   double length() const { return s_.back(); }
@@ -312,17 +312,17 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
     // The side-slip angle β (chassis heading to velocity), low-pass filtered:
     // heading + filtered β is the course without the lateral dynamics' fast
     // part, which destabilised a loop closed on the raw course.
-    const double slip = speed > kCourseSpeedFloor
-                            ? std::atan2(forward.x() * planar.y() - forward.y() * planar.x(),
-                                         forward.dot(planar))
-                            : 0.0;
+    const double slip =
+        speed > kCourseSpeedFloor
+            ? std::atan2(forward.x() * planar.y() - forward.y() * planar.x(), forward.dot(planar))
+            : 0.0;
     const double dt = std::max(0.0, t - driver->slip_t);
     driver->slip_t = t;
     driver->slip += (1.0 - std::exp(-dt / options.slip_filter_time)) * (slip - driver->slip);
     const Vec2 tangent = path.tangent(driver->s);
-    const double course_error = std::atan2(tangent.x() * forward.y() - tangent.y() * forward.x(),
-                                           tangent.dot(forward)) +
-                                driver->slip;
+    const double course_error =
+        std::atan2(tangent.x() * forward.y() - tangent.y() * forward.x(), tangent.dot(forward)) +
+        driver->slip;
     const double wanted = path.curvature(driver->s, curvature_window) -
                           cross_track / (lookahead * lookahead) -
                           2.0 * std::sin(course_error) / lookahead;

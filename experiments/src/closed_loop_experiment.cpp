@@ -16,10 +16,6 @@
 #include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
-#include "talus/report/figure.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/sample_statistics.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/core/terrain_generators.hpp"
@@ -27,6 +23,10 @@
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/closed_loop_check.hpp"
 #include "talus/optimal/planner.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

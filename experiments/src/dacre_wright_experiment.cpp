@@ -15,15 +15,15 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/dacre_wright/channel_region.hpp"
 #include "talus/kinematic/dacre_wright/configuration_octree.hpp"
-#include "talus/report/dacre_wright_outputs.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_planner.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
+#include "talus/report/dacre_wright_outputs.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

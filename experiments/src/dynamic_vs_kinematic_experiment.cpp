@@ -15,9 +15,6 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
@@ -29,6 +26,9 @@
 #include "talus/optimal/planner.hpp"
 #include "talus/optimal/polyline_travel_time.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -18,14 +18,14 @@
 #include "eldershaw_yim_outputs.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
-#include "talus/sweep/mpi_session.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/eldershaw_yim/cg_space.hpp"
 #include "talus/kinematic/eldershaw_yim/eldershaw_yim_planner.hpp"
 #include "talus/kinematic/eldershaw_yim/legged_robot.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
+#include "talus/sweep/mpi_session.hpp"
 
 namespace talus::experiments {
 namespace {

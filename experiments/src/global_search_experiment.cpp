@@ -17,21 +17,21 @@
 
 #include "experiment_terrain.hpp"
 #include "talus/bspline/bpatch.hpp"
-#include "talus/report/map_frame.hpp"
 #include "talus/bspline/relief.hpp"
-#include "talus/report/relief_raster.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/grid_window.hpp"
-#include "talus/report/figure.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/terrain_statistics.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/candidate_metrics.hpp"
 #include "talus/optimal/global_search.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/map_frame.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/relief_raster.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

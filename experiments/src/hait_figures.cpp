@@ -6,11 +6,11 @@
 #include <utility>
 
 #include "talus/bspline/bpatch.hpp"
-#include "talus/report/map_frame.hpp"
-#include "talus/report/relief_raster.hpp"
 #include "talus/report/figure.hpp"
+#include "talus/report/map_frame.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/relief_raster.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -15,11 +15,11 @@
 #include "hait_figures.hpp"
 #include "hait_scenarios.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/ruled_terrain.hpp"
+#include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
-#include "talus/core/ruled_terrain.hpp"
-#include "talus/kinematic/hait/hait_planner.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -12,16 +12,16 @@
 
 #include "hait_experiments.hpp"
 #include "hait_scenarios.hpp"
-#include "talus/report/figure.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/sample_statistics.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 #include "talus/kinematic/hait/potential_bitmap.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

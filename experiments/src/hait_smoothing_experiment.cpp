@@ -12,15 +12,15 @@
 #include "hait_figures.hpp"
 #include "hait_scenarios.hpp"
 #include "talus/core/error.hpp"
-#include "talus/report/experiment_summary.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
 #include "talus/kinematic/hait/hait_smoothing.hpp"
 #include "talus/kinematic/reeds_shepp.hpp"
+#include "talus/report/experiment_summary.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 

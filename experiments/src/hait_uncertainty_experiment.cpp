@@ -16,14 +16,14 @@
 #include "hait_scenarios.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
-#include "talus/report/experiment_summary.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/hait_robot_validity.hpp"
+#include "talus/report/experiment_summary.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

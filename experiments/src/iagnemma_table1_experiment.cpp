@@ -11,16 +11,16 @@
 
 #include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/sample_statistics.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/layered_navigation.hpp"
-#include "talus/report/navigation_figures.hpp"
 #include "talus/optimal/planner.hpp"
+#include "talus/report/navigation_figures.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -16,11 +16,11 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/path_csv.hpp"
-#include "talus/report/plot.hpp"
 #include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
+#include "talus/report/plot.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {

@@ -8,15 +8,15 @@
 #include <string>
 #include <vector>
 
-#include "talus/report/figure.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/canonical_manoeuvres.hpp"
 #include "talus/optimal/closed_loop_check.hpp"
 #include "talus/optimal/trajectory.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

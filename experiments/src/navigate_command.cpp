@@ -12,10 +12,10 @@
 #include "plan_command.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/output_folder.hpp"
-#include "talus/report/plot.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/report/navigation_figures.hpp"
+#include "talus/report/plot.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {

@@ -13,15 +13,15 @@
 #include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/esri_ascii.hpp"
-#include "talus/report/figure.hpp"
-#include "talus/report/number_format.hpp"
-#include "talus/report/plot.hpp"
-#include "talus/report/report.hpp"
 #include "talus/core/sample_statistics.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/planner.hpp"
 #include "talus/optimal/verify_profile.hpp"
+#include "talus/report/figure.hpp"
+#include "talus/report/number_format.hpp"
+#include "talus/report/plot.hpp"
+#include "talus/report/report.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -9,10 +9,10 @@
 #include "cli_values.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
-#include "talus/report/plot.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/placement_query.hpp"
 #include "talus/kinematic/hait/robot.hpp"
+#include "talus/report/plot.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {

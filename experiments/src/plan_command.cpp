@@ -20,12 +20,12 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/output_folder.hpp"
-#include "talus/report/plot.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/vehicle.hpp"
-#include "talus/report/plan_figures.hpp"
 #include "talus/optimal/planner.hpp"
+#include "talus/report/plan_figures.hpp"
+#include "talus/report/plot.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {
@@ -73,7 +73,7 @@ void check_plan_options(const PlanRequest& request) {
     }
   }
   for (const auto& [option, heading] : {std::pair{"--start-heading", request.start_heading},
-                                         std::pair{"--goal-heading", request.goal_heading}}) {
+                                        std::pair{"--goal-heading", request.goal_heading}}) {
     if (heading && !std::isfinite(*heading)) {
       throw InputError(std::string(option) + " must be a finite angle [rad], got " +
                        format_number(*heading));

@@ -65,9 +65,9 @@ struct PlanRequest {
   std::string formulation = "nested";
   /// PathOptimizerOptions::restarts (>= 0) after an optimisation that does not converge.
   int restarts = static_cast<int>(PathOptimizerOptions{}.restarts);
-  bool polish = false;       ///< --polish: PathOptimizerOptions::polish
-  double start_speed = 0.0;  ///< --v0 [m/s] (finite, >= 0, <= max_speed)
-  double end_speed = 0.0;    ///< --v1 [m/s]
+  bool polish = false;                  ///< --polish: PathOptimizerOptions::polish
+  double start_speed = 0.0;             ///< --v0 [m/s] (finite, >= 0, <= max_speed)
+  double end_speed = 0.0;               ///< --v1 [m/s]
   std::optional<double> start_heading;  ///< --start-heading [rad] (finite)
   std::optional<double> goal_heading;   ///< --goal-heading [rad] (finite)
   /// --rasters: also write cost_to_go.tif and trajectory.geojson (see plan()).

@@ -10,13 +10,13 @@
 #include "cli_values.hpp"
 #include "limits_command.hpp"
 #include "talus/core/error.hpp"
-#include "talus/report/plot.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
 #include "talus/optimal/trajectory.hpp"
+#include "talus/report/plot.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -11,12 +11,12 @@
 #include "plan_command.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/terrain_generators.hpp"
+#include "talus/optimal/local_stage_summary.hpp"
 #include "talus/report/figure.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
-#include "talus/core/terrain_generators.hpp"
-#include "talus/optimal/local_stage_summary.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -16,9 +16,9 @@
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
 #include "talus/core/output_folder.hpp"
-#include "talus/report/plot.hpp"
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
+#include "talus/report/plot.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {

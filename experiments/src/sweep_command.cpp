@@ -5,10 +5,10 @@
 #include <sstream>
 
 #include "talus/core/error.hpp"
+#include "talus/dynamics/vehicle.hpp"
 #include "talus/sweep/mpi_session.hpp"
 #include "talus/sweep/sweep_config.hpp"
 #include "talus/sweep/sweep_runner.hpp"
-#include "talus/dynamics/vehicle.hpp"
 
 namespace talus::experiments {
 

@@ -11,14 +11,14 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
+#include "talus/core/sample_statistics.hpp"
+#include "talus/dynamics/vehicle.hpp"
 #include "talus/report/figure.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
-#include "talus/core/sample_statistics.hpp"
 #include "talus/sweep/sweep_config.hpp"
 #include "talus/sweep/sweep_runner.hpp"
-#include "talus/dynamics/vehicle.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -17,17 +17,17 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/fit_residuals.hpp"
-#include "talus/report/map_frame.hpp"
 #include "talus/bspline/relief.hpp"
-#include "talus/report/relief_raster.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/terrain_generators.hpp"
 #include "talus/report/figure.hpp"
+#include "talus/report/map_frame.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/relief_raster.hpp"
 #include "talus/report/report.hpp"
-#include "talus/core/terrain_generators.hpp"
 
 namespace talus::experiments {
 namespace {

@@ -329,8 +329,8 @@ void PathOptimizerOptions::validate() const {
     throw InputError("PathOptimizerOptions.restart_perturbation must be >= 0 [m] (0 = two cells)");
   }
   speeds.validate();
-  for (const auto& [heading, name] : {std::pair{start_heading, "start_heading"},
-                                      std::pair{goal_heading, "goal_heading"}}) {
+  for (const auto& [heading, name] :
+       {std::pair{start_heading, "start_heading"}, std::pair{goal_heading, "goal_heading"}}) {
     if (heading && !std::isfinite(*heading))
       throw InputError(std::string("PathOptimizerOptions.") + name + " must be finite");
   }
@@ -372,8 +372,7 @@ Curve2 fit_candidate(const BPatch& terrain, const std::vector<Vec2>& polyline,
   const Curve2 fit = fit_clamped_cubic(
       resample_polyline(polyline, std::max<std::size_t>(10 * control_points, polyline.size())),
       control_points);
-  return Curve2(fit.knots(),
-                with_end_headings(fit.control_points(), options, terrain.cellsize()));
+  return Curve2(fit.knots(), with_end_headings(fit.control_points(), options, terrain.cellsize()));
 }
 
 InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,

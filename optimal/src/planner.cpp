@@ -91,11 +91,11 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
 
   const auto evaluation_started = Clock::now();
   const BPatch& surface = *problem.surface;
-  outcome.initial =
-      evaluate_trajectory(surface, problem.vehicle,
-                          outcome.optimization ? outcome.optimization->initial_curve
-                                               : fit_candidate(surface, polyline, local.control_points, local),
-                          evaluation, &workspace);
+  outcome.initial = evaluate_trajectory(
+      surface, problem.vehicle,
+      outcome.optimization ? outcome.optimization->initial_curve
+                           : fit_candidate(surface, polyline, local.control_points, local),
+      evaluation, &workspace);
   if (outcome.optimization) {
     const OptimizedPath& optimization = *outcome.optimization;
     outcome.trajectory =

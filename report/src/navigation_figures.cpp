@@ -5,12 +5,12 @@
 #include <fstream>
 #include <numbers>
 
-#include "talus/report/map_frame.hpp"
-#include "talus/report/relief_raster.hpp"
 #include "talus/core/error.hpp"
 #include "talus/report/figure.hpp"
+#include "talus/report/map_frame.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/relief_raster.hpp"
 
 namespace talus {
 namespace {

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <fstream>
 
-#include "talus/report/map_frame.hpp"
-#include "talus/report/relief_raster.hpp"
 #include "talus/report/figure.hpp"
+#include "talus/report/map_frame.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/relief_raster.hpp"
 
 namespace talus {
 namespace {

@@ -76,7 +76,7 @@ std::string_view to_string(SteeringLaw law);
 SteeringLaw parse_steering_law(std::string_view name);
 
 struct TrackingOptions {
-  double speed_scale = 1.0;     ///< multiplies the planned speed (> 0): 0.9, 1.0, 1.1, ...
+  double speed_scale = 1.0;  ///< multiplies the planned speed (> 0): 0.9, 1.0, 1.1, ...
   SteeringLaw steering_law = SteeringLaw::kCurvature;
   double lookahead_time = 0.4;  ///< L_d per unit speed [s] (>= 0)
   double min_lookahead = 0.0;   ///< [m] (>= 0); 0 = 4 half_wheelbase (two wheelbases)

@@ -307,8 +307,8 @@ Curve2 fit_candidate(const BPatch& terrain, const std::vector<Vec2>& polyline,
 /// control_point_limit() (when adaptive_control_points) while its profile
 /// at the search's stations is not admissible; once a fit fails on the
 /// vehicle's steering limit (Constraint::kSteering), shrunk by a third (down
-/// to 4, or 5 with both headings) instead, while it still fails: a fit that turns too tightly follows
-/// the lattice's kinks, and more control points follow them closer.
+/// to 4, or 5 with both headings) instead, while it still fails: a fit that turns too tightly
+/// follows the lattice's kinks, and more control points follow them closer.
 struct InitialPath {
   std::optional<Curve2> curve;     ///< the last fit tried; empty if none was lifted
   std::size_t control_points = 0;  ///< its M

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "talus/report/map_frame.hpp"
 #include "talus/core/types.hpp"
+#include "talus/report/map_frame.hpp"
 
 namespace talus {
 

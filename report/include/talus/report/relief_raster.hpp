@@ -13,9 +13,9 @@
 #include <utility>
 
 #include "talus/bspline/bpatch.hpp"
-#include "talus/report/map_frame.hpp"
 #include "talus/bspline/relief.hpp"
 #include "talus/bspline/surface_raster.hpp"
+#include "talus/report/map_frame.hpp"
 
 namespace talus {
 

@@ -45,6 +45,12 @@ SquaredSpeedInterval speed_condition(const ForceCondition& c, double g, const St
   return linear_condition(c.r * s.kappa_n + c.q * s.kappa_g, beta);
 }
 
+/// Contact at the wheels: g k_r + κ_w x >= 0.
+[[gnu::always_inline]] inline SquaredSpeedInterval wheel_contact(const StationGeometry& s,
+                                                                 double g) {
+  return linear_condition(s.kappa_wheels, g * s.k_r);
+}
+
 /// Whether c is implied by |f_q| <= lambda R (which implies R >= 0).
 bool implied_by_lateral(const ForceCondition& c, double lambda) {
   return c.t == 0.0 && c.c == 0.0 && c.r >= lambda * std::abs(c.q);
@@ -73,12 +79,14 @@ AdmissibleSet::AdmissibleSet(const Vehicle& vehicle)
     : AdmissibleSet(vehicle_physics(vehicle.model).admissible_set(vehicle)) {}
 
 AdmissibleSet::AdmissibleSet(double gravity, double friction, double max_speed,
-                             double max_curvature, const ForceConditions& conditions)
+                             double max_curvature, const ForceConditions& conditions,
+                             const std::optional<WheelLayout>& wheels)
     : gravity_(gravity),
       friction_(friction),
       max_speed_(max_speed),
       max_speed_squared_(max_speed * max_speed),
       max_curvature_(max_curvature),
+      wheels_(wheels),
       conditions_(conditions) {
   // The lateral envelope: every symmetric pair m R ± f_q >= 0 tightens lambda.
   lateral_ratio_ = friction;
@@ -187,6 +195,8 @@ SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
         interval.upper = max_speed_squared_;
         break;
     }
+    if (wheels_ && c.constraint == Constraint::kContact)
+      interval = intersect(interval, wheel_contact(s, gravity_));
     if (c.slot != Candidate::Slot::kNone) *slots[static_cast<std::size_t>(c.slot)] = interval;
     if (interval.lower > lower * (1.0 + kTie)) {
       lower = interval.lower;
@@ -226,6 +236,7 @@ SquaredSpeedInterval AdmissibleSet::squared_speeds(const StationGeometry& s) con
   SquaredSpeedInterval out = lateral_pair(lateral_ratio_, gravity_, s);
   for (const ForceCondition& c : extra_speed_.all())
     out = intersect(out, speed_condition(c, gravity_, s));
+  if (wheels_) out = intersect(out, wheel_contact(s, gravity_));
   out.upper = std::min(out.upper, max_speed_squared_);
   return out;
 }
@@ -275,6 +286,11 @@ AccelerationBounds AdmissibleSet::acceleration_bounds(const StationGeometry& s,
       return out;
     }
   }
+  if (wheels_ &&
+      !(gravity_ * s.k_r + s.kappa_wheels * x >= -kOnLimit * (scale + std::abs(s.kappa_wheels * x)))) {
+    out.violated = Constraint::kContact;
+    return out;
+  }
   const double friction_force = friction_ * std::max(normal, 0.0);
   const double slack = friction_force * friction_force - f_q * f_q;
   if (!(slack >= -kOnLimit * scale * scale)) {
@@ -321,6 +337,11 @@ AccelerationInterval AdmissibleSet::accelerations_at(const StationGeometry& s, d
       return out;
     }
   }
+  if (wheels_ && gravity_ * s.k_r + s.kappa_wheels * x <
+                                -kRounding * (scale + std::abs(s.kappa_wheels * x))) {
+    out.lower = kInfinity;
+    return out;
+  }
   const double friction_force = friction_ * std::max(R, 0.0);
   const double half_width = std::sqrt(std::max(friction_force * friction_force - Q * Q, 0.0));
   const double normal = std::max(R, 0.0);
@@ -366,6 +387,8 @@ AccelerationInterval AdmissibleSet::accelerations_along(const StationGeometry& s
   out.require_nonnegative(lambda * R0 + Q0, lambda * R1 + Q1);
   for (const ForceCondition& c : extra_speed_.all())
     out.require_nonnegative(c.r * R0 + c.q * Q0 + c.c, c.r * R1 + c.q * Q1);
+  if (wheels_)
+    out.require_nonnegative(g * s.k_r + s.kappa_wheels * y0, s.kappa_wheels * beta);
   for (std::size_t k = 0; k < upper_count_ + lower_count_; ++k) {  // pitch-over
     const TractionBound& c = k < upper_count_ ? upper_bounds_[k] : lower_bounds_[k - upper_count_];
     out.require_nonnegative(c.r * R0 + c.q * Q0 + c.t * T0 + c.c, c.r * R1 + c.q * Q1 + c.t);

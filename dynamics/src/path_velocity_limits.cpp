@@ -5,7 +5,8 @@
 
 namespace talus {
 
-VelocityLimits::VelocityLimits(const Vehicle& vehicle) : vehicle_(vehicle), set_(vehicle_) {}
+VelocityLimits::VelocityLimits(const Vehicle& vehicle)
+    : vehicle_(vehicle), set_(vehicle_) {}
 
 VelocityLimits::VelocityLimits(const Vehicle& vehicle, const SurfacePath& path,
                                std::size_t stations)
@@ -22,21 +23,22 @@ void VelocityLimits::compute(const SurfacePath& path, std::size_t stations) {
                  "speed limits at " + std::to_string(stations) + " stations",
                  "use fewer stations (--stations)");
   path.sample_uniform_parameter(stations, frames_);
-  compute_limits();
+  compute_limits(&path.surface());
 }
 
-void VelocityLimits::compute(const std::vector<PathFrame>& frames) {
+void VelocityLimits::compute(const std::vector<PathFrame>& frames, const BPatch* surface) {
   if (frames.size() < 2) throw InputError("a path needs at least 2 stations");
   frames_ = frames;
-  compute_limits();
+  compute_limits(surface);
 }
 
-void VelocityLimits::compute_limits() {
+void VelocityLimits::compute_limits(const BPatch* surface) {
   const std::size_t stations = frames_.size();
   geometry_.resize(stations);
   limits_.resize(stations);
   for (std::size_t k = 0; k < stations; ++k) {
-    geometry_[k] = StationGeometry::from(frames_[k]);
+    geometry_[k] = surface != nullptr ? station_geometry(frames_[k], *surface, wheels())
+                                      : StationGeometry::from(frames_[k]);
     limits_[k] = set_.speed_limits(geometry_[k]);
   }
 }

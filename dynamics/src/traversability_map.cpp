@@ -76,7 +76,7 @@ TraversabilityMap traversability_map(const BPatch& surface, const ElevationGrid&
       bool any_traversable = false;
       for (std::size_t k = 0; k < m; ++k) {
         const PathFrame frame = lift_to_surface(p, point, directions[k], Vec2::Zero());
-        const SpeedLimits limits = set.speed_limits(StationGeometry::from(frame));
+        const SpeedLimits limits = set.speed_limits(station_geometry(frame, surface, set.wheels()));
         map.speed_limit[k][node] = limits.v_max;
         any_traversable = any_traversable || limits.traversable;
         if (limits.v_max < lowest || k == 0) {

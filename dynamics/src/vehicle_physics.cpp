@@ -35,7 +35,8 @@ AdmissibleSet VehiclePhysics::admissible_set(const Vehicle& vehicle) const {
     }
   }
   return AdmissibleSet(vehicle.gravity, vehicle.friction, vehicle.max_speed,
-                       vehicle.max_curvature(), conditions);
+                       vehicle.max_curvature(), conditions,
+                       contact_at_wheels() ? std::optional(wheel_layout(vehicle)) : std::nullopt);
 }
 
 const VehiclePhysics& vehicle_physics(VehicleModel model) {

@@ -108,7 +108,7 @@ double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
       if (!(f.s > prev.s)) return kInfinity;  // degenerate parametrisation
     }
   }
-  limits_.compute(frames_);
+  limits_.compute(frames_, terrain_);
   try {
     solver_.solve(limits_, speeds_, profile_);
   } catch (const InputError&) {
@@ -152,16 +152,17 @@ bool PathTimeObjective::adjoint_gradient(Eigen::VectorXd& gradient) {
     return false;
   const double h = 1.0 / static_cast<double>(n - 1);
   for (std::size_t k = 0; k < n; ++k) {
-    // dT/d(κ_n, κ_g, k_t, k_q, k_r, speed, speed_rate) at station k; the
+    // dT/d(κ_n, κ_g, k_t, k_q, k_r, speed, speed_rate, κ_w) at station k; the
     // speed terms through the Hermite step lengths on either side.
-    Eigen::Matrix<double, 1, 7> outer;
+    Eigen::Matrix<double, 1, detail::StationDerivatives::kRows> outer;
     for (int i = 0; i < 5; ++i) outer[i] = sensitivity.geometry[k][static_cast<std::size_t>(i)];
     const double before = k > 0 ? sensitivity.step_length[k - 1] : 0.0;
     const double after = k + 1 < n ? sensitivity.step_length[k] : 0.0;
     outer[5] = 0.5 * h * (before + after);
     outer[6] = h * h / 12.0 * (after - before);
+    outer[7] = sensitivity.geometry[k][5];
     const Eigen::Matrix<double, 1, 6> local =
-        outer * detail::station_derivatives(*terrain_, planar_[k]).jacobian;
+        outer * detail::station_derivatives(*terrain_, planar_[k], limits_.wheels()).jacobian;
     for (int b = 0; b < 4; ++b) {
       const std::size_t i = first_basis_[k] + static_cast<std::size_t>(b);
       if (i == 0 || i + 1 == control_points_) continue;  // start and goal are fixed

@@ -12,15 +12,18 @@
 namespace talus::detail {
 namespace {
 
-// Variables of one equation: x_j, x_{j+1}, Δs_j, then the 5 geometry values
+// Variables of one equation: x_j, x_{j+1}, Δs_j, then the 6 geometry values
 // of the station where the constraint is evaluated.
-using Ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 8, 1>>;
+constexpr int kGeometry = 6;
+constexpr int kVariables = 3 + kGeometry;
+using Ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, kVariables, 1>>;
 
 enum class Kind {
   kLateralPlus,     // λ R − Q >= 0 (λ: the vehicle's lateral envelope): a speed condition
   kLateralMinus,    // λ R + Q >= 0
   kSpeedCondition,  // a speed condition of the vehicle the envelope does not imply
   kMaxSpeed,        // v_max² − x >= 0
+  kWheelContact,    // g k_r + κ_w x >= 0: contact at the wheels (rigid body)
   kFriction,        // μ² R² − f_t² − f_q² >= 0
   kTractionZero,    // f_t = 0: friction on a station whose lateral friction is exhausted
   kTraction,        // a traction condition of the vehicle (pitch-over, drive, brake)
@@ -31,7 +34,7 @@ enum class Kind {
 };
 
 /// Constraint value at a station with state x, step control u and geometry
-/// (κ_n, κ_g, k_t, k_q, k_r) = G; `condition` for kSpeedCondition and
+/// (κ_n, κ_g, k_t, k_q, k_r, κ_w) = G; `condition` for kSpeedCondition and
 /// kTraction. One source for double and AutoDiff.
 template <typename S>
 S constraint(Kind kind, const ForceCondition* condition, const AdmissibleSet& c,
@@ -47,6 +50,8 @@ S constraint(Kind kind, const ForceCondition* condition, const AdmissibleSet& c,
       return c.lateral_ratio() * R + Q;
     case Kind::kMaxSpeed:
       return max_speed_squared - x;
+    case Kind::kWheelContact:
+      return g * G[4] + G[5] * x;
     case Kind::kFriction:
       return c.friction() * c.friction() * R * R - F * F - Q * Q;
     case Kind::kTractionZero:
@@ -109,9 +114,9 @@ class Problem {
   double length(std::size_t j) const { return s_[j + 1] - s_[j]; }
   double control(std::size_t j) const { return (x_[j + 1] - x_[j]) / (2.0 * length(j)); }
 
-  std::array<double, 5> g(std::size_t k) const {
+  std::array<double, kGeometry> g(std::size_t k) const {
     const StationGeometry& s = geometry_[k];
-    return {s.kappa_n, s.kappa_g, s.k_t, s.k_q, s.k_r};
+    return {s.kappa_n, s.kappa_g, s.k_t, s.k_q, s.k_r, s.kappa_wheels};
   }
 
   /// Lateral friction exhausted at station k (|f_q| = μ R): there the
@@ -152,6 +157,7 @@ class Problem {
     for (const ForceCondition& c : c_.extra_speed_conditions())
       consider({Kind::kSpeedCondition, k, 0, true, 0.0, &c});
     if (std::isfinite(vmax2_)) consider({Kind::kMaxSpeed, k, 0, true});
+    if (c_.wheels() != nullptr) consider({Kind::kWheelContact, k, 0, true});
     return best;
   }
 
@@ -213,16 +219,17 @@ class Problem {
   /// Value and derivatives of an equation in (x_j, x_{j+1}, Δs_j, G).
   Ad differentiate(const Equation& e) const {
     const auto G = g(e.station);
-    Ad vars[8];
-    const double values[8] = {e.speed_only ? x_[e.station] : x_[e.step],
-                              e.speed_only ? 0.0 : x_[e.step + 1],
-                              e.speed_only ? 1.0 : length(e.step),
-                              G[0],
-                              G[1],
-                              G[2],
-                              G[3],
-                              G[4]};
-    for (int i = 0; i < 8; ++i) vars[i] = Ad(values[i], 8, i);
+    Ad vars[kVariables];
+    const double values[kVariables] = {e.speed_only ? x_[e.station] : x_[e.step],
+                                       e.speed_only ? 0.0 : x_[e.step + 1],
+                                       e.speed_only ? 1.0 : length(e.step),
+                                       G[0],
+                                       G[1],
+                                       G[2],
+                                       G[3],
+                                       G[4],
+                                       G[5]};
+    for (int i = 0; i < kVariables; ++i) vars[i] = Ad(values[i], kVariables, i);
     const Ad u = e.speed_only ? Ad(0.0) : (vars[1] - vars[0]) / (2.0 * vars[2]);
     const Ad& x = e.speed_only ? vars[0] : (e.station == e.step ? vars[0] : vars[1]);
     if (e.kind == Kind::kTangentControl) {
@@ -252,7 +259,7 @@ bool travel_time_sensitivity(const Vehicle& vehicle, const std::vector<StationGe
     if (!(s[j + 1] > s[j])) return false;
   }
   const Problem problem(vehicle, geometry, s, speeds);
-  out.geometry.assign(m, {0.0, 0.0, 0.0, 0.0, 0.0});
+  out.geometry.assign(m, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
   out.step_length.assign(m - 1, 0.0);
 
   // Direct partials of T.
@@ -322,7 +329,7 @@ bool travel_time_sensitivity(const Vehicle& vehicle, const std::vector<StationGe
     const auto& d = derivatives[r].derivatives();
     const double l = lambda[static_cast<long>(r)];
     if (!e.speed_only) out.step_length[e.step] -= l * d[2];
-    for (int i = 0; i < 5; ++i)
+    for (int i = 0; i < kGeometry; ++i)
       out.geometry[e.station][static_cast<std::size_t>(i)] -= l * d[3 + i];
   }
   return true;

@@ -28,9 +28,9 @@
 
 namespace talus::detail {
 
-/// dT/d(κ_n, κ_g, k_t, k_q, k_r) at each station and dT/dΔs for each step.
+/// dT/d(κ_n, κ_g, k_t, k_q, k_r, κ_w) at each station and dT/dΔs for each step.
 struct TravelTimeSensitivity {
-  std::vector<std::array<double, 5>> geometry;
+  std::vector<std::array<double, 6>> geometry;
   std::vector<double> step_length;
 };
 

@@ -47,7 +47,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
       normal_[i] = chord.norm() > 0.0 ? Vec2(-chord.y(), chord.x()) / chord.norm() : Vec2(0, 1);
     }
     for (const ForceCondition& c : set_.conditions()) conditions_.push_back(c);
-    rows_per_end_ = 1 + conditions_.size();
+    wheel_row_ = set_.wheels() != nullptr;
+    rows_per_end_ = 1 + conditions_.size() + (wheel_row_ ? 1 : 0);
     const KnotVector& knots = problem.initial->knots();
     first_basis_.resize(stations_);
     basis_.resize(stations_);
@@ -405,7 +406,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
       if (!p.allFinite() || !terrain_.contains(position) || !terrain_.on_data(position))
         return false;
       if (!(p.col(1).norm() > 0.0)) return false;
-      const StationDerivatives sd = station_derivatives(terrain_, p);
+      const StationDerivatives sd = station_derivatives(terrain_, p, set_.wheels());
       if (!sd.value.allFinite() || !sd.jacobian.allFinite()) return false;
       value_[k] = sd.value;
       // Chain to the station's four control points: column dims b + d.
@@ -413,7 +414,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
       for (int b = 0; b < 4; ++b) {
         const std::size_t i = first_basis_[k] + static_cast<std::size_t>(b);
         for (int axis = 0; axis < 2; ++axis) {
-          const Eigen::Matrix<double, 7, 1> along = sd.jacobian.col(axis) * basis_[k](0, b) +
+          const Eigen::Matrix<double, StationDerivatives::kRows, 1> along = sd.jacobian.col(axis) * basis_[k](0, b) +
                                                     sd.jacobian.col(2 + axis) * basis_[k](1, b) +
                                                     sd.jacobian.col(4 + axis) * basis_[k](2, b);
           if (dims_ == 2) {
@@ -447,8 +448,9 @@ class SimultaneousNlp : public Ipopt::TNLP {
     }
   }
 
-  /// The 2 (1 + C) constraint values of step j (the friction cone, then each
-  /// ForceCondition, at its first end and then at its second) and, when
+  /// The 2 (1 + C [+ 1]) constraint values of step j (the friction cone, each
+  /// ForceCondition, and with wheels contact at the wheels, g k_r + κ_w ṡ² >= 0,
+  /// at its first end and then at its second) and, when
   /// `jacobian` is given, their derivatives over the step's columns.
   void step_rows(std::size_t j, const Number* x, double* rows, Eigen::MatrixXd* jacobian) {
     const double g = set_.gravity(), mu = set_.friction();
@@ -478,6 +480,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
         const ForceCondition& f = conditions_[c];
         out[1 + c] = f.t * ft + f.q * fq + f.r * rn + f.c;
       }
+      if (wheel_row_) out[1 + conditions_.size()] = g * v[4] + v[7] * b;
       if (jacobian == nullptr) continue;
       // d(f_t, f_q, R) over the step's columns.
       const long offset = static_cast<long>(dims_ * (first_basis_[k] - first_basis_[j]));
@@ -499,6 +502,13 @@ class SimultaneousNlp : public Ipopt::TNLP {
         jacobian->row(row + 1 + static_cast<long>(c)) =
             (f.t * dft + f.q * dfq + f.r * dr).transpose();
       }
+      if (wheel_row_) {
+        Eigen::VectorXd& dw = dw_;
+        dw.setZero(width);
+        dw.segment(offset, w) = (g * d.row(4) + b * d.row(7)).head(w).transpose();
+        dw[col_b] += v[7];
+        jacobian->row(row + 1 + static_cast<long>(conditions_.size())) = dw.transpose();
+      }
     }
   }
 
@@ -508,6 +518,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
   std::vector<ForceCondition> conditions_;
   std::vector<Vec2> control_;  // workspace: the current control points
   std::size_t points_, stations_, dims_ = 2, free_ = 0, rows_per_end_ = 0;
+  bool wheel_row_ = false;  // contact at the wheels (rigid body): one more row per end
   std::vector<Vec2> origin_, normal_;  // the initial control points, their lateral directions
   double h_ = 0.0;
   std::vector<std::size_t> first_basis_;
@@ -515,12 +526,12 @@ class SimultaneousNlp : public Ipopt::TNLP {
   std::vector<std::vector<Index>> step_columns_;
   Index nonzeros_ = 0;
   // Per-point cache.
-  std::vector<Eigen::Matrix<double, 7, 1>> value_;
-  std::vector<Eigen::Matrix<double, 7, 8>> derivative_;
+  std::vector<Eigen::Matrix<double, StationDerivatives::kRows, 1>> value_;
+  std::vector<Eigen::Matrix<double, StationDerivatives::kRows, 8>> derivative_;
   std::vector<double> step_length_;
   Eigen::MatrixXd jacobian_;
   std::vector<double> rows_;
-  Eigen::VectorXd local_, du_, dft_, dfq_, dr_;
+  Eigen::VectorXd local_, du_, dft_, dfq_, dr_, dw_;
   std::vector<std::pair<Index, Index>> hessian_entries_;  // (row, column), row >= column
   std::vector<std::size_t> colour_;                       // each control coordinate's group
   std::vector<std::vector<std::size_t>> groups_;          // the coordinates probed together

@@ -1,7 +1,8 @@
 // The rigid body on four wheels of Mann & Shiller (2006), geometric stability
 // criterion: the resultant of gravity and inertia passes through the support
 // rectangle (±l, ±b), i.e. lateral tip-over |f_q| <= (b/h) R and longitudinal
-// tip-over (pitch) |f_t| <= (l/h) R. See dynamics/DERIVATION.md.
+// tip-over (pitch) |f_t| <= (l/h) R; R is the chassis' total normal load and
+// contact is judged at each wheel (wheel_contact.hpp). See dynamics/DERIVATION.md.
 #include "../vehicle_models.hpp"
 
 namespace talus::detail {
@@ -10,6 +11,7 @@ namespace {
 class RigidBodyPhysics final : public VehiclePhysics {
  public:
   std::string_view name() const override { return "rigid_body"; }
+  bool contact_at_wheels() const override { return true; }
 
  protected:
   void add_model_conditions(const Vehicle& v, ForceConditions& out) const override {

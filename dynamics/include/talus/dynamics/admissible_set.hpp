@@ -8,7 +8,8 @@
 /// mass the ground must supply (dynamics/DERIVATION.md):
 ///     f_t = u + g k_t,   f_q = g k_q + κ_g x,   R = g k_r + κ_n x   [m/s²].
 /// The vehicle fixes which forces are admissible, independently of the
-/// station: the friction cone f_t² + f_q² <= μ² R², a short list of linear
+/// station (apart from contact at the wheels, which reads the station's
+/// kappa_wheels): the friction cone f_t² + f_q² <= μ² R², a short list of linear
 /// ForceConditions (contact, the vehicle model's tip-over conditions, drive
 /// and brake limits), and x <= max_speed². The admissible (x, u) set of a
 /// station is the preimage of that force set: convex (one second-order cone
@@ -29,10 +30,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
+#include "talus/dynamics/wheel_contact.hpp"
 
 namespace talus {
 
@@ -117,6 +120,11 @@ class AdmissibleSet {
   double gravity() const { return gravity_; }      ///< g [m/s²]
   double friction() const { return friction_; }    ///< μ of the friction cone
   double max_speed() const { return max_speed_; }  ///< [m/s]; ∞ = unlimited
+  /// The wheels where contact is also judged, g k_r + κ_w ṡ² >= 0 with
+  /// κ_w = StationGeometry::kappa_wheels (the rigid body; wheel_contact.hpp),
+  /// or null (the point mass). Stations for this set are built with
+  /// station_geometry(frame, surface, set.wheels()).
+  const WheelLayout* wheels() const { return wheels_ ? &*wheels_ : nullptr; }
   /// λ: the speed conditions of the form m R ± f_q >= 0 (and contact) are
   /// implied by |f_q| <= λ R, λ = min(μ, every such m): the lateral envelope
   /// the fast queries use instead of the individual conditions.
@@ -157,7 +165,7 @@ class AdmissibleSet {
  private:
   friend class VehiclePhysics;
   AdmissibleSet(double gravity, double friction, double max_speed, double max_curvature,
-                const ForceConditions& conditions);
+                const ForceConditions& conditions, const std::optional<WheelLayout>& wheels);
   TangentialForceRange traction_range(double normal, double f_q, double half_width) const;
 
   static constexpr std::size_t kCandidates = ForceConditions::kCapacity + 2;
@@ -173,6 +181,9 @@ class AdmissibleSet {
   /// speed (binding kSteering); +inf without a steering limit.
   double max_curvature_ = std::numeric_limits<double>::infinity();
   double lateral_ratio_ = 0.0;
+  /// The model judges contact at these wheels too: g k_r + κ_w x >= 0 (StationGeometry::
+  /// kappa_wheels), a speed condition named kContact.
+  std::optional<WheelLayout> wheels_;
   ForceConditions conditions_, speed_, extra_speed_, traction_;
   /// One constraint of speed_limits(), with the shape of its speed
   /// conditions recognised once so that the common shapes take their

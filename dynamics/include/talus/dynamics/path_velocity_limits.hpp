@@ -9,6 +9,7 @@
 #include "talus/dynamics/admissible_set.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
+#include "talus/dynamics/wheel_contact.hpp"
 
 namespace talus {
 
@@ -23,12 +24,17 @@ class VelocityLimits {
   VelocityLimits(const Vehicle& vehicle, const SurfacePath& path, std::size_t stations);
 
   void compute(const SurfacePath& path, std::size_t stations);
-  /// The limits at stations the caller has sampled (at least 2; s increasing).
-  void compute(const std::vector<PathFrame>& frames);
+  /// The limits at stations the caller has sampled on `surface` (at least 2; s
+  /// increasing); the surface is where a rigid body's wheels stand. Null
+  /// `surface`: frames given without one (geometry from a user), every wheel
+  /// taken at the c.g. (StationGeometry::from).
+  void compute(const std::vector<PathFrame>& frames, const BPatch* surface);
 
   const Vehicle& vehicle() const { return vehicle_; }
   /// The vehicle's admissible (ṡ², s̈) set, built once: what the optimiser asks.
   const AdmissibleSet& admissible_set() const { return set_; }
+  /// The rigid body's wheels (wheel_contact.hpp); null for the point mass.
+  const WheelLayout* wheels() const { return set_.wheels(); }
   std::size_t size() const { return frames_.size(); }
   const PathFrame& frame(std::size_t station) const { return frames_[station]; }
   const StationGeometry& geometry(std::size_t station) const { return geometry_[station]; }
@@ -45,7 +51,7 @@ class VelocityLimits {
   std::size_t first_untraversable() const;
 
  private:
-  void compute_limits();
+  void compute_limits(const BPatch* surface);
 
   Vehicle vehicle_;
   AdmissibleSet set_;

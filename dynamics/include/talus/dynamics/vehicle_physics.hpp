@@ -10,7 +10,8 @@
 ///
 /// Models: point mass (Shiller & Gwo 1991): lateral tip-over |f_q| <= (b/h) R;
 /// rigid body on four wheels (Mann & Shiller 2006): the same plus
-/// longitudinal tip-over |f_t| <= (l/h) R. See dynamics/DERIVATION.md.
+/// longitudinal tip-over |f_t| <= (l/h) R, with the normal load and contact
+/// judged at the wheels (wheel_contact.hpp). See dynamics/DERIVATION.md.
 #include <string_view>
 
 #include "talus/dynamics/admissible_set.hpp"
@@ -30,6 +31,9 @@ class VehiclePhysics {
   /// max_accel − f_t >= 0 and brake max_decel + f_t >= 0 (the last two only
   /// when finite), and checks the conditions' contract (admissible_set.hpp).
   AdmissibleSet admissible_set(const Vehicle& vehicle) const;
+  /// Whether the model judges contact at the wheels as well as at the c.g.
+  /// (StationGeometry::kappa_wheels, wheel_contact.hpp): the rigid body.
+  virtual bool contact_at_wheels() const { return false; }
 
  protected:
   /// Appends the model's own conditions (tip-over, pitch-over, ...) for

@@ -9,7 +9,8 @@
 /// acceleration, the contact force per unit mass is
 ///     f_t = g k_t + s̈,   f_q = g k_q + κ_g x,   R = g k_r + κ_n x.
 /// Constraints:
-///   contact   R >= 0
+///   contact   R >= 0; rigid body: also every wheel's load, g k_r + κ_w x >= 0
+///             (wheel_contact.hpp; there κ_n is the chassis' mean over the wheels)
 ///   sliding   f_t² + f_q² <= μ² R²
 ///   tip-over  |f_q| <= (b/h) R                     (lateral, both models)
 ///   pitch     |f_t| <= (l/h) R                     (rigid body only)
@@ -63,8 +64,15 @@ struct StationGeometry {
   /// Curvature of the path's horizontal projection [1/m]: the steering limit's measure
   /// (PathFrame::kappa_planar).
   double kappa_planar = 0.0;
+  /// Load curvature of the least-loaded wheel [1/m]: a rigid body keeps every wheel on the
+  /// ground while g k_r + kappa_wheels ṡ² >= 0 (wheel_contact.hpp). For a rigid body
+  /// station_geometry() (wheel_contact.hpp) also sets kappa_n to the chassis' curvature,
+  /// the mean over the wheels; from() puts the wheels at the c.g.: kappa_wheels = kappa_n.
+  double kappa_wheels = 0.0;
+  /// The c.g. point's geometry, every wheel at the c.g. (the point mass's view).
   static StationGeometry from(const PathFrame& frame) {
-    return {frame.kappa_n, frame.kappa_g, frame.k_t, frame.k_q, frame.k_r, frame.kappa_planar};
+    return {frame.kappa_n, frame.kappa_g,      frame.k_t,  frame.k_q,
+            frame.k_r,     frame.kappa_planar, frame.kappa_n};
   }
 };
 

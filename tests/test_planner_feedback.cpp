@@ -213,24 +213,23 @@ TEST(PlannerFeedback, WithoutTheBrakingRuleTheFeedbackLoopRemovesTheChute) {
   EXPECT_NEAR(fresh.travel_time(), trajectory.travel_time(), 0.01 * trajectory.travel_time());
 }
 
-// Fractal battery seed 14, the lattice's best corridor (issue #12): the
-// local stage from an 8-point fit and a further start at 16, no restart (the
-// default before 16 points with two restarts): its best point (the 36-point fit's optimum, 13.02 s
-// at its search stations, equally spaced in the curve parameter) has no admissible profile at the
-// final stations (equally spaced in arc length): from 5.2 m on the vehicle cannot brake enough, a
-// profile on the edge of admissibility. The planner reports the 12-point fit's optimum instead
-// (13.09 s) rather than the initial fit (14.25 s).
+// Fractal battery seed 4, the lattice's best corridor, searched at a coarse spacing (0.6 m
+// against the final 0.1 m): the optimiser's best point (8.93 s at its search stations) has no
+// admissible profile at the final stations, a profile on the edge of admissibility that the
+// coarse stations step over. The planner reports another attempt's point instead, the fastest
+// at the final stations, rather than the initial fit. (Until the rigid body's wheels changed
+// the floating-point path of the adjoint, the default search on seed 14 with 8 and 16 control
+// points met the same case; on the battery it is rare at the default spacing: none of 75
+// plans in the scan of that change.)
 TEST(PlannerStations, AnOptimumWithoutAProfileAtTheFinalStationsGivesWayToTheFastestAttempt) {
   const BPatch surface =
-      BPatch::interpolate(generate_fractal_terrain(experiments::battery_terrain(14)));
+      BPatch::interpolate(generate_fractal_terrain(experiments::battery_terrain(4)));
   const Vehicle ugv = experiments::battery_point_mass_ugv();
   const PlanningProblem problem(surface, ugv, experiments::kBatteryStart,
                                 experiments::kBatteryGoal);
   PlannerOptions options;
   options.global.candidates = 1;
-  options.local.control_points = 8;
-  options.local.more_control_points = {16};
-  options.local.restarts = 0;
+  options.local.station_spacing = 0.6;
   const PlannerResult result = plan(problem, options);
   ASSERT_EQ(result.status, PlannerStatus::kOk) << result.brief_report();
   const CandidateOutcome& outcome = result.candidates.front();

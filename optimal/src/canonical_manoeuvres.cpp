@@ -178,12 +178,20 @@ ManoeuvreCase make_canonical_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehic
       hills.hills = {GaussianHill{Vec2(12.0, 6.0), kHillHeight, kHillWidth}};
       ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_gaussian_hills(hills)),
                       straight_path(2.0, 22.0, 6.0));
-      c.analytic_limit = std::sqrt(g * kHillWidth * kHillWidth / kHillHeight);
+      // A rigid body over the top stands on its axles at x = ±l, where the section has
+      // z'' = (H / σ²)(l² / σ² − 1) e^(−l²/2σ²) and slope z' = −(H l / σ²) e^(−l²/2σ²): its
+      // chassis curvature is z'' / sqrt(1 + z'²) (wheel_contact.hpp; l = 0: the point mass).
+      const double l = vehicle.model == VehicleModel::kRigidBody ? vehicle.half_wheelbase : 0.0;
+      const double w2 = kHillWidth * kHillWidth, decay = std::exp(-l * l / (2.0 * w2));
+      const double curvature = kHillHeight / w2 * (l * l / w2 - 1.0) * decay;
+      const double slope = kHillHeight * l / w2 * decay;
+      c.analytic_limit = std::sqrt(g * std::sqrt(1.0 + slope * slope) / -curvature);
       c.key_from = 9.9;  // the hill's top, x = 12
       c.key_to = 10.1;
       c.description =
           "straight over the top of a Gaussian hill 0.4 m high, sigma 1 m (crest radius "
-          "sigma^2 / H = 2.5 m): v = sqrt(g sigma^2 / H)";
+          "sigma^2 / H = 2.5 m): v = sqrt(g sigma^2 / H) for a point mass; a rigid body's "
+          "axles stand at x = +-l: v^2 = g sqrt(1 + z'(l)^2) / -z''(l)";
       return c;
     }
     case CanonicalManoeuvre::kSideSlope: {

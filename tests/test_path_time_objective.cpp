@@ -122,9 +122,9 @@ TEST(PathTimeObjective, TheRigidBodysGradientThroughItsWheelsMatchesFiniteDiffer
     Eigen::VectorXd gradient;
     if (!std::isfinite(objective.evaluate(z, &gradient))) continue;
     const Eigen::VectorXd fd = central_differences(objective, z, 1e-6);
-    EXPECT_LT((gradient - fd).norm() / fd.norm(), 1e-4) << "trial " << trial << "\nadjoint "
-                                                        << gradient.transpose() << "\nfinite  "
-                                                        << fd.transpose();
+    EXPECT_LT((gradient - fd).norm() / fd.norm(), 1e-4)
+        << "trial " << trial << "\nadjoint " << gradient.transpose() << "\nfinite  "
+        << fd.transpose();
     EXPECT_EQ(objective.finite_difference_fallbacks(), 0u);
     ++checked;
     // The wheels' contact binds somewhere on these paths (else the test would not reach it).
@@ -132,7 +132,8 @@ TEST(PathTimeObjective, TheRigidBodysGradientThroughItsWheelsMatchesFiniteDiffer
     const VelocityLimits limits(v, path, 300);
     for (std::size_t k = 0; k < limits.size(); ++k) {
       const StationGeometry& g = limits.geometry(k);
-      if (g.kappa_wheels < g.kappa_n - 1e-3 && limits.limits(k).upper_binding == Constraint::kContact)
+      if (g.kappa_wheels < g.kappa_n - 1e-3 &&
+          limits.limits(k).upper_binding == Constraint::kContact)
         ++wheel_bound;
     }
   }

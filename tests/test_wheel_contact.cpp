@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "talus/bspline/surface_path.hpp"
+#include "talus/core/error.hpp"
+#include "talus/dynamics/admissible_set.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/wheel_contact.hpp"
 #include "terrain_test_support.hpp"
@@ -100,8 +102,8 @@ TEST(WheelContact, ATransverseCrestShorterThanTheWheelbaseIsSpannedByTheChassis)
   // v² = g σ² / A; the chassis meets it one axle at a time, whose wheels carry
   // (1 + ρ_p) / 2 of that axle's acceleration: v² = 2 g σ² / ((1 + ρ_p) A), 1.34 times.
   const double sigma = 0.05, height = 0.01;
-  const BPatch s = terrain(
-      [&](double x, double) { return height * std::exp(-x * x / (2 * sigma * sigma)); });
+  const BPatch s =
+      terrain([&](double x, double) { return height * std::exp(-x * x / (2 * sigma * sigma)); });
   const double point = lowest_contact_speed(s, ugv(VehicleModel::kPointMass), {-0.8, 0}, {0.8, 0});
   const double rigid = lowest_contact_speed(s, ugv(VehicleModel::kRigidBody), {-0.8, 0}, {0.8, 0});
   const double rp = 0.01788 / (2.0 * 0.135 * 0.135);
@@ -112,8 +114,8 @@ TEST(WheelContact, ATransverseCrestShorterThanTheWheelbaseIsSpannedByTheChassis)
 
 TEST(WheelContact, ACrestLongerThanTheVehicleGivesThePointMasssLimit) {
   const double sigma = 2.0, height = 0.5;
-  const BPatch s = terrain(
-      [&](double x, double) { return height * std::exp(-x * x / (2 * sigma * sigma)); });
+  const BPatch s =
+      terrain([&](double x, double) { return height * std::exp(-x * x / (2 * sigma * sigma)); });
   const double point = lowest_contact_speed(s, ugv(VehicleModel::kPointMass), {-0.8, 0}, {0.8, 0});
   const double rigid = lowest_contact_speed(s, ugv(VehicleModel::kRigidBody), {-0.8, 0}, {0.8, 0});
   EXPECT_NEAR(rigid, point, 0.01 * point);
@@ -126,8 +128,7 @@ TEST(WheelContact, TheWheelsOfATurningChassisFollowTheirOwnArcs) {
   const double R = 5.0, r = 0.5;
   const BPatch s = terrain([&](double x, double y) { return (x * x + y * y) / (2 * R); });
   std::vector<Vec2> points;
-  for (int k = 0; k <= 8; ++k)
-    points.emplace_back(r * std::cos(0.25 * k), r * std::sin(0.25 * k));
+  for (int k = 0; k <= 8; ++k) points.emplace_back(r * std::cos(0.25 * k), r * std::sin(0.25 * k));
   const SurfacePath path(s, Curve2::interpolate(points));
   const VelocityLimits limits(ugv(VehicleModel::kRigidBody), path, 51);
   const double l = 0.135, b = 0.124;
@@ -136,6 +137,75 @@ TEST(WheelContact, TheWheelsOfATurningChassisFollowTheirOwnArcs) {
   const StationGeometry& g = limits.geometry(25);
   // Slopes up to (r + b)/R = 0.125 change the curvature and the lifts by about 2 %.
   EXPECT_NEAR(g.kappa_n, (1 / R) * 0.5 * (inner + outer), 0.03 / R);
+}
+
+}  // namespace
+}  // namespace talus
+
+namespace talus {
+namespace {
+
+TEST(PlanningReserves, AContactReserveKeepsRAboveRgAtTheCgAndAtEveryWheel) {
+  const double R = 3.0, r = 0.2;
+  const BPatch s = BPatch::interpolate(terrain_test::grid_from_function(
+      [&](double x, double) { return -x * x / (2 * R); }, -1.0, -0.6, 1.0, 0.6, 0.01));
+  for (const VehicleModel model : kVehicleModels) {
+    Vehicle v = ugv(model);
+    const double plain = lowest_contact_speed(s, v, {-0.5, 0}, {0.5, 0});
+    v.contact_reserve = r;
+    const double reserved = lowest_contact_speed(s, v, {-0.5, 0}, {0.5, 0});
+    // Both limits are g k_r / |κ| scaled: R >= r g at k_r = 1 takes (1 − r) of v².
+    EXPECT_NEAR(reserved * reserved / (plain * plain), 1.0 - r, 2e-3) << static_cast<int>(model);
+  }
+  // The bump under one wheel track: the wheel's load keeps r g as well.
+  const double b = 0.124, sigma = 0.05, height = 0.01;
+  const BPatch bump = terrain([&](double x, double y) {
+    return height * std::exp(-(x * x + (y - b) * (y - b)) / (2 * sigma * sigma));
+  });
+  Vehicle v = ugv(VehicleModel::kRigidBody);
+  const double plain = lowest_contact_speed(bump, v, {-0.8, 0}, {0.8, 0});
+  v.contact_reserve = r;
+  const double reserved = lowest_contact_speed(bump, v, {-0.8, 0}, {0.8, 0});
+  EXPECT_NEAR(reserved * reserved / (plain * plain), 1.0 - r, 5e-3);
+}
+
+TEST(PlanningReserves, AFrictionReserveShrinksTheFrictionConeTheSimulationKeepsMu) {
+  // A flat circle of radius 2 m: v² = (1 − ε) μ g ρ.
+  const BPatch flat = terrain([](double, double) { return 0.0; });
+  Vehicle v = ugv(VehicleModel::kPointMass);
+  v.half_track = 10.0;  // no tip-over: sliding binds
+  v.friction_reserve = 0.25;
+  const AdmissibleSet set(v);
+  EXPECT_DOUBLE_EQ(set.friction(), 0.75 * v.friction);
+  StationGeometry g;
+  g.kappa_g = 1.0 / 2.0;
+  g.kappa_wheels = 0.0;
+  const SpeedLimits limits = set.speed_limits(g);
+  EXPECT_NEAR(limits.v_max, std::sqrt(0.75 * 0.7 * kG * 2.0), 1e-9);
+  EXPECT_EQ(limits.upper_binding, Constraint::kSliding);
+}
+
+TEST(PlanningReserves, AReserveOutsideZeroToOneIsAnInputErrorNamingTheKey) {
+  for (const char* key : {"contact_reserve", "friction_reserve"}) {
+    for (const char* value : {"-0.1", "1", "nan"}) {
+      const std::string yaml = std::string(
+                                   "model: point_mass\nfriction: 0.7\ncg_height: 0.5\n"
+                                   "half_track: 0.6\n") +
+                               key + ": " + value + "\n";
+      try {
+        parse_vehicle(yaml, "reserve.yaml");
+        ADD_FAILURE() << key << " = " << value << " accepted";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+      }
+    }
+  }
+  const Vehicle v = parse_vehicle(
+      "model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n"
+      "contact_reserve: 0.1\nfriction_reserve: 0.2\n",
+      "reserve.yaml");
+  EXPECT_EQ(v.contact_reserve, 0.1);
+  EXPECT_EQ(v.friction_reserve, 0.2);
 }
 
 }  // namespace

@@ -45,10 +45,10 @@ SquaredSpeedInterval speed_condition(const ForceCondition& c, double g, const St
   return linear_condition(c.r * s.kappa_n + c.q * s.kappa_g, beta);
 }
 
-/// Contact at the wheels: g k_r + κ_w x >= 0.
-[[gnu::always_inline]] inline SquaredSpeedInterval wheel_contact(const StationGeometry& s,
-                                                                 double g) {
-  return linear_condition(s.kappa_wheels, g * s.k_r);
+/// Contact at the wheels: g k_r − reserve + κ_w x >= 0.
+[[gnu::always_inline]] inline SquaredSpeedInterval wheel_contact(const StationGeometry& s, double g,
+                                                                 double reserve) {
+  return linear_condition(s.kappa_wheels, g * s.k_r - reserve);
 }
 
 /// Whether c is implied by |f_q| <= lambda R (which implies R >= 0).
@@ -88,6 +88,10 @@ AdmissibleSet::AdmissibleSet(double gravity, double friction, double max_speed,
       max_curvature_(max_curvature),
       wheels_(wheels),
       conditions_(conditions) {
+  for (const ForceCondition& c : conditions.all()) {
+    if (c.constraint == Constraint::kContact && c.t == 0.0 && c.q == 0.0 && c.r == 1.0)
+      contact_reserve_ = std::max(contact_reserve_, -c.c);
+  }
   // The lateral envelope: every symmetric pair m R ± f_q >= 0 tightens lambda.
   lateral_ratio_ = friction;
   for (const ForceCondition& a : conditions.all()) {
@@ -196,7 +200,7 @@ SpeedLimits AdmissibleSet::speed_limits(const StationGeometry& s) const {
         break;
     }
     if (wheels_ && c.constraint == Constraint::kContact)
-      interval = intersect(interval, wheel_contact(s, gravity_));
+      interval = intersect(interval, wheel_contact(s, gravity_, contact_reserve_));
     if (c.slot != Candidate::Slot::kNone) *slots[static_cast<std::size_t>(c.slot)] = interval;
     if (interval.lower > lower * (1.0 + kTie)) {
       lower = interval.lower;
@@ -236,7 +240,7 @@ SquaredSpeedInterval AdmissibleSet::squared_speeds(const StationGeometry& s) con
   SquaredSpeedInterval out = lateral_pair(lateral_ratio_, gravity_, s);
   for (const ForceCondition& c : extra_speed_.all())
     out = intersect(out, speed_condition(c, gravity_, s));
-  if (wheels_) out = intersect(out, wheel_contact(s, gravity_));
+  if (wheels_) out = intersect(out, wheel_contact(s, gravity_, contact_reserve_));
   out.upper = std::min(out.upper, max_speed_squared_);
   return out;
 }
@@ -286,8 +290,8 @@ AccelerationBounds AdmissibleSet::acceleration_bounds(const StationGeometry& s,
       return out;
     }
   }
-  if (wheels_ &&
-      !(gravity_ * s.k_r + s.kappa_wheels * x >= -kOnLimit * (scale + std::abs(s.kappa_wheels * x)))) {
+  if (wheels_ && !(gravity_ * s.k_r - contact_reserve_ + s.kappa_wheels * x >=
+                   -kOnLimit * (scale + std::abs(s.kappa_wheels * x)))) {
     out.violated = Constraint::kContact;
     return out;
   }
@@ -337,8 +341,8 @@ AccelerationInterval AdmissibleSet::accelerations_at(const StationGeometry& s, d
       return out;
     }
   }
-  if (wheels_ && gravity_ * s.k_r + s.kappa_wheels * x <
-                                -kRounding * (scale + std::abs(s.kappa_wheels * x))) {
+  if (wheels_ && gravity_ * s.k_r - contact_reserve_ + s.kappa_wheels * x <
+                     -kRounding * (scale + std::abs(s.kappa_wheels * x))) {
     out.lower = kInfinity;
     return out;
   }
@@ -388,7 +392,8 @@ AccelerationInterval AdmissibleSet::accelerations_along(const StationGeometry& s
   for (const ForceCondition& c : extra_speed_.all())
     out.require_nonnegative(c.r * R0 + c.q * Q0 + c.c, c.r * R1 + c.q * Q1);
   if (wheels_)
-    out.require_nonnegative(g * s.k_r + s.kappa_wheels * y0, s.kappa_wheels * beta);
+    out.require_nonnegative(g * s.k_r - contact_reserve_ + s.kappa_wheels * y0,
+                            s.kappa_wheels * beta);
   for (std::size_t k = 0; k < upper_count_ + lower_count_; ++k) {  // pitch-over
     const TractionBound& c = k < upper_count_ ? upper_bounds_[k] : lower_bounds_[k - upper_count_];
     out.require_nonnegative(c.r * R0 + c.q * Q0 + c.t * T0 + c.c, c.r * R1 + c.q * Q1 + c.t);

@@ -5,8 +5,7 @@
 
 namespace talus {
 
-VelocityLimits::VelocityLimits(const Vehicle& vehicle)
-    : vehicle_(vehicle), set_(vehicle_) {}
+VelocityLimits::VelocityLimits(const Vehicle& vehicle) : vehicle_(vehicle), set_(vehicle_) {}
 
 VelocityLimits::VelocityLimits(const Vehicle& vehicle, const SurfacePath& path,
                                std::size_t stations)

@@ -94,6 +94,14 @@ void Vehicle::validate() const {
     msg << "Vehicle.max_steering must be in (0, pi/2) rad (or +inf: none), got " << max_steering;
     throw InputError(msg.str());
   }
+  for (const auto& [name, value] : {std::pair{"contact_reserve", contact_reserve},
+                                    std::pair{"friction_reserve", friction_reserve}}) {
+    if (!(value >= 0.0 && value < 1.0)) {
+      std::ostringstream msg;
+      msg << "Vehicle." << name << " must be in [0, 1), got " << value;
+      throw InputError(msg.str());
+    }
+  }
   if (body) body->validate();
 }
 
@@ -117,6 +125,8 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
                                                "max_accel",
                                                "max_decel",
                                                "max_steering",
+                                               "contact_reserve",
+                                               "friction_reserve",
                                                "mass",
                                                "inertia_roll",
                                                "inertia_pitch",
@@ -134,7 +144,8 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
     if (!kKnown.count(key)) {
       throw InputError(source + ": unknown key '" + printable(key) +
                        "' (known: model, gravity, friction, cg_height, half_track, "
-                       "half_wheelbase, max_speed, max_accel, max_decel, max_steering; and for the "
+                       "half_wheelbase, max_speed, max_accel, max_decel, max_steering, "
+                       "contact_reserve, friction_reserve; and for the "
                        "simulation mass, "
                        "inertia_roll, inertia_pitch, inertia_yaw, wheel_radius, "
                        "suspension_stiffness, suspension_damping, cornering_stiffness)");
@@ -175,6 +186,8 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   number("max_accel", v.max_accel);
   number("max_decel", v.max_decel);
   number("max_steering", v.max_steering);
+  number("contact_reserve", v.contact_reserve);
+  number("friction_reserve", v.friction_reserve);
   if (seen.count("mass")) {
     double mass = 0.0;
     number("mass", mass);

@@ -11,7 +11,9 @@ namespace talus {
 AdmissibleSet VehiclePhysics::admissible_set(const Vehicle& vehicle) const {
   vehicle.validate();
   ForceConditions conditions;
-  conditions.add({Constraint::kContact, 0.0, 0.0, 1.0, 0.0});  // R >= 0
+  // R >= r g (r = contact_reserve, 0 by default).
+  conditions.add({Constraint::kContact, 0.0, 0.0, 1.0, -vehicle.contact_reserve * vehicle.gravity});
+  const double friction = (1.0 - vehicle.friction_reserve) * vehicle.friction;
   add_model_conditions(vehicle, conditions);
   if (std::isfinite(vehicle.max_accel))  // max_accel − f_t >= 0
     conditions.add({Constraint::kDrive, -1.0, 0.0, 0.0, vehicle.max_accel});
@@ -27,15 +29,14 @@ AdmissibleSet VehiclePhysics::admissible_set(const Vehicle& vehicle) const {
     const bool reserved = c.constraint == Constraint::kNone ||
                           c.constraint == Constraint::kSliding ||
                           c.constraint == Constraint::kMaxSpeed;
-    if (!finite || reserved ||
-        (c.t != 0.0 && !(c.c >= 0.0 && c.r >= vehicle.friction * std::abs(c.q)))) {
+    if (!finite || reserved || (c.t != 0.0 && !(c.c >= 0.0 && c.r >= friction * std::abs(c.q)))) {
       throw std::logic_error("vehicle model " + std::string(name()) + ": condition '" +
                              std::string(to_string(c.constraint)) +
                              "' breaks the ForceCondition contract (admissible_set.hpp)");
     }
   }
-  return AdmissibleSet(vehicle.gravity, vehicle.friction, vehicle.max_speed,
-                       vehicle.max_curvature(), conditions,
+  return AdmissibleSet(vehicle.gravity, friction, vehicle.max_speed, vehicle.max_curvature(),
+                       conditions,
                        contact_at_wheels() ? std::optional(wheel_layout(vehicle)) : std::nullopt);
 }
 

@@ -51,7 +51,7 @@ S constraint(Kind kind, const ForceCondition* condition, const AdmissibleSet& c,
     case Kind::kMaxSpeed:
       return max_speed_squared - x;
     case Kind::kWheelContact:
-      return g * G[4] + G[5] * x;
+      return g * G[4] - c.contact_reserve() + G[5] * x;
     case Kind::kFriction:
       return c.friction() * c.friction() * R * R - F * F - Q * Q;
     case Kind::kTractionZero:

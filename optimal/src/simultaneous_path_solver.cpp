@@ -414,9 +414,10 @@ class SimultaneousNlp : public Ipopt::TNLP {
       for (int b = 0; b < 4; ++b) {
         const std::size_t i = first_basis_[k] + static_cast<std::size_t>(b);
         for (int axis = 0; axis < 2; ++axis) {
-          const Eigen::Matrix<double, StationDerivatives::kRows, 1> along = sd.jacobian.col(axis) * basis_[k](0, b) +
-                                                    sd.jacobian.col(2 + axis) * basis_[k](1, b) +
-                                                    sd.jacobian.col(4 + axis) * basis_[k](2, b);
+          const Eigen::Matrix<double, StationDerivatives::kRows, 1> along =
+              sd.jacobian.col(axis) * basis_[k](0, b) +
+              sd.jacobian.col(2 + axis) * basis_[k](1, b) +
+              sd.jacobian.col(4 + axis) * basis_[k](2, b);
           if (dims_ == 2) {
             derivative_[k].col(2 * b + axis) = along;
           } else {
@@ -480,7 +481,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
         const ForceCondition& f = conditions_[c];
         out[1 + c] = f.t * ft + f.q * fq + f.r * rn + f.c;
       }
-      if (wheel_row_) out[1 + conditions_.size()] = g * v[4] + v[7] * b;
+      if (wheel_row_) out[1 + conditions_.size()] = g * v[4] - set_.contact_reserve() + v[7] * b;
       if (jacobian == nullptr) continue;
       // d(f_t, f_q, R) over the step's columns.
       const long offset = static_cast<long>(dims_ * (first_basis_[k] - first_basis_[j]));
@@ -518,7 +519,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
   std::vector<ForceCondition> conditions_;
   std::vector<Vec2> control_;  // workspace: the current control points
   std::size_t points_, stations_, dims_ = 2, free_ = 0, rows_per_end_ = 0;
-  bool wheel_row_ = false;  // contact at the wheels (rigid body): one more row per end
+  bool wheel_row_ = false;             // contact at the wheels (rigid body): one more row per end
   std::vector<Vec2> origin_, normal_;  // the initial control points, their lateral directions
   double h_ = 0.0;
   std::vector<std::size_t> first_basis_;

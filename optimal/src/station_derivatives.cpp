@@ -51,8 +51,8 @@ StationDerivatives station_derivatives(const BPatch& terrain,
     const LocalVector2 left(-heading.y(), heading.x());
     // The wheels where wheel_positions() puts them (a clamped coordinate keeps
     // its derivative: the clamp only matters within a wheelbase of the map's edge).
-    const std::array<Vec2, 4> at = wheel_positions(
-        terrain, *wheels, planar.col(0), Vec2(heading.x().value(), heading.y().value()));
+    const std::array<Vec2, 4> at = wheel_positions(terrain, *wheels, planar.col(0),
+                                                   Vec2(heading.x().value(), heading.y().value()));
     std::array<LocalVector2, 4> gradients;
     std::array<LocalMatrix2, 4> hessians;
     for (std::size_t j = 0; j < 4; ++j) {
@@ -67,9 +67,8 @@ StationDerivatives station_derivatives(const BPatch& terrain,
     kappa_wheels = c.wheels;
   }
   StationDerivatives out;
-  const Local* outputs[StationDerivatives::kRows] = {&kappa_n, &g.kappa_g, &g.k_t,
-                                                     &g.k_q,   &g.k_r,     &g.speed,
-                                                     &g.speed_rate, &kappa_wheels};
+  const Local* outputs[StationDerivatives::kRows] = {
+      &kappa_n, &g.kappa_g, &g.k_t, &g.k_q, &g.k_r, &g.speed, &g.speed_rate, &kappa_wheels};
   for (int r = 0; r < StationDerivatives::kRows; ++r) {
     out.value[r] = outputs[r]->value();
     out.jacobian.row(r) = outputs[r]->derivatives().transpose();

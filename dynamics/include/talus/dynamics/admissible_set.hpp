@@ -117,14 +117,18 @@ class AdmissibleSet {
   /// vehicle_physics(vehicle.model).admissible_set(vehicle).
   explicit AdmissibleSet(const Vehicle& vehicle);
 
-  double gravity() const { return gravity_; }      ///< g [m/s²]
-  double friction() const { return friction_; }    ///< μ of the friction cone
+  double gravity() const { return gravity_; }  ///< g [m/s²]
+  /// μ of the friction cone: (1 − Vehicle::friction_reserve) μ.
+  double friction() const { return friction_; }
   double max_speed() const { return max_speed_; }  ///< [m/s]; ∞ = unlimited
   /// The wheels where contact is also judged, g k_r + κ_w ṡ² >= 0 with
   /// κ_w = StationGeometry::kappa_wheels (the rigid body; wheel_contact.hpp),
   /// or null (the point mass). Stations for this set are built with
   /// station_geometry(frame, surface, set.wheels()).
   const WheelLayout* wheels() const { return wheels_ ? &*wheels_ : nullptr; }
+  /// r g [m/s²]: the normal load per unit mass the contact conditions keep
+  /// (Vehicle::contact_reserve), at the c.g. and at every wheel.
+  double contact_reserve() const { return contact_reserve_; }
   /// λ: the speed conditions of the form m R ± f_q >= 0 (and contact) are
   /// implied by |f_q| <= λ R, λ = min(μ, every such m): the lateral envelope
   /// the fast queries use instead of the individual conditions.
@@ -184,6 +188,7 @@ class AdmissibleSet {
   /// The model judges contact at these wheels too: g k_r + κ_w x >= 0 (StationGeometry::
   /// kappa_wheels), a speed condition named kContact.
   std::optional<WheelLayout> wheels_;
+  double contact_reserve_ = 0.0;  ///< r g [m/s²]
   ForceConditions conditions_, speed_, extra_speed_, traction_;
   /// One constraint of speed_limits(), with the shape of its speed
   /// conditions recognised once so that the common shapes take their

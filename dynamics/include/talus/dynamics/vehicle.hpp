@@ -83,6 +83,13 @@ struct Vehicle {
   /// the UGV's 2.53 1/m on the fractal battery, which the chassis, spanning the bumps,
   /// does not steer. A point_mass vehicle with max_steering needs half_wheelbase.
   double max_steering = std::numeric_limits<double>::infinity();
+  /// [contact_reserve] r [-] in [0, 1), default 0: the planner keeps the normal load per
+  /// unit mass at least r g, R >= r g (and every wheel's, for the rigid body): a margin
+  /// against losing contact over crests it sees only through the fitted surface.
+  double contact_reserve = 0.0;
+  /// [friction_reserve] ε [-] in [0, 1), default 0: the planner uses (1 − ε) μ for its
+  /// friction cone, a control margin for the tracker; the simulation keeps μ.
+  double friction_reserve = 0.0;
   /// Mass, inertia, suspension and tyres (the keys of VehicleBody); empty when
   /// the file has no `mass`. Only the simulation needs it; the speed limits
   /// ignore it.

@@ -71,7 +71,7 @@ struct StationGeometry {
   double kappa_wheels = 0.0;
   /// The c.g. point's geometry, every wheel at the c.g. (the point mass's view).
   static StationGeometry from(const PathFrame& frame) {
-    return {frame.kappa_n, frame.kappa_g,      frame.k_t,  frame.k_q,
+    return {frame.kappa_n, frame.kappa_g,      frame.k_t,    frame.k_q,
             frame.k_r,     frame.kappa_planar, frame.kappa_n};
   }
 };

@@ -42,8 +42,8 @@
 #include <Eigen/Core>
 
 #include "talus/bspline/bpatch.hpp"
-#include "talus/core/types.hpp"
 #include "talus/bspline/surface_path.hpp"
+#include "talus/core/types.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
 
@@ -95,8 +95,8 @@ ChassisCurvatures<Scalar> chassis_curvatures(
     const Vector2 direction = velocity / sqrt(planar_squared);
     const Scalar slope = gradients[j].dot(direction);
     const Scalar lift = Scalar(1.0) + slope * slope;
-    const Scalar normal_curvature =
-        direction.dot(hessians[j] * direction) / (sqrt(Scalar(1.0) + gradients[j].squaredNorm()) * lift);
+    const Scalar normal_curvature = direction.dot(hessians[j] * direction) /
+                                    (sqrt(Scalar(1.0) + gradients[j].squaredNorm()) * lift);
     accelerations[static_cast<long>(j)] = normal_curvature * (planar_squared * lift / cg_lift);
   }
   ChassisCurvatures<Scalar> out{Scalar(0.0), Scalar(0.0)};

@@ -176,6 +176,9 @@ void ReferenceTrajectory::validate() const {
       throw InputError("ReferenceTrajectory: points " + std::to_string(i - 1) + " and " +
                        std::to_string(i) + " coincide");
   }
+  // Driven, it would stand at the start until the time limit (2,000,000 solver steps).
+  if (std::all_of(speed.begin(), speed.end(), [](double v) { return v == 0.0; }))
+    throw InputError("ReferenceTrajectory: every speed is 0: the trajectory never moves");
 }
 
 double tracking_steering_limit(const TrackingOptions& options, const Vehicle& vehicle) {

@@ -61,6 +61,24 @@ void VehicleBody::validate() const {
   positive("suspension_stiffness", suspension_stiffness);
   require_non_negative("suspension_damping", suspension_damping);
   positive("cornering_stiffness", cornering_stiffness);
+  // Documented ranges (data/vehicles/README.md): beyond them the tyre or the suspension is
+  // stiffer than any vehicle, and the simulation's stiff integration crawls (1e300 took 42 s).
+  if (cornering_stiffness > kMaxCorneringStiffness) {
+    std::ostringstream msg;
+    msg << "VehicleBody.cornering_stiffness must be in (0, " << kMaxCorneringStiffness
+        << "] 1/rad (tyres have about 5-30), got " << cornering_stiffness;
+    throw InputError(msg.str());
+  }
+  const double ride_frequency =
+      std::sqrt(suspension_stiffness / (0.25 * mass)) / (2.0 * std::numbers::pi);
+  if (ride_frequency > kMaxRideFrequency) {
+    std::ostringstream msg;
+    msg << "VehicleBody.suspension_stiffness gives a ride frequency of " << ride_frequency
+        << " Hz for mass " << mass << " kg; it must be at most " << kMaxRideFrequency
+        << " Hz (vehicles ride at about 1-5 Hz), i.e. suspension_stiffness <= "
+        << 0.25 * mass * std::pow(2.0 * std::numbers::pi * kMaxRideFrequency, 2) << " N/m";
+    throw InputError(msg.str());
+  }
 }
 
 VehicleBody default_vehicle_body(double mass, double half_wheelbase, double half_track,

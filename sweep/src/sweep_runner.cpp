@@ -273,6 +273,13 @@ void SweepOptions::validate() const {
     throw InputError("--case-time-limit: must be a number of seconds > 0");
   }
   if (!run_command) throw InputError("sweep: no command runner");
+  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  if (jobs > kJobsPerCore * cores) {
+    throw InputError("--jobs " + std::to_string(jobs) + ": at most " +
+                     std::to_string(kJobsPerCore) + " worker processes per core, " +
+                     std::to_string(kJobsPerCore * cores) + " on this machine's " +
+                     std::to_string(cores) + " cores");
+  }
 }
 
 std::string SweepResult::brief_report() const {

@@ -19,6 +19,11 @@ enum class VehicleModel {
 inline constexpr std::array<VehicleModel, 2> kVehicleModels = {VehicleModel::kPointMass,
                                                                VehicleModel::kRigidBody};
 
+/// Largest VehicleBody::cornering_stiffness accepted [1/rad] (tyres have about 5-30).
+inline constexpr double kMaxCorneringStiffness = 100.0;
+/// Largest ride frequency sqrt(k / (m/4)) / 2π accepted [Hz] (vehicles ride at 1-5 Hz).
+inline constexpr double kMaxRideFrequency = 50.0;
+
 /// The mass, inertia, suspension and tyres of a vehicle: what the rigid-body
 /// simulation (vehicle_simulation.hpp) needs beyond the speed-limit models.
 /// Optional in a vehicle file: present when the file has `mass`; the other
@@ -35,14 +40,15 @@ struct VehicleBody {
   /// wheel centres sit (r above the contact points at static load).
   double wheel_radius = 0.25;
   /// [suspension_stiffness] k per wheel [N/m] (> 0); default (m/4)(2π·3 Hz)²,
-  /// a 3 Hz ride frequency. It lumps spring and tyre radial compliance.
+  /// a 3 Hz ride frequency; at most a ride frequency of kMaxRideFrequency. It
+  /// lumps spring and tyre radial compliance.
   double suspension_stiffness = 1.0;
   /// [suspension_damping] c per wheel [N s/m] (>= 0); default 2·0.4·sqrt(k m/4),
   /// a damping ratio of 0.4.
   double suspension_damping = 0.0;
   /// [cornering_stiffness] C_α / N, the tyre's cornering stiffness per unit
   /// normal load [1/rad] (> 0); default 8 (Dugoff's model: F_y = C_α tan α
-  /// in the linear range).
+  /// in the linear range); at most kMaxCorneringStiffness.
   double cornering_stiffness = 8.0;
   /// Throws InputError naming the field.
   void validate() const;

@@ -42,9 +42,13 @@
 
 namespace talus {
 
+/// Most worker processes per core SweepOptions::jobs accepts.
+inline constexpr std::size_t kJobsPerCore = 4;
+
 struct SweepOptions {
   std::filesystem::path output_dir;
-  /// Worker processes at a time (>= 1); 0 = the machine's core count.
+  /// Worker processes at a time; 0 = the machine's core count; at most
+  /// kJobsPerCore per core (more only thrash).
   std::size_t jobs = 0;
   /// Only list the cases (ids, parameters) that would run.
   bool dry_run = false;

@@ -2,9 +2,6 @@
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +15,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "cvode_integrator.hpp"
 #include "talus/core/error.hpp"
 
 namespace talus {
@@ -36,29 +34,6 @@ enum RootIndex {
   kRootDomain,
   kRootClearance
 };
-
-// RAII owners for the SUNDIALS C objects (destroyed in reverse order of declaration).
-struct ContextDeleter {
-  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
-};
-struct VectorDeleter {
-  void operator()(N_Vector v) const { N_VDestroy(v); }
-};
-struct MatrixDeleter {
-  void operator()(SUNMatrix a) const { SUNMatDestroy(a); }
-};
-struct LinearSolverDeleter {
-  void operator()(SUNLinearSolver ls) const { SUNLinSolFree(ls); }
-};
-struct CvodeDeleter {
-  void operator()(void* mem) const { CVodeFree(&mem); }
-};
-using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
-using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
-using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
-using LinearSolverPtr =
-    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
-using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
 
 Mat3 euler_rotation(double roll, double pitch, double yaw) {
   const double cf = std::cos(roll), sf = std::sin(roll);
@@ -334,15 +309,6 @@ int root_callback(sunrealtype /*t*/, N_Vector y, sunrealtype* g, void* user_data
   }
 }
 
-void error_callback(int error_code, const char* module, const char* function, char* msg,
-                    void* user_data) {
-  auto* text = static_cast<std::string*>(user_data);
-  std::ostringstream s;
-  s << (module ? module : "CVODE") << " " << (function ? function : "") << " (flag " << error_code
-    << "): " << (msg ? msg : "");
-  *text = s.str();
-}
-
 void unpack(const double* y, VehicleState& s) {
   s.position = Vec3(y[0], y[1], y[2]);
   s.roll = y[3];
@@ -494,11 +460,214 @@ std::string VehicleSimulationResult::brief_report() const {
   return line;
 }
 
-VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& vehicle,
-                                         const VehicleState& initial,
-                                         const VehicleController& controller,
-                                         const VehicleSimulationOptions& options) {
-  const auto wall_start = std::chrono::steady_clock::now();
+namespace {
+
+/// A condition that is a failure only once it has lasted (airborne, side
+/// slip), judged at the end of every step (steps end at least every control tick).
+struct Spell {
+  double& longest;      ///< the diagnostics' longest spell [s]
+  double since = -1.0;  ///< start of the current spell [s]; < 0 outside one
+  /// The condition at the end of the step (t_before, t]; returns the spell's
+  /// length, or -1 outside a spell.
+  double update(bool holds, double t_before, double t) {
+    if (!holds) {
+      since = -1.0;
+      return -1.0;
+    }
+    if (since < 0.0) since = t_before;
+    longest = std::max(longest, t - since);
+    return t - since;
+  }
+};
+
+/// The samples of one run and the diagnostics they feed.
+class Recorder {
+ public:
+  Recorder(Model& model, const Vehicle& vehicle, const VehicleSimulationOptions& options,
+           VehicleSimulationDiagnostics& diag)
+      : model_(model),
+        options_(options),
+        diag_(diag),
+        weight_(vehicle.body->mass * vehicle.gravity) {}
+
+  /// The sample at (t, state), its margins added to the diagnostics.
+  VehicleSample sample(double t, const double* state) {
+    VehicleSample s;
+    s.t = t;
+    unpack(state, s.state);
+    s.controls = model_.controls();
+    Evaluation ev;
+    if (!model_.evaluate(state, nullptr, ev)) return s;
+    s.wheels = ev.wheels;
+    s.lateral_load_ratio = ev.lateral_load_ratio;
+    s.speed = s.state.velocity.norm();
+    s.side_slip = std::atan2(s.state.velocity.y(), std::abs(s.state.velocity.x()));
+    s.energy = ev.energy;
+    s.friction_utilisation = ev.friction_utilisation;
+    s.normal_load_ratio = ev.total_load / weight_;
+    add_margins(s, ev);
+    if (s.state.velocity.x() > 2.0 * options_.stall_speed) model_.stall_armed = true;
+    return s;
+  }
+
+  double weight() const { return weight_; }
+
+ private:
+  void add_margins(const VehicleSample& s, const Evaluation& ev) {
+    VehicleSimulationDiagnostics& d = diag_;
+    if (ev.total_load > 0.0)
+      d.peak_lateral_load_ratio =
+          std::max(d.peak_lateral_load_ratio, std::abs(ev.lateral_load_ratio));
+    for (const WheelContact& w : ev.wheels) {
+      d.min_normal_load = std::min(d.min_normal_load, w.normal_load);
+      if (w.normal_load > 0.0)
+        d.peak_slip_angle = std::max(d.peak_slip_angle, std::abs(w.slip_angle));
+    }
+    if (std::hypot(s.state.velocity.x(), s.state.velocity.y()) > options_.side_slip_min_speed)
+      d.peak_side_slip = std::max(d.peak_side_slip, std::abs(s.side_slip));
+    d.peak_speed = std::max(d.peak_speed, s.speed);
+    d.min_total_normal_load_ratio = std::min(d.min_total_normal_load_ratio, s.normal_load_ratio);
+    if (s.normal_load_ratio >= kUtilisationLoadFloor) {
+      d.peak_friction_utilisation = std::max(d.peak_friction_utilisation, ev.friction_utilisation);
+      d.peak_wheel_friction_utilisation =
+          std::max(d.peak_wheel_friction_utilisation, ev.wheel_friction_utilisation);
+    }
+    d.peak_roll = std::max(d.peak_roll, std::asin(std::min(1.0, std::abs(ev.roll_sin))));
+    d.peak_pitch = std::max(d.peak_pitch, std::asin(std::min(1.0, std::abs(ev.pitch_sin))));
+  }
+
+  Model& model_;
+  const VehicleSimulationOptions& options_;
+  VehicleSimulationDiagnostics& diag_;
+  double weight_;
+};
+
+/// The failure events of VehicleSimulationOptions at the end of one step
+/// (t_before, t] with sample `now` and the roots CVODE found in it.
+class EventJudge {
+ public:
+  EventJudge(const Model& model, const VehicleSimulationOptions& options,
+             VehicleSimulationDiagnostics& diag, double weight)
+      : model_(model),
+        options_(options),
+        diag_(diag),
+        weight_(weight),
+        airborne_{diag.longest_airborne},
+        slipping_{diag.longest_side_slip} {}
+
+  /// The step's failure as (status, message), or an empty message when none.
+  std::pair<SimulationStatus, std::string> judge(const VehicleSample& now,
+                                                 const std::array<int, kRoots>& found,
+                                                 double t_before, double t) {
+    const auto& w = now.wheels;
+    const auto off = [&](std::size_t i) { return w[i].compression < 0.0; };
+    const double vx = now.state.velocity.x(), vy = now.state.velocity.y();
+    const bool over_slip = std::abs(vy) > std::tan(options_.side_slip_limit) *
+                                              std::hypot(vx, options_.side_slip_min_speed);
+    const double airborne_for = airborne_.update(
+        (off(0) && off(1) && off(2) && off(3)) || found[kRootAllLift] != 0, t_before, t);
+    const double slipping_for =
+        slipping_.update(over_slip || found[kRootSideSlip] != 0, t_before, t);
+    // Stall is forward speed lost while moving no faster sideways: a vehicle whose
+    // forward speed falls while it slides sideways has spun out, which is side slip,
+    // judged by its own time. The root finds the onset; polling catches a stall that
+    // begins while a slide ends (no root crossing then).
+    const bool stalled_now =
+        model_.stall_armed && model_.controls().drive_force > 0.0 && vx < options_.stall_speed;
+    if ((off(kFrontLeft) && off(kRearLeft)) || (off(kFrontRight) && off(kRearRight)))
+      diag_.side_lift_time += t - t_before;
+
+    // A duration of 0 is the strict event: any spell (found by its root, or
+    // already under way at the start, where no root can find it).
+    const bool airborne_event = found[kRootClearance] || airborne_for >= options_.airborne_time;
+    const bool slip_event = slipping_for >= options_.side_slip_time;
+    // The strict side-lift event (roots inert unless side_lift_is_rollover).
+    const bool side_lift = found[kRootLeftLift] || found[kRootRightLift];
+    // One side lifting while the other carries (almost) nothing is the
+    // vehicle leaving the ground, not tipping over.
+    const double other_side = found[kRootLeftLift]
+                                  ? std::max(w[kFrontRight].compression, w[kRearRight].compression)
+                                  : std::max(w[kFrontLeft].compression, w[kRearLeft].compression);
+    const bool side_lift_airborne =
+        side_lift && (w[0].normal_load + w[1].normal_load + w[2].normal_load + w[3].normal_load <
+                          0.01 * weight_ ||
+                      other_side < 0.01 * model_.static_deflection());
+    std::ostringstream msg;
+    msg << std::fixed;
+    msg.precision(4);
+    SimulationStatus status = SimulationStatus::kReachedEndTime;
+    if (airborne_event || side_lift_airborne) {
+      status = SimulationStatus::kLossOfContact;
+      if (found[kRootClearance])
+        msg << "every wheel was more than " << model_.clearance()
+            << " m clear of the ground at t = " << t << " s";
+      else if (side_lift_airborne || options_.airborne_time == 0.0)
+        msg << (side_lift_airborne ? "the vehicle" : "all four wheels")
+            << " left the ground at t = " << t << " s";
+      else
+        msg << "airborne (all four wheels off the ground) for " << airborne_for << " s at t = " << t
+            << " s";
+    } else if (found[kRootRoll] || found[kRootPitch] || side_lift) {
+      status = SimulationStatus::kRollover;
+      if (side_lift)
+        msg << "both " << (found[kRootLeftLift] ? "left" : "right")
+            << " wheels left the ground at t = " << t << " s";
+      else
+        msg << (found[kRootRoll] ? "roll" : "pitch") << " relative to the terrain reached "
+            << degrees(found[kRootRoll] ? model_.roll_limit() : model_.pitch_limit())
+            << " deg at t = " << t << " s";
+    } else if (slip_event) {
+      status = SimulationStatus::kSideSlip;
+      msg << "side slip beyond " << degrees(options_.side_slip_limit) << " deg";
+      if (options_.side_slip_time > 0.0) msg << " for " << slipping_for << " s";
+      msg << " at t = " << t << " s";
+    } else if (!over_slip && (found[kRootStall] || stalled_now)) {
+      status = SimulationStatus::kStall;
+      msg << "stalled (forward speed below " << options_.stall_speed
+          << " m/s while driving) at t = " << t << " s";
+    } else if (found[kRootDomain]) {
+      status = SimulationStatus::kLeftTerrain;
+      msg << "a wheel left the terrain's domain at t = " << t << " s";
+    }
+    if (msg.str().empty()) return {status, ""};
+    msg << ", c.g. at (" << now.state.position.x() << ", " << now.state.position.y() << ", "
+        << now.state.position.z() << ") m, speed " << now.speed << " m/s";
+    return {status, msg.str()};
+  }
+
+ private:
+  const Model& model_;
+  const VehicleSimulationOptions& options_;
+  VehicleSimulationDiagnostics& diag_;
+  double weight_;
+  Spell airborne_, slipping_;
+};
+
+void add_counters(const detail::CvodeCounters& counted, VehicleSimulationDiagnostics& diag) {
+  diag.rhs_evaluations += counted.rhs_evaluations;
+  diag.jacobian_evaluations += counted.jacobian_evaluations;
+  diag.root_evaluations += counted.root_evaluations;
+  diag.error_test_failures += counted.error_test_failures;
+  diag.nonlinear_failures += counted.nonlinear_failures;
+}
+
+/// The trace samples every output_interval up to `t` (the step just taken),
+/// from CVODE's interpolant; `next` the index of the next one.
+void sample_outputs(detail::CvodeIntegrator& cvode, Recorder& recorder,
+                    const VehicleSimulationOptions& options, double t, std::size_t& next,
+                    std::vector<VehicleSample>& trace) {
+  while (static_cast<double>(next) * options.output_interval <= t &&
+         static_cast<double>(next) * options.output_interval < options.end_time) {
+    const double t_out = static_cast<double>(next) * options.output_interval;
+    if (const double* state = cvode.interpolate(t_out))
+      trace.push_back(recorder.sample(t_out, state));
+    ++next;
+  }
+}
+
+void check_simulation_inputs(const BPatch& surface, const Vehicle& vehicle,
+                             const VehicleState& initial, const VehicleController& controller,
+                             const VehicleSimulationOptions& options) {
   options.validate();
   vehicle.validate();
   if (!vehicle.body)
@@ -508,91 +677,32 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
   if (!controller) throw InputError("simulate_vehicle: the controller is empty");
   if (!surface.contains(Vec2(initial.position.x(), initial.position.y())))
     throw InputError("simulate_vehicle: the initial centre of mass is off the terrain's domain");
+}
 
+}  // namespace
+
+VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& vehicle,
+                                         const VehicleState& initial,
+                                         const VehicleController& controller,
+                                         const VehicleSimulationOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  check_simulation_inputs(surface, vehicle, initial, controller, options);
   Model model(surface, vehicle, options);
   VehicleSimulationResult result;
   VehicleSimulationDiagnostics& diag = result.diagnostics;
   diag.roll_limit = model.roll_limit();
   diag.pitch_limit = model.pitch_limit();
-  const double static_load = vehicle.body->mass * vehicle.gravity / 4.0;
   diag.min_normal_load = std::numeric_limits<double>::infinity();
   diag.min_total_normal_load_ratio = std::numeric_limits<double>::infinity();
-  const double weight = vehicle.body->mass * vehicle.gravity;
 
-  std::string cvode_message;
-  ContextPtr ctx;
-  {
-    SUNContext raw = nullptr;
-    if (SUNContext_Create(nullptr, &raw) != 0) throw SolverError("SUNContext_Create failed");
-    ctx.reset(raw);
-  }
-  VectorPtr y(N_VNew_Serial(kStates, ctx.get()));
-  VectorPtr y_out(N_VNew_Serial(kStates, ctx.get()));
-  MatrixPtr jac(SUNDenseMatrix(kStates, kStates, ctx.get()));
-  if (!y || !y_out || !jac) throw SolverError("SUNDIALS could not allocate its vectors");
-  LinearSolverPtr solver(SUNLinSol_Dense(y.get(), jac.get(), ctx.get()));
-  CvodePtr mem(CVodeCreate(CV_BDF, ctx.get()));
-  if (!solver || !mem) throw SolverError("CVODE could not be created");
-  double* yv = N_VGetArrayPointer(y.get());
-  pack(initial, yv);
-
-  const auto cvode_check = [&](int flag, const char* what) {
-    if (flag < 0) throw SolverError(std::string("CVODE setup failed in ") + what);
-  };
-  cvode_check(CVodeSetErrHandlerFn(mem.get(), error_callback, &cvode_message), "ErrHandler");
-  cvode_check(CVodeInit(mem.get(), rhs_callback, 0.0, y.get()), "CVodeInit");
-  cvode_check(CVodeSStolerances(mem.get(), options.relative_tolerance, options.absolute_tolerance),
-              "CVodeSStolerances");
-  cvode_check(CVodeSetUserData(mem.get(), &model), "CVodeSetUserData");
-  cvode_check(CVodeSetLinearSolver(mem.get(), solver.get(), jac.get()), "CVodeSetLinearSolver");
-  cvode_check(CVodeSetMaxNumSteps(mem.get(), -1), "CVodeSetMaxNumSteps");  // we count ourselves
-  if (options.max_step > 0.0) cvode_check(CVodeSetMaxStep(mem.get(), options.max_step), "hmax");
-  cvode_check(CVodeRootInit(mem.get(), kRoots, root_callback), "CVodeRootInit");
-  std::array<int, kRoots> directions;
-  directions.fill(-1);
-  cvode_check(CVodeSetRootDirection(mem.get(), directions.data()), "CVodeSetRootDirection");
-  cvode_check(CVodeSetNoInactiveRootWarn(mem.get()), "CVodeSetNoInactiveRootWarn");
-
-  const auto make_sample = [&](double t, const double* state) {
-    VehicleSample s;
-    s.t = t;
-    unpack(state, s.state);
-    s.controls = model.controls();
-    Evaluation ev;
-    if (!model.evaluate(state, nullptr, ev)) return s;
-    s.wheels = ev.wheels;
-    s.lateral_load_ratio = ev.lateral_load_ratio;
-    s.speed = s.state.velocity.norm();
-    s.side_slip = std::atan2(s.state.velocity.y(), std::abs(s.state.velocity.x()));
-    s.energy = ev.energy;
-    s.friction_utilisation = ev.friction_utilisation;
-    s.normal_load_ratio = ev.total_load / weight;
-    // Diagnostics.
-    if (ev.total_load > 0.0)
-      diag.peak_lateral_load_ratio =
-          std::max(diag.peak_lateral_load_ratio, std::abs(ev.lateral_load_ratio));
-    for (const WheelContact& w : ev.wheels) {
-      diag.min_normal_load = std::min(diag.min_normal_load, w.normal_load);
-      if (w.normal_load > 0.0)
-        diag.peak_slip_angle = std::max(diag.peak_slip_angle, std::abs(w.slip_angle));
-    }
-    if (std::hypot(s.state.velocity.x(), s.state.velocity.y()) > options.side_slip_min_speed)
-      diag.peak_side_slip = std::max(diag.peak_side_slip, std::abs(s.side_slip));
-    diag.peak_speed = std::max(diag.peak_speed, s.speed);
-    diag.min_total_normal_load_ratio =
-        std::min(diag.min_total_normal_load_ratio, s.normal_load_ratio);
-    if (s.normal_load_ratio >= kUtilisationLoadFloor) {
-      diag.peak_friction_utilisation =
-          std::max(diag.peak_friction_utilisation, ev.friction_utilisation);
-      diag.peak_wheel_friction_utilisation =
-          std::max(diag.peak_wheel_friction_utilisation, ev.wheel_friction_utilisation);
-    }
-    diag.peak_roll = std::max(diag.peak_roll, std::asin(std::min(1.0, std::abs(ev.roll_sin))));
-    diag.peak_pitch = std::max(diag.peak_pitch, std::asin(std::min(1.0, std::abs(ev.pitch_sin))));
-    if (s.state.velocity.x() > 2.0 * options.stall_speed) model.stall_armed = true;
-    return s;
-  };
-
+  std::array<double, kStates> start{};
+  pack(initial, start.data());
+  detail::CvodeIntegrator cvode(
+      kStates, start.data(), rhs_callback, kRoots, root_callback, &model,
+      {options.relative_tolerance, options.absolute_tolerance, options.max_step});
+  double* yv = cvode.state();
+  Recorder recorder(model, vehicle, options, diag);
+  EventJudge judge(model, options, diag, recorder.weight());
   const auto call_controller = [&](double t, const double* state) {
     VehicleState s;
     unpack(state, s);
@@ -600,41 +710,9 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
     model.set_controls(controller(t, s));
   };
 
-  // CVodeReInit zeroes CVODE's counters: add them up before each restart.
-  const auto accumulate_counters = [&] {
-    long value = 0;
-    if (CVodeGetNumRhsEvals(mem.get(), &value) == CV_SUCCESS) diag.rhs_evaluations += value;
-    if (CVodeGetNumLinRhsEvals(mem.get(), &value) == CV_SUCCESS) diag.rhs_evaluations += value;
-    if (CVodeGetNumJacEvals(mem.get(), &value) == CV_SUCCESS) diag.jacobian_evaluations += value;
-    if (CVodeGetNumGEvals(mem.get(), &value) == CV_SUCCESS) diag.root_evaluations += value;
-    if (CVodeGetNumErrTestFails(mem.get(), &value) == CV_SUCCESS) diag.error_test_failures += value;
-    if (CVodeGetNumNonlinSolvConvFails(mem.get(), &value) == CV_SUCCESS)
-      diag.nonlinear_failures += value;
-  };
-
-  // Conditions that are failures only once they have lasted (airborne, side
-  // slip), judged at the end of every step (steps end at least every control tick).
-  struct Spell {
-    double& longest;      ///< the diagnostics' longest spell [s]
-    double since = -1.0;  ///< start of the current spell [s]; < 0 outside one
-    /// The condition at the end of the step (t_before, t]; returns the spell's
-    /// length, or -1 outside a spell.
-    double update(bool holds, double t_before, double t) {
-      if (!holds) {
-        since = -1.0;
-        return -1.0;
-      }
-      if (since < 0.0) since = t_before;
-      longest = std::max(longest, t - since);
-      return t - since;
-    }
-  };
-  Spell airborne{diag.longest_airborne};
-  Spell slipping{diag.longest_side_slip};
-
   double t = 0.0;
   call_controller(0.0, yv);
-  result.trace.push_back(make_sample(0.0, yv));
+  result.trace.push_back(recorder.sample(0.0, yv));
   bool done = model.controls().stop;
   if (done) {
     result.status = SimulationStatus::kStopped;
@@ -646,7 +724,7 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
     ++tick;
     const double t_tick =
         std::min(options.end_time, static_cast<double>(tick) * options.control_period);
-    CVodeSetStopTime(mem.get(), t_tick);
+    cvode.set_stop_time(t_tick);
     while (t < t_tick && !done) {
       if (diag.steps >= options.max_steps) {
         result.status = SimulationStatus::kSolverFailure;
@@ -657,17 +735,12 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
         break;
       }
       const double t_before = t;
-      const int flag = CVode(mem.get(), t_tick, y.get(), &t, CV_ONE_STEP);
+      const int flag = cvode.step(t_tick, t);
       diag.cvode_flag = flag;
       if (flag < 0) {
         result.status = SimulationStatus::kSolverFailure;
         std::ostringstream msg;
-        // CVodeGetReturnFlagName returns a malloc'ed string the caller frees.
-        char* name = CVodeGetReturnFlagName(flag);
-        msg << "CVODE failed at t = " << t << " s (flag " << flag << ", " << (name ? name : "?")
-            << ")";
-        std::free(name);
-        if (!cvode_message.empty()) msg << ": " << cvode_message;
+        msg << "CVODE failed at t = " << t << " s (" << cvode.failure(flag);
         if (!model.callback_error.empty()) msg << "; model: " << model.callback_error;
         result.message = msg.str();
         done = true;
@@ -675,99 +748,23 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
       }
       ++diag.steps;
       // Trace samples inside the step just taken.
-      if (options.output_interval > 0.0) {
-        while (static_cast<double>(next_output) * options.output_interval <= t &&
-               static_cast<double>(next_output) * options.output_interval < options.end_time) {
-          const double t_out = static_cast<double>(next_output) * options.output_interval;
-          if (CVodeGetDky(mem.get(), t_out, 0, y_out.get()) == CV_SUCCESS)
-            result.trace.push_back(make_sample(t_out, N_VGetArrayPointer(y_out.get())));
-          ++next_output;
-        }
-      }
-      VehicleSample now = make_sample(t, yv);
+      if (options.output_interval > 0.0)
+        sample_outputs(cvode, recorder, options, t, next_output, result.trace);
+      VehicleSample now = recorder.sample(t, yv);
       std::array<int, kRoots> found{};
-      if (flag == CV_ROOT_RETURN) CVodeGetRootInfo(mem.get(), found.data());
-      const auto& w = now.wheels;
-      const auto off = [&](std::size_t i) { return w[i].compression < 0.0; };
-      const double vx = now.state.velocity.x(), vy = now.state.velocity.y();
-      const bool over_slip = std::abs(vy) > std::tan(options.side_slip_limit) *
-                                                std::hypot(vx, options.side_slip_min_speed);
-      const double airborne_for = airborne.update(
-          (off(0) && off(1) && off(2) && off(3)) || found[kRootAllLift] != 0, t_before, t);
-      const double slipping_for =
-          slipping.update(over_slip || found[kRootSideSlip] != 0, t_before, t);
-      // Stall is forward speed lost while moving no faster sideways: a vehicle whose
-      // forward speed falls while it slides sideways has spun out, which is side slip,
-      // judged by its own time. The root finds the onset; polling catches a stall that
-      // begins while a slide ends (no root crossing then).
-      const bool stalled_now =
-          model.stall_armed && model.controls().drive_force > 0.0 && vx < options.stall_speed;
-      if ((off(kFrontLeft) && off(kRearLeft)) || (off(kFrontRight) && off(kRearRight)))
-        diag.side_lift_time += t - t_before;
-
-      // A duration of 0 is the strict event: any spell (found by its root, or
-      // already under way at the start, where no root can find it).
-      const bool airborne_event = found[kRootClearance] || airborne_for >= options.airborne_time;
-      const bool slip_event = slipping_for >= options.side_slip_time;
-      // The strict side-lift event (roots inert unless side_lift_is_rollover).
-      const bool side_lift = found[kRootLeftLift] || found[kRootRightLift];
-      // One side lifting while the other carries (almost) nothing is the
-      // vehicle leaving the ground, not tipping over.
-      const double other_side =
-          found[kRootLeftLift] ? std::max(w[kFrontRight].compression, w[kRearRight].compression)
-                               : std::max(w[kFrontLeft].compression, w[kRearLeft].compression);
-      const bool side_lift_airborne =
-          side_lift && (w[0].normal_load + w[1].normal_load + w[2].normal_load + w[3].normal_load <
-                            0.01 * weight ||
-                        other_side < 0.01 * model.static_deflection());
-      std::ostringstream msg;
-      msg << std::fixed;
-      msg.precision(4);
-      if (airborne_event || side_lift_airborne) {
-        result.status = SimulationStatus::kLossOfContact;
-        if (found[kRootClearance])
-          msg << "every wheel was more than " << model.clearance()
-              << " m clear of the ground at t = " << t << " s";
-        else if (side_lift_airborne || options.airborne_time == 0.0)
-          msg << (side_lift_airborne ? "the vehicle" : "all four wheels")
-              << " left the ground at t = " << t << " s";
-        else
-          msg << "airborne (all four wheels off the ground) for " << airborne_for
-              << " s at t = " << t << " s";
-      } else if (found[kRootRoll] || found[kRootPitch] || side_lift) {
-        result.status = SimulationStatus::kRollover;
-        if (side_lift)
-          msg << "both " << (found[kRootLeftLift] ? "left" : "right")
-              << " wheels left the ground at t = " << t << " s";
-        else
-          msg << (found[kRootRoll] ? "roll" : "pitch") << " relative to the terrain reached "
-              << degrees(found[kRootRoll] ? model.roll_limit() : model.pitch_limit())
-              << " deg at t = " << t << " s";
-      } else if (slip_event) {
-        result.status = SimulationStatus::kSideSlip;
-        msg << "side slip beyond " << degrees(options.side_slip_limit) << " deg";
-        if (options.side_slip_time > 0.0) msg << " for " << slipping_for << " s";
-        msg << " at t = " << t << " s";
-      } else if (!over_slip && (found[kRootStall] || stalled_now)) {
-        result.status = SimulationStatus::kStall;
-        msg << "stalled (forward speed below " << options.stall_speed
-            << " m/s while driving) at t = " << t << " s";
-      } else if (found[kRootDomain]) {
-        result.status = SimulationStatus::kLeftTerrain;
-        msg << "a wheel left the terrain's domain at t = " << t << " s";
-      }
-      if (!msg.str().empty()) {
-        msg << ", c.g. at (" << yv[0] << ", " << yv[1] << ", " << yv[2] << ") m, speed "
-            << now.speed << " m/s";
-        result.message = msg.str();
+      if (flag == CV_ROOT_RETURN) cvode.roots_found(found.data());
+      auto [status, message] = judge.judge(now, found, t_before, t);
+      if (!message.empty()) {
+        result.status = status;
+        result.message = std::move(message);
+        result.trace.push_back(now);
         done = true;
       }
-      if (done) result.trace.push_back(now);
     }
     if (done) break;
     if (t >= options.end_time) {
       result.status = SimulationStatus::kReachedEndTime;
-      result.trace.push_back(make_sample(t, yv));
+      result.trace.push_back(recorder.sample(t, yv));
       break;
     }
     const VehicleControls before = model.controls();
@@ -777,9 +774,7 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
     // error test would cut the step to nothing at a large jump).
     if (model.controls().steering != before.steering ||
         model.controls().drive_force != before.drive_force) {
-      accumulate_counters();
-      if (CVodeReInit(mem.get(), t, y.get()) != CV_SUCCESS)
-        throw SolverError("CVodeReInit failed at a control tick");
+      cvode.restart(t);
       ++diag.restarts;
     }
     if (model.controls().stop) {
@@ -787,17 +782,17 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
       std::ostringstream msg;
       msg << "the controller stopped the run at t = " << t << " s";
       result.message = msg.str();
-      result.trace.push_back(make_sample(t, yv));
+      result.trace.push_back(recorder.sample(t, yv));
       done = true;
     }
   }
 
   result.end_time = t;
   result.final = result.trace.back();
-  accumulate_counters();
+  add_counters(cvode.counters(), diag);
   if (!std::isfinite(diag.min_normal_load)) diag.min_normal_load = 0.0;
   if (!std::isfinite(diag.min_total_normal_load_ratio)) diag.min_total_normal_load_ratio = 0.0;
-  diag.min_normal_load_ratio = diag.min_normal_load / static_load;
+  diag.min_normal_load_ratio = diag.min_normal_load / (recorder.weight() / 4.0);
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return result;

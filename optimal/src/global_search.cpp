@@ -537,105 +537,104 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// The search of one lattice: the whole grid, or the corridor `mask`.
-/// Throws InputError for an untraversable start or goal node.
-/// `cached`: a whole-map lattice at `spacing` whose samples and costs a
-/// workspace keeps (mask is then null), or null for a lattice of this search.
-GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
-                                  const AdmissibleSet& set, const Vec2& start, const Vec2& goal,
-                                  const GlobalSearchOptions& options, double spacing,
-                                  const TileMask* mask, Lattice* cached = nullptr) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto stop = [&options] { return options.stop && options.stop(); };
-  std::optional<Lattice> own;
-  Lattice& lattice = cached != nullptr ? *cached
-                                       : own.emplace(terrain, set, spacing, options.connectivity,
-                                                     options.braking_rule, mask);
-  const std::size_t evaluated_before = lattice.edges_evaluated();
-  GlobalSearchResult result;
-  result.nodes = lattice.size();
-  result.nx = lattice.nx();
-  result.ny = lattice.ny();
-  result.spacing = spacing;
-  result.origin = lattice.origin();
-  const auto finish = [&](GlobalSearchStatus status, std::string message) {
-    result.status = status;
-    result.message = std::move(message);
-    result.edges_evaluated = lattice.edges_evaluated() - evaluated_before;
-    result.search_seconds = seconds_since(t0);
-    return std::move(result);
-  };
-  const auto stopped = [&](const char* phase) {
-    std::ostringstream msg;
-    msg << "stopped by GlobalSearchOptions::stop while " << phase << " (" << result.expanded
-        << " nodes expanded); " << result.candidates.size() << " candidate"
-        << (result.candidates.size() == 1 ? "" : "s") << " found by then";
-    return finish(GlobalSearchStatus::kStopped, msg.str());
-  };
-  const auto add_candidate = [&](const std::vector<std::uint32_t>& ids, double cost) {
-    CandidatePath candidate;
-    for (std::uint32_t id : ids) candidate.vertices.push_back(lattice.position(id));
-    candidate.cost_seconds = cost;
-    candidate.length_m = surface_length(terrain, set, candidate.vertices, spacing);
-    result.candidates.push_back(std::move(candidate));
-  };
-  const std::uint32_t s = lattice.nearest(start), g = lattice.nearest(goal);
-  if (s == kNoNode || g == kNoNode) {
-    throw InputError("global search: the corridor misses the start or goal node");  // a bug
+/// One search of one lattice: its result as it grows, and the steps that grow it.
+class LatticeSearch {
+ public:
+  LatticeSearch(const BPatch& terrain, const AdmissibleSet& set, const GlobalSearchOptions& options,
+                double spacing, Lattice& lattice)
+      : t0_(std::chrono::steady_clock::now()),
+        terrain_(terrain),
+        set_(set),
+        options_(options),
+        spacing_(spacing),
+        lattice_(lattice),
+        evaluated_before_(lattice.edges_evaluated()) {
+    result_.nodes = lattice.size();
+    result_.nx = lattice.nx();
+    result_.ny = lattice.ny();
+    result_.spacing = spacing;
+    result_.origin = lattice.origin();
   }
-  result.start_node = lattice.position(s);
-  result.goal_node = lattice.position(g);
-  if (!lattice.sample(stop, options.stop_interval)) return stopped("sampling the surface");
-  lattice.exclude(options.excluded, s, g);
-  for (const auto& [which, node] : {std::pair{"start", s}, std::pair{"goal", g}}) {
-    bool any = false;
-    for (std::size_t k = 0; k < lattice.offsets() && !any; ++k) {
-      any = std::strcmp(which, "start") == 0 ? lattice.cost(node, k) < kInf
-                                             : lattice.cost_into(node, k) < kInf;
-    }
-    if (!any) {
+
+  bool stop() const { return options_.stop && options_.stop(); }
+  GlobalSearchResult& result() { return result_; }
+  /// The lattice's edges out of (forward) or into (reverse) a node, for shortest_paths.
+  auto forward() const {
+    return [this](std::uint32_t node, auto&& emit) { lattice_.for_each_edge(node, true, emit); };
+  }
+  auto reverse() const {
+    return [this](std::uint32_t node, auto&& emit) { lattice_.for_each_edge(node, false, emit); };
+  }
+
+  GlobalSearchResult finish(GlobalSearchStatus status, std::string message) {
+    result_.status = status;
+    result_.message = std::move(message);
+    result_.edges_evaluated = lattice_.edges_evaluated() - evaluated_before_;
+    result_.search_seconds = seconds_since(t0_);
+    return std::move(result_);
+  }
+
+  GlobalSearchResult stopped(const char* phase) {
+    std::ostringstream msg;
+    msg << "stopped by GlobalSearchOptions::stop while " << phase << " (" << result_.expanded
+        << " nodes expanded); " << result_.candidates.size() << " candidate"
+        << (result_.candidates.size() == 1 ? "" : "s") << " found by then";
+    return finish(GlobalSearchStatus::kStopped, msg.str());
+  }
+
+  void add_candidate(const std::vector<std::uint32_t>& ids, double cost) {
+    CandidatePath candidate;
+    for (std::uint32_t id : ids) candidate.vertices.push_back(lattice_.position(id));
+    candidate.cost_seconds = cost;
+    candidate.length_m = surface_length(terrain_, set_, candidate.vertices, spacing_);
+    result_.candidates.push_back(std::move(candidate));
+  }
+
+  /// InputError unless some edge leaves the start node and some edge enters the goal node.
+  void require_traversable_ends(std::uint32_t s, std::uint32_t g) const {
+    for (const auto& [which, node] : {std::pair{"start", s}, std::pair{"goal", g}}) {
+      const bool from = std::strcmp(which, "start") == 0;
+      bool any = false;
+      for (std::size_t k = 0; k < lattice_.offsets() && !any; ++k)
+        any = from ? lattice_.cost(node, k) < kInf : lattice_.cost_into(node, k) < kInf;
+      if (any) continue;
       std::ostringstream msg;
       msg.precision(12);
-      const Vec2 p = lattice.position(node);
+      const Vec2 p = lattice_.position(node);
       msg << which << " node (" << p.x() << ", " << p.y()
-          << ") is on untraversable terrain: every lattice edge "
-          << (std::strcmp(which, "start") == 0 ? "from" : "into")
+          << ") is on untraversable terrain: every lattice edge " << (from ? "from" : "into")
           << " it is too steep or unstable for the vehicle";
       throw InputError(msg.str());
     }
   }
 
-  const std::size_t n = lattice.size();
-  const std::size_t threads =
-      options.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : options.threads;
-  if (threads > 1 && (options.cost_fields || options.candidates > 1)) {
-    // Both cost fields reach every edge of the reachable lattice: compute
-    // them all up front on the threads, `stop` polled (on this thread only,
-    // as the searches do) between batches of stop_interval nodes per thread.
-    const std::size_t batch = options.stop_interval * threads;
+  /// Both cost fields reach every edge of the reachable lattice: computes
+  /// them all up front on the threads, `stop` polled (on this thread only, as
+  /// the searches do) between batches of stop_interval nodes per thread.
+  /// False when stopped.
+  bool evaluate_edges_up_front(std::size_t threads) {
+    const std::size_t n = lattice_.size();
+    const std::size_t batch = options_.stop_interval * threads;
     for (std::size_t begin = 0; begin < n; begin += batch) {
-      if (stop()) return stopped("computing the edge costs");
-      lattice.evaluate_edges(begin, std::min(n, begin + batch), threads);
+      if (stop()) return false;
+      lattice_.evaluate_edges(begin, std::min(n, begin + batch), threads);
     }
+    return true;
   }
-  const auto forward = [&lattice](std::uint32_t node, auto&& emit) {
-    lattice.for_each_edge(node, true, emit);
-  };
-  const auto reverse = [&lattice](std::uint32_t node, auto&& emit) {
-    lattice.for_each_edge(node, false, emit);
-  };
-  if (!options.cost_fields && options.candidates == 1) {
-    const Vec2 goal_position = lattice.position(g);
-    const double inverse_speed = 1.0 / vehicle.max_speed;
+
+  /// One candidate: A* from the start to the goal.
+  GlobalSearchResult single_route(std::uint32_t s, std::uint32_t g, double max_speed) {
+    const Vec2 goal_position = lattice_.position(g);
+    const double inverse_speed = 1.0 / max_speed;
     const ShortestPathTree tree = shortest_paths(
-        n, s, forward, g,
+        lattice_.size(), s, forward(), g,
         [&](std::uint32_t node) {
-          return (lattice.position(node) - goal_position).norm() *
+          return (lattice_.position(node) - goal_position).norm() *
                  inverse_speed;  // 3-D length >= planar
         },
-        stop, options.stop_interval);
-    result.expanded = tree.expanded;
-    result.reachable_nodes = tree.expanded;
+        [this] { return stop(); }, options_.stop_interval);
+    result_.expanded = tree.expanded;
+    result_.reachable_nodes = tree.expanded;
     // A* finds no path before it expands the goal.
     if (tree.stopped) return stopped("searching (A*) from the start");
     if (!(tree.cost[g] < kInf)) {
@@ -646,80 +645,119 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
     add_candidate(tree.path_to(g), tree.cost[g]);
     return finish(GlobalSearchStatus::kOk, "");
   }
-  const ShortestPathTree from_start = shortest_paths(n, s, forward, ShortestPathTree::kNone,
-                                                     NoHeuristic{}, stop, options.stop_interval);
-  result.expanded += from_start.expanded;
-  result.reachable_nodes = static_cast<std::size_t>(std::count_if(
-      from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
-  if (from_start.stopped) {
-    // A tentative cost is that of the real path path_to returns.
-    if (from_start.cost[g] < kInf) add_candidate(from_start.path_to(g), from_start.cost[g]);
-    return stopped("computing the cost field from the start");
-  }
-  if (!(from_start.cost[g] < kInf)) {
-    std::ostringstream msg;
-    msg << "goal unreachable: from the start the vehicle can reach " << result.reachable_nodes
-        << " of " << n << " lattice nodes ("
-        << 100.0 * static_cast<double>(result.reachable_nodes) / static_cast<double>(n)
-        << " % of the " << (lattice.full() ? "terrain" : "corridor")
-        << "), and the goal is not among them";
-    if (lattice.full()) result.cost_from_start = from_start.cost;
-    return finish(GlobalSearchStatus::kUnreachable, msg.str());
-  }
-  const ShortestPathTree to_goal = shortest_paths(n, g, reverse, ShortestPathTree::kNone,
-                                                  NoHeuristic{}, stop, options.stop_interval);
-  result.expanded += to_goal.expanded;
-  if (to_goal.stopped) {
-    add_candidate(from_start.path_to(g), from_start.cost[g]);
-    return stopped("computing the cost field to the goal");
-  }
-  if (stop()) {
-    add_candidate(from_start.path_to(g), from_start.cost[g]);
-    return stopped("ordering the candidate seeds");
+
+  /// The cost fields from the start and to the goal, then up to `candidates`
+  /// distinct routes through the nodes in increasing order of their cost.
+  GlobalSearchResult cost_fields_and_candidates(std::uint32_t s, std::uint32_t g) {
+    const std::size_t n = lattice_.size();
+    const auto polled = [this] { return stop(); };
+    const ShortestPathTree from_start = shortest_paths(
+        n, s, forward(), ShortestPathTree::kNone, NoHeuristic{}, polled, options_.stop_interval);
+    result_.expanded += from_start.expanded;
+    result_.reachable_nodes = static_cast<std::size_t>(std::count_if(
+        from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
+    if (from_start.stopped) {
+      // A tentative cost is that of the real path path_to returns.
+      if (from_start.cost[g] < kInf) add_candidate(from_start.path_to(g), from_start.cost[g]);
+      return stopped("computing the cost field from the start");
+    }
+    if (!(from_start.cost[g] < kInf)) return unreachable(from_start);
+    const ShortestPathTree to_goal = shortest_paths(n, g, reverse(), ShortestPathTree::kNone,
+                                                    NoHeuristic{}, polled, options_.stop_interval);
+    result_.expanded += to_goal.expanded;
+    if (to_goal.stopped || stop()) {
+      add_candidate(from_start.path_to(g), from_start.cost[g]);
+      return stopped(to_goal.stopped ? "computing the cost field to the goal"
+                                     : "ordering the candidate seeds");
+    }
+    if (!extract_candidates(from_start, to_goal, g)) return stopped("extracting candidates");
+    if (lattice_.full()) {
+      result_.cost_from_start = from_start.cost;
+      result_.cost_to_goal = to_goal.cost;
+    }
+    // The best route touching the corridor's edge: a better one may lie outside.
+    result_.corridor_width = 0.0;
+    if (!lattice_.full()) {
+      for (const std::uint32_t id : from_start.path_to(g)) {
+        if (lattice_.on_corridor_edge(id)) {
+          result_.corridor_width = -1.0;  // flag for the caller
+          break;
+        }
+      }
+    }
+    return finish(GlobalSearchStatus::kOk, "");
   }
 
-  // Candidates: nodes in increasing order of the best cost through them; each
-  // node's path (start tree + goal tree) is accepted if it is far enough, in
-  // Hausdorff distance, from every accepted one.
-  const double best = from_start.cost[g];
-  const double separation =
-      options.distinctness > 0.0
-          ? options.distinctness
-          : default_candidate_separation(result.start_node, result.goal_node, spacing);
-  std::vector<std::uint32_t> order;
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const double through = from_start.cost[k] + to_goal.cost[k];
-    if (through <= best * options.max_cost_ratio * (1 + 1e-12)) order.push_back(k);
+ private:
+  GlobalSearchResult unreachable(const ShortestPathTree& from_start) {
+    const std::size_t n = lattice_.size();
+    std::ostringstream msg;
+    msg << "goal unreachable: from the start the vehicle can reach " << result_.reachable_nodes
+        << " of " << n << " lattice nodes ("
+        << 100.0 * static_cast<double>(result_.reachable_nodes) / static_cast<double>(n)
+        << " % of the " << (lattice_.full() ? "terrain" : "corridor")
+        << "), and the goal is not among them";
+    if (lattice_.full()) result_.cost_from_start = from_start.cost;
+    return finish(GlobalSearchStatus::kUnreachable, msg.str());
   }
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const double ca = from_start.cost[a] + to_goal.cost[a],
-                 cb = from_start.cost[b] + to_goal.cost[b];
-    return ca != cb ? ca < cb : a < b;  // ties by node id: deterministic
-  });
-  // Each accepted candidate gets a lattice distance map (chamfer transform,
-  // within 8 % of the Euclidean distance), so testing a seed and its path is
-  // O(path length) instead of O(path length^2).
-  std::vector<std::vector<float>> distance_maps;
-  // Nodes on a path already examined would mostly grow the same path again.
-  std::vector<unsigned char> examined(n, 0);
-  std::size_t seeds = 0;
-  for (const std::uint32_t node : order) {
-    if (result.candidates.size() >= options.candidates) break;
-    if (examined[node]) continue;
-    if (++seeds % options.stop_interval == 0 && stop()) return stopped("extracting candidates");
-    bool near = false;
-    for (const std::vector<float>& d : distance_maps) near = near || d[node] < separation;
-    if (near) continue;
-    std::vector<std::uint32_t> ids = from_start.path_to(node);
-    for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone;
-         m = to_goal.parent[m])
-      ids.push_back(m);
-    for (std::uint32_t id : ids) examined[id] = 1;
-    // Distinct from an accepted candidate = somewhere at least `separation`
-    // away from it AND at most half of the path within separation / 2 of it:
-    // without the second rule the best corridor with one bulge passed as an
-    // alternative route.
-    bool distinct = true;
+
+  /// Candidates: nodes in increasing order of the best cost through them; each
+  /// node's path (start tree + goal tree) is accepted if it is far enough, in
+  /// Hausdorff distance, from every accepted one. False when stopped.
+  bool extract_candidates(const ShortestPathTree& from_start, const ShortestPathTree& to_goal,
+                          std::uint32_t g) {
+    const std::size_t n = lattice_.size();
+    const double best = from_start.cost[g];
+    const double separation =
+        options_.distinctness > 0.0
+            ? options_.distinctness
+            : default_candidate_separation(result_.start_node, result_.goal_node, spacing_);
+    std::vector<std::uint32_t> order;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const double through = from_start.cost[k] + to_goal.cost[k];
+      if (through <= best * options_.max_cost_ratio * (1 + 1e-12)) order.push_back(k);
+    }
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const double ca = from_start.cost[a] + to_goal.cost[a],
+                   cb = from_start.cost[b] + to_goal.cost[b];
+      return ca != cb ? ca < cb : a < b;  // ties by node id: deterministic
+    });
+    // Each accepted candidate gets a lattice distance map (chamfer transform,
+    // within 8 % of the Euclidean distance), so testing a seed and its path is
+    // O(path length) instead of O(path length^2).
+    std::vector<std::vector<float>> distance_maps;
+    // Nodes on a path already examined would mostly grow the same path again.
+    std::vector<unsigned char> examined(n, 0);
+    std::size_t seeds = 0;
+    for (const std::uint32_t node : order) {
+      if (result_.candidates.size() >= options_.candidates) break;
+      if (examined[node]) continue;
+      if (++seeds % options_.stop_interval == 0 && stop()) return false;
+      bool near = false;
+      for (const std::vector<float>& d : distance_maps) near = near || d[node] < separation;
+      if (near) continue;
+      std::vector<std::uint32_t> ids = from_start.path_to(node);
+      for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone;
+           m = to_goal.parent[m])
+        ids.push_back(m);
+      for (std::uint32_t id : ids) examined[id] = 1;
+      if (!distinct(ids, distance_maps, separation)) continue;
+      add_candidate(ids, from_start.cost[node] + to_goal.cost[node]);
+      if (result_.candidates.size() < options_.candidates) {
+        if (stop()) return false;
+        distance_maps.push_back(chamfer_distance(ids, lattice_, spacing_));
+      }
+    }
+    return true;
+  }
+
+  /// Distinct from an accepted candidate = somewhere at least `separation`
+  /// away from it AND at most half of the path within separation / 2 of it:
+  /// without the second rule the best corridor with one bulge passed as an
+  /// alternative route.
+  static bool distinct(const std::vector<std::uint32_t>& ids,
+                       const std::vector<std::vector<float>>& distance_maps, double separation) {
+    bool out = true;
     for (const std::vector<float>& d : distance_maps) {
       float farthest = 0.0f;
       std::size_t shared = 0;
@@ -727,30 +765,52 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
         farthest = std::max(farthest, d[id]);
         shared += d[id] < 0.5 * separation;
       }
-      distinct = distinct && farthest >= separation && 2 * shared <= ids.size();
+      out = out && farthest >= separation && 2 * shared <= ids.size();
     }
-    if (!distinct) continue;
-    add_candidate(ids, from_start.cost[node] + to_goal.cost[node]);
-    if (result.candidates.size() < options.candidates) {
-      if (stop()) return stopped("extracting candidates");
-      distance_maps.push_back(chamfer_distance(ids, lattice, spacing));
-    }
+    return out;
   }
-  if (lattice.full()) {
-    result.cost_from_start = from_start.cost;
-    result.cost_to_goal = to_goal.cost;
+
+  std::chrono::steady_clock::time_point t0_;
+  const BPatch& terrain_;
+  const AdmissibleSet& set_;
+  const GlobalSearchOptions& options_;
+  double spacing_;
+  Lattice& lattice_;
+  std::size_t evaluated_before_;
+  GlobalSearchResult result_;
+};
+
+/// The search of one lattice: the whole grid, or the corridor `mask`.
+/// Throws InputError for an untraversable start or goal node.
+/// `cached`: a whole-map lattice at `spacing` whose samples and costs a
+/// workspace keeps (mask is then null), or null for a lattice of this search.
+GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
+                                  const AdmissibleSet& set, const Vec2& start, const Vec2& goal,
+                                  const GlobalSearchOptions& options, double spacing,
+                                  const TileMask* mask, Lattice* cached = nullptr) {
+  std::optional<Lattice> own;
+  Lattice& lattice = cached != nullptr ? *cached
+                                       : own.emplace(terrain, set, spacing, options.connectivity,
+                                                     options.braking_rule, mask);
+  LatticeSearch search(terrain, set, options, spacing, lattice);
+  const std::uint32_t s = lattice.nearest(start), g = lattice.nearest(goal);
+  if (s == kNoNode || g == kNoNode) {
+    throw InputError("global search: the corridor misses the start or goal node");  // a bug
   }
-  // The best route touching the corridor's edge: a better one may lie outside.
-  result.corridor_width = 0.0;
-  if (!lattice.full()) {
-    for (const std::uint32_t id : from_start.path_to(g)) {
-      if (lattice.on_corridor_edge(id)) {
-        result.corridor_width = -1.0;  // flag for the caller
-        break;
-      }
-    }
-  }
-  return finish(GlobalSearchStatus::kOk, "");
+  search.result().start_node = lattice.position(s);
+  search.result().goal_node = lattice.position(g);
+  if (!lattice.sample([&search] { return search.stop(); }, options.stop_interval))
+    return search.stopped("sampling the surface");
+  lattice.exclude(options.excluded, s, g);
+  search.require_traversable_ends(s, g);
+  const std::size_t threads =
+      options.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : options.threads;
+  if (threads > 1 && (options.cost_fields || options.candidates > 1) &&
+      !search.evaluate_edges_up_front(threads))
+    return search.stopped("computing the edge costs");
+  if (!options.cost_fields && options.candidates == 1)
+    return search.single_route(s, g, vehicle.max_speed);
+  return search.cost_fields_and_candidates(s, g);
 }
 
 /// The tiles within `radius` [m] of the candidates' vertices and edges, and

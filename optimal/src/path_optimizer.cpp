@@ -443,35 +443,19 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
 
 namespace {
 
-/// optimize_path() from one fit (options.control_points; more_control_points
-/// ignored).
-OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicle,
-                                    const std::vector<Vec2>& initial_polyline,
-                                    const PathOptimizerOptions& options) {
-  const auto started = std::chrono::steady_clock::now();
-  if (initial_polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
-  // The initial path: a least-squares fit to the candidate, grown while a
-  // winding candidate needs more control points (fit_initial_path).
-  const bool simultaneous = options.formulation == PathFormulation::kSimultaneous;
-  const InitialPath fit =
-      fit_initial_path(terrain, vehicle, initial_polyline, options, simultaneous);
-  // The simultaneous NLP starts from an infeasible profile (restoration).
-  if (!(fit.admissible() || (simultaneous && fit.on_data))) {
-    throw InputError("the initial path (" + std::to_string(fit.control_points) +
-                     " control points) leaves the map or the measured data or has no "
-                     "admissible profile" +
-                     (fit.failure.empty() ? std::string() : ": " + fit.failure));
-  }
-  const std::size_t control_points = fit.control_points;
-  const std::size_t stations = fit.stations;
-  const std::optional<Curve2>& initial = fit.curve;
-  std::optional<PathTimeObjective> objective;
-  objective.emplace(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),
-                    control_points, stations, options.speeds);
-  double initial_time = objective->evaluate(objective->variables(initial->control_points()));
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
 
+/// The solvers' box round the fit's variables `start`: half a cell inside the
+/// domain (grown to hold the fit), the heading points pinned, the budgets,
+/// the expiry and BOBYQA's initial step.
+detail::BoxProblem box_problem(const BPatch& terrain, const Eigen::VectorXd& start,
+                               const std::vector<Vec2>& initial_polyline,
+                               const PathOptimizerOptions& options,
+                               std::chrono::steady_clock::time_point started) {
   detail::BoxProblem problem;
-  problem.start = objective->variables(initial->control_points());
+  problem.start = start;
   const long n = problem.start.size();
   problem.lower.resize(n);
   problem.upper.resize(n);
@@ -504,9 +488,7 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
   if (options.stop || std::isfinite(options.time_limit)) {
     const double limit = options.time_limit;
     problem.expired = [stop = options.stop, limit, started] {
-      return (stop && stop()) ||
-             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >=
-                 limit;
+      return (stop && stop()) || seconds_since(started) >= limit;
     };
   }
   // BOBYQA's trust region must fit in the box twice over (NLopt refuses
@@ -520,152 +502,236 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
       std::min(std::max(0.1 * (initial_polyline.back() - initial_polyline.front()).norm(),
                         terrain.cellsize()),
                0.45 * narrowest);
+  return problem;
+}
 
-  const Vec2 first = initial_polyline.front(), last = initial_polyline.back();
-  const double sigma =
-      options.restart_perturbation > 0.0 ? options.restart_perturbation : 2.0 * terrain.cellsize();
-  std::mt19937_64 random(options.seed);
-  const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-  };
-  const auto out_of_time = [&problem] { return problem.expired && problem.expired(); };
+/// Where the restarts come from: the path's ends, the perturbation's scale
+/// and the seeded generator.
+struct RestartSource {
+  Vec2 first, last;
+  double sigma;
+  std::mt19937_64 random;
+};
 
-  if (simultaneous) {
-    // Each attempt is a whole simultaneous solve (both phases) from its start.
-    OptimizedPath out = optimize_simultaneous(terrain, vehicle, *objective, problem, control_points,
-                                              stations, options, started);
-    out.attempts.push_back(
-        {"fit", out.solver_status, out.converged, out.travel_time, out.iterations, out.seconds});
-    if (std::isfinite(out.travel_time)) out.attempts.back().curve = out.curve;
-    for (std::size_t r = 1; r <= options.restarts && !out.attempts.back().converged; ++r) {
-      if (out_of_time()) break;
-      detail::BoxProblem restart = problem;
-      const auto point = restart_point(r, objective->variables(out.curve.control_points()),
-                                       *objective, first, last, sigma, problem, random);
-      if (!point) break;
-      restart.start = *point;
-      const auto attempt_started = std::chrono::steady_clock::now();
-      OptimizedPath next = optimize_simultaneous(terrain, vehicle, *objective, restart,
-                                                 control_points, stations, options, started);
-      out.attempts.push_back({r == 1 ? "resume" : "perturbed", next.solver_status, next.converged,
-                              next.travel_time, next.iterations, seconds_since(attempt_started)});
-      if (std::isfinite(next.travel_time)) out.attempts.back().curve = next.curve;
-      out.iterations += next.iterations;
-      out.evaluations += next.evaluations;
-      out.gradient_evaluations += next.gradient_evaluations;
-      // Ties go to the later attempt: it converged (or not) at the same point.
-      if (!(next.travel_time > out.travel_time)) {
-        next.initial_curve = out.initial_curve;
-        next.initial_time = out.initial_time;
-        next.attempts = std::move(out.attempts);
-        next.best_attempt = next.attempts.size() - 1;
-        next.iterations = out.iterations;
-        next.evaluations = out.evaluations;
-        next.gradient_evaluations = out.gradient_evaluations;
-        out = std::move(next);
-      }
+/// The simultaneous formulation: each attempt a whole simultaneous solve (both
+/// phases) from its start, the fit's first.
+OptimizedPath simultaneous_attempts(const BPatch& terrain, const Vehicle& vehicle,
+                                    PathTimeObjective& objective, const detail::BoxProblem& problem,
+                                    std::size_t control_points, std::size_t stations,
+                                    const PathOptimizerOptions& options,
+                                    std::chrono::steady_clock::time_point started,
+                                    RestartSource& restarts) {
+  OptimizedPath out = optimize_simultaneous(terrain, vehicle, objective, problem, control_points,
+                                            stations, options, started);
+  out.attempts.push_back(
+      {"fit", out.solver_status, out.converged, out.travel_time, out.iterations, out.seconds});
+  if (std::isfinite(out.travel_time)) out.attempts.back().curve = out.curve;
+  for (std::size_t r = 1; r <= options.restarts && !out.attempts.back().converged; ++r) {
+    if (problem.expired && problem.expired()) break;
+    detail::BoxProblem restart = problem;
+    const auto point =
+        restart_point(r, objective.variables(out.curve.control_points()), objective, restarts.first,
+                      restarts.last, restarts.sigma, problem, restarts.random);
+    if (!point) break;
+    restart.start = *point;
+    const auto attempt_started = std::chrono::steady_clock::now();
+    OptimizedPath next = optimize_simultaneous(terrain, vehicle, objective, restart, control_points,
+                                               stations, options, started);
+    out.attempts.push_back({r == 1 ? "resume" : "perturbed", next.solver_status, next.converged,
+                            next.travel_time, next.iterations, seconds_since(attempt_started)});
+    if (std::isfinite(next.travel_time)) out.attempts.back().curve = next.curve;
+    out.iterations += next.iterations;
+    out.evaluations += next.evaluations;
+    out.gradient_evaluations += next.gradient_evaluations;
+    // Ties go to the later attempt: it converged (or not) at the same point.
+    if (!(next.travel_time > out.travel_time)) {
+      next.initial_curve = out.initial_curve;
+      next.initial_time = out.initial_time;
+      next.attempts = std::move(out.attempts);
+      next.best_attempt = next.attempts.size() - 1;
+      next.iterations = out.iterations;
+      next.evaluations = out.evaluations;
+      next.gradient_evaluations = out.gradient_evaluations;
+      out = std::move(next);
     }
-    out.finite_difference_fallbacks = objective->finite_difference_fallbacks();
-    out.seconds = seconds_since(started);
-    return out;
+  }
+  out.finite_difference_fallbacks = objective.finite_difference_fallbacks();
+  out.seconds = seconds_since(started);
+  return out;
+}
+
+/// The nested formulation's attempts so far and the best point among them.
+struct NestedSearch {
+  std::vector<LocalAttempt> attempts;
+  std::vector<detail::SolverRun> runs;
+  Eigen::VectorXd best;
+  double best_time = std::numeric_limits<double>::infinity();
+  std::size_t best_attempt = 0, iterations = 0;
+  std::optional<Polish> polished;
+};
+
+detail::SolverRun run_solver(const PathOptimizerOptions& options, detail::TrackedObjective& tracked,
+                             const detail::BoxProblem& box) {
+  switch (options.solver) {
+    case PathSolver::kIpopt:
+      return detail::run_ipopt(tracked, box);
+    case PathSolver::kNloptLbfgs:
+      return detail::run_nlopt_lbfgs(tracked, box);
+    case PathSolver::kNloptBobyqa:
+      break;
+  }
+  return detail::run_nlopt_bobyqa(tracked, box);
+}
+
+/// The fit's attempt and the restarts (resume, then perturbed) until one
+/// converges, the budget or the restarts run out; one tracker per attempt,
+/// so each attempt's best point is its own.
+void nested_attempts(PathTimeObjective& objective, const detail::BoxProblem& problem,
+                     const PathOptimizerOptions& options, RestartSource& restarts,
+                     NestedSearch& search) {
+  for (std::size_t r = 0; r <= options.restarts; ++r) {
+    detail::BoxProblem box = problem;
+    if (r > 0) {
+      if (search.attempts.back().converged || (problem.expired && problem.expired())) break;
+      const auto point = restart_point(r, search.best, objective, restarts.first, restarts.last,
+                                       restarts.sigma, problem, restarts.random);
+      if (!point) break;
+      box.start = *point;
+    }
+    const auto attempt_started = std::chrono::steady_clock::now();
+    detail::TrackedObjective tracked(objective);
+    tracked(box.start, nullptr);
+    search.runs.push_back(run_solver(options, tracked, box));
+    const detail::SolverRun& run = search.runs.back();
+    search.iterations += run.iterations;
+    search.attempts.push_back({r == 0 ? "fit" : (r == 1 ? "resume" : "perturbed"), run.status,
+                               converged_status(run.status), tracked.best_value(), run.iterations,
+                               seconds_since(attempt_started)});
+    if (std::isfinite(tracked.best_value()) && tracked.best().size() == search.best.size())
+      search.attempts.back().curve = objective.curve(tracked.best());
+    // Ties go to the later attempt: it converged (or not) at the same point.
+    if (!(tracked.best_value() > search.best_time) && tracked.best().size() == search.best.size()) {
+      search.best = tracked.best();
+      search.best_time = tracked.best_value();
+      search.best_attempt = search.attempts.size() - 1;
+    }
+  }
+}
+
+/// The polish of the best nested point (PathOptimizerOptions::polish), kept
+/// when faster, or converged and close without losing to the fit.
+void polish_attempt(const BPatch& terrain, const Vehicle& vehicle, PathTimeObjective& objective,
+                    const detail::BoxProblem& problem, std::size_t control_points,
+                    std::size_t stations, const RestartSource& restarts,
+                    const PathOptimizerOptions& options, double initial_time,
+                    NestedSearch& search) {
+  const auto polish_started = std::chrono::steady_clock::now();
+  Polish p =
+      polish_nested_optimum(terrain, vehicle, objective, search.best, problem, control_points,
+                            stations, restarts.first, restarts.last, options);
+  search.attempts.push_back({"polish", p.run.status, p.run.converged, p.travel_time,
+                             p.run.iterations, seconds_since(polish_started)});
+  if (std::isfinite(p.travel_time)) search.attempts.back().curve = objective.curve(p.run.variables);
+  search.iterations += p.run.iterations;
+  const bool faster = p.travel_time < search.best_time;
+  const bool close = p.run.converged &&
+                     p.travel_time <= search.best_time * (1.0 + options.polish_tolerance) &&
+                     p.travel_time <= initial_time;
+  if (faster || close) {
+    search.best = p.run.variables;
+    search.best_time = p.travel_time;
+    search.best_attempt = search.attempts.size() - 1;
+    search.polished.emplace(std::move(p));
+  }
+}
+
+/// The nested search's result: the best point's path, its solver's status,
+/// the attempts and the optimality measure at the best point.
+OptimizedPath nested_result(PathTimeObjective& objective, const detail::BoxProblem& problem,
+                            std::size_t control_points, std::size_t stations,
+                            const PathOptimizerOptions& options, double initial_time,
+                            NestedSearch& search) {
+  OptimizedPath out(objective.curve(search.best));
+  out.initial_curve = objective.curve(problem.start);
+  out.control_points = control_points;
+  out.travel_time = search.best_time;
+  out.initial_time = initial_time;
+  out.formulation = to_string(options.formulation);
+  out.solver = to_string(options.solver);
+  if (search.polished) {
+    out.solver_status = search.polished->run.status;
+    out.converged = search.polished->run.converged;
+    out.solver_failed = search.polished->run.failed;
+    out.nlp_travel_time = search.polished->run.nlp_time;
+  } else {
+    const detail::SolverRun& run = search.runs[search.best_attempt];
+    out.solver_status = run.status;
+    out.converged = converged_status(run.status);
+    out.solver_failed = run.failed;
+  }
+  out.attempts = std::move(search.attempts);
+  out.best_attempt = search.best_attempt;
+  out.iterations = search.iterations;
+  out.stations = stations;
+  Eigen::VectorXd gradient;
+  const double check = objective.evaluate(search.best, &gradient);
+  out.optimality = std::isfinite(check) ? projected_gradient_norm(search.best, gradient,
+                                                                  problem.lower, problem.upper)
+                                        : std::numeric_limits<double>::quiet_NaN();
+  out.evaluations = objective.evaluations();
+  out.gradient_evaluations = objective.gradient_evaluations();
+  out.finite_difference_fallbacks = objective.finite_difference_fallbacks();
+  return out;
+}
+
+/// optimize_path() from one fit (options.control_points; more_control_points
+/// ignored).
+OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicle,
+                                    const std::vector<Vec2>& initial_polyline,
+                                    const PathOptimizerOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  if (initial_polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
+  // The initial path: a least-squares fit to the candidate, grown while a
+  // winding candidate needs more control points (fit_initial_path).
+  const bool simultaneous = options.formulation == PathFormulation::kSimultaneous;
+  const InitialPath fit =
+      fit_initial_path(terrain, vehicle, initial_polyline, options, simultaneous);
+  // The simultaneous NLP starts from an infeasible profile (restoration).
+  if (!(fit.admissible() || (simultaneous && fit.on_data))) {
+    throw InputError("the initial path (" + std::to_string(fit.control_points) +
+                     " control points) leaves the map or the measured data or has no "
+                     "admissible profile" +
+                     (fit.failure.empty() ? std::string() : ": " + fit.failure));
+  }
+  const std::size_t control_points = fit.control_points, stations = fit.stations;
+  PathTimeObjective objective(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),
+                              control_points, stations, options.speeds);
+  const Eigen::VectorXd start = objective.variables(fit.curve->control_points());
+  const double initial_time = objective.evaluate(start);
+  const detail::BoxProblem problem =
+      box_problem(terrain, start, initial_polyline, options, started);
+  RestartSource restarts{
+      initial_polyline.front(), initial_polyline.back(),
+      options.restart_perturbation > 0.0 ? options.restart_perturbation : 2.0 * terrain.cellsize(),
+      std::mt19937_64(options.seed)};
+  if (simultaneous) {
+    return simultaneous_attempts(terrain, vehicle, objective, problem, control_points, stations,
+                                 options, started, restarts);
   }
   // The fit is the solvers' first point (the box holds it).
   if (!std::isfinite(initial_time)) {
     throw InputError("the initial path has no admissible profile at the search's stations");
   }
-  const auto solve = [&options](detail::TrackedObjective& tracked, const detail::BoxProblem& box) {
-    switch (options.solver) {
-      case PathSolver::kIpopt:
-        return detail::run_ipopt(tracked, box);
-      case PathSolver::kNloptLbfgs:
-        return detail::run_nlopt_lbfgs(tracked, box);
-      case PathSolver::kNloptBobyqa:
-        break;
-    }
-    return detail::run_nlopt_bobyqa(tracked, box);
-  };
-  // One tracker per attempt, so each attempt's best point is its own.
-  std::vector<LocalAttempt> attempts;
-  std::vector<detail::SolverRun> runs;
-  Eigen::VectorXd best = problem.start;
-  double best_time = initial_time;
-  std::size_t best_attempt = 0, iterations = 0;
-  for (std::size_t r = 0; r <= options.restarts; ++r) {
-    detail::BoxProblem box = problem;
-    if (r > 0) {
-      if (attempts.back().converged || out_of_time()) break;
-      const auto point = restart_point(r, best, *objective, first, last, sigma, problem, random);
-      if (!point) break;
-      box.start = *point;
-    }
-    const auto attempt_started = std::chrono::steady_clock::now();
-    detail::TrackedObjective tracked(*objective);
-    tracked(box.start, nullptr);
-    runs.push_back(solve(tracked, box));
-    const detail::SolverRun& run = runs.back();
-    iterations += run.iterations;
-    attempts.push_back({r == 0 ? "fit" : (r == 1 ? "resume" : "perturbed"), run.status,
-                        converged_status(run.status), tracked.best_value(), run.iterations,
-                        seconds_since(attempt_started)});
-    if (std::isfinite(tracked.best_value()) && tracked.best().size() == best.size())
-      attempts.back().curve = objective->curve(tracked.best());
-    // Ties go to the later attempt: it converged (or not) at the same point.
-    if (!(tracked.best_value() > best_time) && tracked.best().size() == best.size()) {
-      best = tracked.best();
-      best_time = tracked.best_value();
-      best_attempt = attempts.size() - 1;
-    }
+  NestedSearch search;
+  search.best = problem.start;
+  search.best_time = initial_time;
+  nested_attempts(objective, problem, options, restarts, search);
+  if (options.polish && !(problem.expired && problem.expired())) {
+    polish_attempt(terrain, vehicle, objective, problem, control_points, stations, restarts,
+                   options, initial_time, search);
   }
-  std::optional<Polish> polished;
-  if (options.polish && !out_of_time()) {
-    const auto polish_started = std::chrono::steady_clock::now();
-    Polish p = polish_nested_optimum(terrain, vehicle, *objective, best, problem, control_points,
-                                     stations, first, last, options);
-    attempts.push_back({"polish", p.run.status, p.run.converged, p.travel_time, p.run.iterations,
-                        seconds_since(polish_started)});
-    if (std::isfinite(p.travel_time)) attempts.back().curve = objective->curve(p.run.variables);
-    iterations += p.run.iterations;
-    const bool faster = p.travel_time < best_time;
-    const bool close = p.run.converged &&
-                       p.travel_time <= best_time * (1.0 + options.polish_tolerance) &&
-                       p.travel_time <= initial_time;
-    if (faster || close) {
-      best = p.run.variables;
-      best_time = p.travel_time;
-      best_attempt = attempts.size() - 1;
-      polished.emplace(std::move(p));
-    }
-  }
-  OptimizedPath out(objective->curve(best));
-  out.initial_curve = objective->curve(problem.start);
-  out.control_points = control_points;
-  out.travel_time = best_time;
-  out.initial_time = initial_time;
-  out.formulation = to_string(options.formulation);
-  out.solver = to_string(options.solver);
-  if (polished) {
-    out.solver_status = polished->run.status;
-    out.converged = polished->run.converged;
-    out.solver_failed = polished->run.failed;
-    out.nlp_travel_time = polished->run.nlp_time;
-  } else {
-    const detail::SolverRun& run = runs[best_attempt];
-    out.solver_status = run.status;
-    out.converged = converged_status(run.status);
-    out.solver_failed = run.failed;
-  }
-  out.attempts = std::move(attempts);
-  out.best_attempt = best_attempt;
-  out.iterations = iterations;
-  out.stations = stations;
-  Eigen::VectorXd gradient;
-  const double check = objective->evaluate(best, &gradient);
-  out.optimality = std::isfinite(check)
-                       ? projected_gradient_norm(best, gradient, problem.lower, problem.upper)
-                       : std::numeric_limits<double>::quiet_NaN();
-  out.evaluations = objective->evaluations();
-  out.gradient_evaluations = objective->gradient_evaluations();
-  out.finite_difference_fallbacks = objective->finite_difference_fallbacks();
+  OptimizedPath out =
+      nested_result(objective, problem, control_points, stations, options, initial_time, search);
   out.seconds = seconds_since(started);
   return out;
 }

@@ -429,6 +429,58 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
   return kept;
 }
 
+/// The local stage's options for `problem`: the problem's speeds and
+/// headings, and the stations the result is reported at unless the user set
+/// the search's own spacing.
+PathOptimizerOptions local_stage_options(const PlanningProblem& problem,
+                                         const PlannerOptions& options) {
+  PathOptimizerOptions local = options.local;
+  local.speeds = {problem.start_speed, problem.end_speed};
+  local.start_heading = problem.start_heading;
+  local.goal_heading = problem.goal_heading;
+  // The local stage searches at the stations the result is reported at, so
+  // an improvement it finds is one the final evaluation sees (on Mount St.
+  // Helens the optimiser's default, five times coarser, found optima that
+  // were slower at the final spacing, and every candidate kept its fit).
+  // local.max_search_stations still coarsens the search on long paths.
+  if (local.station_spacing == 0.0) {
+    local.station_spacing =
+        resolve_station_spacing(options.station_spacing, *problem.surface, problem.vehicle);
+  }
+  return local;
+}
+
+/// What the time limit cut: the global search, the candidates cut short,
+/// those never optimised, and whether a trajectory is returned.
+std::string time_limit_message(std::string message, bool global_cut,
+                               const std::vector<std::size_t>& cut_short,
+                               const PlannerResult& result) {
+  if (global_cut) message += " in the global search (" + result.global.message + ")";
+  if (!cut_short.empty()) {
+    message += std::string(global_cut ? "; " : ": ") + "the optimisation of candidate" +
+               (cut_short.size() == 1 ? " " : "s ") + list_text(cut_short) +
+               " cut short (best point so far kept)";
+  }
+  if (!result.not_optimised.empty()) {
+    message += std::string(global_cut || !cut_short.empty() ? "; " : ": ") + "candidate" +
+               (result.not_optimised.size() == 1 ? " " : "s ") + list_text(result.not_optimised) +
+               " not optimised";
+  }
+  message += result.best_candidate ? "; the best trajectory so far is returned"
+                                   : "; no feasible trajectory found by then";
+  return message;
+}
+
+std::string infeasible_message(const PlannerResult& result) {
+  std::string message = "no candidate has a feasible trajectory (see each candidate's message)";
+  if (result.feedback_rounds > 0) {
+    message += "; the global search ran " + std::to_string(result.feedback_rounds + 1) +
+               " times, excluding " + std::to_string(result.excluded.size()) +
+               " stretches that could not be driven, and no drivable corridor remained";
+  }
+  return message;
+}
+
 }  // namespace
 
 PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options) {
@@ -475,19 +527,7 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   result.global = global_search(*problem.surface, problem.vehicle, problem.start, problem.goal,
                                 global, search_workspace);
 
-  PathOptimizerOptions local = options.local;
-  local.speeds = {problem.start_speed, problem.end_speed};
-  local.start_heading = problem.start_heading;
-  local.goal_heading = problem.goal_heading;
-  // The local stage searches at the stations the result is reported at, so
-  // an improvement it finds is one the final evaluation sees (on Mount St.
-  // Helens the optimiser's default, five times coarser, found optima that
-  // were slower at the final spacing, and every candidate kept its fit).
-  // local.max_search_stations still coarsens the search on long paths.
-  if (local.station_spacing == 0.0) {
-    local.station_spacing =
-        resolve_station_spacing(options.station_spacing, *problem.surface, problem.vehicle);
-  }
+  PathOptimizerOptions local = local_stage_options(problem, options);
   if (limited) {
     local.stop = [&expired, user = options.local.stop] { return (user && user()) || expired(); };
   }
@@ -548,31 +588,10 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     }
   }
   if (global_cut || !cut_short.empty() || !result.not_optimised.empty()) {
-    std::string message = limit_text.str();
-    if (global_cut) message += " in the global search (" + result.global.message + ")";
-    if (!cut_short.empty()) {
-      message += std::string(global_cut ? "; " : ": ") + "the optimisation of candidate" +
-                 (cut_short.size() == 1 ? " " : "s ") + list_text(cut_short) +
-                 " cut short (best point so far kept)";
-    }
-    if (!result.not_optimised.empty()) {
-      message += std::string(global_cut || !cut_short.empty() ? "; " : ": ") + "candidate" +
-                 (result.not_optimised.size() == 1 ? " " : "s ") + list_text(result.not_optimised) +
-                 " not optimised";
-    }
-    message += result.best_candidate ? "; the best trajectory so far is returned"
-                                     : "; no feasible trajectory found by then";
-    return finish(PlannerStatus::kTimeLimit, message);
+    return finish(PlannerStatus::kTimeLimit,
+                  time_limit_message(limit_text.str(), global_cut, cut_short, result));
   }
-  if (!result.best_candidate) {
-    std::string message = "no candidate has a feasible trajectory (see each candidate's message)";
-    if (result.feedback_rounds > 0) {
-      message += "; the global search ran " + std::to_string(result.feedback_rounds + 1) +
-                 " times, excluding " + std::to_string(result.excluded.size()) +
-                 " stretches that could not be driven, and no drivable corridor remained";
-    }
-    return finish(PlannerStatus::kInfeasible, message);
-  }
+  if (!result.best_candidate) return finish(PlannerStatus::kInfeasible, infeasible_message(result));
   return finish(PlannerStatus::kOk, "");
 }
 

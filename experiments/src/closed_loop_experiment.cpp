@@ -55,7 +55,16 @@ Case run_case(std::string terrain, const BPatch& surface, const Vehicle& vehicle
   Case c;
   c.terrain = std::move(terrain);
   const PlanningProblem problem(surface, vehicle, start, goal);
-  const PlannerResult plan_result = plan(problem, PlannerOptions{});
+  PlannerResult plan_result;
+  try {
+    plan_result = plan(problem, PlannerOptions{});
+  } catch (const InputError& error) {
+    // A start or goal the vehicle cannot stand on (untraversable for this vehicle): a case
+    // without a plan, as `talus plan` refuses it, not the end of the experiment.
+    c.plan_status = PlannerStatus::kInfeasible;
+    c.plan_message = std::string("refused: ") + error.what();
+    return c;
+  }
   c.plan_status = plan_result.status;
   c.plan_message = plan_result.message;
   c.plan_seconds = plan_result.seconds.total;

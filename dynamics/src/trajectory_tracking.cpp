@@ -252,6 +252,173 @@ std::string TrackingResult::brief_report() const {
   return line + simulation.brief_report();
 }
 
+namespace {
+
+/// The tracker's controller (the file comment): steering by the chosen law,
+/// speed PI at a preview station with the weight's feed-forward. Called in
+/// time order by the simulation; copies share one state.
+class Tracker {
+ public:
+  Tracker(const BPatch& surface, const Vehicle& vehicle, const Polyline& path,
+          const TrackingOptions& options)
+      : surface_(surface),
+        vehicle_(vehicle),
+        path_(path),
+        options_(options),
+        wheelbase_(2.0 * vehicle.half_wheelbase),
+        min_lookahead_(options.min_lookahead > 0.0 ? options.min_lookahead : 2.0 * wheelbase_),
+        goal_tolerance_(options.goal_tolerance > 0.0 ? options.goal_tolerance : wheelbase_),
+        max_steering_(tracking_steering_limit(options, vehicle)),
+        state_(std::make_shared<State>()) {}
+
+  double min_lookahead() const { return min_lookahead_; }
+  /// The speed the tracker aims for at arc length s [m/s].
+  double desired(double s) const {
+    return std::max(options_.min_speed, options_.speed_scale * path_.speed(s));
+  }
+
+  VehicleControls operator()(double t, const VehicleState& state) const {
+    const Mat3 rot = state.rotation();
+    const Vec3 forward3 = rot.col(0);
+    const Vec2 forward = Vec2(forward3.x(), forward3.y()).normalized();
+    const Vec2 cg(state.position.x(), state.position.y());
+    const double v = state.velocity.x();
+    const double lookahead = std::max(min_lookahead_, options_.lookahead_time * std::abs(v));
+    const auto [s, cross_track] =
+        path_.project(cg, state_->s - 0.5, state_->s + 2.0 * lookahead + 1.0);
+    state_->s = s;
+    VehicleControls c;
+    if (state_->s >= path_.length() - goal_tolerance_) {
+      c.stop = true;
+      return c;
+    }
+    const double steering = options_.steering_law == SteeringLaw::kCurvature
+                                ? curvature_steering(t, state, forward, cross_track, lookahead)
+                                : pure_pursuit_steering(cg, forward, lookahead);
+    c.steering = std::clamp(steering, -max_steering_, max_steering_);
+    c.drive_force = drive_force(t, cg, forward, v);
+    return c;
+  }
+
+ private:
+  struct State {
+    double s = 0.0;
+    double integral = 0.0;
+    double last_t = 0.0;
+    double slip = 0.0, slip_t = 0.0;
+  };
+
+  /// Pure pursuit from the rear axle.
+  double pure_pursuit_steering(const Vec2& cg, const Vec2& forward, double lookahead) const {
+    const Vec2 rear = cg - vehicle_.half_wheelbase * forward;
+    const Vec2 to_target = path_.point(state_->s + lookahead) - rear;
+    const double alpha = std::atan2(forward.x() * to_target.y() - forward.y() * to_target.x(),
+                                    forward.dot(to_target));
+    const double distance = std::max(to_target.norm(), 1e-6);
+    return std::atan(2.0 * wheelbase_ * std::sin(alpha) / distance);
+  }
+
+  /// The path's curvature fed forward, cross-track and course feedback, then
+  /// yaw-rate feedback (file comment).
+  double curvature_steering(double t, const VehicleState& state, const Vec2& forward,
+                            double cross_track, double lookahead) const {
+    const Mat3 rot = state.rotation();
+    const Vec3 velocity = rot * state.velocity;
+    const Vec2 planar(velocity.x(), velocity.y());
+    const double speed = planar.norm();
+    // The side-slip angle β (chassis heading to velocity), low-pass filtered:
+    // heading + filtered β is the course without the lateral dynamics' fast
+    // part, which destabilised a loop closed on the raw course.
+    const double slip =
+        speed > kCourseSpeedFloor
+            ? std::atan2(forward.x() * planar.y() - forward.y() * planar.x(), forward.dot(planar))
+            : 0.0;
+    const double dt = std::max(0.0, t - state_->slip_t);
+    state_->slip_t = t;
+    state_->slip += (1.0 - std::exp(-dt / options_.slip_filter_time)) * (slip - state_->slip);
+    const Vec2 tangent = path_.tangent(state_->s);
+    const double course_error =
+        std::atan2(tangent.x() * forward.y() - tangent.y() * forward.x(), tangent.dot(forward)) +
+        state_->slip;
+    const double wanted = path_.curvature(state_->s, vehicle_.half_wheelbase) -
+                          cross_track / (lookahead * lookahead) -
+                          2.0 * std::sin(course_error) / lookahead;
+    double kappa = wanted;
+    if (speed > kCourseSpeedFloor) {
+      const double yaw_rate = (rot * state.angular_velocity).z();
+      kappa += options_.yaw_rate_gain * (wanted - yaw_rate / speed);
+    }
+    const double half = 0.5 * wheelbase_ * kappa;
+    return std::atan(wheelbase_ * kappa / std::sqrt(std::max(1.0 - half * half, 0.25)));
+  }
+
+  /// Speed PI at the preview station, with the weight's feed-forward. The
+  /// preview station where the plan is slower (braking ahead), else the
+  /// projection: an acceleration is not anticipated, which would put the
+  /// vehicle above the plan's speed at the station it is on.
+  double drive_force(double t, const Vec2& cg, const Vec2& forward, double v) const {
+    const double ahead = state_->s + options_.speed_preview_time * std::max(0.0, v);
+    const double preview = desired(ahead) < desired(state_->s) ? ahead : state_->s;
+    const double error = desired(preview) - v;
+    const double dt = std::max(0.0, t - state_->last_t);
+    state_->last_t = t;
+    state_->integral = std::clamp(state_->integral + options_.speed_ki * error * dt,
+                                  -options_.integral_limit, options_.integral_limit);
+    // The planned acceleration v dv/ds at the desired speed (zero on the floor).
+    const double planned = options_.speed_scale * path_.speed(preview);
+    const double feed_forward = planned > options_.min_speed
+                                    ? planned * options_.speed_scale * path_.speed_slope(preview)
+                                    : 0.0;
+    return vehicle_.body->mass *
+           (vehicle_.gravity * terrain_grade(surface_, cg, forward, vehicle_.half_wheelbase) +
+            feed_forward + options_.speed_kp * error + state_->integral);
+  }
+
+  const BPatch& surface_;
+  const Vehicle& vehicle_;
+  const Polyline& path_;
+  const TrackingOptions& options_;
+  double wheelbase_, min_lookahead_, goal_tolerance_, max_steering_;
+  std::shared_ptr<State> state_;
+};
+
+/// Tracking quantities along the trace (an independent forward projection).
+/// The window ahead covers the controller's own, plus how far the vehicle
+/// can have driven since the last sample (twice the faster of the two
+/// samples' speeds over the interval): with a trace much coarser than the
+/// control period a fixed window lagged behind the vehicle, and the
+/// projection then reported cross-track errors of hundreds of metres and a
+/// progress short of 1 for a run that reached the goal.
+void measure_tracking(const Polyline& path, const Tracker& tracker, const TrackingOptions& options,
+                      TrackingResult& result) {
+  const VehicleSimulationResult& r = result.simulation;
+  double s = 0.0, sum2 = 0.0, last_t = 0.0, last_speed = 0.0;
+  result.tracking.reserve(r.trace.size());
+  for (const VehicleSample& k : r.trace) {
+    const Vec2 cg(k.state.position.x(), k.state.position.y());
+    const double driven = 2.0 * std::max(k.speed, last_speed) * (k.t - last_t);
+    const double window =
+        2.0 * std::max(tracker.min_lookahead(), options.lookahead_time * k.speed) + 1.0 + driven;
+    last_t = k.t;
+    last_speed = k.speed;
+    const auto [sk, dk] = path.project(cg, s - 0.5, s + window);
+    s = sk;
+    TrackingSample t;
+    t.s = sk;
+    t.cross_track = dk;
+    t.desired_speed = tracker.desired(sk);
+    result.tracking.push_back(t);
+    result.max_cross_track = std::max(result.max_cross_track, std::abs(dk));
+    sum2 += dk * dk;
+    result.max_speed_excess = std::max(result.max_speed_excess, k.speed - t.desired_speed);
+  }
+  if (!r.trace.empty())
+    result.rms_cross_track = std::sqrt(sum2 / static_cast<double>(r.trace.size()));
+  result.progress = std::clamp(s / path.length(), 0.0, 1.0);
+}
+
+}  // namespace
+
 TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
                                 const ReferenceTrajectory& reference,
                                 const TrackingOptions& options) {
@@ -267,160 +434,29 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
     throw InputError("track_trajectory: the trajectory's first point is off the terrain");
 
   const Polyline path(reference);
-  const double wheelbase = 2.0 * vehicle.half_wheelbase;
-  const double min_lookahead =
-      options.min_lookahead > 0.0 ? options.min_lookahead : 2.0 * wheelbase;
-  const double goal_tolerance = options.goal_tolerance > 0.0 ? options.goal_tolerance : wheelbase;
-  const double m = vehicle.body->mass, g = vehicle.gravity;
-
   TrackingResult result;
   result.path_length = path.length();
-  const auto desired = [&](double s) {
-    return std::max(options.min_speed, options.speed_scale * path.speed(s));
-  };
   for (std::size_t i = 1; i < reference.points.size(); ++i) {
     const double ds = (reference.points[i] - reference.points[i - 1]).norm();
     const double v0 = std::max(options.min_speed, options.speed_scale * reference.speed[i - 1]);
     const double v1 = std::max(options.min_speed, options.speed_scale * reference.speed[i]);
     result.planned_time += 2.0 * ds / (v0 + v1);
   }
-
-  // Controller state (the controller is called in time order by the simulation).
-  struct DriverState {
-    double s = 0.0;
-    double integral = 0.0;
-    double last_t = 0.0;
-    double slip = 0.0, slip_t = 0.0;
-  };
-  auto driver = std::make_shared<DriverState>();
-  const double max_steering = tracking_steering_limit(options, vehicle);
-  // Pure pursuit from the rear axle.
-  const auto pure_pursuit_steering = [&](const Vec2& cg, const Vec2& forward, double lookahead) {
-    const Vec2 rear = cg - vehicle.half_wheelbase * forward;
-    const Vec2 to_target = path.point(driver->s + lookahead) - rear;
-    const double alpha = std::atan2(forward.x() * to_target.y() - forward.y() * to_target.x(),
-                                    forward.dot(to_target));
-    const double distance = std::max(to_target.norm(), 1e-6);
-    return std::atan(2.0 * wheelbase * std::sin(alpha) / distance);
-  };
-  // The path's curvature fed forward, cross-track and course feedback, then
-  // yaw-rate feedback (file comment).
-  const double curvature_window = vehicle.half_wheelbase;
-  const auto curvature_steering = [&](double t, const VehicleState& state, const Vec2& forward,
-                                      double cross_track, double lookahead) {
-    const Mat3 rot = state.rotation();
-    const Vec3 velocity = rot * state.velocity;
-    const Vec2 planar(velocity.x(), velocity.y());
-    const double speed = planar.norm();
-    // The side-slip angle β (chassis heading to velocity), low-pass filtered:
-    // heading + filtered β is the course without the lateral dynamics' fast
-    // part, which destabilised a loop closed on the raw course.
-    const double slip =
-        speed > kCourseSpeedFloor
-            ? std::atan2(forward.x() * planar.y() - forward.y() * planar.x(), forward.dot(planar))
-            : 0.0;
-    const double dt = std::max(0.0, t - driver->slip_t);
-    driver->slip_t = t;
-    driver->slip += (1.0 - std::exp(-dt / options.slip_filter_time)) * (slip - driver->slip);
-    const Vec2 tangent = path.tangent(driver->s);
-    const double course_error =
-        std::atan2(tangent.x() * forward.y() - tangent.y() * forward.x(), tangent.dot(forward)) +
-        driver->slip;
-    const double wanted = path.curvature(driver->s, curvature_window) -
-                          cross_track / (lookahead * lookahead) -
-                          2.0 * std::sin(course_error) / lookahead;
-    double kappa = wanted;
-    if (speed > kCourseSpeedFloor) {
-      const double yaw_rate = (rot * state.angular_velocity).z();
-      kappa += options.yaw_rate_gain * (wanted - yaw_rate / speed);
-    }
-    const double half = 0.5 * wheelbase * kappa;
-    return std::atan(wheelbase * kappa / std::sqrt(std::max(1.0 - half * half, 0.25)));
-  };
-  const VehicleController controller = [&, driver](double t, const VehicleState& state) {
-    const Mat3 rot = state.rotation();
-    const Vec3 forward3 = rot.col(0);
-    const Vec2 forward = Vec2(forward3.x(), forward3.y()).normalized();
-    const Vec2 cg(state.position.x(), state.position.y());
-    const double v = state.velocity.x();
-    const double lookahead = std::max(min_lookahead, options.lookahead_time * std::abs(v));
-    const auto [s, cross_track] =
-        path.project(cg, driver->s - 0.5, driver->s + 2.0 * lookahead + 1.0);
-    driver->s = s;
-    VehicleControls c;
-    if (driver->s >= path.length() - goal_tolerance) {
-      c.stop = true;
-      return c;
-    }
-    const double steering = options.steering_law == SteeringLaw::kCurvature
-                                ? curvature_steering(t, state, forward, cross_track, lookahead)
-                                : pure_pursuit_steering(cg, forward, lookahead);
-    c.steering = std::clamp(steering, -max_steering, max_steering);
-    // Speed PI at the preview station, with the weight's feed-forward.
-    // The preview station where the plan is slower (braking ahead), else the
-    // projection: an acceleration is not anticipated, which would put the
-    // vehicle above the plan's speed at the station it is on.
-    const double ahead = driver->s + options.speed_preview_time * std::max(0.0, v);
-    const double preview = desired(ahead) < desired(driver->s) ? ahead : driver->s;
-    const double error = desired(preview) - v;
-    const double dt = std::max(0.0, t - driver->last_t);
-    driver->last_t = t;
-    driver->integral = std::clamp(driver->integral + options.speed_ki * error * dt,
-                                  -options.integral_limit, options.integral_limit);
-    // The planned acceleration v dv/ds at the desired speed (zero on the floor).
-    const double planned = options.speed_scale * path.speed(preview);
-    const double feed_forward = planned > options.min_speed
-                                    ? planned * options.speed_scale * path.speed_slope(preview)
-                                    : 0.0;
-    c.drive_force = m * (g * terrain_grade(surface, cg, forward, vehicle.half_wheelbase) +
-                         feed_forward + options.speed_kp * error + driver->integral);
-    return c;
-  };
-
+  const Tracker tracker(surface, vehicle, path, options);
   VehicleSimulationOptions sim = options.simulation;
   sim.end_time = options.time_factor * result.planned_time + options.time_margin;
   const Vec2 heading = reference.points[1] - reference.points[0];
   const VehicleState start = resting_state(surface, vehicle, reference.points.front(),
                                            std::atan2(heading.y(), heading.x()),
                                            options.speed_scale * reference.speed.front());
-  result.simulation = simulate_vehicle(surface, vehicle, start, controller, sim);
+  result.simulation = simulate_vehicle(surface, vehicle, start, tracker, sim);
   const VehicleSimulationResult& r = result.simulation;
   result.status = from_simulation(r.status);
   result.message = r.status == SimulationStatus::kStopped ? "" : r.message;
   if (result.status == TrackingStatus::kTimeout)
     result.message =
         "the time limit of " + std::to_string(sim.end_time) + " s came before the goal";
-
-  // Tracking quantities along the trace (an independent forward projection).
-  // The window ahead covers the controller's own, plus how far the vehicle
-  // can have driven since the last sample (twice the faster of the two
-  // samples' speeds over the interval): with a trace much coarser than the
-  // control period a fixed window lagged behind the vehicle, and the
-  // projection then reported cross-track errors of hundreds of metres and a
-  // progress short of 1 for a run that reached the goal.
-  double s = 0.0, sum2 = 0.0, last_t = 0.0, last_speed = 0.0;
-  result.tracking.reserve(r.trace.size());
-  for (const VehicleSample& k : r.trace) {
-    const Vec2 cg(k.state.position.x(), k.state.position.y());
-    const double driven = 2.0 * std::max(k.speed, last_speed) * (k.t - last_t);
-    const double window =
-        2.0 * std::max(min_lookahead, options.lookahead_time * k.speed) + 1.0 + driven;
-    last_t = k.t;
-    last_speed = k.speed;
-    const auto [sk, dk] = path.project(cg, s - 0.5, s + window);
-    s = sk;
-    TrackingSample t;
-    t.s = sk;
-    t.cross_track = dk;
-    t.desired_speed = desired(sk);
-    result.tracking.push_back(t);
-    result.max_cross_track = std::max(result.max_cross_track, std::abs(dk));
-    sum2 += dk * dk;
-    result.max_speed_excess = std::max(result.max_speed_excess, k.speed - t.desired_speed);
-  }
-  if (!r.trace.empty())
-    result.rms_cross_track = std::sqrt(sum2 / static_cast<double>(r.trace.size()));
-  result.progress = std::clamp(s / path.length(), 0.0, 1.0);
+  measure_tracking(path, tracker, options, result);
   result.travel_time = r.end_time;
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

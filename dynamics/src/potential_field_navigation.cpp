@@ -57,161 +57,40 @@ std::string PotentialFieldNavigationResult::brief_report() const {
   return line + simulation.brief_report();
 }
 
-PotentialFieldNavigationResult navigate_potential_field(
-    const BPatch& surface, const Vehicle& vehicle, const Vec2& start, double yaw,
-    const ReferenceTrajectory& waypoints, const std::vector<DiscHazard>& hazards,
-    const PotentialFieldNavigationOptions& options) {
-  options.validate();
-  vehicle.validate();
-  if (!vehicle.body) throw InputError("navigate_potential_field: the vehicle has no body");
-  if (waypoints.points.empty() || waypoints.speed.size() != waypoints.points.size())
-    throw InputError("navigate_potential_field: needs waypoints, each with a speed");
-  for (std::size_t i = 0; i < waypoints.points.size(); ++i) {
-    if (!waypoints.points[i].allFinite() ||
-        !(waypoints.speed[i] >= 0.0 && std::isfinite(waypoints.speed[i])))
-      throw InputError("navigate_potential_field: waypoint " + std::to_string(i) +
-                       " is not finite, or its speed is not >= 0");
+namespace {
+
+/// The driver of navigate_potential_field (its file comment): the field's
+/// inputs at a pose, the §IV lookahead, and the controller the simulation
+/// calls in time order (copies share one state).
+class FieldNavigator {
+ public:
+  FieldNavigator(const BPatch& surface, const Vehicle& vehicle,
+                 const ReferenceTrajectory& waypoints, const std::vector<DiscHazard>& hazards,
+                 const PotentialFieldNavigationOptions& options,
+                 PotentialFieldNavigationResult& result)
+      : surface(surface),
+        vehicle(vehicle),
+        waypoints(waypoints),
+        hazards(hazards),
+        options(options),
+        ahead(options.lookahead),
+        result(result),
+        wheelbase(2.0 * vehicle.half_wheelbase),
+        m(vehicle.body->mass),
+        g(vehicle.gravity),
+        goal_index(waypoints.points.size() - 1),
+        driver(std::make_shared<Driver>()) {
+    base.friction = vehicle.friction;
+    base.half_track = vehicle.half_track;
+    base.cg_height = vehicle.cg_height;
+    base.max_curvature = std::tan(options.max_steering) / wheelbase;
+    base.max_speed = std::isfinite(vehicle.max_speed) ? vehicle.max_speed : 1e3;
+    base.velocity_unit = options.velocity_unit;
+    base.gains = options.gains;
+    driver->rng.seed(options.seed);
   }
-  for (const DiscHazard& h : hazards) {
-    if (!h.centre.allFinite() || !(h.radius > 0.0 && std::isfinite(h.radius)))
-      throw InputError("navigate_potential_field: a hazard needs a finite centre and radius > 0");
-  }
-  if (!std::isfinite(yaw)) throw InputError("navigate_potential_field: yaw must be finite");
 
-  const double wheelbase = 2.0 * vehicle.half_wheelbase;
-  const double m = vehicle.body->mass, g = vehicle.gravity;
-  TrajectorySpaceInputs base;
-  base.friction = vehicle.friction;
-  base.half_track = vehicle.half_track;
-  base.cg_height = vehicle.cg_height;
-  base.max_curvature = std::tan(options.max_steering) / wheelbase;
-  base.max_speed = std::isfinite(vehicle.max_speed) ? vehicle.max_speed : 1e3;
-  base.velocity_unit = options.velocity_unit;
-  base.gains = options.gains;
-
-  PotentialFieldNavigationResult result;
-  struct Driver {
-    std::size_t waypoint = 0;
-    TrajectoryPoint command;
-    double last_t = 0.0, last_v = 0.0;
-    std::mt19937_64 rng;
-  };
-  auto driver = std::make_shared<Driver>();
-  driver->rng.seed(options.seed);
-  const auto goal_index = waypoints.points.size() - 1;
-
-  // The field's inputs at a planar pose (c.g. `cg`, heading `forward`) with
-  // the gravity components in the body frame, towards waypoint `waypoint`
-  // (advanced past those within reach); the actual state and the
-  // lookahead's predictions both use it.
-  const auto inputs_at = [&](const Vec2& cg, const Vec2& forward, double gravity_lateral,
-                             double gravity_normal, std::size_t& waypoint,
-                             const std::vector<DiscHazard>& seen) {
-    // A waypoint is done when reached, or passed: the c.g. is beyond the
-    // line through it normal to the leg to the next one (else one missed by
-    // more than waypoint_radius would have the vehicle turn back for it).
-    const auto done = [&](std::size_t w) {
-      const Vec2 leg = waypoints.points[w + 1] - waypoints.points[w];
-      return (waypoints.points[w] - cg).norm() < options.waypoint_radius ||
-             (cg - waypoints.points[w]).dot(leg) > 0.0;
-    };
-    while (waypoint < goal_index && done(waypoint)) ++waypoint;
-    const Vec2 left(-forward.y(), forward.x());
-    const auto local = [&](const Vec2& p) {
-      return Vec2((p - cg).dot(forward), (p - cg).dot(left));
-    };
-    TrajectorySpaceInputs in = base;
-    const Vec2 to_target = local(waypoints.points[waypoint]);
-    const double bearing = std::atan2(to_target.y(), to_target.x());
-    in.desired_curvature =
-        std::clamp(arc_curvature(to_target), -in.max_curvature, in.max_curvature);
-    in.desired_speed = waypoints.speed[waypoint];
-    in.gravity_lateral = gravity_lateral;
-    in.gravity_normal = std::max(1e-6, gravity_normal);
-    for (const DiscHazard& h : seen) {
-      const Vec2 c_local = local(h.centre);
-      const double distance = c_local.norm() - h.radius;
-      if (distance > options.sensor_radius) continue;
-      TrajectorySpaceHazard th;
-      th.distance = std::max(0.0, distance);
-      th.waypoint_angle = std::abs(bearing);
-      if (distance <= 0.0) {
-        th.kappa_min = -in.max_curvature;
-        th.kappa_max = in.max_curvature;
-      } else {
-        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        bool ahead = false;
-        for (int k = -1; k < 64; ++k) {
-          const double a = 2.0 * std::numbers::pi * k / 64.0;
-          const Vec2 p = k < 0 ? c_local : c_local + h.radius * Vec2(std::cos(a), std::sin(a));
-          if (p.x() <= 0.0) continue;
-          ahead = true;
-          const double kappa = arc_curvature(p);
-          lo = std::min(lo, kappa);
-          hi = std::max(hi, kappa);
-        }
-        if (!ahead || hi <= lo) continue;
-        th.kappa_min = lo;
-        th.kappa_max = hi;
-      }
-      in.hazards.push_back(th);
-    }
-    return in;
-  };
-
-  // §IV: the reduced model driven by the field over the horizon from the
-  // actual pose and command; the cap is the safe speed where the prediction
-  // exceeds the safe profile (the smallest such), +inf where it never does;
-  // `here` the safe profile at the c.g. itself (figure 8's limit curve).
-  const NavigationLookaheadOptions& ahead = options.lookahead;
-  struct Lookahead {
-    double cap = std::numeric_limits<double>::infinity();
-    double here = std::numeric_limits<double>::quiet_NaN();
-  };
-  const auto lookahead_cap = [&](Vec2 cg, double heading, double speed, std::size_t waypoint,
-                                 TrajectoryPoint command, std::mt19937_64 rng,
-                                 const std::vector<DiscHazard>& seen) {
-    const auto steps = static_cast<std::size_t>(std::ceil(ahead.horizon / ahead.step - 1e-9));
-    std::vector<Vec2> points = {cg};
-    std::vector<double> speeds = {speed};
-    for (std::size_t k = 0; k < steps; ++k) {
-      if (k > 0) {
-        if (!surface.contains(cg)) break;
-        const SurfacePoint z = surface.evaluate(cg);
-        const Vec3 normal = Vec3(-z.gradient.x(), -z.gradient.y(), 1.0).normalized();
-        const Vec3 along =
-            Vec3(std::cos(heading), std::sin(heading),
-                 z.gradient.x() * std::cos(heading) + z.gradient.y() * std::sin(heading))
-                .normalized();
-        const Vec3 left = normal.cross(along);
-        const TrajectorySpaceInputs in = inputs_at(cg, Vec2(std::cos(heading), std::sin(heading)),
-                                                   -g * left.z(), g * normal.z(), waypoint, seen);
-        command = descend(in, command, rng, options.descent);
-      }
-      const double wanted = options.speed_kp * (command.speed - speed);
-      speed = std::max(
-          0.0, speed + std::clamp(wanted, -vehicle.max_decel, vehicle.max_accel) * ahead.step);
-      heading += speed * command.curvature * ahead.step;
-      cg += speed * ahead.step * Vec2(std::cos(heading), std::sin(heading));
-      points.push_back(cg);
-      speeds.push_back(speed);
-      // The run ends at the goal: nothing beyond it needs to be safe.
-      if ((waypoints.points[goal_index] - cg).norm() < options.waypoint_radius) break;
-    }
-    Lookahead out;
-    if (points.size() < 2) return out;
-    const std::vector<double> safe = safe_speed_profile(surface, vehicle, points);
-    out.here = safe.front();
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      // The top speed is a limit of its own, not a dynamic one to keep a margin from.
-      if (safe[k] >= vehicle.max_speed) continue;
-      const double allowed = ahead.safety_factor * safe[k];
-      if (speeds[k] > allowed) out.cap = std::min(out.cap, allowed);
-    }
-    return out;
-  };
-
-  const VehicleController controller = [&, driver](double t, const VehicleState& s) {
+  VehicleControls operator()(double t, const VehicleState& s) const {
     VehicleControls c;
     const Mat3 rot = s.rotation();
     const Vec2 cg(s.position.x(), s.position.y());
@@ -266,40 +145,201 @@ PotentialFieldNavigationResult navigate_potential_field(
     c.drive_force = m * (g * fx.z() + options.speed_kp * (applied.speed - s.velocity.x()) -
                          options.speed_kd * accel);
     return c;
+  }
+
+ private:
+  struct Driver {
+    std::size_t waypoint = 0;
+    TrajectoryPoint command;
+    double last_t = 0.0, last_v = 0.0;
+    std::mt19937_64 rng;
+  };
+  struct Lookahead {
+    double cap = std::numeric_limits<double>::infinity();
+    double here = std::numeric_limits<double>::quiet_NaN();
   };
 
+  // The field's inputs at a planar pose (c.g. `cg`, heading `forward`) with
+  // the gravity components in the body frame, towards waypoint `waypoint`
+  // (advanced past those within reach); the actual state and the
+  // lookahead's predictions both use it.
+  TrajectorySpaceInputs inputs_at(const Vec2& cg, const Vec2& forward, double gravity_lateral,
+                                  double gravity_normal, std::size_t& waypoint,
+                                  const std::vector<DiscHazard>& seen) const {
+    // A waypoint is done when reached, or passed: the c.g. is beyond the
+    // line through it normal to the leg to the next one (else one missed by
+    // more than waypoint_radius would have the vehicle turn back for it).
+    const auto done = [&](std::size_t w) {
+      const Vec2 leg = waypoints.points[w + 1] - waypoints.points[w];
+      return (waypoints.points[w] - cg).norm() < options.waypoint_radius ||
+             (cg - waypoints.points[w]).dot(leg) > 0.0;
+    };
+    while (waypoint < goal_index && done(waypoint)) ++waypoint;
+    const Vec2 left(-forward.y(), forward.x());
+    const auto local = [&](const Vec2& p) {
+      return Vec2((p - cg).dot(forward), (p - cg).dot(left));
+    };
+    TrajectorySpaceInputs in = base;
+    const Vec2 to_target = local(waypoints.points[waypoint]);
+    const double bearing = std::atan2(to_target.y(), to_target.x());
+    in.desired_curvature =
+        std::clamp(arc_curvature(to_target), -in.max_curvature, in.max_curvature);
+    in.desired_speed = waypoints.speed[waypoint];
+    in.gravity_lateral = gravity_lateral;
+    in.gravity_normal = std::max(1e-6, gravity_normal);
+    for (const DiscHazard& h : seen) {
+      const Vec2 c_local = local(h.centre);
+      const double distance = c_local.norm() - h.radius;
+      if (distance > options.sensor_radius) continue;
+      TrajectorySpaceHazard th;
+      th.distance = std::max(0.0, distance);
+      th.waypoint_angle = std::abs(bearing);
+      if (distance <= 0.0) {
+        th.kappa_min = -in.max_curvature;
+        th.kappa_max = in.max_curvature;
+      } else {
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        bool ahead = false;
+        for (int k = -1; k < 64; ++k) {
+          const double a = 2.0 * std::numbers::pi * k / 64.0;
+          const Vec2 p = k < 0 ? c_local : c_local + h.radius * Vec2(std::cos(a), std::sin(a));
+          if (p.x() <= 0.0) continue;
+          ahead = true;
+          const double kappa = arc_curvature(p);
+          lo = std::min(lo, kappa);
+          hi = std::max(hi, kappa);
+        }
+        if (!ahead || hi <= lo) continue;
+        th.kappa_min = lo;
+        th.kappa_max = hi;
+      }
+      in.hazards.push_back(th);
+    }
+    return in;
+  }
+
+  // §IV: the reduced model driven by the field over the horizon from the
+  // actual pose and command; the cap is the safe speed where the prediction
+  // exceeds the safe profile (the smallest such), +inf where it never does;
+  // `here` the safe profile at the c.g. itself (figure 8's limit curve).
+  Lookahead lookahead_cap(Vec2 cg, double heading, double speed, std::size_t waypoint,
+                          TrajectoryPoint command, std::mt19937_64 rng,
+                          const std::vector<DiscHazard>& seen) const {
+    const auto steps = static_cast<std::size_t>(std::ceil(ahead.horizon / ahead.step - 1e-9));
+    std::vector<Vec2> points = {cg};
+    std::vector<double> speeds = {speed};
+    for (std::size_t k = 0; k < steps; ++k) {
+      if (k > 0) {
+        if (!surface.contains(cg)) break;
+        const SurfacePoint z = surface.evaluate(cg);
+        const Vec3 normal = Vec3(-z.gradient.x(), -z.gradient.y(), 1.0).normalized();
+        const Vec3 along =
+            Vec3(std::cos(heading), std::sin(heading),
+                 z.gradient.x() * std::cos(heading) + z.gradient.y() * std::sin(heading))
+                .normalized();
+        const Vec3 left = normal.cross(along);
+        const TrajectorySpaceInputs in = inputs_at(cg, Vec2(std::cos(heading), std::sin(heading)),
+                                                   -g * left.z(), g * normal.z(), waypoint, seen);
+        command = descend(in, command, rng, options.descent);
+      }
+      const double wanted = options.speed_kp * (command.speed - speed);
+      speed = std::max(
+          0.0, speed + std::clamp(wanted, -vehicle.max_decel, vehicle.max_accel) * ahead.step);
+      heading += speed * command.curvature * ahead.step;
+      cg += speed * ahead.step * Vec2(std::cos(heading), std::sin(heading));
+      points.push_back(cg);
+      speeds.push_back(speed);
+      // The run ends at the goal: nothing beyond it needs to be safe.
+      if ((waypoints.points[goal_index] - cg).norm() < options.waypoint_radius) break;
+    }
+    Lookahead out;
+    if (points.size() < 2) return out;
+    const std::vector<double> safe = safe_speed_profile(surface, vehicle, points);
+    out.here = safe.front();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      // The top speed is a limit of its own, not a dynamic one to keep a margin from.
+      if (safe[k] >= vehicle.max_speed) continue;
+      const double allowed = ahead.safety_factor * safe[k];
+      if (speeds[k] > allowed) out.cap = std::min(out.cap, allowed);
+    }
+    return out;
+  }
+
+  const BPatch& surface;
+  const Vehicle& vehicle;
+  const ReferenceTrajectory& waypoints;
+  const std::vector<DiscHazard>& hazards;
+  const PotentialFieldNavigationOptions& options;
+  const NavigationLookaheadOptions& ahead;
+  PotentialFieldNavigationResult& result;
+  double wheelbase, m, g;
+  std::size_t goal_index;
+  TrajectorySpaceInputs base;
+  std::shared_ptr<Driver> driver;
+};
+
+void check_navigation_inputs(const Vehicle& vehicle, double yaw,
+                             const ReferenceTrajectory& waypoints,
+                             const std::vector<DiscHazard>& hazards,
+                             const PotentialFieldNavigationOptions& options) {
+  options.validate();
+  vehicle.validate();
+  if (!vehicle.body) throw InputError("navigate_potential_field: the vehicle has no body");
+  if (waypoints.points.empty() || waypoints.speed.size() != waypoints.points.size())
+    throw InputError("navigate_potential_field: needs waypoints, each with a speed");
+  for (std::size_t i = 0; i < waypoints.points.size(); ++i) {
+    if (!waypoints.points[i].allFinite() ||
+        !(waypoints.speed[i] >= 0.0 && std::isfinite(waypoints.speed[i])))
+      throw InputError("navigate_potential_field: waypoint " + std::to_string(i) +
+                       " is not finite, or its speed is not >= 0");
+  }
+  for (const DiscHazard& h : hazards) {
+    if (!h.centre.allFinite() || !(h.radius > 0.0 && std::isfinite(h.radius)))
+      throw InputError("navigate_potential_field: a hazard needs a finite centre and radius > 0");
+  }
+  if (!std::isfinite(yaw)) throw InputError("navigate_potential_field: yaw must be finite");
+}
+
+/// The navigation's status for the simulation's (stopped by the driver: the goal).
+TrackingStatus navigation_status(SimulationStatus status) {
+  switch (status) {
+    case SimulationStatus::kStopped:
+      return TrackingStatus::kReachedGoal;
+    case SimulationStatus::kReachedEndTime:
+      return TrackingStatus::kTimeout;
+    case SimulationStatus::kRollover:
+      return TrackingStatus::kRollover;
+    case SimulationStatus::kSideSlip:
+      return TrackingStatus::kSideSlip;
+    case SimulationStatus::kLossOfContact:
+      return TrackingStatus::kLossOfContact;
+    case SimulationStatus::kStall:
+      return TrackingStatus::kStall;
+    case SimulationStatus::kLeftTerrain:
+      return TrackingStatus::kLeftTerrain;
+    case SimulationStatus::kSolverFailure:
+      break;
+  }
+  return TrackingStatus::kSolverFailure;
+}
+
+}  // namespace
+
+PotentialFieldNavigationResult navigate_potential_field(
+    const BPatch& surface, const Vehicle& vehicle, const Vec2& start, double yaw,
+    const ReferenceTrajectory& waypoints, const std::vector<DiscHazard>& hazards,
+    const PotentialFieldNavigationOptions& options) {
+  check_navigation_inputs(vehicle, yaw, waypoints, hazards, options);
+  PotentialFieldNavigationResult result;
+  const FieldNavigator navigator(surface, vehicle, waypoints, hazards, options, result);
   VehicleSimulationOptions sim = options.simulation;
   sim.end_time = options.time_limit;
   const VehicleState initial = resting_state(surface, vehicle, start, yaw, 0.0);
-  result.simulation = simulate_vehicle(surface, vehicle, initial, controller, sim);
+  result.simulation = simulate_vehicle(surface, vehicle, initial, navigator, sim);
   const VehicleSimulationResult& r = result.simulation;
-  switch (r.status) {
-    case SimulationStatus::kStopped:
-      result.status = TrackingStatus::kReachedGoal;
-      break;
-    case SimulationStatus::kReachedEndTime:
-      result.status = TrackingStatus::kTimeout;
-      result.message = "the time limit came before the goal";
-      break;
-    case SimulationStatus::kRollover:
-      result.status = TrackingStatus::kRollover;
-      break;
-    case SimulationStatus::kSideSlip:
-      result.status = TrackingStatus::kSideSlip;
-      break;
-    case SimulationStatus::kLossOfContact:
-      result.status = TrackingStatus::kLossOfContact;
-      break;
-    case SimulationStatus::kStall:
-      result.status = TrackingStatus::kStall;
-      break;
-    case SimulationStatus::kLeftTerrain:
-      result.status = TrackingStatus::kLeftTerrain;
-      break;
-    case SimulationStatus::kSolverFailure:
-      result.status = TrackingStatus::kSolverFailure;
-      break;
-  }
+  result.status = navigation_status(r.status);
+  if (result.status == TrackingStatus::kTimeout)
+    result.message = "the time limit came before the goal";
   if (result.status != TrackingStatus::kReachedGoal && result.status != TrackingStatus::kTimeout)
     result.message = r.message;
   result.navigation_time = r.end_time;

@@ -17,6 +17,7 @@
 
 #include "cvode_integrator.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/memory_budget.hpp"
 
 namespace talus {
 namespace {
@@ -677,6 +678,14 @@ void check_simulation_inputs(const BPatch& surface, const Vehicle& vehicle,
   if (!controller) throw InputError("simulate_vehicle: the controller is empty");
   if (!surface.contains(Vec2(initial.position.x(), initial.position.y())))
     throw InputError("simulate_vehicle: the initial centre of mass is off the terrain's domain");
+  // The trace, estimated before it grows (--trace-interval 1e-9 reached 1.6 GB).
+  if (options.output_interval > 0.0) {
+    const double samples = options.end_time / options.output_interval + 2.0;
+    require_memory(samples * static_cast<double>(sizeof(VehicleSample)),
+                   "a trace of " + std::to_string(static_cast<long long>(std::min(samples, 9e18))) +
+                       " samples",
+                   "use a longer trace interval (--trace-interval)");
+  }
 }
 
 }  // namespace

@@ -102,6 +102,16 @@ void grid_design(SweepConfig& config, const YAML::Node& parameters) {
     const std::string key = entry.first.as<std::string>();
     axes.emplace_back(key, value_list(entry.second, config.source, key));
   }
+  // Capped like design random's samples, before any case is built (a 1e20-case grid
+  // grew to gigabytes before it ran out of memory).
+  double count = 1.0;
+  for (const auto& axis : axes) count *= static_cast<double>(axis.second.size());
+  if (count > static_cast<double>(kMaxSweepCases)) {
+    std::ostringstream msg;
+    msg << "design grid has " << count << " cases (the product of the parameters' list sizes); "
+        << "at most " << kMaxSweepCases << ": split the sweep or use design random";
+    fail(config.source, msg.str());
+  }
   std::vector<Json> cases = {Json::object()};
   for (const auto& [key, values] : axes) {
     std::vector<Json> next;
@@ -185,8 +195,9 @@ void random_design(SweepConfig& config, const YAML::Node& root, const YAML::Node
   if (!root["samples"]) fail(config.source, "design random needs `samples:` (the number of cases)");
   const Json samples = scalar_value(root["samples"], config.source, "samples");
   if (!samples.is_number_integer() || samples.get<long long>() < 1 ||
-      samples.get<long long>() > 1000000) {
-    fail(config.source, "`samples:` must be a whole number from 1 to 1000000");
+      samples.get<long long>() > static_cast<long long>(kMaxSweepCases)) {
+    fail(config.source,
+         "`samples:` must be a whole number from 1 to " + std::to_string(kMaxSweepCases));
   }
   std::uint64_t seed = 0;
   if (root["seed"]) {

@@ -220,6 +220,8 @@ TEST(CliRobustness, ImplausibleValuesAreRefusedWithTheirRange) {
           {"a suspension stiffer than any",
            simulate(body_vehicle("robust_spring.yaml", "suspension_stiffness: 1e300\n"), moving),
            "ride frequency"},
+          {"a trace finer than memory", simulate(good, moving) + " --trace-interval 1e-9",
+           "use a longer trace interval"},
       },
       dir);
   const std::string config = scratch_file("robust_sweep.yaml");

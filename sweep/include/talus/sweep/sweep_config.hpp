@@ -57,6 +57,10 @@ struct SweepCase {
   nlohmann::ordered_json parameters;
 };
 
+/// Most cases a sweep design may have (grid: the product of the list sizes;
+/// random: `samples`), checked before any case is built.
+inline constexpr std::size_t kMaxSweepCases = 1000000;
+
 struct SweepConfig {
   std::string job;     ///< "plan", "profile", "navigate", "baseline NAME" or "noop"
   std::string design;  ///< grid | list | random

@@ -25,7 +25,13 @@ std::string bytes_text(std::size_t bytes) {
 
 }  // namespace
 
+void require_file_name(const std::string& path) {
+  if (path.find('\0') != std::string::npos)
+    throw InputError(printable(path, 200) + ": a file name cannot contain a NUL byte");
+}
+
 std::string read_input_file(const std::string& path, std::size_t max_bytes) {
+  require_file_name(path);
   const std::string name = printable(path, 200);
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0) {

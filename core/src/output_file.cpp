@@ -75,6 +75,7 @@ void require_regular_output(const fs::path& path, std::string_view option) {
     throw InputError((option.empty() ? std::string() : std::string(option) + ": ") +
                      "no output file name given");
   }
+  require_file_name(path.string());
   struct stat info {};
   // stat follows symbolic links: a link to /dev/null is /dev/null.
   if (::stat(path.c_str(), &info) != 0) return;  // absent (or unreachable: the write says)

@@ -84,6 +84,7 @@ std::string TerrainRaster::brief_report() const {
 
 TerrainRaster read_terrain(const std::string& path, const TerrainReadOptions& options) {
   options.validate();
+  require_file_name(path);
   const bool strict = options.format == TerrainFormat::kEsriAscii ||
                       (options.format == TerrainFormat::kAuto && has_asc_extension(path));
   if (strict) {

@@ -136,5 +136,25 @@ TEST(RobustReaders, AMemoryLimitThatIsNoNumberOfMiBIsAnInputError) {
   ::unsetenv("TALUS_MEMORY_LIMIT_MB");
 }
 
+// Issue #39: a file name with a NUL byte (from Python or C++; argv cannot carry one) named
+// the file before the NUL to the C library: "grid.asc\0.evil" read grid.asc. Now refused
+// by every reader and writer, and nothing is written.
+TEST(RobustReaders, AFileNameWithANulByteIsRefusedByReadersAndWriters) {
+  const std::string real = write("nul_target.asc",
+                                 "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n"
+                                 "cellsize 1\n1 2\n3 4\n");
+  const std::string with_nul = real + std::string(1, '\0') + ".evil";
+  EXPECT_NE(error_of([&] { read_input_file(with_nul, 1000); }).find("NUL byte"), std::string::npos);
+  EXPECT_NE(error_of([&] { read_esri_ascii(with_nul); }).find("NUL byte"), std::string::npos);
+  const std::string fresh = scratch("nul_fresh.asc");
+  std::filesystem::remove(fresh);
+  ElevationGrid grid(2, 2, 1.0, 0.0, 0.0);
+  EXPECT_NE(error_of([&] {
+              write_esri_ascii(grid, fresh + std::string(1, '\0') + "x");
+            }).find("NUL byte"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(fresh)) << "the part before the NUL was written";
+}
+
 }  // namespace
 }  // namespace talus

@@ -17,11 +17,16 @@ inline constexpr std::size_t kMaxGridFileBytes = std::size_t{2} << 30;    ///< 2
 inline constexpr std::size_t kMaxPathFileBytes = std::size_t{256} << 20;  ///< 256 MiB
 inline constexpr std::size_t kMaxConfigFileBytes = std::size_t{1} << 20;  ///< 1 MiB (YAML)
 
+/// InputError when the file name `path` holds a NUL byte: the C library would
+/// read or write the file named by its part before the NUL (Python strings,
+/// and C++ ones, can carry NUL; argv cannot).
+void require_file_name(const std::string& path);
+
 /// The whole content of the regular file `path`, at most `max_bytes` long.
 /// Throws InputError, naming the file, for a file that does not exist or
 /// cannot be opened, a directory, anything that is not a regular file (FIFO,
 /// socket, device: they are refused before opening, so nothing blocks), a
-/// file larger than `max_bytes`, or a read error.
+/// file larger than `max_bytes`, a read error, or a NUL in its name.
 std::string read_input_file(const std::string& path, std::size_t max_bytes);
 
 /// The rest of `in`, at most `max_bytes`; InputError naming `source` beyond

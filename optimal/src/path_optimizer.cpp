@@ -297,9 +297,7 @@ double search_station_spacing(const PathOptimizerOptions& options, const BPatch&
 
 void PathOptimizerOptions::validate() const {
   if (control_points < 4) throw InputError("PathOptimizerOptions.control_points must be >= 4");
-  if (!(station_spacing >= 0.0) || !std::isfinite(station_spacing)) {
-    throw InputError("PathOptimizerOptions.station_spacing must be >= 0 (0 = the default)");
-  }
+  require_station_spacing(station_spacing, "PathOptimizerOptions.station_spacing");
   if (max_control_points < control_points)
     throw InputError("PathOptimizerOptions.max_control_points must be >= control_points");
   if (max_search_stations < 8)

@@ -192,10 +192,7 @@ std::string_view to_string(PlannerStatus status) {
 void PlannerOptions::validate() const {
   global.validate();
   local.validate();
-  if (!(std::isfinite(station_spacing) && station_spacing >= 0.0)) {
-    throw InputError(
-        "PlannerOptions.station_spacing must be a finite number >= 0 [m] (0 = the default)");
-  }
+  require_station_spacing(station_spacing, "PlannerOptions.station_spacing");
   if (!(time_limit > 0.0)) {
     throw InputError("PlannerOptions.time_limit must be > 0 [s] (+inf = none)");
   }

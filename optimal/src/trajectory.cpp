@@ -39,12 +39,17 @@ double resolve_station_spacing(double requested, const BPatch& surface, const Ve
   return requested > 0.0 ? requested : default_station_spacing(surface, vehicle);
 }
 
+void require_station_spacing(double spacing, const char* field) {
+  if (spacing == 0.0 || (std::isfinite(spacing) && spacing >= kMinStationSpacing)) return;
+  std::ostringstream message;
+  message << field << " must be 0 (the default) or a station spacing of at least "
+          << kMinStationSpacing << " m, got " << spacing;
+  throw InputError(message.str());
+}
+
 void TrajectoryOptions::validate() const {
   speeds.validate();
-  if (!(std::isfinite(station_spacing) && station_spacing >= 0.0)) {
-    throw InputError(
-        "TrajectoryOptions.station_spacing must be a finite number >= 0 [m] (0 = the default)");
-  }
+  require_station_spacing(station_spacing, "TrajectoryOptions.station_spacing");
 }
 
 double Trajectory::travel_time() const {

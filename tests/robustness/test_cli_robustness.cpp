@@ -178,6 +178,10 @@ TEST(CliRobustness, OptionsThatWouldWrapHangOrExhaustMemory) {
           {"lattice finer than memory",
            plan + "--start 5,20 --goal 55,20 --stage global --lattice-spacing 0.02",
            "increase the lattice spacing"},
+          // Issue #39 item 6: before, every candidate ran into the memory budget and the plan
+          // ended "infeasible" (exit 2), advising an option plan does not have.
+          {"stations finer than a millimetre",
+           plan + "--start 5,20 --goal 55,20 --station-spacing 1e-9", "at least 0.001 m"},
       },
       dir);
   const std::string profile_out = scratch_file("robust_profile.csv");

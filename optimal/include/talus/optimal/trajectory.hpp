@@ -43,13 +43,22 @@ std::size_t station_count(double length, double spacing = kDefaultStationSpacing
 double default_station_spacing(const BPatch& surface, const Vehicle& vehicle);
 /// Stations per max(cell size, half-track) of default_station_spacing().
 inline constexpr double kStationsPerFeature = 10.0;
+/// The finest station spacing an option may ask for [m]: a millimetre, 24 times
+/// finer than the default on the battery's 0.24 m cells; below it a plan's
+/// paths would need tens of thousands of stations per metre and only hit the
+/// memory budget.
+inline constexpr double kMinStationSpacing = 1e-3;
+/// InputError unless `spacing` is 0 (the default) or a finite number >=
+/// kMinStationSpacing; `field` names the option in the message.
+void require_station_spacing(double spacing, const char* field);
 /// `requested` when > 0, else default_station_spacing(surface, vehicle).
 double resolve_station_spacing(double requested, const BPatch& surface, const Vehicle& vehicle);
 
 /// How evaluate_trajectory() samples and drives a path.
 struct TrajectoryOptions {
   ProfileOptions speeds;  ///< start and end speeds [m/s]
-  /// [m] (>= 0), see station_count(); 0 = default_station_spacing(surface, vehicle).
+  /// [m] (0 or >= kMinStationSpacing), see station_count(); 0 =
+  /// default_station_spacing(surface, vehicle).
   double station_spacing = 0.0;
   /// Throws InputError naming the field.
   void validate() const;

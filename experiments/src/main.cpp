@@ -483,7 +483,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->capture_default_str();
   plan->add_option("--station-spacing", plan_request.station_spacing,
                    "station spacing of the final profiles [m]; 0 = max(cell size, the vehicle's "
-                   "half_track) / 10 (0.1 m at 1 m cells for the rover, 1.5 km on 15 km cells)")
+                   "half_track) / 10 (0.1 m at 1 m cells for the rover, 1.5 km on 15 km cells); at "
+                   "least 0.001 m otherwise")
       ->capture_default_str();
   plan->add_option("--connectivity", plan_request.connectivity,
                    "neighbours per lattice node: 8, 16 or 32")

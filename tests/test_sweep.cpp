@@ -285,6 +285,40 @@ TEST(SweepCli, TheReadmeConfigRunsAsWrittenFromTheRepositoryRoot) {
   EXPECT_TRUE(fs::exists(dir / "report.md"));
 }
 
+// Issue #39 item 6: a case is ok only when its job printed its result. A `help: true`
+// parameter becomes `--help`: the job prints its usage and exits 0; that case was "ok"
+// with no figures, now it is no_result with the reason, and the other case is ok.
+TEST(SweepCli, ACaseWhoseJobPrintsNoResultIsNotOk) {
+  const fs::path dir = fresh_dir("help_sweep");
+  const std::string config =
+      write_config("help.yaml",
+                   "job: plan\ndesign: list\nparameters:\n"
+                   "  terrain.generator: plane\n  terrain.ncols: 21\n  terrain.nrows: 21\n"
+                   "  vehicle.file: " +
+                       data_file("vehicles/rover.yaml") +
+                       "\n  start: \"1,1\"\n  goal: \"19,17\"\n  candidates: 1\n"
+                       "  no_figures: true\n"
+                       "cases:\n  - {stage: global}\n  - {stage: global, help: true}\n");
+  const RunResult r =
+      run_talus("sweep " + quoted(config) + " --out " + quoted(dir.string()) + " --jobs 1");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<nlohmann::json> records = jsonl_records(dir / "results.jsonl");
+  ASSERT_EQ(records.size(), 2u);
+  int ok = 0, no_result = 0;
+  for (const nlohmann::json& record : records) {
+    const bool helped = record.at("parameters").contains("help");
+    EXPECT_EQ(record.at("status"), helped ? "no_result" : "ok") << record.dump();
+    if (helped) {
+      EXPECT_NE(record.at("reason").get<std::string>().find("without a JSON result"),
+                std::string::npos);
+    }
+    ok += record.at("status") == "ok";
+    no_result += record.at("status") == "no_result";
+  }
+  EXPECT_EQ(ok, 1);
+  EXPECT_EQ(no_result, 1);
+}
+
 // job: navigate runs `talus navigate` per case: near-optimal and standard navigation of the
 // paper's UGV across a flat field both reach the goal; each record carries the navigation's
 // summary (status, optimal and navigation times), and only the lookahead run caps its speed.

@@ -473,6 +473,11 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
     } else if (ending.exit_code == kInputErrorExit) {
       status = "error";
       ++result.errors;
+    } else if (ending.exit_code == 0 && output.empty()) {
+      // Exit 0 without the job's JSON result (a `--help` among its options printed the
+      // usage instead): nothing to record as a result.
+      status = "no_result";
+      ++result.no_result;
     } else {
       status = output.contains("status") && output.at("status").is_string()
                    ? output.at("status").get<std::string>()
@@ -482,7 +487,9 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
     record["status"] = status;
     record["reason"] = ending.retry                          ? ending.reason
                        : ending.exit_code == kInputErrorExit ? first_line(case_dir / "stderr.txt")
-                                                             : std::string();
+                       : ending.exit_code == 0 && output.empty()
+                           ? std::string("the job exited 0 without a JSON result on its stdout")
+                           : std::string();
     record["exit_code"] = ending.exit_code;
     record["figures"] = key_figures(output);
     record["seconds"] = std::chrono::duration<double>(Clock::now() - w.start).count();

@@ -2,6 +2,7 @@
 // are made at test time with GDAL's C API from a bundled .asc.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 #include <cmath>
 #include <filesystem>
@@ -87,6 +88,65 @@ TEST(RasterIo, AscTakesItsCrsFromAPrjBesideIt) {
   EXPECT_EQ(*t.crs.epsg, 32613);
   std::ofstream(dir / "dem.prj") << "not a CRS\n";
   expect_contains(read_error((dir / "dem.asc").string()), "dem.prj: not a coordinate reference");
+}
+
+/// A VRT of one band of `width` x `height` pixels whose source is `source_xml` (the
+/// <SourceFilename> element and any extra band attributes).
+std::string write_vrt(const fs::path& file, const std::string& source_xml,
+                      const std::string& band_attributes = "") {
+  std::ofstream(file) << "<VRTDataset rasterXSize=\"10\" rasterYSize=\"10\">\n"
+                         "  <SRS>EPSG:32613</SRS>\n"
+                         "  <GeoTransform>557000, 30, 0, 4373500, 0, -30</GeoTransform>\n"
+                         "  <VRTRasterBand dataType=\"Float64\" band=\"1\""
+                      << band_attributes << ">\n    <SimpleSource>\n      " << source_xml
+                      << "\n      <SourceBand>1</SourceBand>\n    </SimpleSource>\n"
+                         "  </VRTRasterBand>\n</VRTDataset>\n";
+  return file.string();
+}
+
+// Issue #39 item 3: a VRT reaches other files. A FIFO among its sources hung GDAL; /dev/zero,
+// /vsigzip/ and raw bands were followed. Each is refused with one line before GDAL opens
+// the VRT; a VRT over a regular GeoTIFF still reads, equal to the GeoTIFF.
+TEST(RasterIo, AVrtIsReadOnlyWhenEverySourceIsARegularFile) {
+  const fs::path dir = scratch() / "vrt";
+  fs::create_directories(dir);
+  const std::string tif = (dir / "src.tif").string();
+  gdal_test::translate(
+      kWestBijou, tif,
+      {"-of", "GTiff", "-ot", "Float64", "-a_srs", "EPSG:32613", "-srcwin", "0", "0", "10", "10"});
+  const TerrainRaster direct = read_terrain(tif);
+  const TerrainRaster via = read_terrain(
+      write_vrt(dir / "good.vrt", "<SourceFilename relativeToVRT=\"1\">src.tif</SourceFilename>"));
+  EXPECT_EQ(via.driver, "VRT");
+  EXPECT_EQ(via.grid.values(), direct.grid.values());
+
+  const fs::path fifo = dir / "src.fifo";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_contains(read_error(write_vrt(dir / "fifo.vrt",
+                                       "<SourceFilename relativeToVRT=\"1\">src.fifo"
+                                       "</SourceFilename>")),
+                  "is not a regular file");
+  expect_contains(
+      read_error(write_vrt(dir / "zero.vrt", "<SourceFilename>/dev/zero</SourceFilename>")),
+      "is not a regular file");
+  expect_contains(read_error(write_vrt(dir / "gzip.vrt",
+                                       "<SourceFilename>/vsigzip/" + tif + "</SourceFilename>")),
+                  "GDAL virtual path or a URL");
+  expect_contains(
+      read_error(write_vrt(dir / "url.vrt",
+                           "<SourceFilename>https://example.org/dem.tif</SourceFilename>")),
+      "GDAL virtual path or a URL");
+  expect_contains(
+      read_error(write_vrt(dir / "raw.vrt", "<SourceFilename>" + tif + "</SourceFilename>",
+                           " subClass=\"VRTRawRasterBand\"")),
+      "raw raster band");
+  // A tile-service description is no terrain file: the WMS driver is not among those allowed.
+  std::ofstream(dir / "wms.xml") << "<GDAL_WMS><Service name=\"TMS\"><ServerUrl>"
+                                    "https://example.org/${z}/${x}/${y}.png</ServerUrl></Service>"
+                                    "<DataWindow><UpperLeftX>0</UpperLeftX></DataWindow>"
+                                    "</GDAL_WMS>\n";
+  expect_contains(read_error((dir / "wms.xml").string()), "not a raster GDAL can read");
 }
 
 /// Pixel (c, r from the north) of a 5 x 4 raster; NODATA -32768 at three pixels, NaN at one.

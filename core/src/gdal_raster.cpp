@@ -10,7 +10,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -249,6 +251,75 @@ ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source
   return grid;
 }
 
+/// The GDAL drivers a terrain may be read with: rasters of elevations in
+/// files. Everything else (WMS and tile services, databases, the network
+/// drivers, formats that describe other datasets) is refused at open.
+const char* const kTerrainDrivers[] = {"GTiff", "COG",  "AAIGrid", "SRTMHGT", "VRT",
+                                       "HFA",   "EHdr", "ENVI",    "USGSDEM", nullptr};
+
+/// The minimal XML text decoding a VRT file name needs.
+std::string xml_text(std::string text) {
+  const std::pair<const char*, const char*> entities[] = {
+      {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&apos;", "'"}, {"&amp;", "&"}};
+  for (const auto& [entity, plain] : entities) {
+    for (std::size_t at = text.find(entity); at != std::string::npos;
+         at = text.find(entity, at + 1))
+      text.replace(at, std::strlen(entity), plain);
+  }
+  return text;
+}
+
+/// A GDAL VRT reaches other files: before GDAL opens it (which can open its
+/// sources, and a FIFO among them blocks), every source it names must be a
+/// regular file within the grid size limit, not a GDAL virtual path
+/// (/vsigzip/, /vsicurl/...) or a URL, and no band may be a raw band (which
+/// reads any file at any offset). Nested VRTs are checked the same way, at
+/// most four deep. `path` is a regular file already.
+void check_vrt_sources(const std::string& path, int depth = 0) {
+  const std::string source = printable(path, 200);
+  std::ifstream probe(path, std::ios::binary);
+  char head[256] = {};
+  probe.read(head, sizeof head - 1);
+  if (std::string(head).find("<VRTDataset") == std::string::npos) return;
+  if (depth > 4) throw InputError(source + ": VRTs nested more than four deep");
+  const std::string text = read_input_file(path, kMaxConfigFileBytes);
+  if (text.find("VRTRawRasterBand") != std::string::npos) {
+    throw InputError(source +
+                     ": a VRT raw raster band (it reads any file at any offset) is not "
+                     "accepted; give the raster itself");
+  }
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (const char* tag : {"SourceFilename", "SourceDataset"}) {
+    const std::string open = std::string("<") + tag, close = std::string("</") + tag + ">";
+    for (std::size_t at = text.find(open); at != std::string::npos; at = text.find(open, at + 1)) {
+      const std::size_t body = text.find('>', at);
+      const std::size_t end = body == std::string::npos ? body : text.find(close, body);
+      if (end == std::string::npos) throw InputError(source + ": a malformed VRT");
+      const std::string attributes = text.substr(at, body - at);
+      const std::string name = xml_text(text.substr(body + 1, end - body - 1));
+      if (name.rfind("/vsi", 0) == 0 || name.find("://") != std::string::npos) {
+        throw InputError(source + ": its source " + printable(name, 200) +
+                         " is a GDAL virtual path or a URL; Talus reads terrains from files only");
+      }
+      const bool relative = attributes.find("relativeToVRT=\"1\"") != std::string::npos;
+      const std::string resolved = relative ? (folder / name).string() : name;
+      std::error_code ec;
+      const auto status = std::filesystem::status(resolved, ec);
+      if (!std::filesystem::is_regular_file(status)) {
+        throw InputError(source + ": its source " + printable(resolved, 200) +
+                         (std::filesystem::exists(status)
+                              ? " is not a regular file (a device, FIFO, socket or folder)"
+                              : " does not exist"));
+      }
+      if (std::filesystem::file_size(resolved, ec) > kMaxGridFileBytes) {
+        throw InputError(source + ": its source " + printable(resolved, 200) +
+                         " is larger than the grid file limit");
+      }
+      check_vrt_sources(resolved, depth + 1);
+    }
+  }
+}
+
 }  // namespace
 
 TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOptions& options) {
@@ -264,10 +335,11 @@ TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOption
     throw InputError(source +
                      ": is not a regular file (a device, FIFO or socket); give a file's path");
   }
+  check_vrt_sources(path);
   QuietErrors quiet;
   NoSideFiles no_side_files;
-  Dataset ds(
-      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  Dataset ds(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, kTerrainDrivers, nullptr,
+                        nullptr));
   if (!ds) {
     throw InputError(source + ": not a raster GDAL can read (" + QuietErrors::last() + ")");
   }

@@ -188,6 +188,40 @@ TEST(CliRasters, BadInputsGiveOneLineAndWriteNothing) {
   expect_bad_input("terrain info", {{quoted(rotated), "rotated"}}, out);
 }
 
+// Issue #39 item 1: an output that is a file the terrain read reached (here the source of a
+// VRT, which the --terrain check alone did not see) is refused with one line and left as it
+// was; before, `terrain traversability --terrain in.vrt -o src.tif` replaced the DEM.
+TEST(CliRasters, AnOutputOntoAFileTheTerrainReachedIsRefusedAndTheFileKept) {
+  const fs::path dir = scratch_file("vrt_outputs");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string src = (dir / "src.tif").string();
+  gdal_test::translate(kWestBijouAsc, src,
+                       {"-of", "GTiff", "-a_srs", "EPSG:32613", "-srcwin", "0", "0", "20", "20"});
+  const std::string vrt = (dir / "in.vrt").string();
+  write_text(vrt,
+             "<VRTDataset rasterXSize=\"20\" rasterYSize=\"20\">\n"
+             "  <SRS>EPSG:32613</SRS>\n"
+             "  <GeoTransform>557000, 25, 0, 4373500, 0, -25</GeoTransform>\n"
+             "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n    <SimpleSource>\n"
+             "      <SourceFilename relativeToVRT=\"1\">src.tif</SourceFilename>\n"
+             "      <SourceBand>1</SourceBand>\n    </SimpleSource>\n  </VRTRasterBand>\n"
+             "</VRTDataset>\n");
+  const std::string before = read_text(src);
+  const std::string vehicle = point_mass_vehicle("vrt_rover.yaml", 0.7, 8.0);
+  const RunResult r = run_talus("terrain traversability --terrain " + quoted(vrt) + " --vehicle " +
+                                quoted(vehicle) + " -o " + quoted(src));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("is an input of this run"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(src), before) << "the VRT's source was replaced";
+  EXPECT_FALSE(fs::exists(dir / "src.png"));
+  // Another name is written as usual.
+  const RunResult ok = run_talus("terrain traversability --terrain " + quoted(vrt) + " --vehicle " +
+                                 quoted(vehicle) + " -o " + quoted((dir / "out.tif").string()));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+}
+
 TEST(CliRasters, PlanRastersWritesCostToGoAndGeoJsonInTheDemsCrs) {
   const std::string dir = scratch_file("plan_rasters");
   fs::remove_all(dir);

@@ -344,6 +344,11 @@ TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOption
     throw InputError(source + ": not a raster GDAL can read (" + QuietErrors::last() + ")");
   }
   TerrainRaster out;
+  if (char** files = GDALGetFileList(ds.get())) {
+    for (char** f = files; *f != nullptr; ++f) out.files.emplace_back(*f);
+    CSLDestroy(files);
+  }
+  if (out.files.empty()) out.files.push_back(path);
   if (GDALDriverH driver = GDALGetDatasetDriver(ds.get())) {
     out.driver = GDALGetDriverShortName(driver);
   }

@@ -8,6 +8,8 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <string>
 #include <system_error>
 
@@ -70,6 +72,31 @@ void sync_file(const fs::path& file, const fs::path& target) {
 
 }  // namespace
 
+namespace {
+
+/// The (device, inode) of every protected input, and its name for messages.
+struct ProtectedInputs {
+  std::mutex mutex;
+  std::map<std::pair<dev_t, ino_t>, std::string> files;
+};
+
+ProtectedInputs& protected_inputs() {
+  static ProtectedInputs inputs;
+  return inputs;
+}
+
+}  // namespace
+
+void protect_from_outputs(const std::vector<std::string>& files) {
+  ProtectedInputs& inputs = protected_inputs();
+  const std::lock_guard<std::mutex> lock(inputs.mutex);
+  for (const std::string& file : files) {
+    struct stat info {};
+    if (::stat(file.c_str(), &info) == 0 && S_ISREG(info.st_mode))
+      inputs.files.emplace(std::pair{info.st_dev, info.st_ino}, file);
+  }
+}
+
 void require_regular_output(const fs::path& path, std::string_view option) {
   if (path.empty()) {
     throw InputError((option.empty() ? std::string() : std::string(option) + ": ") +
@@ -79,8 +106,16 @@ void require_regular_output(const fs::path& path, std::string_view option) {
   struct stat info {};
   // stat follows symbolic links: a link to /dev/null is /dev/null.
   if (::stat(path.c_str(), &info) != 0) return;  // absent (or unreachable: the write says)
-  if (S_ISREG(info.st_mode)) return;
   const std::string prefix = option.empty() ? std::string() : std::string(option) + " ";
+  if (S_ISREG(info.st_mode)) {
+    ProtectedInputs& inputs = protected_inputs();
+    const std::lock_guard<std::mutex> lock(inputs.mutex);
+    const auto input = inputs.files.find({info.st_dev, info.st_ino});
+    if (input == inputs.files.end()) return;
+    throw InputError(prefix + quoted(path) + " is an input of this run (" +
+                     quoted(fs::path(input->second)) +
+                     "): writing it would destroy it; choose another output name");
+  }
   throw InputError(prefix + quoted(path) + " is " + kind_of(info) +
                    ", not a regular file; Talus writes its outputs only to regular files "
                    "(it would otherwise replace it): choose a file name");

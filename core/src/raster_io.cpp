@@ -91,6 +91,7 @@ TerrainRaster read_terrain(const std::string& path, const TerrainReadOptions& op
     TerrainRaster out;
     out.grid = read_esri_ascii(path);
     out.driver = "esri-ascii";
+    out.files.push_back(path);
 #ifdef TALUS_WITH_GDAL
     const std::filesystem::path prj = std::filesystem::path(path).replace_extension(".prj");
     std::error_code ec;
@@ -102,6 +103,7 @@ TerrainRaster read_terrain(const std::string& path, const TerrainReadOptions& op
                          printable(path, 200) + ")");
       }
       out.crs = *crs;
+      out.files.push_back(prj.string());
     }
 #endif
     out.source_crs = out.crs;

@@ -1,11 +1,17 @@
 #include "terrain_input.hpp"
 
+#include "talus/core/output_file.hpp"
+
 namespace talus::experiments {
 
 TerrainRaster load_terrain(const std::string& path, const std::string& reproject) {
   TerrainReadOptions options;
   options.reproject = parse_reprojection(reproject);
-  return read_terrain(path, options);
+  TerrainRaster terrain = read_terrain(path, options);
+  // Every file the read reached (a VRT's sources, world files, .prj) is out of the
+  // outputs' reach for the rest of the command.
+  protect_from_outputs(terrain.files);
+  return terrain;
 }
 
 }  // namespace talus::experiments

@@ -19,15 +19,25 @@
 /// A symbolic link as target is kept: the file it points to is replaced.
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace talus {
 
 /// Throws InputError if `path` (after following symbolic links) exists and is
-/// not a regular file, naming what it is; `option` (e.g. "-o") prefixes the
-/// message when given. Call it before expensive work so a bad target fails in
-/// a second; write_file_atomically() checks again anyway.
+/// not a regular file, naming what it is, or is a protected input; `option` (e.g. "-o") prefixes
+/// the message when given. Call it before expensive work so a bad target fails in a second;
+/// write_file_atomically() checks again anyway.
 void require_regular_output(const std::filesystem::path& path, std::string_view option = {});
+
+/// Records `files` (those that exist) as inputs of this run: from now on
+/// require_regular_output() and write_file_atomically() refuse a target that
+/// is one of them (the same device and inode: a symbolic or hard link to an
+/// input too). For commands (the CLI protects every file its terrain read
+/// reached); process-wide, so a library user who means to overwrite an input
+/// does not call it.
+void protect_from_outputs(const std::vector<std::string>& files);
 
 /// Calls `write(temporary)`, which must create and fill the file `temporary`,
 /// then moves it over `path` as the contract above says. The target's folder

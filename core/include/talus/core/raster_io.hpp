@@ -73,6 +73,10 @@ struct TerrainRaster {
   std::string driver;        ///< "esri-ascii" (Talus's reader) or GDAL's driver name ("GTiff", ...)
   bool reprojected = false;  ///< true if warped from a geographic CRS (options.reproject)
   GeoReference source_crs;   ///< the file's own CRS (equal to crs unless reprojected)
+  /// Every file the read reached: the DEM, its .prj, and what GDAL lists for
+  /// the dataset (world files, .aux.xml, a VRT's sources). A command protects
+  /// them from its outputs (protect_from_outputs, output_file.hpp).
+  std::vector<std::string> files;
   /// One line: size, cell size, CRS, driver, reprojection, voids.
   std::string brief_report() const;
 };

@@ -79,8 +79,7 @@ int main(int argc, char** argv) {
     for (const Page& p : kPages) {
       const std::filesystem::path page = out / p.folder / "report.md";
       const bool exists = std::filesystem::exists(page);
-      std::string checks;  // (a ternary with "" tripped GCC 12's -Warray-bounds)
-      if (exists) checks = checks_line(page);
+      const std::string checks = exists ? checks_line(page) : "";
       unsigned held = 0, total = 0;
       const bool counted = std::sscanf(checks.c_str(), "%u of %u", &held, &total) == 2;
       const bool all_held = counted && total > 0 && held == total;

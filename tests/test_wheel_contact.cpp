@@ -47,6 +47,15 @@ BPatch terrain(const terrain_test::HeightFunction& f) {
   return BPatch::interpolate(terrain_test::grid_from_function(f, -1.0, -0.6, 1.0, 0.6, 0.01));
 }
 
+/// The point mass's and the rigid body's lowest contact speed crossing a Gaussian ridge
+/// along y (standard deviation sigma, height [m]) along x.
+std::pair<double, double> transverse_ridge_limits(double sigma, double height) {
+  const BPatch s =
+      terrain([&](double x, double) { return height * std::exp(-x * x / (2 * sigma * sigma)); });
+  return {lowest_contact_speed(s, ugv(VehicleModel::kPointMass), {-0.8, 0}, {0.8, 0}),
+          lowest_contact_speed(s, ugv(VehicleModel::kRigidBody), {-0.8, 0}, {0.8, 0})};
+}
+
 TEST(WheelContact, TheLoadSharesAreTheRigidBodysClosedForm) {
   const WheelLayout layout = wheel_layout(ugv(VehicleModel::kRigidBody));
   const double rp = 0.01788 / (2.0 * 0.135 * 0.135), rr = 0.01265 / (2.0 * 0.124 * 0.124);
@@ -102,10 +111,7 @@ TEST(WheelContact, ATransverseCrestShorterThanTheWheelbaseIsSpannedByTheChassis)
   // v² = g σ² / A; the chassis meets it one axle at a time, whose wheels carry
   // (1 + ρ_p) / 2 of that axle's acceleration: v² = 2 g σ² / ((1 + ρ_p) A), 1.34 times.
   const double sigma = 0.05, height = 0.01;
-  const BPatch s =
-      terrain([&](double x, double) { return height * std::exp(-x * x / (2 * sigma * sigma)); });
-  const double point = lowest_contact_speed(s, ugv(VehicleModel::kPointMass), {-0.8, 0}, {0.8, 0});
-  const double rigid = lowest_contact_speed(s, ugv(VehicleModel::kRigidBody), {-0.8, 0}, {0.8, 0});
+  const auto [point, rigid] = transverse_ridge_limits(sigma, height);
   const double rp = 0.01788 / (2.0 * 0.135 * 0.135);
   EXPECT_NEAR(point, std::sqrt(kG * sigma * sigma / height), 0.01 * point);
   EXPECT_NEAR(rigid, std::sqrt(2 * kG * sigma * sigma / ((1 + rp) * height)), 0.03 * rigid);
@@ -113,11 +119,7 @@ TEST(WheelContact, ATransverseCrestShorterThanTheWheelbaseIsSpannedByTheChassis)
 }
 
 TEST(WheelContact, ACrestLongerThanTheVehicleGivesThePointMasssLimit) {
-  const double sigma = 2.0, height = 0.5;
-  const BPatch s =
-      terrain([&](double x, double) { return height * std::exp(-x * x / (2 * sigma * sigma)); });
-  const double point = lowest_contact_speed(s, ugv(VehicleModel::kPointMass), {-0.8, 0}, {0.8, 0});
-  const double rigid = lowest_contact_speed(s, ugv(VehicleModel::kRigidBody), {-0.8, 0}, {0.8, 0});
+  const auto [point, rigid] = transverse_ridge_limits(2.0, 0.5);
   EXPECT_NEAR(rigid, point, 0.01 * point);
 }
 

@@ -92,7 +92,8 @@ constexpr std::size_t kRasterMaxSamples = 400;  // relief raster of the map, lon
 /// gives l/h = 0.6 < μ (the l/h of velocity-limits' tall rigid body), so
 /// pitch-over caps braking at 0.6 g R ≈ 5.9 m/s² on level ground, just below
 /// the 6 m/s² brake. l = 0.6 m is kept as a third, table-only vehicle to show
-/// that it coincides with the point mass.
+/// that, with pitch-over out of reach, it differs from the point mass only by
+/// its chassis' view of the terrain (wheel_contact.hpp).
 constexpr double kRigidHalfWheelbase = 0.3;
 constexpr double kBriefHalfWheelbase = 0.6;
 

@@ -61,8 +61,7 @@ EdgeCost edge_cost_impl(const BPatch& terrain, const AdmissibleSet& set, const V
                             : (k == stations - 1 && at_b) ? *at_b
                                                           : terrain.evaluate(p);
     const PathFrame f = lift_to_surface(p, sp, d1, Vec2::Zero());
-    const StationGeometry g = set.wheels() != nullptr ? station_geometry(f, terrain, set.wheels())
-                                                      : StationGeometry::from(f);
+    const StationGeometry g = station_geometry(f, terrain, set.wheels());
     const SquaredSpeedInterval window = set.squared_speeds(g);
     if (window.empty() || !(window.upper > 0.0)) return {kInf, kInf, kInf};
     // Simpson weights 1, 4, 2, 4, ..., 4, 1 (stations is odd).

@@ -1,9 +1,12 @@
 // The steering limit (Vehicle::max_steering, issue #35 item 4): the vehicle file's key and its
 // checks, the admissible set's `steering` binding at exactly tan(δ_max) / (2 l), a path that
 // needs more steering than the vehicle has is refused by evaluate_trajectory (and one within it
-// is not), and the simulation's tracker steers within the vehicle's own limit.
+// is not), the local stage keeps it as smooth constraints in both formulations (exact rows and
+// derivatives; a U-turn ends at the limit and no tighter), and the simulation's tracker steers
+// within the vehicle's own limit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -16,6 +19,7 @@
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/velocity_limits.hpp"
 #include "talus/optimal/path_optimizer.hpp"
+#include "talus/optimal/path_time_objective.hpp"
 #include "talus/optimal/trajectory.hpp"
 
 namespace talus {
@@ -159,6 +163,108 @@ TEST(SteeringLimit, TheTrackerSteersWithinTheVehiclesLimit) {
     peak = std::max(peak, std::abs(s.controls.steering));
   EXPECT_GT(peak, 0.3) << result.brief_report();  // the turn needed the whole lock
   EXPECT_LE(peak, 0.35 + 1e-12);
+}
+
+
+// The steering rows of the nested formulation: κ at every station against the curve's own
+// curvature, and their derivatives against central differences.
+TEST(SteeringLimit, TheCurvatureRowsAndTheirDerivativesAreExact) {
+  const BPatch flat = BPatch::interpolate(ElevationGrid(13, 13, 1.0, 0.0, 0.0));
+  const std::vector<Vec2> control = {Vec2(1, 1), Vec2(3, 1.5), Vec2(5, 4), Vec2(4, 7),
+                                     Vec2(7, 8), Vec2(9, 6), Vec2(10, 10)};
+  PathTimeObjective objective(flat, ugv(), control.front(), control.back(), control.size(), 41,
+                              ProfileOptions{});
+  const Eigen::VectorXd z = objective.variables(control);
+  const std::size_t n = objective.curvature_samples();
+  EXPECT_EQ(n, PathTimeObjective::kCurvatureSamplesPerSpan * (control.size() - 3) + 1);
+  const auto& pattern = objective.curvature_pattern();
+  std::vector<double> kappa(n), jacobian(pattern.size());
+  ASSERT_TRUE(objective.curvatures(z, kappa.data(), jacobian.data()));
+  const Curve2 curve = objective.curve(z);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double u = curve.parameter_begin() + (curve.parameter_end() - curve.parameter_begin()) *
+                                                   static_cast<double>(k) / (n - 1);
+    Curve2::Derivatives d;
+    curve.derivatives(u, 2, d);
+    const Vec2 d1 = d.col(1), d2 = d.col(2);
+    EXPECT_NEAR(kappa[k], (d1.x() * d2.y() - d1.y() * d2.x()) / std::pow(d1.norm(), 3), 1e-9);
+  }
+  std::vector<double> plus(n), minus(n);
+  for (std::size_t e = 0; e < pattern.size(); ++e) {
+    Eigen::VectorXd probe = z;
+    const double h = 1e-6;
+    probe[pattern[e].second] += h;
+    objective.curvatures(probe, plus.data(), nullptr);
+    probe[pattern[e].second] -= 2 * h;
+    objective.curvatures(probe, minus.data(), nullptr);
+    const std::size_t row = static_cast<std::size_t>(pattern[e].first);
+    EXPECT_NEAR(jacobian[e], (plus[row] - minus[row]) / (2 * h), 1e-5) << e;
+  }
+  // Every variable a station's curvature depends on is in the pattern: moving any other
+  // leaves the row unchanged.
+  for (long c = 0; c < z.size(); ++c) {
+    Eigen::VectorXd probe = z;
+    probe[c] += 0.1;
+    objective.curvatures(probe, plus.data(), nullptr);
+    for (std::size_t k = 0; k < n; ++k) {
+      const bool listed = std::any_of(pattern.begin(), pattern.end(), [&](const auto& p) {
+        return p.first == static_cast<long>(k) && p.second == c;
+      });
+      if (!listed) {
+        EXPECT_EQ(plus[k], kappa[k]) << k << " " << c;
+      }
+    }
+  }
+}
+
+// A U-turn between lanes 6 m apart, both headings pinned, for a vehicle whose tightest turn
+// (1.67 m radius) is wider than half the lanes' distance would need: the shortest turn is
+// Dubins' left-straight-left at the limit, and the fastest at these speeds turns at the limit
+// too. The local stage (Ipopt, the steering rows) ends with the path at the limit within the
+// rows' margin, and the path is within it at the evaluation's finer stations; without a
+// limit the same corridor turns tighter.
+TEST(SteeringLimit, TheLocalStageTurnsAtTheLimitAndNoTighter) {
+  const BPatch flat = BPatch::interpolate(ElevationGrid(21, 21, 1.0, 0.0, 0.0));
+  Vehicle v = ugv();
+  v.max_steering = std::atan(0.6 * 0.27);  // 0.6 1/m
+  std::vector<Vec2> corridor;  // a half circle of radius 3 m, from heading east to west
+  for (int i = 0; i <= 24; ++i) {
+    const double t = -M_PI / 2 + M_PI * i / 24.0;
+    corridor.emplace_back(4.0 + 3.0 * std::cos(t), 10.0 + 3.0 * std::sin(t));
+  }
+  PathOptimizerOptions options;
+  options.start_heading = 0.0;
+  options.goal_heading = M_PI;
+  options.restarts = 0;
+  options.max_iterations = 300;
+  options.max_evaluations = 3000;
+  const auto sharpest = [&](const Vehicle& vehicle, const Curve2& curve) {
+    const Trajectory t = evaluate_trajectory(flat, vehicle, curve, TrajectoryOptions{});
+    EXPECT_TRUE(t.feasible()) << t.message;
+    double k = 0.0;
+    for (std::size_t i = 0; t.limits && i < t.limits->size(); ++i)
+      k = std::max(k, std::abs(t.limits->geometry(i).kappa_planar));
+    return k;
+  };
+  const OptimizedPath steered = optimize_path(flat, v, corridor, options);
+  EXPECT_LT(steered.travel_time, 0.95 * steered.initial_time);
+  const double kappa = sharpest(v, steered.curve);
+  EXPECT_LE(kappa, v.max_curvature());
+  EXPECT_GE(kappa, (1.0 - 2 * PathTimeObjective::kSteeringMargin) * v.max_curvature());
+  Vehicle free = v;
+  free.max_steering = std::numeric_limits<double>::infinity();
+  EXPECT_GT(sharpest(free, optimize_path(flat, free, corridor, options).curve),
+            1.5 * v.max_curvature());
+  // The simultaneous formulation's steering rows: the same turn at the limit, from a fit with
+  // as many control points as the nested formulation's (the 16-point fit turns too tightly
+  // where the headings pin it).
+  options.formulation = PathFormulation::kSimultaneous;
+  options.control_points = steered.control_points;
+  const OptimizedPath together = optimize_path(flat, v, corridor, options);
+  const double kappa_together = sharpest(v, together.curve);
+  EXPECT_LE(kappa_together, v.max_curvature());
+  EXPECT_GE(kappa_together, (1.0 - 2 * PathTimeObjective::kSteeringMargin) * v.max_curvature());
+  EXPECT_LT(together.travel_time, 1.01 * steered.travel_time);
 }
 
 }  // namespace

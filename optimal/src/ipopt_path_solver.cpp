@@ -1,5 +1,7 @@
-// Ipopt on the box-constrained path problem: no general constraints (m = 0),
-// exact gradient, limited-memory BFGS Hessian, MUMPS (Debian's default).
+// Ipopt on the box-constrained path problem, with the vehicle's steering
+// limit as smooth constraints |κ_k| <= κ_max along the path when it has one
+// (PathTimeObjective::curvatures); exact gradients, limited-memory BFGS
+// Hessian, MUMPS (Debian's default).
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
@@ -57,19 +59,32 @@ using Ipopt::Number;
 class PathNlp : public Ipopt::TNLP {
  public:
   PathNlp(TrackedObjective& objective, const BoxProblem& problem)
-      : objective_(objective), problem_(problem), first_evaluation_(objective.evaluations()) {}
+      : objective_(objective),
+        problem_(problem),
+        first_evaluation_(objective.evaluations()),
+        steering_(std::isfinite(objective.objective().max_curvature())) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
                     IndexStyleEnum& index_style) override {
+    const PathTimeObjective& path = objective_.objective();
     n = static_cast<Index>(problem_.start.size());
-    m = nnz_jac_g = nnz_h_lag = 0;
+    m = steering_ ? static_cast<Index>(path.curvature_samples()) : 0;
+    nnz_jac_g = steering_ ? static_cast<Index>(path.curvature_pattern().size()) : 0;
+    nnz_h_lag = 0;
     index_style = C_STYLE;
     return true;
   }
-  bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index, Number*, Number*) override {
+  bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l,
+                       Number* g_u) override {
     for (Index i = 0; i < n; ++i) {
       x_l[i] = problem_.lower[i];
       x_u[i] = problem_.upper[i];
+    }
+    const double kappa =
+        (1.0 - PathTimeObjective::kSteeringMargin) * objective_.objective().max_curvature();
+    for (Index r = 0; r < m; ++r) {
+      g_l[r] = -kappa;
+      g_u[r] = kappa;
     }
     return true;
   }
@@ -91,9 +106,23 @@ class PathNlp : public Ipopt::TNLP {
     Eigen::Map<Eigen::VectorXd>(gradient, n) = g;
     return true;
   }
-  bool eval_g(Index, const Number*, bool, Index, Number*) override { return true; }
-  bool eval_jac_g(Index, const Number*, bool, Index, Index, Index*, Index*, Number*) override {
-    return true;
+  bool eval_g(Index n, const Number* x, bool, Index m, Number* g) override {
+    if (m == 0) return true;
+    return objective_.objective().curvatures(Eigen::Map<const Eigen::VectorXd>(x, n), g, nullptr);
+  }
+  bool eval_jac_g(Index n, const Number* x, bool, Index, Index, Index* i_row, Index* j_col,
+                  Number* values) override {
+    const PathTimeObjective& path = objective_.objective();
+    if (!steering_) return true;
+    if (values == nullptr) {
+      const auto& pattern = path.curvature_pattern();
+      for (std::size_t e = 0; e < pattern.size(); ++e) {
+        i_row[e] = static_cast<Index>(pattern[e].first);
+        j_col[e] = static_cast<Index>(pattern[e].second);
+      }
+      return true;
+    }
+    return path.curvatures(Eigen::Map<const Eigen::VectorXd>(x, n), nullptr, values);
   }
   bool intermediate_callback(Ipopt::AlgorithmMode, Index iteration, Number, Number, Number, Number,
                              Number, Number, Number, Number, Index, const Ipopt::IpoptData*,
@@ -120,6 +149,7 @@ class PathNlp : public Ipopt::TNLP {
   TrackedObjective& objective_;
   const BoxProblem& problem_;
   std::size_t first_evaluation_ = 0;  ///< objective evaluations before this run
+  bool steering_ = false;             ///< the steering rows are present
   Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
   std::size_t iterations_ = 0;
   bool timed_out_ = false;
@@ -140,8 +170,8 @@ SolverRun run_ipopt(TrackedObjective& objective, const BoxProblem& problem) {
   // solves per update, and on a few dozen variables MUMPS 5.5 spends more of
   // each call in its own bookkeeping than in the solve: 17 % of a battery plan.
   options->SetStringValue("limited_memory_aug_solver", "extended");
-  // Only bounds, no constraints: no constraint curvature for a second-order
-  // correction to repair, and each of its trial points costs a profile.
+  // No second-order correction: its trial points cost a profile each, and the
+  // only constraints (steering) are mild beside the objective's kinks.
   options->SetIntegerValue("max_soc", 0);
   options->SetIntegerValue("max_iter", static_cast<int>(problem.max_iterations));
   // Travel times are O(10..1000 s): an absolute tolerance on the scaled

@@ -29,6 +29,7 @@ class TrackedObjective {
   const Eigen::VectorXd& best() const { return best_; }
   double best_value() const { return best_value_; }
   std::size_t dimension() const { return objective_.dimension(); }
+  const PathTimeObjective& objective() const { return objective_; }
   /// Profiles solved so far (a value and a gradient at one point are one;
   /// finite-difference fallbacks count every probe).
   std::size_t evaluations() const { return objective_.evaluations(); }

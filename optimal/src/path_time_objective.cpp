@@ -1,10 +1,12 @@
 #include "talus/optimal/path_time_objective.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "profile_sensitivity.hpp"
 #include "station_derivatives.hpp"
+#include "steering_rows.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
 
@@ -33,6 +35,7 @@ PathTimeObjective::PathTimeObjective(const BPatch& terrain, const Vehicle& vehic
       control_points_(control_points),
       speeds_(speeds),
       knots_(uniform_clamped_knots(std::max<std::size_t>(control_points, 4))),
+      max_curvature_(vehicle.max_curvature()),
       limits_(vehicle) {
   if (control_points < 4) throw InputError("a path needs at least 4 control points");
   if (stations < 2) throw InputError("a path needs at least 2 stations");
@@ -48,6 +51,9 @@ PathTimeObjective::PathTimeObjective(const BPatch& terrain, const Vehicle& vehic
     first_basis_[k] = span - 3;
     basis_[k] = values;
   }
+  steering_ = std::make_shared<const detail::SteeringRows>(knots_);
+  for (const detail::SteeringRows::Entry& e : steering_->pattern())
+    pattern_.emplace_back(static_cast<long>(e.row), 2 * static_cast<long>(e.point) - 2 + e.axis);
   control_.resize(control_points);
   control_.front() = start;
   control_.back() = goal;
@@ -75,6 +81,14 @@ std::vector<Vec2> PathTimeObjective::control_points(const Eigen::VectorXd& z) co
 
 Curve2 PathTimeObjective::curve(const Eigen::VectorXd& z) const {
   return Curve2(knots_, control_points(z));
+}
+
+std::size_t PathTimeObjective::curvature_samples() const { return steering_->size(); }
+
+bool PathTimeObjective::curvatures(const Eigen::VectorXd& z, double* values,
+                                   double* jacobian) const {
+  if (z.size() != static_cast<long>(dimension()) || !z.allFinite()) return false;
+  return steering_->evaluate(control_points(z), values, jacobian);
 }
 
 double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
@@ -107,6 +121,18 @@ double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
             h * h / 12.0 * (prev.speed_rate - f.speed_rate);
       if (!(f.s > prev.s)) return kInfinity;  // degenerate parametrisation
     }
+  }
+  const std::size_t beyond = std::isfinite(max_curvature_)
+                                 ? steering_->first_beyond(control_, max_curvature_)
+                                 : curvature_samples();
+  if (beyond < curvature_samples()) {
+    const double sigma = steering_->parameter(beyond);
+    profile_ = TimeOptimalProfile{};
+    profile_.status = ProfileStatus::kInfeasible;
+    profile_.infeasible_binding = Constraint::kSteering;
+    profile_.infeasible_station = static_cast<std::size_t>(std::lround(sigma * (n - 1)));
+    profile_.message = "turns tighter than the steering limit between the stations";
+    return kInfinity;
   }
   limits_.compute(frames_, terrain_);
   try {

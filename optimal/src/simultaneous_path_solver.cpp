@@ -13,6 +13,7 @@
 #include "ipopt_lock.hpp"
 #include "ipopt_status.hpp"
 #include "station_derivatives.hpp"
+#include "steering_rows.hpp"
 #include "talus/core/error.hpp"
 #include "talus/dynamics/admissible_set.hpp"
 
@@ -31,6 +32,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
       : problem_(problem),
         terrain_(*problem.terrain),
         set_(problem.vehicle),
+        steering_(problem.initial->knots()),
+        max_curvature_(problem.vehicle.max_curvature()),
         control_(problem.initial->control_points()),
         points_(control_.size()),
         stations_(problem.stations) {
@@ -76,15 +79,35 @@ class SimultaneousNlp : public Ipopt::TNLP {
       columns.push_back(static_cast<Index>(free_ + j + 1));
       for (Index c : columns) nonzeros_ += c >= 0 ? static_cast<Index>(2 * rows_per_end_) : 0;
     }
-    // The Lagrangian's Hessian couples two variables iff they share a step:
-    // the lower triangle of every step's clique.
+    // The steering rows (a finite limit only): each sample's entries in the
+    // free columns (a lateral offset moves its point along the normal).
+    steering_rows_ = std::isfinite(max_curvature_) ? steering_.size() : 0;
+    if (steering_rows_ > 0) {
+      for (const SteeringRows::Entry& e : steering_.pattern()) {
+        const Index column = static_cast<Index>(dims_ * (e.point - 1) + (dims_ == 2 ? e.axis : 0));
+        const auto key = std::make_pair(static_cast<Index>(e.row), column);
+        if (steering_entries_.empty() || steering_entries_.back() != key)
+          steering_entries_.push_back(key);
+      }
+      steering_jacobian_.resize(steering_.pattern().size());
+      steering_values_.resize(steering_rows_);
+    }
+    // The Lagrangian's Hessian couples two variables iff they share a step
+    // or a steering sample: the lower triangle of every clique.
     std::set<std::pair<Index, Index>> entries;
-    for (const auto& columns : step_columns_) {
+    const auto clique = [&](const std::vector<Index>& columns) {
       for (Index a : columns) {
         for (Index b : columns) {
           if (a >= 0 && b >= 0 && a >= b) entries.insert({a, b});
         }
       }
+    };
+    for (const auto& columns : step_columns_) clique(columns);
+    for (std::size_t r = 0; r < steering_rows_; ++r) {
+      std::vector<Index> columns;
+      for (const auto& [row, column] : steering_entries_)
+        if (row == static_cast<Index>(r)) columns.push_back(column);
+      clique(columns);
     }
     hessian_entries_.assign(entries.begin(), entries.end());
     groups_ = probe_groups(hessian_entries_, free_, free_ + stations_);
@@ -103,8 +126,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
                     IndexStyleEnum& index_style) override {
     n = static_cast<Index>(free_ + stations_);
-    m = static_cast<Index>((stations_ - 1) * 2 * rows_per_end_);
-    nnz_jac_g = nonzeros_;
+    m = static_cast<Index>((stations_ - 1) * 2 * rows_per_end_ + steering_rows_);
+    nnz_jac_g = nonzeros_ + static_cast<Index>(steering_entries_.size());
     nnz_h_lag = static_cast<Index>(hessian_entries_.size());
     index_style = C_STYLE;
     return true;
@@ -146,9 +169,15 @@ class SimultaneousNlp : public Ipopt::TNLP {
     const double b1 = end_value(problem_.speeds.end_speed);
     x_l[free_] = x_u[free_] = b0;
     x_l[free_ + stations_ - 1] = x_u[free_ + stations_ - 1] = b1;
-    for (Index r = 0; r < m; ++r) {
+    const Index speed_rows = m - static_cast<Index>(steering_rows_);
+    for (Index r = 0; r < speed_rows; ++r) {
       g_l[r] = 0.0;
       g_u[r] = kIpoptInfinity;
+    }
+    const double kappa = (1.0 - SteeringRows::kMargin) * max_curvature_;
+    for (Index r = speed_rows; r < m; ++r) {
+      g_l[r] = -kappa;
+      g_u[r] = kappa;
     }
     return true;
   }
@@ -277,6 +306,12 @@ class SimultaneousNlp : public Ipopt::TNLP {
         out[columns[c]] += sum;
       }
     }
+    if (steering_rows_ > 0) {
+      if (!steering_jacobian_at(x)) return false;
+      const Number* l = lambda + row_offset(stations_ - 1);
+      for (std::size_t e = 0; e < steering_entries_.size(); ++e)
+        out[steering_entries_[e].second] += l[steering_entries_[e].first] * steering_sparse_[e];
+    }
     return true;
   }
 
@@ -303,6 +338,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
   bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
     if (!update(x)) return false;
     for (std::size_t j = 0; j + 1 < stations_; ++j) step_rows(j, x, g + row_offset(j), nullptr);
+    if (steering_rows_ > 0)
+      return steering_.evaluate(control_, g + row_offset(stations_ - 1), nullptr);
     return true;
   }
 
@@ -320,6 +357,11 @@ class SimultaneousNlp : public Ipopt::TNLP {
           }
         }
       }
+      for (const auto& [row, column] : steering_entries_) {
+        i_row[e] = static_cast<Index>(row_offset(stations_ - 1)) + row;
+        j_col[e] = column;
+        ++e;
+      }
       return true;
     }
     if (!update(x)) return false;
@@ -334,6 +376,10 @@ class SimultaneousNlp : public Ipopt::TNLP {
           values[e++] = jacobian_(static_cast<long>(r), static_cast<long>(c));
         }
       }
+    }
+    if (steering_rows_ > 0) {
+      if (!steering_jacobian_at(x)) return false;
+      std::copy(steering_sparse_.begin(), steering_sparse_.end(), values + e);
     }
     return true;
   }
@@ -382,6 +428,25 @@ class SimultaneousNlp : public Ipopt::TNLP {
       control_[i] = dims_ == 2 ? Vec2(origin_[i].x() + x[a], origin_[i].y() + x[a + 1])
                                : Vec2(origin_[i] + x[a] * normal_[i]);
     }
+  }
+
+  /// The steering rows' Jacobian at x into steering_sparse_ (steering_entries_
+  /// order): dκ/dP chained to the free columns. False at a cusp.
+  bool steering_jacobian_at(const Number* x) {
+    set_control(x);
+    if (!steering_.evaluate(control_, nullptr, steering_jacobian_.data())) return false;
+    steering_sparse_.assign(steering_entries_.size(), 0.0);
+    std::size_t e = 0;
+    const auto& pattern = steering_.pattern();
+    for (std::size_t p = 0; p < pattern.size(); ++p) {
+      const Index column =
+          static_cast<Index>(dims_ * (pattern[p].point - 1) + (dims_ == 2 ? pattern[p].axis : 0));
+      const auto key = std::make_pair(static_cast<Index>(pattern[p].row), column);
+      while (steering_entries_[e] != key) ++e;
+      const double along = dims_ == 2 ? 1.0 : normal_[pattern[p].point][pattern[p].axis];
+      steering_sparse_[e] += along * steering_jacobian_[p];
+    }
+    return true;
   }
 
   /// The station geometry and its derivatives at x; false where a station
@@ -516,6 +581,11 @@ class SimultaneousNlp : public Ipopt::TNLP {
   const SimultaneousProblem& problem_;
   const BPatch& terrain_;
   AdmissibleSet set_;
+  SteeringRows steering_;
+  double max_curvature_;  // the vehicle's steering limit [1/m]; +inf: no steering rows
+  std::size_t steering_rows_ = 0;
+  std::vector<std::pair<Index, Index>> steering_entries_;  // (sample, free column), sorted
+  std::vector<double> steering_jacobian_, steering_sparse_, steering_values_;
   std::vector<ForceCondition> conditions_;
   std::vector<Vec2> control_;  // workspace: the current control points
   std::size_t points_, stations_, dims_ = 2, free_ = 0, rows_per_end_ = 0;

@@ -73,7 +73,11 @@ PathFormulation parse_path_formulation(std::string_view name);
 
 struct PathOptimizerOptions {
   PathFormulation formulation = PathFormulation::kNested;
-  PathSolver solver = PathSolver::kIpopt;  ///< of the nested formulation
+  /// Of the nested formulation. With a steering limit (Vehicle::max_steering)
+  /// Ipopt keeps it as smooth constraints (PathTimeObjective::curvature_samples(),
+  /// as the simultaneous formulation does); NLopt's L-BFGS and BOBYQA take no
+  /// constraints and see it only as an infeasible (+inf) travel time.
+  PathSolver solver = PathSolver::kIpopt;
   /// Of the clamped cubic path (>= 4). 16 with two restarts (below): in
   /// `talus experiment optimiser-quality` (25 fractal seeds) that plan is
   /// within 1 % of the multistart reference on 18 seeds, against 12 for the

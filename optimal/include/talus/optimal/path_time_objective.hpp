@@ -21,6 +21,8 @@
 /// degenerate profile) the gradient falls back to central finite differences,
 /// and `finite_difference_fallbacks` counts it.
 #include <cstddef>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,6 +34,9 @@
 #include "talus/optimal/time_optimal_profile.hpp"
 
 namespace talus {
+namespace detail {
+class SteeringRows;
+}
 
 /// Travel time of a clamped cubic path as a function of its interior control
 /// points. A per-query workspace: not thread-safe; use one per thread.
@@ -57,6 +62,34 @@ class PathTimeObjective {
   std::vector<Vec2> control_points(const Eigen::VectorXd& z) const;
   Curve2 curve(const Eigen::VectorXd& z) const;
 
+  /// The vehicle's steering limit as a planar curvature [1/m] (+inf: none):
+  /// evaluate() is +inf wherever a station or a steering sample turns
+  /// tighter, or the path kinks or nearly stops between samples.
+  double max_curvature() const { return max_curvature_; }
+  /// Steering samples per knot span.
+  static constexpr std::size_t kCurvatureSamplesPerSpan = 16;
+  /// The share of the limit the steering rows keep in reserve, so that the
+  /// path stays within it between the samples.
+  static constexpr double kSteeringMargin = 1e-2;
+  /// With a steering limit, the least |c'| at a steering sample as a share of
+  /// its mean over the samples: a near-stop of the parameter has a curvature
+  /// spike too short for any sample.
+  static constexpr double kMinSpeedShare = 0.02;
+  /// The steering limit as smooth constraints |κ_k| <= (1 − kSteeringMargin)
+  /// max_curvature() at curvature_samples() parameters, kCurvatureSamplesPerSpan
+  /// per knot span evenly (both ends included), not at the stations: a path
+  /// kept within the limit only at the search's stations turns tighter
+  /// between them.
+  std::size_t curvature_samples() const;
+  /// The (row = sample, column = variable) pairs where the planar curvature
+  /// κ_k depends on z (the sample's interior control points).
+  const std::vector<std::pair<long, long>>& curvature_pattern() const { return pattern_; }
+  /// κ_k at every sample [1/m] into `values` (curvature_samples(); may be
+  /// null) and, when `jacobian` is not null, their derivatives in
+  /// curvature_pattern()'s order. False (the outputs then unspecified) where a
+  /// sample has a cusp (c' = 0) or z is not finite.
+  bool curvatures(const Eigen::VectorXd& z, double* values, double* jacobian) const;
+
   /// The profile of the last evaluate() that reached the solver.
   const TimeOptimalProfile& profile() const { return profile_; }
   /// The speed limits at the stations of the last evaluation that reached the
@@ -80,6 +113,9 @@ class PathTimeObjective {
   std::vector<double> sigma_;                       // station parameters
   std::vector<std::size_t> first_basis_;            // index of the first non-zero basis function
   std::vector<Eigen::Matrix<double, 3, 4>> basis_;  // values, 1st, 2nd derivatives
+  double max_curvature_;
+  std::shared_ptr<const detail::SteeringRows> steering_;
+  std::vector<std::pair<long, long>> pattern_;  // curvature_pattern()
   // Workspace of the last evaluation.
   std::vector<Vec2> control_;
   std::vector<PathFrame> frames_;

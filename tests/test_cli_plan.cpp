@@ -133,6 +133,7 @@ TEST(CliPlan, FlatPlaneSameRowCostsDistanceOverMaxSpeed) {
   EXPECT_EQ(j.at("lattice_spacing"), 1.0);  // 0 = the cell size
   EXPECT_EQ(j.at("connectivity"), 16);
   EXPECT_EQ(j.at("braking_rule"), true);
+  EXPECT_EQ(j.at("turn_limit"), true);
   EXPECT_EQ(j.at("surface_degree"), 3);
   EXPECT_GT(j.at("edges_evaluated").get<std::size_t>(), 0u);
   EXPECT_GT(j.at("expanded").get<std::size_t>(), 0u);

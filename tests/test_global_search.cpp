@@ -14,21 +14,10 @@ namespace {
 
 using global_search_test::bumps;
 using global_search_test::hill;
+using global_search_test::recomputed_cost;
 using terrain_test::grid_from_function;
 
 using vehicle_test::point_mass_rover;
-
-/// J recomputed independently along a candidate's vertices.
-double recomputed_cost(const BPatch& terrain, const Vehicle& v, const CandidatePath& c,
-                       double spacing) {
-  double total = 0.0;
-  for (std::size_t k = 0; k + 1 < c.vertices.size(); ++k) {
-    const Vec2 a = c.vertices[k], b = c.vertices[k + 1];
-    const int stations = edge_stations((b - a).norm(), spacing);
-    total += edge_cost(terrain, v, a, b, stations).forward;
-  }
-  return total;
-}
 
 TEST(GlobalSearch, FlatTerrainGivesTheStraightLineAtMaxSpeed) {
   const BPatch flat = BPatch::interpolate(

@@ -187,8 +187,26 @@ TEST(PlanningReserves, AFrictionReserveShrinksTheFrictionConeTheSimulationKeepsM
   EXPECT_EQ(limits.upper_binding, Constraint::kSliding);
 }
 
+TEST(PlanningReserves, ADriveReserveShrinksTheDriveAndBrakeLimitsTheSimulationKeepsThem) {
+  // On level ground at rest f_t = s̈: the planner's bounds are ±(1 − ε_d) of the limits.
+  Vehicle v = ugv(VehicleModel::kPointMass);
+  v.max_accel = 3.0;
+  v.max_decel = 5.0;
+  const AdmissibleSet plain(v);
+  v.drive_reserve = 0.1;
+  const AdmissibleSet reserved(v);
+  StationGeometry g;
+  g.kappa_wheels = 0.0;
+  const AccelerationBounds full = plain.acceleration_bounds(g, 0.0);
+  const AccelerationBounds kept = reserved.acceleration_bounds(g, 0.0);
+  EXPECT_NEAR(full.a_max, 3.0, 1e-12);
+  EXPECT_NEAR(full.a_min, -5.0, 1e-12);
+  EXPECT_NEAR(kept.a_max, 0.9 * 3.0, 1e-12);
+  EXPECT_NEAR(kept.a_min, -0.9 * 5.0, 1e-12);
+}
+
 TEST(PlanningReserves, AReserveOutsideZeroToOneIsAnInputErrorNamingTheKey) {
-  for (const char* key : {"contact_reserve", "friction_reserve"}) {
+  for (const char* key : {"contact_reserve", "friction_reserve", "drive_reserve"}) {
     for (const char* value : {"-0.1", "1", "nan"}) {
       const std::string yaml = std::string(
                                    "model: point_mass\nfriction: 0.7\ncg_height: 0.5\n"
@@ -204,10 +222,11 @@ TEST(PlanningReserves, AReserveOutsideZeroToOneIsAnInputErrorNamingTheKey) {
   }
   const Vehicle v = parse_vehicle(
       "model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n"
-      "contact_reserve: 0.1\nfriction_reserve: 0.2\n",
+      "contact_reserve: 0.1\nfriction_reserve: 0.2\ndrive_reserve: 0.15\n",
       "reserve.yaml");
   EXPECT_EQ(v.contact_reserve, 0.1);
   EXPECT_EQ(v.friction_reserve, 0.2);
+  EXPECT_EQ(v.drive_reserve, 0.15);
 }
 
 }  // namespace

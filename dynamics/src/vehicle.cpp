@@ -113,7 +113,8 @@ void Vehicle::validate() const {
     throw InputError(msg.str());
   }
   for (const auto& [name, value] : {std::pair{"contact_reserve", contact_reserve},
-                                    std::pair{"friction_reserve", friction_reserve}}) {
+                                    std::pair{"friction_reserve", friction_reserve},
+                                    std::pair{"drive_reserve", drive_reserve}}) {
     if (!(value >= 0.0 && value < 1.0)) {
       std::ostringstream msg;
       msg << "Vehicle." << name << " must be in [0, 1), got " << value;
@@ -145,6 +146,7 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
                                                "max_steering",
                                                "contact_reserve",
                                                "friction_reserve",
+                                               "drive_reserve",
                                                "mass",
                                                "inertia_roll",
                                                "inertia_pitch",
@@ -163,7 +165,7 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
       throw InputError(source + ": unknown key '" + printable(key) +
                        "' (known: model, gravity, friction, cg_height, half_track, "
                        "half_wheelbase, max_speed, max_accel, max_decel, max_steering, "
-                       "contact_reserve, friction_reserve; and for the "
+                       "contact_reserve, friction_reserve, drive_reserve; and for the "
                        "simulation mass, "
                        "inertia_roll, inertia_pitch, inertia_yaw, wheel_radius, "
                        "suspension_stiffness, suspension_damping, cornering_stiffness)");
@@ -206,6 +208,7 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   number("max_steering", v.max_steering);
   number("contact_reserve", v.contact_reserve);
   number("friction_reserve", v.friction_reserve);
+  number("drive_reserve", v.drive_reserve);
   if (seen.count("mass")) {
     double mass = 0.0;
     number("mass", mass);

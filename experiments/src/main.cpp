@@ -558,6 +558,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                  "global search: keep the lattice edges on which the vehicle could not brake at "
                  "any speed (by default they are untraversable); the feedback loop then removes "
                  "those no profile drives. For studying the rule and the loop");
+  plan->add_flag("!--no-turn-limit", plan_request.turn_limit,
+                 "global search: let the lattice's routes turn more sharply than the vehicle's "
+                 "steering limit (max_steering) realises between two edges; the local stage still "
+                 "keeps it. Position-only search, connectivity + 1 times fewer states");
   plan->add_option("--v0", plan_request.start_speed, "speed at the start [m/s], >= 0, --stage full")
       ->capture_default_str();
   plan->add_option("--v1", plan_request.end_speed, "speed at the goal [m/s], >= 0, --stage full")

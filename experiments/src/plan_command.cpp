@@ -431,6 +431,7 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.global.resolution = parse_global_search_resolution(request.resolution);
   options.global.threads = static_cast<std::size_t>(request.threads);
   options.global.braking_rule = request.braking_rule;
+  options.global.turn_limit = request.turn_limit;
   options.time_limit = request.time_limit;
   options.feedback_rounds = static_cast<std::size_t>(request.feedback_rounds);
   options.optimize = request.stage == kPlanStageFull;
@@ -561,6 +562,7 @@ PlanOutcome plan(const PlanRequest& request) {
   summary["lattice"] = nlohmann::json::array({result.nx, result.ny});
   summary["connectivity"] = request.connectivity;
   summary["braking_rule"] = request.braking_rule;
+  summary["turn_limit"] = request.turn_limit;
   summary["nodes"] = result.nodes;
   summary["edges_evaluated"] = result.edges_evaluated;
   summary["expanded"] = result.expanded;

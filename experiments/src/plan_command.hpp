@@ -50,6 +50,8 @@ struct PlanRequest {
   int feedback_rounds = 8;
   /// GlobalSearchOptions::braking_rule (false: --no-braking-rule).
   bool braking_rule = true;
+  /// GlobalSearchOptions::turn_limit (false: --no-turn-limit).
+  bool turn_limit = true;
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
   /// Degree of the interpolating B-patch: 3 (bicubic) or 5 (biquintic, no smoothing).

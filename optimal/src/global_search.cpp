@@ -325,6 +325,12 @@ class Lattice {
     return false;
   }
   std::size_t offsets() const { return offsets_.size(); }
+  /// Offset k as a planar vector [lattice spacings].
+  Vec2 offset(std::size_t k) const {
+    return Vec2(static_cast<double>(offsets_[k].first), static_cast<double>(offsets_[k].second));
+  }
+  /// The offset opposite to k (offset k + half is the negation of offset k).
+  std::size_t opposite(std::size_t k) const { return k < half_ ? k + half_ : k - half_; }
   bool on_data(std::uint32_t n) const { return on_data_[n] != 0; }
 
   /// Stations of an edge of planar length L: at most half a spacing apart, odd count.
@@ -407,6 +413,107 @@ class Lattice {
   std::vector<unsigned char> on_data_, excluded_;
   std::vector<double> forward_, backward_;
   std::size_t evaluated_ = 0;
+};
+
+/// The graph the searches run on. Position only: the lattice's nodes. With a
+/// turn limit (GlobalSearchOptions::turn_limit): states (node, the offset it
+/// was reached along), plus one free state per node that only the start (the
+/// source: no arrival direction) and the goal (the target: reached from every
+/// arrival direction at no cost) use; a state continues along an offset only
+/// when the turn from its arrival fits the limit.
+class RouteGraph {
+ public:
+  RouteGraph(Lattice& lattice, double max_curvature, double spacing, std::uint32_t start,
+             std::uint32_t goal)
+      : lattice_(lattice), start_(start), goal_(goal) {
+    if (!std::isfinite(max_curvature)) return;
+    const std::size_t k = lattice.offsets();
+    slots_ = k + 1;
+    // Two trees (cost, parent, closed flag: 13 bytes a state) and their queues.
+    require_memory(32.0 * static_cast<double>(lattice.size() * slots_),
+                   "the turn-limited global search (" + std::to_string(lattice.size() * slots_) +
+                       " (node, arrival direction) states)",
+                   "use a coarser lattice spacing, the multi resolution or no turn limit");
+    allowed_.assign(k * k, 0);
+    for (std::size_t in = 0; in < k; ++in) {
+      for (std::size_t out = 0; out < k; ++out) {
+        const Vec2 a = lattice.offset(in), b = lattice.offset(out);
+        const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+        const double half_edge = 0.5 * spacing * std::min(a.norm(), b.norm());
+        allowed_[in * k + out] =
+            std::tan(0.5 * std::abs(turn)) <= max_curvature * half_edge * (1.0 + 1e-12);
+      }
+    }
+  }
+
+  std::size_t states() const { return lattice_.size() * slots_; }
+  std::uint32_t node(std::uint32_t state) const {
+    return static_cast<std::uint32_t>(state / slots_);
+  }
+  std::uint32_t start() const { return at(start_, free_slot()); }
+  std::uint32_t goal() const { return at(goal_, free_slot()); }
+
+  /// Calls emit(next, cost) for every finite-cost edge out of `state`.
+  template <typename Emit>
+  void forward(std::uint32_t state, Emit&& emit) const {
+    const std::uint32_t n = node(state);
+    if (slots_ == 1) return lattice_.for_each_edge(n, true, emit);
+    const std::size_t arrival = state % slots_, k = lattice_.offsets();
+    if (arrival == free_slot() && n != start_) return;  // the goal's: the search ends there
+    for (std::size_t out = 0; out < k; ++out) {
+      if (arrival != free_slot() && !allowed_[arrival * k + out]) continue;
+      std::uint32_t m = kNoNode;
+      const double c = lattice_.cost(n, out, &m);
+      if (c < kInf) emit(at(m, out), c);
+    }
+    if (n == goal_ && arrival != free_slot()) emit(goal(), 0.0);
+  }
+
+  /// Calls emit(previous, cost) for every finite-cost edge into `state`.
+  template <typename Emit>
+  void reverse(std::uint32_t state, Emit&& emit) const {
+    const std::uint32_t n = node(state);
+    if (slots_ == 1) return lattice_.for_each_edge(n, false, emit);
+    const std::size_t arrival = state % slots_, k = lattice_.offsets();
+    if (arrival == free_slot()) {
+      if (n == goal_)
+        for (std::size_t in = 0; in < k; ++in) emit(at(n, in), 0.0);
+      return;
+    }
+    std::uint32_t p = kNoNode;
+    const double c = lattice_.cost_into(n, lattice_.opposite(arrival), &p);
+    if (!(c < kInf)) return;
+    for (std::size_t in = 0; in < k; ++in)
+      if (allowed_[in * k + arrival]) emit(at(p, in), c);
+    if (p == start_) emit(at(p, free_slot()), c);
+  }
+
+  /// A node's best over its states.
+  std::vector<double> node_field(const std::vector<double>& state_cost) const {
+    std::vector<double> out(lattice_.size(), kInf);
+    for (std::size_t st = 0; st < state_cost.size(); ++st)
+      out[st / slots_] = std::min(out[st / slots_], state_cost[st]);
+    return out;
+  }
+
+  /// The nodes of a state path, a node repeated by the goal's free state once.
+  std::vector<std::uint32_t> nodes(const std::vector<std::uint32_t>& states) const {
+    std::vector<std::uint32_t> out;
+    for (const std::uint32_t st : states)
+      if (out.empty() || out.back() != node(st)) out.push_back(node(st));
+    return out;
+  }
+
+ private:
+  std::size_t free_slot() const { return slots_ - 1; }
+  std::uint32_t at(std::uint32_t n, std::size_t slot) const {
+    return static_cast<std::uint32_t>(n * slots_ + slot);
+  }
+
+  Lattice& lattice_;
+  std::uint32_t start_, goal_;
+  std::size_t slots_ = 1;
+  std::vector<unsigned char> allowed_;  ///< [arrival * offsets + departure]
 };
 
 /// 3-D length on the surface of a lattice polyline, by the edges' own quadrature.
@@ -557,12 +664,12 @@ class LatticeSearch {
 
   bool stop() const { return options_.stop && options_.stop(); }
   GlobalSearchResult& result() { return result_; }
-  /// The lattice's edges out of (forward) or into (reverse) a node, for shortest_paths.
-  auto forward() const {
-    return [this](std::uint32_t node, auto&& emit) { lattice_.for_each_edge(node, true, emit); };
+  /// The graph's edges out of (forward) or into (reverse) a state, for shortest_paths.
+  static auto forward(const RouteGraph& graph) {
+    return [&graph](std::uint32_t state, auto&& emit) { graph.forward(state, emit); };
   }
-  auto reverse() const {
-    return [this](std::uint32_t node, auto&& emit) { lattice_.for_each_edge(node, false, emit); };
+  static auto reverse(const RouteGraph& graph) {
+    return [&graph](std::uint32_t state, auto&& emit) { graph.reverse(state, emit); };
   }
 
   GlobalSearchResult finish(GlobalSearchStatus status, std::string message) {
@@ -622,13 +729,14 @@ class LatticeSearch {
   }
 
   /// One candidate: A* from the start to the goal.
-  GlobalSearchResult single_route(std::uint32_t s, std::uint32_t g, double max_speed) {
-    const Vec2 goal_position = lattice_.position(g);
+  GlobalSearchResult single_route(const RouteGraph& graph, double max_speed) {
+    const std::uint32_t g = graph.goal();
+    const Vec2 goal_position = lattice_.position(graph.node(g));
     const double inverse_speed = 1.0 / max_speed;
     const ShortestPathTree tree = shortest_paths(
-        lattice_.size(), s, forward(), g,
-        [&](std::uint32_t node) {
-          return (lattice_.position(node) - goal_position).norm() *
+        graph.states(), graph.start(), forward(graph), g,
+        [&](std::uint32_t state) {
+          return (lattice_.position(graph.node(state)) - goal_position).norm() *
                  inverse_speed;  // 3-D length >= planar
         },
         [this] { return stop(); }, options_.stop_interval);
@@ -641,43 +749,47 @@ class LatticeSearch {
                     "goal unreachable: the search exhausted the " + std::to_string(tree.expanded) +
                         " lattice nodes reachable from the start without finding it");
     }
-    add_candidate(tree.path_to(g), tree.cost[g]);
+    add_candidate(graph.nodes(tree.path_to(g)), tree.cost[g]);
     return finish(GlobalSearchStatus::kOk, "");
   }
 
   /// The cost fields from the start and to the goal, then up to `candidates`
   /// distinct routes through the nodes in increasing order of their cost.
-  GlobalSearchResult cost_fields_and_candidates(std::uint32_t s, std::uint32_t g) {
-    const std::size_t n = lattice_.size();
+  GlobalSearchResult cost_fields_and_candidates(const RouteGraph& graph) {
+    const std::size_t n = graph.states();
+    const std::uint32_t s = graph.start(), g = graph.goal();
     const auto polled = [this] { return stop(); };
-    const ShortestPathTree from_start = shortest_paths(
-        n, s, forward(), ShortestPathTree::kNone, NoHeuristic{}, polled, options_.stop_interval);
+    const ShortestPathTree from_start =
+        shortest_paths(n, s, forward(graph), ShortestPathTree::kNone, NoHeuristic{}, polled,
+                       options_.stop_interval);
     result_.expanded += from_start.expanded;
-    result_.reachable_nodes = static_cast<std::size_t>(std::count_if(
-        from_start.cost.begin(), from_start.cost.end(), [](double c) { return c < kInf; }));
+    std::vector<double> node_cost = graph.node_field(from_start.cost);
+    result_.reachable_nodes = static_cast<std::size_t>(
+        std::count_if(node_cost.begin(), node_cost.end(), [](double c) { return c < kInf; }));
     if (from_start.stopped) {
       // A tentative cost is that of the real path path_to returns.
-      if (from_start.cost[g] < kInf) add_candidate(from_start.path_to(g), from_start.cost[g]);
+      if (from_start.cost[g] < kInf)
+        add_candidate(graph.nodes(from_start.path_to(g)), from_start.cost[g]);
       return stopped("computing the cost field from the start");
     }
-    if (!(from_start.cost[g] < kInf)) return unreachable(from_start);
-    const ShortestPathTree to_goal = shortest_paths(n, g, reverse(), ShortestPathTree::kNone,
+    if (!(from_start.cost[g] < kInf)) return unreachable(std::move(node_cost));
+    const ShortestPathTree to_goal = shortest_paths(n, g, reverse(graph), ShortestPathTree::kNone,
                                                     NoHeuristic{}, polled, options_.stop_interval);
     result_.expanded += to_goal.expanded;
     if (to_goal.stopped || stop()) {
-      add_candidate(from_start.path_to(g), from_start.cost[g]);
+      add_candidate(graph.nodes(from_start.path_to(g)), from_start.cost[g]);
       return stopped(to_goal.stopped ? "computing the cost field to the goal"
                                      : "ordering the candidate seeds");
     }
-    if (!extract_candidates(from_start, to_goal, g)) return stopped("extracting candidates");
+    if (!extract_candidates(graph, from_start, to_goal)) return stopped("extracting candidates");
     if (lattice_.full()) {
-      result_.cost_from_start = from_start.cost;
-      result_.cost_to_goal = to_goal.cost;
+      result_.cost_from_start = std::move(node_cost);
+      result_.cost_to_goal = graph.node_field(to_goal.cost);
     }
     // The best route touching the corridor's edge: a better one may lie outside.
     result_.corridor_width = 0.0;
     if (!lattice_.full()) {
-      for (const std::uint32_t id : from_start.path_to(g)) {
+      for (const std::uint32_t id : graph.nodes(from_start.path_to(g))) {
         if (lattice_.on_corridor_edge(id)) {
           result_.corridor_width = -1.0;  // flag for the caller
           break;
@@ -688,7 +800,7 @@ class LatticeSearch {
   }
 
  private:
-  GlobalSearchResult unreachable(const ShortestPathTree& from_start) {
+  GlobalSearchResult unreachable(std::vector<double> node_cost) {
     const std::size_t n = lattice_.size();
     std::ostringstream msg;
     msg << "goal unreachable: from the start the vehicle can reach " << result_.reachable_nodes
@@ -696,17 +808,17 @@ class LatticeSearch {
         << 100.0 * static_cast<double>(result_.reachable_nodes) / static_cast<double>(n)
         << " % of the " << (lattice_.full() ? "terrain" : "corridor")
         << "), and the goal is not among them";
-    if (lattice_.full()) result_.cost_from_start = from_start.cost;
+    if (lattice_.full()) result_.cost_from_start = std::move(node_cost);
     return finish(GlobalSearchStatus::kUnreachable, msg.str());
   }
 
-  /// Candidates: nodes in increasing order of the best cost through them; each
-  /// node's path (start tree + goal tree) is accepted if it is far enough, in
+  /// Candidates: states in increasing order of the best cost through them; each
+  /// state's path (start tree + goal tree) is accepted if it is far enough, in
   /// Hausdorff distance, from every accepted one. False when stopped.
-  bool extract_candidates(const ShortestPathTree& from_start, const ShortestPathTree& to_goal,
-                          std::uint32_t g) {
-    const std::size_t n = lattice_.size();
-    const double best = from_start.cost[g];
+  bool extract_candidates(const RouteGraph& graph, const ShortestPathTree& from_start,
+                          const ShortestPathTree& to_goal) {
+    const std::size_t n = graph.states();
+    const double best = from_start.cost[graph.goal()];
     const double separation =
         options_.distinctness > 0.0
             ? options_.distinctness
@@ -726,22 +838,24 @@ class LatticeSearch {
     // O(path length) instead of O(path length^2).
     std::vector<std::vector<float>> distance_maps;
     // Nodes on a path already examined would mostly grow the same path again.
-    std::vector<unsigned char> examined(n, 0);
+    std::vector<unsigned char> examined(lattice_.size(), 0);
     std::size_t seeds = 0;
-    for (const std::uint32_t node : order) {
+    for (const std::uint32_t state : order) {
       if (result_.candidates.size() >= options_.candidates) break;
+      const std::uint32_t node = graph.node(state);
       if (examined[node]) continue;
       if (++seeds % options_.stop_interval == 0 && stop()) return false;
       bool near = false;
       for (const std::vector<float>& d : distance_maps) near = near || d[node] < separation;
       if (near) continue;
-      std::vector<std::uint32_t> ids = from_start.path_to(node);
-      for (std::uint32_t m = to_goal.parent[node]; m != ShortestPathTree::kNone;
+      std::vector<std::uint32_t> states = from_start.path_to(state);
+      for (std::uint32_t m = to_goal.parent[state]; m != ShortestPathTree::kNone;
            m = to_goal.parent[m])
-        ids.push_back(m);
+        states.push_back(m);
+      const std::vector<std::uint32_t> ids = graph.nodes(states);
       for (std::uint32_t id : ids) examined[id] = 1;
       if (!distinct(ids, distance_maps, separation)) continue;
-      add_candidate(ids, from_start.cost[node] + to_goal.cost[node]);
+      add_candidate(ids, from_start.cost[state] + to_goal.cost[state]);
       if (result_.candidates.size() < options_.candidates) {
         if (stop()) return false;
         distance_maps.push_back(chamfer_distance(ids, lattice_, spacing_));
@@ -807,9 +921,13 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
   if (threads > 1 && (options.cost_fields || options.candidates > 1) &&
       !search.evaluate_edges_up_front(threads))
     return search.stopped("computing the edge costs");
+  const RouteGraph graph(
+      lattice,
+      options.turn_limit ? vehicle.max_curvature() : std::numeric_limits<double>::infinity(),
+      spacing, s, g);
   if (!options.cost_fields && options.candidates == 1)
-    return search.single_route(s, g, vehicle.max_speed);
-  return search.cost_fields_and_candidates(s, g);
+    return search.single_route(graph, vehicle.max_speed);
+  return search.cost_fields_and_candidates(graph);
 }
 
 /// The tiles within `radius` [m] of the candidates' vertices and edges, and

@@ -72,6 +72,7 @@ py::dict vehicle_to_dict(const Vehicle& v) {
   if (std::isfinite(v.max_steering)) d["max_steering"] = v.max_steering;
   if (v.contact_reserve != 0.0) d["contact_reserve"] = v.contact_reserve;
   if (v.friction_reserve != 0.0) d["friction_reserve"] = v.friction_reserve;
+  if (v.drive_reserve != 0.0) d["drive_reserve"] = v.drive_reserve;
   if (v.body) {  // every key, defaults included: the dict says exactly what the simulation uses
     const VehicleBody& b = *v.body;
     d["mass"] = b.mass;
@@ -237,6 +238,7 @@ void bind_dynamics(py::module_& m) {
       .def_readwrite("max_steering", &Vehicle::max_steering)
       .def_readwrite("contact_reserve", &Vehicle::contact_reserve)
       .def_readwrite("friction_reserve", &Vehicle::friction_reserve)
+      .def_readwrite("drive_reserve", &Vehicle::drive_reserve)
       .def("max_curvature", &Vehicle::max_curvature,
            "tan(max_steering) / (2 half_wheelbase) [1/m]; inf without a steering limit")
       .def("validate", &Vehicle::validate)

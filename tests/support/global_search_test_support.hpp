@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "talus/bspline/bpatch.hpp"
+#include "talus/optimal/global_search.hpp"
 #include "terrain_test_support.hpp"
 
 namespace talus::global_search_test {
@@ -34,6 +35,18 @@ inline BPatch bumps() {
         return z;
       },
       0, 0, 80, 60, 1.0));
+}
+
+/// J recomputed independently along a candidate's vertices, edge by edge.
+inline double recomputed_cost(const BPatch& terrain, const Vehicle& v, const CandidatePath& c,
+                              double spacing) {
+  double total = 0.0;
+  for (std::size_t k = 0; k + 1 < c.vertices.size(); ++k) {
+    const Vec2 a = c.vertices[k], b = c.vertices[k + 1];
+    const int stations = edge_stations((b - a).norm(), spacing);
+    total += edge_cost(terrain, v, a, b, stations).forward;
+  }
+  return total;
 }
 
 }  // namespace talus::global_search_test

@@ -96,6 +96,11 @@ struct Vehicle {
   /// [friction_reserve] ε [-] in [0, 1), default 0: the planner uses (1 − ε) μ for its
   /// friction cone, a control margin for the tracker; the simulation keeps μ.
   double friction_reserve = 0.0;
+  /// [drive_reserve] ε_d [-] in [0, 1), default 0: the planner's drive and brake limits are
+  /// (1 − ε_d) max_accel and (1 − ε_d) max_decel, a control margin for the tracker's speed
+  /// loop: a climb planned at full drive leaves a tracker that has fallen behind no force
+  /// to catch up with, and it stalls on the slope. The simulation keeps the full limits.
+  double drive_reserve = 0.0;
   /// Mass, inertia, suspension and tyres (the keys of VehicleBody); empty when
   /// the file has no `mass`. Only the simulation needs it; the speed limits
   /// ignore it.

@@ -128,6 +128,21 @@ struct GlobalSearchOptions {
   /// (PlannerOptions::feedback_rounds) excludes it and searches again. For
   /// studying the rule and the loop; default true.
   bool braking_rule = true;
+  /// Keep the routes' turns within the vehicle's steering limit κ_max =
+  /// Vehicle::max_curvature() (nothing to keep without one). A route may turn
+  /// by Δθ at a node between edges of planar lengths L₁ and L₂ only when an
+  /// arc of curvature κ_max tangent to both fits in their halves next to the
+  /// node: tan(Δθ/2) <= κ_max min(L₁, L₂) / 2. Every route is then drivable
+  /// within the limit as it stands (straight along its edges, each corner
+  /// rounded by its arc), and none turns on the spot. The searches then run
+  /// over (node, arrival direction) states: memory and expansions grow by
+  /// connectivity + 1 (17 at 16-connectivity; InputError beyond the memory
+  /// budget, memory_budget.hpp); edge costs
+  /// are the node lattice's, each evaluated once. The first edge out of the
+  /// start and the arrival at the goal are free: the lattice does not see
+  /// PlanningProblem's headings. cost_from_start / cost_to_goal are a node's
+  /// best over its arrival directions. false: position-only search. Default true.
+  bool turn_limit = true;
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -173,7 +188,7 @@ struct GlobalSearchResult {
   // Diagnostics.
   std::size_t nodes = 0;            ///< lattice nodes
   std::size_t edges_evaluated = 0;  ///< undirected edges whose cost was computed
-  std::size_t expanded = 0;         ///< nodes expanded by the two searches
+  std::size_t expanded = 0;         ///< nodes (with turn_limit: states) expanded by the searches
   std::size_t reachable_nodes = 0;  ///< nodes reachable from the start
   double search_seconds = 0.0;      ///< total time of the global stage
   // Multi-resolution diagnostics (resolution kMulti; nodes is then the final

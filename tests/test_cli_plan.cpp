@@ -134,6 +134,7 @@ TEST(CliPlan, FlatPlaneSameRowCostsDistanceOverMaxSpeed) {
   EXPECT_EQ(j.at("connectivity"), 16);
   EXPECT_EQ(j.at("braking_rule"), true);
   EXPECT_EQ(j.at("turn_limit"), true);
+  EXPECT_EQ(j.at("turn_limit_relaxed"), false);  // the vehicle has no steering limit
   EXPECT_EQ(j.at("surface_degree"), 3);
   EXPECT_GT(j.at("edges_evaluated").get<std::size_t>(), 0u);
   EXPECT_GT(j.at("expanded").get<std::size_t>(), 0u);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "global_search_test_support.hpp"
 #include "talus/optimal/global_search.hpp"
@@ -60,6 +61,7 @@ TEST(GlobalSearchTurnLimit, RoutesRoundAWallTurnWithinTheSteeringLimit) {
   // Round the wall's end the position-only route turns more sharply than the vehicle can.
   EXPECT_GT(worst_turn(free.candidates[0], kappa), 1.0);
   ASSERT_GE(steered.candidates.size(), 1u);
+  EXPECT_FALSE(steered.turn_limit_relaxed);
   for (const CandidatePath& c : steered.candidates) {
     EXPECT_LE(worst_turn(c, kappa), 1.0 + 1e-9);
     // Each candidate (start tree + goal tree of the state graph) costs its own edges.
@@ -83,6 +85,27 @@ TEST(GlobalSearchTurnLimit, RoutesRoundAWallTurnWithinTheSteeringLimit) {
   ASSERT_EQ(astar.status, GlobalSearchStatus::kOk) << astar.message;
   EXPECT_NEAR(astar.candidates[0].cost_seconds, steered.candidates[0].cost_seconds, 1e-9);
   EXPECT_LE(worst_turn(astar.candidates[0], kappa), 1.0 + 1e-9);
+}
+
+TEST(GlobalSearchTurnLimit, WhereNoRouteTurnsWithinTheLimitThePositionOnlyRoutesAreReturned) {
+  // At 0.3 1/m on 1 m edges no turn between a unit edge and its neighbours fits, and the
+  // diagonal directions turn among themselves by at most 37 deg: no route rounds the wall.
+  const BPatch terrain = wall();
+  const Vehicle v = steered_rover(0.3);
+  GlobalSearchOptions options;
+  const GlobalSearchResult limited = global_search(terrain, v, {24, 13}, {24, 17}, options);
+  options.turn_limit = false;
+  const GlobalSearchResult free = global_search(terrain, v, {24, 13}, {24, 17}, options);
+  ASSERT_EQ(limited.status, GlobalSearchStatus::kOk) << limited.message;
+  EXPECT_TRUE(limited.turn_limit_relaxed);
+  EXPECT_FALSE(free.turn_limit_relaxed);
+  EXPECT_NE(limited.message.find("steering limit"), std::string::npos) << limited.message;
+  ASSERT_EQ(limited.candidates.size(), free.candidates.size());
+  for (std::size_t k = 0; k < free.candidates.size(); ++k) {
+    EXPECT_EQ(limited.candidates[k].vertices, free.candidates[k].vertices);
+    EXPECT_EQ(limited.candidates[k].cost_seconds, free.candidates[k].cost_seconds);
+  }
+  EXPECT_GT(limited.expanded, free.expanded);  // both searches counted
 }
 
 TEST(GlobalSearchTurnLimit, WithoutASteeringLimitTheSearchIsPositionOnly) {

@@ -563,6 +563,8 @@ PlanOutcome plan(const PlanRequest& request) {
   summary["connectivity"] = request.connectivity;
   summary["braking_rule"] = request.braking_rule;
   summary["turn_limit"] = request.turn_limit;
+  summary["turn_limit_relaxed"] = result.turn_limit_relaxed;
+  summary["search_message"] = result.message;
   summary["nodes"] = result.nodes;
   summary["edges_evaluated"] = result.edges_evaluated;
   summary["expanded"] = result.expanded;

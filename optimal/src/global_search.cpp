@@ -921,13 +921,31 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
   if (threads > 1 && (options.cost_fields || options.candidates > 1) &&
       !search.evaluate_edges_up_front(threads))
     return search.stopped("computing the edge costs");
-  const RouteGraph graph(
-      lattice,
-      options.turn_limit ? vehicle.max_curvature() : std::numeric_limits<double>::infinity(),
-      spacing, s, g);
-  if (!options.cost_fields && options.candidates == 1)
-    return search.single_route(graph, vehicle.max_speed);
-  return search.cost_fields_and_candidates(graph);
+  const auto route = [&](LatticeSearch& on, double max_curvature) {
+    const RouteGraph graph(lattice, max_curvature, spacing, s, g);
+    if (!options.cost_fields && options.candidates == 1)
+      return on.single_route(graph, vehicle.max_speed);
+    return on.cost_fields_and_candidates(graph);
+  };
+  const double max_curvature = options.turn_limit ? vehicle.max_curvature() : kInf;
+  GlobalSearchResult result = route(search, max_curvature);
+  if (result.status != GlobalSearchStatus::kUnreachable || !std::isfinite(max_curvature))
+    return result;
+  // The turn rule is only sufficient: without it the goal may be reachable by a route that
+  // the local stage can still smooth within the steering limit.
+  LatticeSearch position_only(terrain, set, options, spacing, lattice);
+  position_only.result().start_node = result.start_node;
+  position_only.result().goal_node = result.goal_node;
+  GlobalSearchResult relaxed = route(position_only, kInf);
+  relaxed.expanded += result.expanded;
+  relaxed.edges_evaluated += result.edges_evaluated;
+  relaxed.search_seconds += result.search_seconds;
+  relaxed.turn_limit_relaxed = true;
+  if (relaxed.status == GlobalSearchStatus::kOk) {
+    relaxed.message = "no route keeps its turns within the steering limit at every lattice node (" +
+                      result.message + "): the candidates are the position-only search's";
+  }
+  return relaxed;
 }
 
 /// The tiles within `radius` [m] of the candidates' vertices and edges, and

@@ -181,6 +181,9 @@ void bind_global_search(py::module_& m) {
       .def_readwrite("max_cost_ratio", &GlobalSearchOptions::max_cost_ratio)
       .def_readwrite("cost_fields", &GlobalSearchOptions::cost_fields)
       .def_readwrite("excluded", &GlobalSearchOptions::excluded, "list of ExcludedRegion")
+      .def_readwrite("braking_rule", &GlobalSearchOptions::braking_rule)
+      .def_readwrite("turn_limit", &GlobalSearchOptions::turn_limit,
+                     "keep the lattice's turns within the vehicle's steering limit")
       .def("validate", &GlobalSearchOptions::validate);
 
   py::enum_<GlobalSearchStatus>(m, "GlobalSearchStatus")

@@ -40,3 +40,19 @@ def test_a_workspace_keeps_the_edge_costs_and_changes_no_result(west_bijou, rove
     assert probe() is not None
     workspace.clear()
     assert workspace.lattices() == 0
+
+
+def test_the_turn_limit_reuses_the_edge_costs_and_keeps_the_steering_limit(west_bijou, rover):
+    surface = talus.BPatch.interpolate(talus.read_esri_ascii(str(west_bijou)))
+    vehicle = talus.load_vehicle(str(rover))
+    vehicle.half_wheelbase = 1.0
+    vehicle.max_steering = 0.5  # kappa_max = tan(0.5) / 2 = 0.27 1/m
+    options = talus.GlobalSearchOptions()
+    assert options.turn_limit
+    workspace = talus.GlobalSearchWorkspace()
+    limited = talus.global_search(surface, vehicle, START, GOAL, options, workspace)
+    options.turn_limit = False
+    free = talus.global_search(surface, vehicle, START, GOAL, options, workspace)
+    assert limited.status == free.status == talus.GlobalSearchStatus.OK
+    assert free.edges_evaluated == 0  # the same lattice: only the graph over it differs
+    assert limited.candidates[0].cost_seconds >= free.candidates[0].cost_seconds * (1 - 1e-12)

@@ -135,7 +135,12 @@ struct GlobalSearchOptions {
   /// node: tan(Δθ/2) <= κ_max min(L₁, L₂) / 2. Every route is then drivable
   /// within the limit as it stands (straight along its edges, each corner
   /// rounded by its arc), and none turns on the spot. The searches then run
-  /// over (node, arrival direction) states: memory and expansions grow by
+  /// over (node, arrival direction) states. The rule is sufficient, not
+  /// necessary: where it leaves the goal unreachable (a pass the lattice's
+  /// 16 directions cross only in zig-zags, which a smooth path may still
+  /// thread), the search is repeated without it and says so
+  /// (GlobalSearchResult::turn_limit_relaxed), leaving the turns to the local
+  /// stage, which keeps the limit exactly. Memory and expansions grow by
   /// connectivity + 1 (17 at 16-connectivity; InputError beyond the memory
   /// budget, memory_budget.hpp); edge costs
   /// are the node lattice's, each evaluated once. The first edge out of the
@@ -198,6 +203,9 @@ struct GlobalSearchResult {
   std::size_t corridor_widenings = 0;  ///< times the corridor was doubled
   double corridor_width = 0.0;         ///< the final corridor's half-width [m]
   bool fell_back_to_full = false;      ///< the coarse search found no route: full search
+  /// GlobalSearchOptions::turn_limit left the goal unreachable: the candidates are of the
+  /// position-only search (their turns may exceed the steering limit; see `message`).
+  bool turn_limit_relaxed = false;
   // The lattice and the two cost-to-go fields, for plots (row-major, +inf =
   // unreached; empty for kMulti).
   std::size_t nx = 0, ny = 0;

@@ -124,124 +124,14 @@ class Model {
   /// Evaluates the model at y; writes the derivative to ydot when not null.
   /// Returns false where the Euler angles are singular (pitch ±90°).
   bool evaluate(const double* y, double* ydot, Evaluation& out) const {
-    const Vec3 p(y[0], y[1], y[2]);
-    const double roll = y[3], pitch = y[4], yaw = y[5];
-    const Vec3 v(y[6], y[7], y[8]);
-    const Vec3 w(y[9], y[10], y[11]);
-    const double cos_pitch = std::cos(pitch);
-    if (std::abs(cos_pitch) < 1e-6) return false;
-    const Mat3 rot = euler_rotation(roll, pitch, yaw);
-    const Vec3 v_world = rot * v, w_world = rot * w;
-    const double m = body_.mass, g = vehicle_.gravity, mu = vehicle_.friction;
-    const double k = body_.suspension_stiffness, c = body_.suspension_damping;
-    const double r = body_.wheel_radius, ve = options_.tyre_min_speed;
-
-    std::array<Vec3, 4> normal, arm, tx, ty;
-    std::array<Vec2, 4> contact_velocity;
-    out.domain_margin = std::numeric_limits<double>::infinity();
-    out.total_load = 0.0;
-    out.energy = 0.5 * m * v.squaredNorm() +
-                 0.5 * (body_.inertia_roll * w.x() * w.x() + body_.inertia_pitch * w.y() * w.y() +
-                        body_.inertia_yaw * w.z() * w.z()) +
-                 m * g * p.z();
-    for (std::size_t i = 0; i < 4; ++i) {
-      const Vec3 rc = rot * corners_[i];
-      const Vec3 centre = p + rc;
-      const Vec2 xy(centre.x(), centre.y());
-      out.domain_margin =
-          std::min({out.domain_margin, xy.x() - surface_.x_min(), surface_.x_max() - xy.x(),
-                    xy.y() - surface_.y_min(), surface_.y_max() - xy.y()});
-      const Vec2 q(std::clamp(xy.x(), surface_.x_min(), surface_.x_max()),
-                   std::clamp(xy.y(), surface_.y_min(), surface_.y_max()));
-      const SurfacePoint sp = surface_.evaluate(q);
-      const Vec3 n = Vec3(-sp.gradient.x(), -sp.gradient.y(), 1.0).normalized();
-      // Height above the tangent plane at q (the plane's extension off the domain).
-      const double dz = centre.z() - (sp.z + sp.gradient.dot(xy - q));
-      const double d = dz * n.z();
-      const double e = r - d;
-      const Vec3 v_centre = v_world + w_world.cross(rc);
-      const double e_dot = -n.dot(v_centre);
-      WheelContact& wc = out.wheels[i];
-      wc = WheelContact{};
-      wc.compression = e;
-      wc.normal_load = e > 0.0 ? std::max(0.0, k * e + c * e_dot) : 0.0;
-      out.contact_measure[i] = e;
-      if (e > 0.0) out.energy += 0.5 * k * e * e;
-      out.total_load += wc.normal_load;
-      normal[i] = n;
-      arm[i] = rc - d * n;
-      wc.contact_point = p + arm[i];
-      wc.normal = n;
-      // Tyre frame: the wheel's heading on the tangent plane.
-      const double steer = i < 2 ? controls_.steering : 0.0;
-      const Vec3 heading = rot * Vec3(std::cos(steer), std::sin(steer), 0.0);
-      Vec3 t = heading - heading.dot(n) * n;
-      const double t_norm = t.norm();
-      t = t_norm > 1e-9 ? Vec3(t / t_norm) : Vec3(n.unitOrthogonal());
-      tx[i] = t;
-      ty[i] = n.cross(t);
-      const Vec3 v_contact = v_world + w_world.cross(arm[i]);
-      contact_velocity[i] = Vec2(v_contact.dot(tx[i]), v_contact.dot(ty[i]));
-    }
-
-    Vec3 force(0.0, 0.0, -m * g), moment = Vec3::Zero();
-    Vec3 tyre_force = Vec3::Zero();
-    out.wheel_friction_utilisation = 0.0;
-    double left = 0.0, right = 0.0;
-    for (std::size_t i = 0; i < 4; ++i) {
-      WheelContact& wc = out.wheels[i];
-      const double load = wc.normal_load;
-      (i % 2 == 0 ? left : right) += load;
-      const double vx = contact_velocity[i].x(), vy = contact_velocity[i].y();
-      const double vreg = std::sqrt(vx * vx + ve * ve);
-      wc.slip_angle = std::atan2(vy, vreg);
-      if (load <= 0.0) continue;
-      const double limit = mu * load;
-      double fx = controls_.drive_force * load / out.total_load;
-      if (controls_.drive_force < 0.0) fx *= vx / vreg;
-      fx = std::clamp(fx, -limit, limit);
-      const double f_max = std::sqrt(std::max(0.0, limit * limit - fx * fx));
-      const double ca = body_.cornering_stiffness * load;
-      const double fy = options_.tyre == TyreModel::kBrush
-                            ? brush_lateral_force(ca, vy / vreg, f_max)
-                            : dugoff_lateral_force(ca, vy / vreg, f_max);
-      wc.longitudinal_force = fx;
-      wc.lateral_force = fy;
-      tyre_force += fx * tx[i] + fy * ty[i];
-      out.wheel_friction_utilisation =
-          std::max(out.wheel_friction_utilisation, std::hypot(fx, fy) / limit);
-      const Vec3 f = load * normal[i] + fx * tx[i] + fy * ty[i];
-      force += f;
-      moment += arm[i].cross(f);
-    }
-    out.lateral_load_ratio = out.total_load > 0.0 ? (right - left) / out.total_load : 0.0;
-    out.friction_utilisation =
-        out.total_load > 0.0 ? tyre_force.norm() / (mu * out.total_load) : 0.0;
-    const Vec2 cg(std::clamp(p.x(), surface_.x_min(), surface_.x_max()),
-                  std::clamp(p.y(), surface_.y_min(), surface_.y_max()));
-    const SurfacePoint under = surface_.evaluate(cg);
-    const Vec3 n_cg = Vec3(-under.gradient.x(), -under.gradient.y(), 1.0).normalized();
-    out.roll_sin = rot.col(1).dot(n_cg);
-    out.pitch_sin = rot.col(0).dot(n_cg);
-
-    if (ydot == nullptr) return true;
-    const Vec3 f_body = rot.transpose() * force;
-    const Vec3 m_body = rot.transpose() * moment;
-    const Vec3 inertia(body_.inertia_roll, body_.inertia_pitch, body_.inertia_yaw);
-    const Vec3 vdot = f_body / m - w.cross(v);
-    const Vec3 iw = inertia.cwiseProduct(w);
-    const Vec3 wdot = (m_body - w.cross(iw)).cwiseQuotient(inertia);
-    const double sf = std::sin(roll), cf = std::cos(roll);
-    ydot[0] = v_world.x();
-    ydot[1] = v_world.y();
-    ydot[2] = v_world.z();
-    ydot[3] = w.x() + (w.y() * sf + w.z() * cf) * std::tan(pitch);
-    ydot[4] = w.y() * cf - w.z() * sf;
-    ydot[5] = (w.y() * sf + w.z() * cf) / cos_pitch;
-    for (int j = 0; j < 3; ++j) {
-      ydot[6 + j] = vdot[j];
-      ydot[9 + j] = wdot[j];
-    }
+    const Pose pose(y);
+    if (std::abs(pose.cos_pitch) < 1e-6) return false;
+    WheelFrames frames;
+    wheel_contacts(pose, out, frames);
+    Vec3 force(0.0, 0.0, -body_.mass * vehicle_.gravity), moment = Vec3::Zero();
+    tyre_forces(frames, out, force, moment);
+    attitude_to_terrain(pose, out);
+    if (ydot != nullptr) rigid_body_derivative(pose, force, moment, ydot);
     return true;
   }
 
@@ -270,6 +160,160 @@ class Model {
   mutable std::string callback_error;
 
  private:
+  /// The chassis state y unpacked: position, Euler angles, body-frame velocities.
+  struct Pose {
+    explicit Pose(const double* y)
+        : p(y[0], y[1], y[2]),
+          roll(y[3]),
+          pitch(y[4]),
+          yaw(y[5]),
+          v(y[6], y[7], y[8]),
+          w(y[9], y[10], y[11]),
+          cos_pitch(std::cos(pitch)),
+          rot(euler_rotation(roll, pitch, yaw)),
+          v_world(rot * v),
+          w_world(rot * w) {}
+    Vec3 p;
+    double roll, pitch, yaw;
+    Vec3 v, w;
+    double cos_pitch;
+    Mat3 rot;
+    Vec3 v_world, w_world;
+  };
+
+  /// Each wheel's ground normal, lever arm to its contact, tyre axes and contact velocity.
+  struct WheelFrames {
+    std::array<Vec3, 4> normal, arm, tx, ty;
+    std::array<Vec2, 4> contact_velocity;
+  };
+
+  /// The suspension: each wheel's compression against the surface under it, its load
+  /// (spring and damper, none off the ground), its tyre frame; the energy and the domain margin.
+  void wheel_contacts(const Pose& pose, Evaluation& out, WheelFrames& f) const {
+    const Vec3& p = pose.p;
+    const Vec3 &v = pose.v, &w = pose.w;
+    const double m = body_.mass, g = vehicle_.gravity;
+    const double k = body_.suspension_stiffness, c = body_.suspension_damping;
+    const double r = body_.wheel_radius;
+    out.domain_margin = std::numeric_limits<double>::infinity();
+    out.total_load = 0.0;
+    out.energy = 0.5 * m * v.squaredNorm() +
+                 0.5 * (body_.inertia_roll * w.x() * w.x() + body_.inertia_pitch * w.y() * w.y() +
+                        body_.inertia_yaw * w.z() * w.z()) +
+                 m * g * p.z();
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Vec3 rc = pose.rot * corners_[i];
+      const Vec3 centre = p + rc;
+      const Vec2 xy(centre.x(), centre.y());
+      out.domain_margin =
+          std::min({out.domain_margin, xy.x() - surface_.x_min(), surface_.x_max() - xy.x(),
+                    xy.y() - surface_.y_min(), surface_.y_max() - xy.y()});
+      const Vec2 q(std::clamp(xy.x(), surface_.x_min(), surface_.x_max()),
+                   std::clamp(xy.y(), surface_.y_min(), surface_.y_max()));
+      const SurfacePoint sp = surface_.evaluate(q);
+      const Vec3 n = Vec3(-sp.gradient.x(), -sp.gradient.y(), 1.0).normalized();
+      // Height above the tangent plane at q (the plane's extension off the domain).
+      const double dz = centre.z() - (sp.z + sp.gradient.dot(xy - q));
+      const double d = dz * n.z();
+      const double e = r - d;
+      const Vec3 v_centre = pose.v_world + pose.w_world.cross(rc);
+      const double e_dot = -n.dot(v_centre);
+      WheelContact& wc = out.wheels[i];
+      wc = WheelContact{};
+      wc.compression = e;
+      wc.normal_load = e > 0.0 ? std::max(0.0, k * e + c * e_dot) : 0.0;
+      out.contact_measure[i] = e;
+      if (e > 0.0) out.energy += 0.5 * k * e * e;
+      out.total_load += wc.normal_load;
+      f.normal[i] = n;
+      f.arm[i] = rc - d * n;
+      wc.contact_point = p + f.arm[i];
+      wc.normal = n;
+      // Tyre frame: the wheel's heading on the tangent plane.
+      const double steer = i < 2 ? controls_.steering : 0.0;
+      const Vec3 heading = pose.rot * Vec3(std::cos(steer), std::sin(steer), 0.0);
+      Vec3 t = heading - heading.dot(n) * n;
+      const double t_norm = t.norm();
+      t = t_norm > 1e-9 ? Vec3(t / t_norm) : Vec3(n.unitOrthogonal());
+      f.tx[i] = t;
+      f.ty[i] = n.cross(t);
+      const Vec3 v_contact = pose.v_world + pose.w_world.cross(f.arm[i]);
+      f.contact_velocity[i] = Vec2(v_contact.dot(f.tx[i]), v_contact.dot(f.ty[i]));
+    }
+  }
+
+  /// The tyres: each loaded wheel's share of the drive force and its lateral force within
+  /// the friction left (combined slip), added with its load to `force` and `moment` (about
+  /// the c.g.); the friction utilisations and the lateral load ratio.
+  void tyre_forces(const WheelFrames& f, Evaluation& out, Vec3& force, Vec3& moment) const {
+    const double mu = vehicle_.friction, ve = options_.tyre_min_speed;
+    Vec3 tyre_force = Vec3::Zero();
+    out.wheel_friction_utilisation = 0.0;
+    double left = 0.0, right = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      WheelContact& wc = out.wheels[i];
+      const double load = wc.normal_load;
+      (i % 2 == 0 ? left : right) += load;
+      const double vx = f.contact_velocity[i].x(), vy = f.contact_velocity[i].y();
+      const double vreg = std::sqrt(vx * vx + ve * ve);
+      wc.slip_angle = std::atan2(vy, vreg);
+      if (load <= 0.0) continue;
+      const double limit = mu * load;
+      double fx = controls_.drive_force * load / out.total_load;
+      if (controls_.drive_force < 0.0) fx *= vx / vreg;
+      fx = std::clamp(fx, -limit, limit);
+      const double f_max = std::sqrt(std::max(0.0, limit * limit - fx * fx));
+      const double ca = body_.cornering_stiffness * load;
+      const double fy = options_.tyre == TyreModel::kBrush
+                            ? brush_lateral_force(ca, vy / vreg, f_max)
+                            : dugoff_lateral_force(ca, vy / vreg, f_max);
+      wc.longitudinal_force = fx;
+      wc.lateral_force = fy;
+      tyre_force += fx * f.tx[i] + fy * f.ty[i];
+      out.wheel_friction_utilisation =
+          std::max(out.wheel_friction_utilisation, std::hypot(fx, fy) / limit);
+      const Vec3 wheel_force = load * f.normal[i] + fx * f.tx[i] + fy * f.ty[i];
+      force += wheel_force;
+      moment += f.arm[i].cross(wheel_force);
+    }
+    out.lateral_load_ratio = out.total_load > 0.0 ? (right - left) / out.total_load : 0.0;
+    out.friction_utilisation =
+        out.total_load > 0.0 ? tyre_force.norm() / (mu * out.total_load) : 0.0;
+  }
+
+  /// Roll and pitch of the body against the terrain normal under the c.g.
+  void attitude_to_terrain(const Pose& pose, Evaluation& out) const {
+    const Vec2 cg(std::clamp(pose.p.x(), surface_.x_min(), surface_.x_max()),
+                  std::clamp(pose.p.y(), surface_.y_min(), surface_.y_max()));
+    const SurfacePoint under = surface_.evaluate(cg);
+    const Vec3 n_cg = Vec3(-under.gradient.x(), -under.gradient.y(), 1.0).normalized();
+    out.roll_sin = pose.rot.col(1).dot(n_cg);
+    out.pitch_sin = pose.rot.col(0).dot(n_cg);
+  }
+
+  /// Newton–Euler in the body frame and the Euler-angle kinematics: ẏ.
+  void rigid_body_derivative(const Pose& pose, const Vec3& force, const Vec3& moment,
+                             double* ydot) const {
+    const Vec3 &v = pose.v, &w = pose.w;
+    const Vec3 f_body = pose.rot.transpose() * force;
+    const Vec3 m_body = pose.rot.transpose() * moment;
+    const Vec3 inertia(body_.inertia_roll, body_.inertia_pitch, body_.inertia_yaw);
+    const Vec3 vdot = f_body / body_.mass - w.cross(v);
+    const Vec3 iw = inertia.cwiseProduct(w);
+    const Vec3 wdot = (m_body - w.cross(iw)).cwiseQuotient(inertia);
+    const double sf = std::sin(pose.roll), cf = std::cos(pose.roll);
+    ydot[0] = pose.v_world.x();
+    ydot[1] = pose.v_world.y();
+    ydot[2] = pose.v_world.z();
+    ydot[3] = w.x() + (w.y() * sf + w.z() * cf) * std::tan(pose.pitch);
+    ydot[4] = w.y() * cf - w.z() * sf;
+    ydot[5] = (w.y() * sf + w.z() * cf) / pose.cos_pitch;
+    for (int j = 0; j < 3; ++j) {
+      ydot[6 + j] = vdot[j];
+      ydot[9 + j] = wdot[j];
+    }
+  }
+
   const BPatch& surface_;
   const Vehicle& vehicle_;
   const VehicleBody& body_;

@@ -132,127 +132,159 @@ std::vector<CanonicalManoeuvre> all_canonical_manoeuvres() {
           CanonicalManoeuvre::kSlalom};
 }
 
+namespace {
+
+/// A flat circle of radius 2 m.
+ManoeuvreCase flat_circle_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
+  const double g = vehicle.gravity, mu = vehicle.friction;
+  PlaneOptions plane;
+  plane.shape = grid(24.0, 24.0);
+  double from = 0.0, to = 0.0;
+  Curve2 path = circle_path(from, to);
+  ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)), std::move(path));
+  c.key_from = from;
+  c.key_to = to;
+  c.analytic_limit = std::sqrt(mu * g * kCircleRadius);
+  c.description = "flat ground, a circle of radius 2 m: v = sqrt(mu g R)";
+  return c;
+}
+
+/// A banked circle round the apex of a cone.
+ManoeuvreCase banked_circle_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
+  const double g = vehicle.gravity, mu = vehicle.friction;
+  // A cone z = tan θ ρ round (12, 12): every horizontal circle is banked at θ, and the
+  // lead-in and run-out climb no more steeply than θ (a bowl's walls steepen beyond
+  // what the drive limit climbs from rest).
+  ElevationGrid cone(grid(24.0, 24.0).ncols, grid(24.0, 24.0).nrows, kCellSize, 0.0, 0.0);
+  for (std::size_t j = 0; j < cone.nrows(); ++j)
+    for (std::size_t i = 0; i < cone.ncols(); ++i)
+      cone.set(i, j, kBankSlope * (cone.node_position(i, j) - Vec2(12.0, 12.0)).norm());
+  double from = 0.0, to = 0.0;
+  Curve2 path = circle_path(from, to);
+  ManoeuvreCase c(manoeuvre, BPatch::interpolate(cone), std::move(path));
+  c.key_from = from;
+  c.key_to = to;
+  const double theta = std::atan(kBankSlope);
+  const double denominator = std::cos(theta) - mu * std::sin(theta);
+  if (!(denominator > 0.0))
+    throw InputError("make_canonical_manoeuvre(banked-circle): mu tan(theta) >= 1, no limit");
+  c.analytic_limit =
+      std::sqrt(g * kCircleRadius * (std::sin(theta) + mu * std::cos(theta)) / denominator);
+  c.description =
+      "a horizontal circle of radius 2 m round the apex of the cone z = 0.2 rho (bank "
+      "tan theta = 0.2): v^2 = g R (sin theta + mu cos theta) / (cos theta - mu sin theta)";
+  return c;
+}
+
+/// Straight over the top of a Gaussian hill.
+ManoeuvreCase crest_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
+  const double g = vehicle.gravity;
+  GaussianHillsOptions hills;
+  hills.shape = grid(24.0, 12.0);
+  hills.hills = {GaussianHill{Vec2(12.0, 6.0), kHillHeight, kHillWidth}};
+  ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_gaussian_hills(hills)),
+                  straight_path(2.0, 22.0, 6.0));
+  // A rigid body over the top stands on its axles at x = ±l, where the section has
+  // z'' = (H / σ²)(l² / σ² − 1) e^(−l²/2σ²) and slope z' = −(H l / σ²) e^(−l²/2σ²): its
+  // chassis curvature is z'' / sqrt(1 + z'²) (wheel_contact.hpp; l = 0: the point mass).
+  const double l = vehicle.model == VehicleModel::kRigidBody ? vehicle.half_wheelbase : 0.0;
+  const double w2 = kHillWidth * kHillWidth, decay = std::exp(-l * l / (2.0 * w2));
+  const double curvature = kHillHeight / w2 * (l * l / w2 - 1.0) * decay;
+  const double slope = kHillHeight * l / w2 * decay;
+  c.analytic_limit = std::sqrt(g * std::sqrt(1.0 + slope * slope) / -curvature);
+  c.key_from = 9.9;  // the hill's top, x = 12
+  c.key_to = 10.1;
+  c.description =
+      "straight over the top of a Gaussian hill 0.4 m high, sigma 1 m (crest radius "
+      "sigma^2 / H = 2.5 m): v = sqrt(g sigma^2 / H) for a point mass; a rigid body's "
+      "axles stand at x = +-l: v^2 = g sqrt(1 + z'(l)^2) / -z''(l)";
+  return c;
+}
+
+/// Straight along the contour of a side slope at tan θ = 0.9 μ.
+ManoeuvreCase side_slope_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
+  const double g = vehicle.gravity, mu = vehicle.friction;
+  if (!(mu > 0.0)) throw InputError("make_canonical_manoeuvre(side-slope): needs mu > 0");
+  PlaneOptions plane;
+  plane.shape = grid(20.0, 12.0);
+  plane.slope = std::atan(0.9 * mu);
+  plane.aspect = 0.5 * kPi;  // rises to the north: the path along x is on the contour
+  ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)),
+                  straight_path(3.0, 17.0, 6.0));
+  const double theta = plane.slope;
+  const double bound = g * std::cos(theta) * std::sqrt(mu * mu - std::tan(theta) * std::tan(theta));
+  c.limit_kind = AnalyticLimitKind::kAcceleration;
+  c.analytic_limit = std::min(bound, vehicle.max_accel);
+  c.analytic_brake_limit = std::min(bound, vehicle.max_decel);
+  c.key_from = 0.0;
+  c.key_to = 14.0;
+  c.description =
+      "straight along the contour of a plane with tan theta = 0.9 mu: the tangential "
+      "acceleration is bounded by g cos theta sqrt(mu^2 - tan^2 theta) both ways";
+  return c;
+}
+
+/// Straight on flat ground, rest to rest.
+ManoeuvreCase straight_drive_brake_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
+  const double g = vehicle.gravity, mu = vehicle.friction;
+  require_finite_drive(vehicle, manoeuvre);
+  PlaneOptions plane;
+  plane.shape = grid(20.0, 8.0);
+  ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)),
+                  straight_path(3.0, 17.0, 4.0));
+  c.limit_kind = AnalyticLimitKind::kAcceleration;
+  c.analytic_limit = std::min(vehicle.max_accel, mu * g);
+  c.analytic_brake_limit = std::min(vehicle.max_decel, mu * g);
+  c.key_from = 0.0;
+  c.key_to = 14.0;
+  c.description =
+      "straight on flat ground, rest to rest: min(max_accel, mu g) and "
+      "min(max_decel, mu g)";
+  return c;
+}
+
+/// A slalom at 0.9 of the steering limit.
+ManoeuvreCase slalom_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
+  const double g = vehicle.gravity, mu = vehicle.friction;
+  const double kappa_max = vehicle.max_curvature();
+  if (!(kappa_max >= 0.05))
+    throw InputError(
+        "make_canonical_manoeuvre(slalom): the vehicle needs a steering limit (max_steering) "
+        "of at least 0.05 1/m; it has " +
+        std::to_string(kappa_max) + " 1/m");
+  const double apex_curvature = kSlalomCurvatureShare * kappa_max;
+  const double k = std::sqrt(apex_curvature / kSlalomHalfAmplitude);
+  double from = 0.0, to = 0.0, width = 0.0;
+  Curve2 path = slalom_path(k, from, to, width);
+  PlaneOptions plane;
+  plane.shape = grid(width, 8.0);
+  ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)), std::move(path));
+  c.key_from = from;
+  c.key_to = to;
+  c.analytic_limit = std::sqrt(mu * g / apex_curvature);
+  c.description =
+      "flat ground, a slalom y = B (1 - cos k u) with B = 0.4 m and apex curvature B k^2 = 0.9 "
+      "of the steering limit: v = sqrt(mu g / (B k^2)) at each apex";
+  return c;
+}
+
+}  // namespace
+
 ManoeuvreCase make_canonical_manoeuvre(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
   vehicle.validate();
-  const double g = vehicle.gravity, mu = vehicle.friction;
   switch (manoeuvre) {
-    case CanonicalManoeuvre::kFlatCircle: {
-      PlaneOptions plane;
-      plane.shape = grid(24.0, 24.0);
-      double from = 0.0, to = 0.0;
-      Curve2 path = circle_path(from, to);
-      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)), std::move(path));
-      c.key_from = from;
-      c.key_to = to;
-      c.analytic_limit = std::sqrt(mu * g * kCircleRadius);
-      c.description = "flat ground, a circle of radius 2 m: v = sqrt(mu g R)";
-      return c;
-    }
-    case CanonicalManoeuvre::kBankedCircle: {
-      // A cone z = tan θ ρ round (12, 12): every horizontal circle is banked at θ, and the
-      // lead-in and run-out climb no more steeply than θ (a bowl's walls steepen beyond
-      // what the drive limit climbs from rest).
-      ElevationGrid cone(grid(24.0, 24.0).ncols, grid(24.0, 24.0).nrows, kCellSize, 0.0, 0.0);
-      for (std::size_t j = 0; j < cone.nrows(); ++j)
-        for (std::size_t i = 0; i < cone.ncols(); ++i)
-          cone.set(i, j, kBankSlope * (cone.node_position(i, j) - Vec2(12.0, 12.0)).norm());
-      double from = 0.0, to = 0.0;
-      Curve2 path = circle_path(from, to);
-      ManoeuvreCase c(manoeuvre, BPatch::interpolate(cone), std::move(path));
-      c.key_from = from;
-      c.key_to = to;
-      const double theta = std::atan(kBankSlope);
-      const double denominator = std::cos(theta) - mu * std::sin(theta);
-      if (!(denominator > 0.0))
-        throw InputError("make_canonical_manoeuvre(banked-circle): mu tan(theta) >= 1, no limit");
-      c.analytic_limit =
-          std::sqrt(g * kCircleRadius * (std::sin(theta) + mu * std::cos(theta)) / denominator);
-      c.description =
-          "a horizontal circle of radius 2 m round the apex of the cone z = 0.2 rho (bank "
-          "tan theta = 0.2): v^2 = g R (sin theta + mu cos theta) / (cos theta - mu sin theta)";
-      return c;
-    }
-    case CanonicalManoeuvre::kCrest: {
-      GaussianHillsOptions hills;
-      hills.shape = grid(24.0, 12.0);
-      hills.hills = {GaussianHill{Vec2(12.0, 6.0), kHillHeight, kHillWidth}};
-      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_gaussian_hills(hills)),
-                      straight_path(2.0, 22.0, 6.0));
-      // A rigid body over the top stands on its axles at x = ±l, where the section has
-      // z'' = (H / σ²)(l² / σ² − 1) e^(−l²/2σ²) and slope z' = −(H l / σ²) e^(−l²/2σ²): its
-      // chassis curvature is z'' / sqrt(1 + z'²) (wheel_contact.hpp; l = 0: the point mass).
-      const double l = vehicle.model == VehicleModel::kRigidBody ? vehicle.half_wheelbase : 0.0;
-      const double w2 = kHillWidth * kHillWidth, decay = std::exp(-l * l / (2.0 * w2));
-      const double curvature = kHillHeight / w2 * (l * l / w2 - 1.0) * decay;
-      const double slope = kHillHeight * l / w2 * decay;
-      c.analytic_limit = std::sqrt(g * std::sqrt(1.0 + slope * slope) / -curvature);
-      c.key_from = 9.9;  // the hill's top, x = 12
-      c.key_to = 10.1;
-      c.description =
-          "straight over the top of a Gaussian hill 0.4 m high, sigma 1 m (crest radius "
-          "sigma^2 / H = 2.5 m): v = sqrt(g sigma^2 / H) for a point mass; a rigid body's "
-          "axles stand at x = +-l: v^2 = g sqrt(1 + z'(l)^2) / -z''(l)";
-      return c;
-    }
-    case CanonicalManoeuvre::kSideSlope: {
-      if (!(mu > 0.0)) throw InputError("make_canonical_manoeuvre(side-slope): needs mu > 0");
-      PlaneOptions plane;
-      plane.shape = grid(20.0, 12.0);
-      plane.slope = std::atan(0.9 * mu);
-      plane.aspect = 0.5 * kPi;  // rises to the north: the path along x is on the contour
-      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)),
-                      straight_path(3.0, 17.0, 6.0));
-      const double theta = plane.slope;
-      const double bound =
-          g * std::cos(theta) * std::sqrt(mu * mu - std::tan(theta) * std::tan(theta));
-      c.limit_kind = AnalyticLimitKind::kAcceleration;
-      c.analytic_limit = std::min(bound, vehicle.max_accel);
-      c.analytic_brake_limit = std::min(bound, vehicle.max_decel);
-      c.key_from = 0.0;
-      c.key_to = 14.0;
-      c.description =
-          "straight along the contour of a plane with tan theta = 0.9 mu: the tangential "
-          "acceleration is bounded by g cos theta sqrt(mu^2 - tan^2 theta) both ways";
-      return c;
-    }
-    case CanonicalManoeuvre::kStraightDriveBrake: {
-      require_finite_drive(vehicle, manoeuvre);
-      PlaneOptions plane;
-      plane.shape = grid(20.0, 8.0);
-      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)),
-                      straight_path(3.0, 17.0, 4.0));
-      c.limit_kind = AnalyticLimitKind::kAcceleration;
-      c.analytic_limit = std::min(vehicle.max_accel, mu * g);
-      c.analytic_brake_limit = std::min(vehicle.max_decel, mu * g);
-      c.key_from = 0.0;
-      c.key_to = 14.0;
-      c.description =
-          "straight on flat ground, rest to rest: min(max_accel, mu g) and "
-          "min(max_decel, mu g)";
-      return c;
-    }
-    case CanonicalManoeuvre::kSlalom: {
-      const double kappa_max = vehicle.max_curvature();
-      if (!(kappa_max >= 0.05))
-        throw InputError(
-            "make_canonical_manoeuvre(slalom): the vehicle needs a steering limit (max_steering) "
-            "of at least 0.05 1/m; it has " +
-            std::to_string(kappa_max) + " 1/m");
-      const double apex_curvature = kSlalomCurvatureShare * kappa_max;
-      const double k = std::sqrt(apex_curvature / kSlalomHalfAmplitude);
-      double from = 0.0, to = 0.0, width = 0.0;
-      Curve2 path = slalom_path(k, from, to, width);
-      PlaneOptions plane;
-      plane.shape = grid(width, 8.0);
-      ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)), std::move(path));
-      c.key_from = from;
-      c.key_to = to;
-      c.analytic_limit = std::sqrt(mu * g / apex_curvature);
-      c.description =
-          "flat ground, a slalom y = B (1 - cos k u) with B = 0.4 m and apex curvature B k^2 = 0.9 "
-          "of the steering limit: v = sqrt(mu g / (B k^2)) at each apex";
-      return c;
-    }
+    case CanonicalManoeuvre::kFlatCircle:
+      return flat_circle_case(manoeuvre, vehicle);
+    case CanonicalManoeuvre::kBankedCircle:
+      return banked_circle_case(manoeuvre, vehicle);
+    case CanonicalManoeuvre::kCrest:
+      return crest_case(manoeuvre, vehicle);
+    case CanonicalManoeuvre::kSideSlope:
+      return side_slope_case(manoeuvre, vehicle);
+    case CanonicalManoeuvre::kStraightDriveBrake:
+      return straight_drive_brake_case(manoeuvre, vehicle);
+    case CanonicalManoeuvre::kSlalom:
+      return slalom_case(manoeuvre, vehicle);
   }
   throw InputError("make_canonical_manoeuvre: unknown manoeuvre");
 }

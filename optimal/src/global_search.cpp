@@ -1038,20 +1038,15 @@ void GlobalSearchWorkspace::clear() {
 
 namespace {
 
-/// global_search() with the whole-map lattices from `workspace` when it is
-/// not null (bound to this terrain, vehicle and options by the caller).
-GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
-                          const Vec2& goal, const GlobalSearchOptions& options,
-                          GlobalSearchWorkspace::Impl* workspace) {
-  const auto t0 = std::chrono::steady_clock::now();
-  options.validate();
-  vehicle.validate();
+/// InputError unless `vehicle` has a finite top speed and `start` and `goal` are on data.
+void check_search_inputs(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
+                         const Vec2& goal) {
   if (!std::isfinite(vehicle.max_speed)) {
     throw InputError(
         "the global search needs a vehicle with a finite max_speed: its cost is the time "
         "at the speed limit, and an unlimited straight road would cost nothing");
   }
-  const auto check_point = [&terrain](const char* which, const Vec2& p) {
+  for (const auto& [which, p] : {std::pair{"start", start}, std::pair{"goal", goal}}) {
     std::ostringstream msg;
     msg.precision(12);
     if (!p.allFinite() || !terrain.contains(p)) {
@@ -1064,32 +1059,19 @@ GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const V
       msg << which << " (" << p.x() << ", " << p.y() << ") is on a NODATA cell";
       throw InputError(msg.str());
     }
-  };
-  check_point("start", start);
-  check_point("goal", goal);
-
-  const double spacing =
-      options.lattice_spacing > 0.0 ? options.lattice_spacing : terrain.cellsize();
-  std::optional<AdmissibleSet> own_set;
-  const AdmissibleSet& set = workspace != nullptr ? *workspace->set : own_set.emplace(vehicle);
-  const auto whole_map = [workspace](double at) {
-    return workspace != nullptr ? &workspace->lattice(at) : nullptr;
-  };
-  if (options.stop && options.stop()) {
-    GlobalSearchResult result;
-    result.status = GlobalSearchStatus::kStopped;
-    result.message = "stopped by GlobalSearchOptions::stop before the search started";
-    result.resolution = options.resolution;
-    return result;
   }
-  if (options.resolution == GlobalSearchResolution::kFull) {
-    GlobalSearchResult result = search_lattice(terrain, vehicle, set, start, goal, options, spacing,
-                                               nullptr, whole_map(spacing));
-    result.corridor_width = 0.0;
-    return result;
-  }
+}
 
-  // Coarse to fine.
+/// The whole-map lattice at a spacing from the workspace, or null without one.
+using WholeMap = std::function<Lattice*(double spacing)>;
+
+/// GlobalSearchResolution::kMulti: the coarse search, then fine corridors round its
+/// candidates, doubled until the best route keeps off the corridor's edge.
+GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& vehicle,
+                                         const AdmissibleSet& set, const Vec2& start,
+                                         const Vec2& goal, const GlobalSearchOptions& options,
+                                         double spacing, const WholeMap& whole_map,
+                                         std::chrono::steady_clock::time_point t0) {
   const double coarse_spacing = spacing * options.coarse_factor;
   GlobalSearchOptions coarse_options = options;
   coarse_options.lattice_spacing = coarse_spacing;
@@ -1174,6 +1156,39 @@ GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const V
   result.cost_from_start.clear();
   result.cost_to_goal.clear();
   result.search_seconds = seconds_since(t0);
+  return result;
+}
+
+/// global_search() with the whole-map lattices from `workspace` when it is
+/// not null (bound to this terrain, vehicle and options by the caller).
+GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const Vec2& start,
+                          const Vec2& goal, const GlobalSearchOptions& options,
+                          GlobalSearchWorkspace::Impl* workspace) {
+  const auto t0 = std::chrono::steady_clock::now();
+  options.validate();
+  vehicle.validate();
+  check_search_inputs(terrain, vehicle, start, goal);
+  const double spacing =
+      options.lattice_spacing > 0.0 ? options.lattice_spacing : terrain.cellsize();
+  std::optional<AdmissibleSet> own_set;
+  const AdmissibleSet& set = workspace != nullptr ? *workspace->set : own_set.emplace(vehicle);
+  const WholeMap whole_map = [workspace](double at) {
+    return workspace != nullptr ? &workspace->lattice(at) : nullptr;
+  };
+  if (options.stop && options.stop()) {
+    GlobalSearchResult result;
+    result.status = GlobalSearchStatus::kStopped;
+    result.message = "stopped by GlobalSearchOptions::stop before the search started";
+    result.resolution = options.resolution;
+    return result;
+  }
+  if (options.resolution == GlobalSearchResolution::kMulti) {
+    return search_coarse_to_fine(terrain, vehicle, set, start, goal, options, spacing, whole_map,
+                                 t0);
+  }
+  GlobalSearchResult result = search_lattice(terrain, vehicle, set, start, goal, options, spacing,
+                                             nullptr, whole_map(spacing));
+  result.corridor_width = 0.0;
   return result;
 }
 

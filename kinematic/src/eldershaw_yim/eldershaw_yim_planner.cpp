@@ -244,6 +244,369 @@ std::vector<FootStep> reusable_steps(const std::vector<CgCell>& old_cells, const
   return steps;
 }
 
+/// The roadmap of the tree-PRM: points (r.prm_points), their edges and the trees they form.
+struct Roadmap {
+  std::vector<std::vector<std::size_t>> trees;  ///< separate lists of points
+  std::vector<std::size_t> tree_of;             ///< tree_of[point] = its list
+  std::vector<std::vector<std::size_t>> adjacency;
+  std::unordered_set<std::size_t> taken;  ///< lattice indices of the points
+  double connect_time = 0.0;              ///< [s] in the local planner's calls
+  bool exhausted = false;                 ///< a call spent the work budget
+  bool joined() const { return tree_of.size() >= 2 && tree_of[0] == tree_of[1]; }
+};
+
+/// One call of plan_eldershaw_yim: the footmap, the CG space, the result being
+/// filled and the work spent (CG cells evaluated + A* expansions).
+class EldershawYimRun {
+ public:
+  EldershawYimRun(const RuledTerrain& terrain, const LeggedRobot& robot, const SE2Pose& start,
+                  const SE2Pose& goal, const EldershawYimPlannerOptions& options)
+      : robot_(robot),
+        start_(start),
+        goal_(goal),
+        options_(options),
+        t_footmap_(Clock::now()),
+        footmap_(terrain, robot),
+        footmap_seconds_(since(t_footmap_)),
+        t_search_(Clock::now()),
+        space_(footmap_, robot, options.theta_slices, options.block_side),
+        lattice_(space_.lattice()),
+        local_(options.local),
+        radius_(options.connect_radius > 0 ? options.connect_radius : 40.0 * robot.foot_print),
+        s_(lattice_.cell_of(start)),
+        g_(lattice_.cell_of(goal)) {
+    r_.footmap_seconds = footmap_seconds_;
+    r_.cg_cells = lattice_.size();
+    if (local_.heading_weight <= 0) local_.heading_weight = std::max(robot.outer_radius(), 1e-3);
+  }
+
+  /// The CG search, then the feet, replanning the CG path where they fail (§3.3).
+  EldershawYimResult run() {
+    if (!ends_valid()) return std::move(r_);
+    std::vector<CgCell> failed_cells;  // the CG path whose foot plan failed last
+    for (;;) {
+      if (!cg_search()) return std::move(r_);
+      found_cg_path();
+      if (!options_.plan_feet) return std::move(r_);
+      plan_feet(failed_cells);
+      const bool stuck = r_.foot_plan.status == FootPlanStatus::kFailed ||
+                         r_.foot_plan.status == FootPlanStatus::kBudgetExceeded;
+      const std::size_t next = r_.foot_plan.furthest_index + 1;
+      if (!stuck || r_.feedback_events >= options_.feedback_rounds || next >= r_.cells.size()) {
+        r_.message += std::string("; foot plan ") + to_string(r_.foot_plan.status) + ": " +
+                      r_.foot_plan.message;
+        return std::move(r_);
+      }
+      // §3.3: the CG cell the feet could not reach is marked invalid and the CG path replanned.
+      failed_cells = r_.cells;
+      space_.mark_invalid(r_.cells[next]);
+      r_.feedback_cells.push_back(r_.cells[next]);
+      ++r_.feedback_events;
+    }
+  }
+
+ private:
+  void finish(EldershawYimStatus status, std::string message) {
+    r_.status = status;
+    r_.message = std::move(message);
+    r_.cells_materialised = space_.cells_materialised();
+    r_.blocks_materialised = space_.blocks_materialised();
+    r_.materialise_seconds = space_.seconds();
+    r_.search_seconds = since(t_search_);
+    if (status != EldershawYimStatus::kFound) r_.cells.clear();
+  }
+  bool over_budget() const { return space_.cells_materialised() + work_ >= options_.budget; }
+  std::string budget_message() const {
+    return "the work budget of " + std::to_string(options_.budget) +
+           " (CG cells evaluated + A* expansions) was spent";
+  }
+
+  /// False (r finished) when the start's or goal's cell is invalid or their blocks spent the
+  /// budget.
+  bool ends_valid() {
+    r_.start_state = space_.state(s_);
+    if (r_.start_state != CgState::kValid) {
+      finish(EldershawYimStatus::kStartInvalid,
+             std::string("the start's CG cell is invalid (") + to_string(r_.start_state) + ")");
+      return false;
+    }
+    r_.goal_state = space_.state(g_);
+    if (r_.goal_state != CgState::kValid) {
+      finish(EldershawYimStatus::kGoalInvalid,
+             std::string("the goal's CG cell is invalid (") + to_string(r_.goal_state) + ")");
+      return false;
+    }
+    if (over_budget()) {
+      finish(EldershawYimStatus::kBudgetExceeded,
+             "the work budget was spent materialising the start and goal blocks");
+      return false;
+    }
+    return true;
+  }
+
+  /// One CG search (the direct A* or the tree-PRM); false when it ended without a path (r
+  /// finished), true with r.cells set.
+  bool cg_search() {
+    r_.cells.clear();
+    r_.prm_points.clear();
+    r_.prm_edges.clear();
+    r_.prm_trees = 0;
+    if (s_ == g_) {
+      r_.cells = {s_, g_};
+      return true;
+    }
+    return options_.direct ? direct_search() : tree_prm_search();
+  }
+
+  bool direct_search() {
+    const auto t0 = Clock::now();
+    CgLocalPlannerOptions whole = local_;
+    whole.whole_lattice = true;
+    const CgLocalPath p = cg_local_plan(space_, s_, g_, whole, work_, options_.budget);
+    r_.local_planner_calls += 1;
+    r_.expansions += p.expansions;
+    r_.connect_seconds += since(t0);
+    if (p.budget_exceeded) {
+      finish(EldershawYimStatus::kBudgetExceeded, budget_message());
+      return false;
+    }
+    if (!p.found) {
+      finish(EldershawYimStatus::kNoPath,
+             "no 6-connected path of valid CG cells joins the start and the goal");
+      return false;
+    }
+    r_.local_planner_successes += 1;
+    r_.cells = p.cells;
+    return true;
+  }
+
+  /// The tree-PRM: start and goal trees, random valid cells joined to every tree they reach,
+  /// until the start's and the goal's trees meet; then the tree path's edges re-planned.
+  bool tree_prm_search() {
+    Roadmap map;
+    insert(map, s_);
+    insert(map, g_);
+    const auto t_sample = Clock::now();
+    double sample_connect = 0.0;
+    std::mt19937_64 rng(options_.seed);
+    const std::size_t max_draws = options_.sample_attempts * options_.prm_points;
+    std::size_t added = 0;
+    std::size_t draws = 0;
+    while (!map.joined() && !map.exhausted && added < options_.prm_points && draws < max_draws) {
+      if (over_budget()) {
+        map.exhausted = true;
+        break;
+      }
+      ++draws;
+      ++r_.samples_drawn;
+      const CgCell c = lattice_.cell(uniform_index(rng, lattice_.size()));
+      if (map.taken.count(lattice_.index(c)) || !space_.valid(c)) continue;
+      ++added;
+      const double before = map.connect_time;
+      insert(map, c);
+      sample_connect += map.connect_time - before;
+    }
+    r_.sample_seconds += since(t_sample) - sample_connect;
+    r_.connect_seconds += map.connect_time;
+    for (const auto& t : map.trees) r_.prm_trees += t.empty() ? 0 : 1;
+    if (!map.joined()) {
+      if (map.exhausted) {
+        finish(EldershawYimStatus::kBudgetExceeded, budget_message());
+      } else {
+        finish(EldershawYimStatus::kNoPath, "the start's and the goal's trees were not joined by " +
+                                                std::to_string(added) + " PRM points (" +
+                                                std::to_string(r_.samples_drawn) + " draws)");
+      }
+      return false;
+    }
+    return recreate(tree_route(map));
+  }
+
+  /// Adds cell c as a new tree and joins it to each existing tree it reaches (up to
+  /// connect_attempts nearest members per tree within the radius), merging the trees.
+  void insert(Roadmap& map, const CgCell& c) {
+    const std::size_t p = r_.prm_points.size();
+    r_.prm_points.push_back(c);
+    map.taken.insert(lattice_.index(c));
+    map.adjacency.emplace_back();
+    map.tree_of.push_back(map.trees.size());
+    map.trees.push_back({p});
+    const auto t0 = Clock::now();
+    const std::size_t existing = map.trees.size() - 1;
+    const std::vector<std::vector<std::size_t>> tried = nearest_members(map, c, existing);
+    const std::vector<std::vector<CgLocalPath>> results = connect_rounds(c, tried);
+    // Applied in the serial order: tree by tree, its members nearest first.
+    for (std::size_t t = 0; t < existing && !map.exhausted; ++t) {
+      for (std::size_t k = 0; k < results[t].size(); ++k) {
+        const CgLocalPath& path = results[t][k];
+        if (path.budget_exceeded) {
+          map.exhausted = true;
+          break;
+        }
+        if (!path.found) continue;
+        const std::size_t m = tried[t][k];
+        ++r_.local_planner_successes;
+        r_.prm_edges.emplace_back(p, m);
+        map.adjacency[p].push_back(m);
+        map.adjacency[m].push_back(p);
+        // Concatenate: the lower-numbered list absorbs the other.
+        std::size_t a = map.tree_of[p], b = t;
+        if (b < a) std::swap(a, b);
+        for (std::size_t q : map.trees[b]) map.tree_of[q] = a;
+        map.trees[a].insert(map.trees[a].end(), map.trees[b].begin(), map.trees[b].end());
+        map.trees[b].clear();
+        break;
+      }
+    }
+    map.connect_time += since(t0);
+  }
+
+  /// The members of each of the first `existing` trees to try joining c to, nearest first
+  /// (within the radius, at most connect_attempts).
+  std::vector<std::vector<std::size_t>> nearest_members(const Roadmap& map, const CgCell& c,
+                                                        std::size_t existing) const {
+    std::vector<std::vector<std::size_t>> tried(existing);
+    const SE2Pose cp = lattice_.centre(c);
+    for (std::size_t t = 0; t < existing; ++t) {
+      std::vector<std::pair<double, std::size_t>> near;
+      for (std::size_t m : map.trees[t]) {
+        const SE2Pose cm = lattice_.centre(r_.prm_points[m]);
+        const double d = std::hypot(cp.x - cm.x, cp.y - cm.y);
+        if (d <= radius_) near.emplace_back(d, m);
+      }
+      std::sort(near.begin(), near.end());
+      for (std::size_t k = 0; k < std::min(near.size(), options_.connect_attempts); ++k)
+        tried[t].push_back(near[k].second);
+    }
+    return tried;
+  }
+
+  /// Round k: the k-th member of every tree whose earlier ones failed, up to (and including)
+  /// the first tree where a call spent the budget, as one batch of local planner calls.
+  std::vector<std::vector<CgLocalPath>> connect_rounds(
+      const CgCell& c, const std::vector<std::vector<std::size_t>>& tried) {
+    const std::size_t existing = tried.size();
+    std::vector<std::vector<CgLocalPath>> results(existing);
+    std::size_t stop = existing;
+    for (std::size_t k = 0; k < options_.connect_attempts; ++k) {
+      std::vector<std::size_t> which;
+      std::vector<std::pair<CgCell, CgCell>> queries;
+      for (std::size_t t = 0; t < stop; ++t) {
+        if (tried[t].size() <= k || results[t].size() != k) continue;
+        if (k > 0 && (results[t].back().found || results[t].back().budget_exceeded)) continue;
+        which.push_back(t);
+        queries.emplace_back(c, r_.prm_points[tried[t][k]]);
+      }
+      if (queries.empty()) break;
+      std::vector<CgLocalPath> batch = local_plan_batch(
+          space_, queries, local_, work_, options_.budget, options_.workers, options_.ranks);
+      for (std::size_t i = 0; i < batch.size(); ++i) {
+        r_.local_planner_calls += 1;
+        r_.expansions += batch[i].expansions;
+        work_ += batch[i].expansions;
+        if (batch[i].budget_exceeded) stop = std::min(stop, which[i] + 1);
+        results[which[i]].push_back(std::move(batch[i]));
+      }
+    }
+    return results;
+  }
+
+  /// The roadmap's points from the start (0) to the goal (1), breadth first (a tree).
+  std::vector<std::size_t> tree_route(const Roadmap& map) const {
+    const std::size_t none = r_.prm_points.size();
+    std::vector<std::size_t> parent(none, none);
+    std::vector<std::size_t> queue{0};
+    parent[0] = 0;
+    for (std::size_t k = 0; k < queue.size(); ++k) {
+      for (std::size_t n : map.adjacency[queue[k]]) {
+        if (parent[n] != none) continue;
+        parent[n] = queue[k];
+        queue.push_back(n);
+      }
+    }
+    std::vector<std::size_t> route{1};
+    while (route.back() != 0) route.push_back(parent[route.back()]);
+    std::reverse(route.begin(), route.end());
+    return route;
+  }
+
+  /// r.cells along the route: each roadmap edge's local path planned again.
+  bool recreate(const std::vector<std::size_t>& route) {
+    const auto t_recreate = Clock::now();
+    std::vector<std::pair<CgCell, CgCell>> edges;
+    for (std::size_t k = 1; k < route.size(); ++k)
+      edges.emplace_back(r_.prm_points[route[k - 1]], r_.prm_points[route[k]]);
+    const std::vector<CgLocalPath> pieces = local_plan_batch(
+        space_, edges, local_, work_, options_.budget, options_.workers, options_.ranks);
+    r_.recreate_seconds += since(t_recreate);
+    r_.cells = {s_};
+    for (const CgLocalPath& piece : pieces) {
+      ++r_.recreate_calls;
+      r_.expansions += piece.expansions;
+      work_ += piece.expansions;
+    }
+    for (const CgLocalPath& piece : pieces) {
+      if (piece.budget_exceeded) {
+        finish(EldershawYimStatus::kBudgetExceeded, budget_message());
+        return false;
+      }
+      if (!piece.found)  // cannot happen: the same search succeeded the other way
+        throw SolverError("plan_eldershaw_yim: re-running a roadmap edge failed");
+      r_.cells.insert(r_.cells.end(), piece.cells.begin() + 1, piece.cells.end());
+    }
+    return true;
+  }
+
+  /// r finished as found: the CG path's poses, length and message.
+  void found_cg_path() {
+    r_.path = cg_path_poses(lattice_, r_.cells, start_, goal_);
+    r_.length_m = 0.0;
+    for (std::size_t k = 1; k < r_.path.size(); ++k)
+      r_.length_m += std::hypot(r_.path[k].x - r_.path[k - 1].x, r_.path[k].y - r_.path[k - 1].y);
+    std::ostringstream msg;
+    msg << (options_.direct ? "direct A*" : "tree-PRM") << ": " << r_.cells.size() << " CG cells";
+    if (!options_.direct) msg << " through " << r_.prm_points.size() << " PRM points";
+    if (r_.feedback_events > 0) msg << " after " << r_.feedback_events << " feedback events";
+    finish(EldershawYimStatus::kFound, msg.str());
+  }
+
+  /// The foot plan along r.cells. After feedback (§3.3) the feet keep the steps they took on
+  /// the cells the new CG path shares with the old one (`failed_cells`), and walk on from
+  /// there; only if that fails is the whole path planned afresh.
+  void plan_feet(const std::vector<CgCell>& failed_cells) {
+    const std::vector<FootStep> prefix = reusable_steps(failed_cells, r_.foot_plan, r_.cells);
+    r_.foot_plan = plan_footsteps(footmap_, robot_, lattice_, r_.cells, options_.feet, prefix);
+    r_.foot_planner_seconds += r_.foot_plan.seconds;
+    r_.foot_planner_nodes += r_.foot_plan.nodes;
+    r_.foot_steps_reused = prefix.empty() ? 0 : prefix.size();
+    if (!prefix.empty() && !r_.foot_plan.found()) {
+      FootPlan fresh = plan_footsteps(footmap_, robot_, lattice_, r_.cells, options_.feet);
+      r_.foot_planner_seconds += fresh.seconds;
+      r_.foot_planner_nodes += fresh.nodes;
+      if (fresh.found() || fresh.furthest_index > r_.foot_plan.furthest_index) {
+        r_.foot_plan = std::move(fresh);
+        r_.foot_steps_reused = 0;
+      }
+    }
+    r_.feet_planned = true;
+  }
+
+  const LeggedRobot& robot_;
+  SE2Pose start_, goal_;
+  const EldershawYimPlannerOptions& options_;
+  Clock::time_point t_footmap_;
+  Footmap footmap_;  // before space_, which refers to it
+  double footmap_seconds_;
+  Clock::time_point t_search_;
+  CgSpace space_;
+  const CgLattice& lattice_;
+  CgLocalPlannerOptions local_;
+  double radius_;
+  CgCell s_, g_;
+  std::size_t work_ = 0;
+  EldershawYimResult r_;
+};
+
 }  // namespace
 
 EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedRobot& robot,
@@ -257,279 +620,7 @@ EldershawYimResult plan_eldershaw_yim(const RuledTerrain& terrain, const LeggedR
     if (!terrain.contains(q->position()))
       throw InputError("plan_eldershaw_yim: a start or goal position is off the map");
   }
-  EldershawYimResult r;
-  const auto t_footmap = Clock::now();
-  const Footmap footmap(terrain, robot);
-  r.footmap_seconds = since(t_footmap);
-  const auto t_search = Clock::now();
-  CgSpace space(footmap, robot, options.theta_slices, options.block_side);
-  const CgLattice& L = space.lattice();
-  r.cg_cells = L.size();
-  CgLocalPlannerOptions local = options.local;
-  if (local.heading_weight <= 0) local.heading_weight = std::max(robot.outer_radius(), 1e-3);
-  const double radius =
-      options.connect_radius > 0 ? options.connect_radius : 40.0 * robot.foot_print;
-  std::size_t work = 0;
-  auto finish = [&](EldershawYimStatus status, std::string message) {
-    r.status = status;
-    r.message = std::move(message);
-    r.cells_materialised = space.cells_materialised();
-    r.blocks_materialised = space.blocks_materialised();
-    r.materialise_seconds = space.seconds();
-    r.search_seconds = since(t_search);
-    if (status != EldershawYimStatus::kFound) r.cells.clear();
-    return r;
-  };
-  auto over_budget = [&] { return space.cells_materialised() + work >= options.budget; };
-
-  const CgCell s = L.cell_of(start), g = L.cell_of(goal);
-  r.start_state = space.state(s);
-  if (r.start_state != CgState::kValid)
-    return finish(EldershawYimStatus::kStartInvalid,
-                  std::string("the start's CG cell is invalid (") + to_string(r.start_state) + ")");
-  r.goal_state = space.state(g);
-  if (r.goal_state != CgState::kValid)
-    return finish(EldershawYimStatus::kGoalInvalid,
-                  std::string("the goal's CG cell is invalid (") + to_string(r.goal_state) + ")");
-  if (over_budget())
-    return finish(EldershawYimStatus::kBudgetExceeded,
-                  "the work budget was spent materialising the start and goal blocks");
-  auto budget_message = [&] {
-    return "the work budget of " + std::to_string(options.budget) +
-           " (CG cells evaluated + A* expansions) was spent";
-  };
-
-  // One CG search (the direct A* or the tree-PRM); false when it ended without a path (r
-  // finished), true with r.cells set.
-  auto cg_search = [&]() -> bool {
-    r.cells.clear();
-    r.prm_points.clear();
-    r.prm_edges.clear();
-    r.prm_trees = 0;
-    if (s == g) {
-      r.cells = {s, g};
-    } else if (options.direct) {
-      const auto t0 = Clock::now();
-      CgLocalPlannerOptions whole = local;
-      whole.whole_lattice = true;
-      const CgLocalPath p = cg_local_plan(space, s, g, whole, work, options.budget);
-      r.local_planner_calls += 1;
-      r.expansions += p.expansions;
-      r.connect_seconds += since(t0);
-      if (p.budget_exceeded) {
-        finish(EldershawYimStatus::kBudgetExceeded, budget_message());
-        return false;
-      }
-      if (!p.found) {
-        finish(EldershawYimStatus::kNoPath,
-               "no 6-connected path of valid CG cells joins the start and the goal");
-        return false;
-      }
-      r.local_planner_successes += 1;
-      r.cells = p.cells;
-    } else {
-      // Trees as separate lists; tree_of[point] = its list.
-      std::vector<std::vector<std::size_t>> trees;
-      std::vector<std::size_t> tree_of;
-      std::vector<std::vector<std::size_t>> adjacency;
-      std::unordered_set<std::size_t> taken;
-      double connect_time = 0.0;
-      bool exhausted = false;
-      auto insert = [&](const CgCell& c) {
-        const std::size_t p = r.prm_points.size();
-        r.prm_points.push_back(c);
-        taken.insert(L.index(c));
-        adjacency.emplace_back();
-        tree_of.push_back(trees.size());
-        trees.push_back({p});
-        const auto t0 = Clock::now();
-        const std::size_t existing = trees.size() - 1;
-        // The members tried per tree, nearest first (fixed for the whole insertion).
-        std::vector<std::vector<std::size_t>> tried(existing);
-        const SE2Pose cp = L.centre(c);
-        for (std::size_t t = 0; t < existing; ++t) {
-          std::vector<std::pair<double, std::size_t>> near;
-          for (std::size_t m : trees[t]) {
-            const SE2Pose cm = L.centre(r.prm_points[m]);
-            const double d = std::hypot(cp.x - cm.x, cp.y - cm.y);
-            if (d <= radius) near.emplace_back(d, m);
-          }
-          std::sort(near.begin(), near.end());
-          for (std::size_t k = 0; k < std::min(near.size(), options.connect_attempts); ++k)
-            tried[t].push_back(near[k].second);
-        }
-        // Round k: the k-th member of every tree whose earlier ones failed, up to (and
-        // including) the first tree where a call spent the budget.
-        std::vector<std::vector<CgLocalPath>> results(existing);
-        std::size_t stop = existing;
-        for (std::size_t k = 0; k < options.connect_attempts; ++k) {
-          std::vector<std::size_t> which;
-          std::vector<std::pair<CgCell, CgCell>> queries;
-          for (std::size_t t = 0; t < stop; ++t) {
-            if (tried[t].size() <= k || results[t].size() != k) continue;
-            if (k > 0 && (results[t].back().found || results[t].back().budget_exceeded)) continue;
-            which.push_back(t);
-            queries.emplace_back(c, r.prm_points[tried[t][k]]);
-          }
-          if (queries.empty()) break;
-          std::vector<CgLocalPath> batch = local_plan_batch(
-              space, queries, local, work, options.budget, options.workers, options.ranks);
-          for (std::size_t i = 0; i < batch.size(); ++i) {
-            r.local_planner_calls += 1;
-            r.expansions += batch[i].expansions;
-            work += batch[i].expansions;
-            if (batch[i].budget_exceeded) stop = std::min(stop, which[i] + 1);
-            results[which[i]].push_back(std::move(batch[i]));
-          }
-        }
-        // Applied in the serial order: tree by tree, its members nearest first.
-        for (std::size_t t = 0; t < existing && !exhausted; ++t) {
-          for (std::size_t k = 0; k < results[t].size(); ++k) {
-            const CgLocalPath& path = results[t][k];
-            if (path.budget_exceeded) {
-              exhausted = true;
-              break;
-            }
-            if (!path.found) continue;
-            const std::size_t m = tried[t][k];
-            ++r.local_planner_successes;
-            r.prm_edges.emplace_back(p, m);
-            adjacency[p].push_back(m);
-            adjacency[m].push_back(p);
-            // Concatenate: the lower-numbered list absorbs the other.
-            std::size_t a = tree_of[p], b = t;
-            if (b < a) std::swap(a, b);
-            for (std::size_t q : trees[b]) tree_of[q] = a;
-            trees[a].insert(trees[a].end(), trees[b].begin(), trees[b].end());
-            trees[b].clear();
-            break;
-          }
-        }
-        connect_time += since(t0);
-      };
-      auto joined = [&] { return r.prm_points.size() >= 2 && tree_of[0] == tree_of[1]; };
-      insert(s);
-      insert(g);
-      const auto t_sample = Clock::now();
-      double sample_connect = 0.0;
-      std::mt19937_64 rng(options.seed);
-      const std::size_t max_draws = options.sample_attempts * options.prm_points;
-      std::size_t added = 0;
-      std::size_t draws = 0;
-      while (!joined() && !exhausted && added < options.prm_points && draws < max_draws) {
-        if (over_budget()) {
-          exhausted = true;
-          break;
-        }
-        ++draws;
-        ++r.samples_drawn;
-        const CgCell c = L.cell(uniform_index(rng, L.size()));
-        if (taken.count(L.index(c)) || !space.valid(c)) continue;
-        ++added;
-        const double before = connect_time;
-        insert(c);
-        sample_connect += connect_time - before;
-      }
-      r.sample_seconds += since(t_sample) - sample_connect;
-      r.connect_seconds += connect_time;
-      for (const auto& t : trees) r.prm_trees += t.empty() ? 0 : 1;
-      if (!joined()) {
-        if (exhausted) {
-          finish(EldershawYimStatus::kBudgetExceeded, budget_message());
-          return false;
-        }
-        {
-          finish(EldershawYimStatus::kNoPath,
-                 "the start's and the goal's trees were not joined by " + std::to_string(added) +
-                     " PRM points (" + std::to_string(r.samples_drawn) + " draws)");
-          return false;
-        }
-      }
-      // The tree path start -> goal (breadth first; the graph is a tree).
-      std::vector<std::size_t> parent(r.prm_points.size(), r.prm_points.size());
-      std::vector<std::size_t> queue{0};
-      parent[0] = 0;
-      for (std::size_t k = 0; k < queue.size(); ++k) {
-        for (std::size_t n : adjacency[queue[k]]) {
-          if (parent[n] != r.prm_points.size()) continue;
-          parent[n] = queue[k];
-          queue.push_back(n);
-        }
-      }
-      std::vector<std::size_t> route{1};
-      while (route.back() != 0) route.push_back(parent[route.back()]);
-      std::reverse(route.begin(), route.end());
-      const auto t_recreate = Clock::now();
-      std::vector<std::pair<CgCell, CgCell>> edges;
-      for (std::size_t k = 1; k < route.size(); ++k)
-        edges.emplace_back(r.prm_points[route[k - 1]], r.prm_points[route[k]]);
-      const std::vector<CgLocalPath> pieces = local_plan_batch(
-          space, edges, local, work, options.budget, options.workers, options.ranks);
-      r.recreate_seconds += since(t_recreate);
-      r.cells = {s};
-      for (const CgLocalPath& piece : pieces) {
-        ++r.recreate_calls;
-        r.expansions += piece.expansions;
-        work += piece.expansions;
-      }
-      for (const CgLocalPath& piece : pieces) {
-        if (piece.budget_exceeded) {
-          finish(EldershawYimStatus::kBudgetExceeded, budget_message());
-          return false;
-        }
-        if (!piece.found)  // cannot happen: the same search succeeded the other way
-          throw SolverError("plan_eldershaw_yim: re-running a roadmap edge failed");
-        r.cells.insert(r.cells.end(), piece.cells.begin() + 1, piece.cells.end());
-      }
-    }
-    return true;
-  };
-
-  std::vector<CgCell> failed_cells;  // the CG path whose foot plan failed last
-  for (;;) {
-    if (!cg_search()) return r;
-    r.path = cg_path_poses(L, r.cells, start, goal);
-    r.length_m = 0.0;
-    for (std::size_t k = 1; k < r.path.size(); ++k)
-      r.length_m += std::hypot(r.path[k].x - r.path[k - 1].x, r.path[k].y - r.path[k - 1].y);
-    std::ostringstream msg;
-    msg << (options.direct ? "direct A*" : "tree-PRM") << ": " << r.cells.size() << " CG cells";
-    if (!options.direct) msg << " through " << r.prm_points.size() << " PRM points";
-    if (r.feedback_events > 0) msg << " after " << r.feedback_events << " feedback events";
-    finish(EldershawYimStatus::kFound, msg.str());
-    if (!options.plan_feet) return r;
-    // After feedback (§3.3) the feet keep the steps they took on the cells
-    // the new CG path shares with the old one, and walk on from there; only
-    // if that fails is the whole path planned afresh.
-    const std::vector<FootStep> prefix = reusable_steps(failed_cells, r.foot_plan, r.cells);
-    r.foot_plan = plan_footsteps(footmap, robot, L, r.cells, options.feet, prefix);
-    r.foot_planner_seconds += r.foot_plan.seconds;
-    r.foot_planner_nodes += r.foot_plan.nodes;
-    r.foot_steps_reused = prefix.empty() ? 0 : prefix.size();
-    if (!prefix.empty() && !r.foot_plan.found()) {
-      FootPlan fresh = plan_footsteps(footmap, robot, L, r.cells, options.feet);
-      r.foot_planner_seconds += fresh.seconds;
-      r.foot_planner_nodes += fresh.nodes;
-      if (fresh.found() || fresh.furthest_index > r.foot_plan.furthest_index) {
-        r.foot_plan = std::move(fresh);
-        r.foot_steps_reused = 0;
-      }
-    }
-    r.feet_planned = true;
-    const bool stuck = r.foot_plan.status == FootPlanStatus::kFailed ||
-                       r.foot_plan.status == FootPlanStatus::kBudgetExceeded;
-    const std::size_t next = r.foot_plan.furthest_index + 1;
-    if (!stuck || r.feedback_events >= options.feedback_rounds || next >= r.cells.size()) {
-      r.message +=
-          std::string("; foot plan ") + to_string(r.foot_plan.status) + ": " + r.foot_plan.message;
-      return r;
-    }
-    // §3.3: the CG cell the feet could not reach is marked invalid and the CG path replanned.
-    failed_cells = r.cells;
-    space.mark_invalid(r.cells[next]);
-    r.feedback_cells.push_back(r.cells[next]);
-    ++r.feedback_events;
-  }
+  return EldershawYimRun(terrain, robot, start, goal, options).run();
 }
 
 }  // namespace talus

@@ -318,13 +318,283 @@ std::vector<Json> read_sweep_records(const fs::path& dir) {
   return all;
 }
 
+namespace {
+
+/// A sweep's cases run on worker processes: this rank's queue (or the dealer's cases),
+/// the running workers, and each ended case's record appended to results.jsonl.
+class SweepExecution {
+ public:
+  SweepExecution(const SweepConfig& config, const SweepOptions& options, double limit,
+                 const std::vector<PreparedCase>& prepared, std::vector<std::size_t> queue,
+                 std::size_t mine, SweepResult& result)
+      : config_(config),
+        options_(options),
+        limit_(limit),
+        cases_dir_(fs::path(options.output_dir) / "cases"),
+        prepared_(prepared),
+        result_(result),
+        queue_(std::move(queue)),
+        dealer_(options.dealer),
+        dealt_out_(dealer_ == nullptr),
+        writer_(fs::path(options.output_dir) / results_file_name(options.rank)),
+        jobs_(options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency())),
+        host_(host_name()),
+        progress_(options.progress, mine),
+        finished_(result.skipped) {
+    if (dealer_ != nullptr) {
+      dealer_->deal(std::move(queue_));  // on rank 0; queue now holds only this rank's retries
+      queue_.clear();
+    }
+    std::reverse(queue_.begin(), queue_.end());  // pop_back() takes them in design order
+    std::cout.flush();
+    std::cerr.flush();
+  }
+
+  /// Until every case of this rank (and, dealing, every rank's) has ended.
+  void run() {
+    const bool serving = dealer_ != nullptr && dealer_->deals();
+    while (!queue_.empty() || !running_.empty() || !dealt_out_ ||
+           (serving && !dealer_->served_all())) {
+      fill_slots();
+      // The dealer wakes often enough that a rank asking for a case waits about a
+      // millisecond.
+      const bool answering = serving && !dealer_->served_all();
+      if (running_.empty() && queue_.empty() && dealt_out_ && !answering) break;  // none left
+      for (const auto& [w, wait_status, timed_out] : reap(answering))
+        conclude(w, wait_status, timed_out);
+      if (serving) dealer_->serve();
+    }
+    progress_.finish();
+  }
+
+ private:
+  // The dealer's progress line counts the other ranks' cases as they report them.
+  std::size_t everyone_finished() const {
+    return dealer_ != nullptr ? finished_ + dealer_->finished_elsewhere() : finished_;
+  }
+  std::size_t everyone_failed() const {
+    return dealer_ != nullptr ? result_.failed + dealer_->failed_elsewhere() : result_.failed;
+  }
+
+  /// Starts cases (retries first, then the queue or the dealer's next) up to `jobs` workers.
+  void fill_slots() {
+    while (running_.size() < jobs_) {
+      if (!queue_.empty()) {
+        launch(queue_.back());
+        queue_.pop_back();
+      } else if (!dealt_out_) {
+        const std::optional<std::size_t> next = dealer_->next(finished_, result_.failed);
+        if (!next) {
+          dealt_out_ = true;
+          break;
+        }
+        launch(*next);
+      } else {
+        break;
+      }
+    }
+  }
+
+  /// A worker process for case `index` in its own process group, its output in the case's
+  /// folder; the pipe's read end tells when it exits.
+  void launch(std::size_t index) {
+    const SweepCase& c = config_.cases[index];
+    const fs::path case_dir = cases_dir_ / c.id;
+    std::error_code ec;
+    fs::remove_all(case_dir, ec);
+    fs::create_directories(case_dir, ec);
+    if (ec) throw Error("cannot create " + case_dir.string());
+    for (const auto& [name, text] : prepared_[index].files) write_text_file(case_dir / name, text);
+    int pipe_fds[2];
+    if (::pipe2(pipe_fds, O_CLOEXEC) != 0) throw Error("sweep: cannot create a pipe");
+    const pid_t parent = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid < 0) throw Error("sweep: cannot start a worker process (fork failed)");
+    if (pid == 0) {
+      ::close(pipe_fds[0]);
+      ::setpgid(0, 0);
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed sweep takes its workers with it
+      if (::getppid() != parent) ::_exit(137);
+      const int out = ::open((case_dir / "stdout.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int err = ::open((case_dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (out < 0 || err < 0) ::_exit(kInputErrorExit);
+      ::dup2(out, 1);
+      ::dup2(err, 2);
+      const int code = run_case(config_, c, prepared_[index], options_);
+      std::cout.flush();
+      std::cerr.flush();
+      std::fflush(nullptr);
+      ::_exit(code);
+    }
+    ::setpgid(pid, pid);
+    ::close(pipe_fds[1]);
+    Worker w;
+    w.pid = pid;
+    w.done_fd = pipe_fds[0];
+    w.case_index = index;
+    w.attempt = ++attempts_[index];
+    w.start = Clock::now();
+    w.deadline = w.start +
+                 std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit_));
+    running_.push_back(w);
+  }
+
+  /// Waits for a worker to end (or a deadline, or the dealer's next tick); the workers that
+  /// ended (killed at their deadline: timed out), reaped, with their wait status.
+  std::vector<std::tuple<Worker, int, bool>> reap(bool answering) {
+    auto wait_until =
+        Clock::now() + (answering ? std::chrono::milliseconds(1) : std::chrono::milliseconds(1000));
+    std::vector<pollfd> fds;
+    for (const Worker& w : running_) {
+      fds.push_back({w.done_fd, POLLIN, 0});
+      wait_until = std::min(wait_until, w.deadline);
+    }
+    const auto wait_ms =
+        std::chrono::duration_cast<std::chrono::milliseconds>(wait_until - Clock::now()).count();
+    ::poll(fds.data(), fds.size(), static_cast<int>(std::max<long long>(0, wait_ms) + 1));
+    std::vector<Worker> still;
+    std::vector<std::tuple<Worker, int, bool>> ended_workers;
+    const auto now = Clock::now();
+    for (std::size_t k = 0; k < running_.size(); ++k) {
+      const Worker& w = running_[k];
+      bool ended = false, timed_out = false;
+      if (fds[k].revents != 0) {
+        char sink[256];
+        ended = ::read(w.done_fd, sink, sizeof sink) <= 0;
+      }
+      if (!ended && now >= w.deadline) {
+        ::kill(-w.pid, SIGKILL);
+        ended = timed_out = true;
+      }
+      if (!ended) {
+        still.push_back(w);
+        continue;
+      }
+      int wait_status = 0;
+      while (::waitpid(w.pid, &wait_status, 0) < 0 && errno == EINTR) {
+      }
+      if (!timed_out) ::kill(-w.pid, SIGKILL);  // anything the worker left running
+      ::close(w.done_fd);
+      ended_workers.emplace_back(w, wait_status, timed_out);
+    }
+    running_ = std::move(still);
+    return ended_workers;
+  }
+
+  /// An ended worker: retried (crashed or hung, attempts left) or recorded.
+  void conclude(const Worker& w, int wait_status, bool timed_out) {
+    const SweepCase& c = config_.cases[w.case_index];
+    const Ending ending = ending_of(wait_status, timed_out, limit_);
+    if (ending.retry && w.attempt <= config_.retries) {
+      ++result_.retries;
+      queue_.push_back(w.case_index);  // next, before the cases not yet started
+      progress_.update(everyone_finished(), everyone_failed(), running_.size(),
+                       c.id + " retried: " + ending.reason);
+      return;
+    }
+    ++result_.ran;
+    const Json record = record_of(w, ending);
+    writer_.append(record);
+    ++finished_;
+    progress_.update(everyone_finished(), everyone_failed(), running_.size(),
+                     c.id + " " + record.at("status").get<std::string>());
+  }
+
+  /// The case's record (status, reason, key figures, timing), counted in the result.
+  Json record_of(const Worker& w, const Ending& ending) {
+    const SweepCase& c = config_.cases[w.case_index];
+    const fs::path case_dir = cases_dir_ / c.id;
+    Json record = Json::object();
+    record["case_id"] = c.id;
+    record["index"] = c.index;
+    record["job"] = config_.job;
+    record["parameters"] = c.parameters;
+    const Json output = ending.retry ? Json::object() : job_output(case_dir / "stdout.txt");
+    std::string status;
+    if (ending.retry) {
+      status = "failed";
+      ++result_.failed;
+    } else if (ending.exit_code == kInputErrorExit) {
+      status = "error";
+      ++result_.errors;
+    } else if (ending.exit_code == 0 && output.empty()) {
+      // Exit 0 without the job's JSON result (a `--help` among its options printed the
+      // usage instead): nothing to record as a result.
+      status = "no_result";
+      ++result_.no_result;
+    } else {
+      status = output.contains("status") && output.at("status").is_string()
+                   ? output.at("status").get<std::string>()
+                   : (ending.exit_code == 0 ? "ok" : "no_result");
+      ++(ending.exit_code == 0 ? result_.ok : result_.no_result);
+    }
+    record["status"] = status;
+    record["reason"] = ending.retry                          ? ending.reason
+                       : ending.exit_code == kInputErrorExit ? first_line(case_dir / "stderr.txt")
+                       : ending.exit_code == 0 && output.empty()
+                           ? std::string("the job exited 0 without a JSON result on its stdout")
+                           : std::string();
+    record["exit_code"] = ending.exit_code;
+    record["figures"] = key_figures(output);
+    record["seconds"] = std::chrono::duration<double>(Clock::now() - w.start).count();
+    record["attempts"] = w.attempt;
+    record["host"] = host_;
+    record["rank"] = options_.rank;
+    return record;
+  }
+
+  const SweepConfig& config_;
+  const SweepOptions& options_;
+  double limit_;
+  fs::path cases_dir_;
+  const std::vector<PreparedCase>& prepared_;
+  SweepResult& result_;
+  std::vector<std::size_t> queue_;
+  CaseDealer* dealer_;
+  bool dealt_out_;  ///< no more cases to ask the dealer for
+  RecordWriter writer_;
+  std::size_t jobs_;
+  std::string host_;
+  std::map<std::size_t, int> attempts_;
+  std::vector<Worker> running_;
+  Progress progress_;
+  std::size_t finished_;
+};
+
+/// Creates and locks the output folder (every rank its own lock; all must agree), repairs
+/// this rank's results file, and returns the ids of the cases already recorded.
+std::set<std::string> open_output(const SweepOptions& options, std::optional<SweepLock>& lock) {
+  const fs::path dir = options.output_dir;
+  std::error_code ec;
+  fs::create_directories(dir / "cases", ec);
+  if (ec || !fs::is_directory(dir)) {
+    throw InputError("--out: cannot create the folder " + dir.string());
+  }
+  std::string lock_error;
+  try {
+    lock.emplace(dir, options.rank);
+  } catch (const InputError& e) {
+    lock_error = e.what();
+  }
+  const bool everyone =
+      options.all_ranks_agree ? options.all_ranks_agree(lock.has_value()) : lock.has_value();
+  if (!lock) throw InputError(lock_error);
+  if (!everyone) throw InputError("--out: another rank could not lock " + dir.string());
+  read_records_file(dir / results_file_name(options.rank), /*repair=*/true);
+  std::set<std::string> done;
+  for (const Json& record : read_sweep_records(dir))
+    done.insert(record.at("case_id").get<std::string>());
+  return done;
+}
+
+}  // namespace
+
 SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
   options.validate();
   const auto started = Clock::now();
   const double limit =
       options.case_time_limit > 0.0 ? options.case_time_limit : config.case_time_limit;
-  const fs::path dir = options.output_dir;
-  const fs::path cases_dir = dir / "cases";
+  const fs::path cases_dir = fs::path(options.output_dir) / "cases";
 
   // Everything a case needs is resolved and checked before the first runs.
   std::vector<std::size_t> mine;
@@ -351,28 +621,8 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
     return result;
   }
 
-  std::error_code ec;
-  fs::create_directories(cases_dir, ec);
-  if (ec || !fs::is_directory(dir)) {
-    throw InputError("--out: cannot create the folder " + dir.string());
-  }
   std::optional<SweepLock> lock;
-  std::string lock_error;
-  try {
-    lock.emplace(dir, options.rank);
-  } catch (const InputError& e) {
-    lock_error = e.what();
-  }
-  const bool everyone =
-      options.all_ranks_agree ? options.all_ranks_agree(lock.has_value()) : lock.has_value();
-  if (!lock) throw InputError(lock_error);
-  if (!everyone) throw InputError("--out: another rank could not lock " + dir.string());
-  const fs::path results_path = dir / results_file_name(options.rank);
-  read_records_file(results_path, /*repair=*/true);
-  std::set<std::string> done;
-  for (const Json& record : read_sweep_records(dir))
-    done.insert(record.at("case_id").get<std::string>());
-
+  const std::set<std::string> done = open_output(options, lock);
   std::vector<std::size_t> queue;
   for (std::size_t i : mine) {
     if (done.count(config.cases[i].id) != 0) {
@@ -381,189 +631,8 @@ SweepResult run_sweep(const SweepConfig& config, const SweepOptions& options) {
       queue.push_back(i);
     }
   }
-  CaseDealer* const dealer = options.dealer;
-  if (dealer != nullptr) {
-    dealer->deal(std::move(queue));  // on rank 0; queue now holds only this rank's retries
-    queue.clear();
-  }
-  std::reverse(queue.begin(), queue.end());  // pop_back() takes them in design order
-  bool dealt_out = dealer == nullptr;        // no more cases to ask the dealer for
-  RecordWriter writer(results_path);
-  const std::size_t jobs =
-      options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
-  const std::string host = host_name();
-  std::map<std::size_t, int> attempts;
-  std::vector<Worker> running;
-  Progress progress(options.progress, mine.size());
-  std::size_t finished = result.skipped;
-  // The dealer's progress line counts the other ranks' cases as they report them.
-  const auto everyone_finished = [&] {
-    return dealer != nullptr ? finished + dealer->finished_elsewhere() : finished;
-  };
-  const auto everyone_failed = [&] {
-    return dealer != nullptr ? result.failed + dealer->failed_elsewhere() : result.failed;
-  };
-  std::cout.flush();
-  std::cerr.flush();
-
-  const auto launch = [&](std::size_t index) {
-    const SweepCase& c = config.cases[index];
-    const fs::path case_dir = cases_dir / c.id;
-    fs::remove_all(case_dir, ec);
-    fs::create_directories(case_dir, ec);
-    if (ec) throw Error("cannot create " + case_dir.string());
-    for (const auto& [name, text] : prepared[index].files) write_text_file(case_dir / name, text);
-    int pipe_fds[2];
-    if (::pipe2(pipe_fds, O_CLOEXEC) != 0) throw Error("sweep: cannot create a pipe");
-    const pid_t parent = ::getpid();
-    const pid_t pid = ::fork();
-    if (pid < 0) throw Error("sweep: cannot start a worker process (fork failed)");
-    if (pid == 0) {
-      ::close(pipe_fds[0]);
-      ::setpgid(0, 0);
-      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed sweep takes its workers with it
-      if (::getppid() != parent) ::_exit(137);
-      const int out = ::open((case_dir / "stdout.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      const int err = ::open((case_dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      if (out < 0 || err < 0) ::_exit(kInputErrorExit);
-      ::dup2(out, 1);
-      ::dup2(err, 2);
-      const int code = run_case(config, c, prepared[index], options);
-      std::cout.flush();
-      std::cerr.flush();
-      std::fflush(nullptr);
-      ::_exit(code);
-    }
-    ::setpgid(pid, pid);
-    ::close(pipe_fds[1]);
-    Worker w;
-    w.pid = pid;
-    w.done_fd = pipe_fds[0];
-    w.case_index = index;
-    w.attempt = ++attempts[index];
-    w.start = Clock::now();
-    w.deadline =
-        w.start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
-    running.push_back(w);
-  };
-
-  const auto conclude = [&](const Worker& w, int wait_status, bool timed_out) {
-    const SweepCase& c = config.cases[w.case_index];
-    const fs::path case_dir = cases_dir / c.id;
-    const Ending ending = ending_of(wait_status, timed_out, limit);
-    ++result.ran;
-    if (ending.retry && w.attempt <= config.retries) {
-      ++result.retries;
-      --result.ran;
-      queue.push_back(w.case_index);  // next, before the cases not yet started
-      progress.update(everyone_finished(), everyone_failed(), running.size(),
-                      c.id + " retried: " + ending.reason);
-      return;
-    }
-    Json record = Json::object();
-    record["case_id"] = c.id;
-    record["index"] = c.index;
-    record["job"] = config.job;
-    record["parameters"] = c.parameters;
-    const Json output = ending.retry ? Json::object() : job_output(case_dir / "stdout.txt");
-    std::string status;
-    if (ending.retry) {
-      status = "failed";
-      ++result.failed;
-    } else if (ending.exit_code == kInputErrorExit) {
-      status = "error";
-      ++result.errors;
-    } else if (ending.exit_code == 0 && output.empty()) {
-      // Exit 0 without the job's JSON result (a `--help` among its options printed the
-      // usage instead): nothing to record as a result.
-      status = "no_result";
-      ++result.no_result;
-    } else {
-      status = output.contains("status") && output.at("status").is_string()
-                   ? output.at("status").get<std::string>()
-                   : (ending.exit_code == 0 ? "ok" : "no_result");
-      ++(ending.exit_code == 0 ? result.ok : result.no_result);
-    }
-    record["status"] = status;
-    record["reason"] = ending.retry                          ? ending.reason
-                       : ending.exit_code == kInputErrorExit ? first_line(case_dir / "stderr.txt")
-                       : ending.exit_code == 0 && output.empty()
-                           ? std::string("the job exited 0 without a JSON result on its stdout")
-                           : std::string();
-    record["exit_code"] = ending.exit_code;
-    record["figures"] = key_figures(output);
-    record["seconds"] = std::chrono::duration<double>(Clock::now() - w.start).count();
-    record["attempts"] = w.attempt;
-    record["host"] = host;
-    record["rank"] = options.rank;
-    writer.append(record);
-    ++finished;
-    progress.update(everyone_finished(), everyone_failed(), running.size(), c.id + " " + status);
-  };
-
-  const bool serving = dealer != nullptr && dealer->deals();
-  while (!queue.empty() || !running.empty() || !dealt_out || (serving && !dealer->served_all())) {
-    while (running.size() < jobs) {
-      if (!queue.empty()) {
-        launch(queue.back());
-        queue.pop_back();
-      } else if (!dealt_out) {
-        const std::optional<std::size_t> next = dealer->next(finished, result.failed);
-        if (!next) {
-          dealt_out = true;
-          break;
-        }
-        launch(*next);
-      } else {
-        break;
-      }
-    }
-    // The dealer wakes often enough that a rank asking for a case waits
-    // about a millisecond.
-    const bool answering = serving && !dealer->served_all();
-    if (running.empty() && queue.empty() && dealt_out && !answering) break;  // told none are left
-    auto wait_until =
-        Clock::now() + (answering ? std::chrono::milliseconds(1) : std::chrono::milliseconds(1000));
-    std::vector<pollfd> fds;
-    for (const Worker& w : running) {
-      fds.push_back({w.done_fd, POLLIN, 0});
-      wait_until = std::min(wait_until, w.deadline);
-    }
-    const auto wait_ms =
-        std::chrono::duration_cast<std::chrono::milliseconds>(wait_until - Clock::now()).count();
-    ::poll(fds.data(), fds.size(), static_cast<int>(std::max<long long>(0, wait_ms) + 1));
-    std::vector<Worker> still;
-    std::vector<std::tuple<Worker, int, bool>> ended_workers;
-    const auto now = Clock::now();
-    for (std::size_t k = 0; k < running.size(); ++k) {
-      const Worker& w = running[k];
-      bool ended = false, timed_out = false;
-      if (fds[k].revents != 0) {
-        char sink[256];
-        ended = ::read(w.done_fd, sink, sizeof sink) <= 0;
-      }
-      if (!ended && now >= w.deadline) {
-        ::kill(-w.pid, SIGKILL);
-        ended = timed_out = true;
-      }
-      if (!ended) {
-        still.push_back(w);
-        continue;
-      }
-      int wait_status = 0;
-      while (::waitpid(w.pid, &wait_status, 0) < 0 && errno == EINTR) {
-      }
-      if (!timed_out) ::kill(-w.pid, SIGKILL);  // anything the worker left running
-      ::close(w.done_fd);
-      ended_workers.emplace_back(w, wait_status, timed_out);
-    }
-    running = std::move(still);
-    for (const auto& [w, wait_status, timed_out] : ended_workers)
-      conclude(w, wait_status, timed_out);
-    if (serving) dealer->serve();
-  }
-  if (dealer != nullptr) result.mine = result.skipped + result.ran;
-  progress.finish();
+  SweepExecution(config, options, limit, prepared, std::move(queue), mine.size(), result).run();
+  if (options.dealer != nullptr) result.mine = result.skipped + result.ran;
   result.seconds = std::chrono::duration<double>(Clock::now() - started).count();
   return result;
 }

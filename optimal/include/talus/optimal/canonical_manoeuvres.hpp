@@ -17,7 +17,7 @@
 ///   the friction left beside the weight's downhill component bounds the
 ///   tangential acceleration to g cos θ sqrt(μ² − tan² θ), both ways;
 /// - straight drive and brake on flat ground: the vehicle's max_accel and
-///   max_decel (when below μ g);
+///   max_decel less its drive_reserve (when below μ g);
 /// - slalom at the steering limit on flat ground: y = B (1 − cos k u) with
 ///   B = 0.4 m and k chosen so that the apexes' curvature B k² is 0.9 of the
 ///   vehicle's max_curvature(): v = sqrt(μ g / (B k²)) at every apex.

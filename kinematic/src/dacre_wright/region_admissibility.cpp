@@ -326,6 +326,230 @@ BoxAnalysis analyse_box(const WheeledRobot& robot, const ElevationSums& sums, co
 
 namespace {
 
+using WheelRanges = std::array<Range, WheeledRobot::kMaxWheels>;
+
+/// The node index ranges of each wheel's contact region.
+struct ContactRegions {
+  std::array<long, WheeledRobot::kMaxWheels> i_lo{}, i_hi{}, j_lo{}, j_hi{};
+};
+
+/// §3.2.1: contact regions. The wheel's projection in the heading frame, first two
+/// coordinates of Ry(−ψ) Rx(φ) (u, v, w0 + l), bounded by interval arithmetic over Δφ, Δψ,
+/// Δl_i; then the exact bounding box of that rectangle swept over [θ1, θ2] and translated
+/// over [x1, x2] × [y1, y2]. False when a region leaves the map.
+bool contact_regions(const WheeledRobot& robot, const ElevationGrid& grid, const CsBox& box,
+                     const Arc& arc, const Domain& dom, ContactRegions& reg, BoxAnalysis& out) {
+  const double h = grid.cellsize();
+  const Range sphi = sin_range(dom.roll), cphi = cos_range(dom.roll);
+  const Range spsi = sin_range(dom.pitch), cpsi = cos_range(dom.pitch);
+  for (int i = 0; i < out.wheel_count; ++i) {
+    const double u = robot.wheels[i].x(), v = robot.wheels[i].y();
+    const Range w{-robot.cg_height + dom.ext[i].lo, -robot.cg_height + dom.ext[i].hi};
+    const Range yp = add(scale(v, cphi), neg(mul(w, sphi)));
+    const Range xp = add(scale(u, cpsi), neg(mul(add(scale(v, sphi), mul(w, cphi)), spsi)));
+    Range rx{1e300, -1e300}, ry{1e300, -1e300};
+    for (double cx : {xp.lo, xp.hi}) {
+      for (double cy : {yp.lo, yp.hi}) {
+        const Range ox = arc.range(cx, -cy);
+        const Range oy = arc.range(cy, cx);
+        rx = {std::min(rx.lo, ox.lo), std::max(rx.hi, ox.hi)};
+        ry = {std::min(ry.lo, oy.lo), std::max(ry.hi, oy.hi)};
+      }
+    }
+    rx = {rx.lo + box.x1, rx.hi + box.x2};
+    ry = {ry.lo + box.y1, ry.hi + box.y2};
+    if (!node_range(rx.lo, rx.hi, grid.x_min(), h, grid.ncols(), reg.i_lo[i], reg.i_hi[i]) ||
+        !node_range(ry.lo, ry.hi, grid.y_min(), h, grid.nrows(), reg.j_lo[i], reg.j_hi[i])) {
+      return false;
+    }
+    out.region_x[i] = {grid.x_min() + h * static_cast<double>(reg.i_lo[i]),
+                       grid.x_min() + h * static_cast<double>(reg.i_hi[i])};
+    out.region_y[i] = {grid.y_min() + h * static_cast<double>(reg.j_lo[i]),
+                       grid.y_min() + h * static_cast<double>(reg.j_hi[i])};
+  }
+  return true;
+}
+
+/// §3.2.2: the average plane over the nodes of every contact region (a node in two regions
+/// counts twice; P_a is only a reference plane), from the prefix sums when given. Sets
+/// out.points and out.plane, or the verdict when a node is off the map or the plane
+/// degenerate (then false).
+bool average_plane(const ElevationGrid& grid, const ElevationSums* sums, const Vec2& centre,
+                   const ContactRegions& reg, BoxAnalysis& out) {
+  const double h = grid.cellsize();
+  const int n = out.wheel_count;
+  AveragePlaneAccumulator acc(centre);
+  for (int i = 0; i < n && sums; ++i) {
+    if (!sums->accumulate(reg.i_lo[i], reg.i_hi[i], reg.j_lo[i], reg.j_hi[i], acc)) {
+      out.verdict = BoxVerdict::kOffMap;
+      return false;
+    }
+  }
+  for (int i = 0; i < n && !sums; ++i) {
+    for (long jj = reg.j_lo[i]; jj <= reg.j_hi[i]; ++jj) {
+      const double y = grid.y_min() + h * static_cast<double>(jj);
+      for (long ii = reg.i_lo[i]; ii <= reg.i_hi[i]; ++ii) {
+        const auto ui = static_cast<std::size_t>(ii), uj = static_cast<std::size_t>(jj);
+        if (!grid.valid(ui, uj)) {
+          out.verdict = BoxVerdict::kOffMap;
+          return false;
+        }
+        acc.add(grid.x_min() + h * static_cast<double>(ii), y, grid.at(ui, uj));
+      }
+    }
+  }
+  out.points = acc.count();
+  Vec3 abc;
+  if (!acc.solve(abc)) {
+    out.verdict = BoxVerdict::kDegeneratePlane;
+    return false;
+  }
+  out.plane = abc;
+  return true;
+}
+
+/// §3.2.3: envelopes δz_i^min, δz_i^max of the surface over each region against the plane;
+/// the bilinear patches minus a plane take their extremes at the nodes, so these bound the
+/// whole surface over R_i. Returns the distances d_i = cos φ_a cos ψ_a δz_i.
+WheelRanges plane_distances(const ElevationGrid& grid, const ContactRegions& reg,
+                            BoxAnalysis& out) {
+  const double a = out.plane.x(), b = out.plane.y(), c = out.plane.z();
+  const double h = grid.cellsize();
+  thread_local std::vector<double> ax;                     // a x of one region's columns
+  const double ca = 1.0 / std::sqrt(1.0 + a * a + b * b);  // cos φ_a cos ψ_a
+  WheelRanges d{};
+  const double* zs = grid.values().data();
+  for (int i = 0; i < out.wheel_count; ++i) {
+    Range r{1e300, -1e300};
+    const long w = reg.i_hi[i] - reg.i_lo[i] + 1;
+    ax.resize(static_cast<std::size_t>(w));
+    for (long ii = reg.i_lo[i]; ii <= reg.i_hi[i]; ++ii) {
+      ax[static_cast<std::size_t>(ii - reg.i_lo[i])] =
+          a * (grid.x_min() + h * static_cast<double>(ii));
+    }
+    for (long jj = reg.j_lo[i]; jj <= reg.j_hi[i]; ++jj) {
+      const double y = grid.y_min() + h * static_cast<double>(jj);
+      row_envelope(
+          zs + static_cast<std::size_t>(jj) * grid.ncols() + static_cast<std::size_t>(reg.i_lo[i]),
+          ax.data(), w, b * y, c, r.lo, r.hi);
+    }
+    out.dz[i] = r;
+    d[i] = {ca * r.lo, ca * r.hi};
+  }
+  return d;
+}
+
+/// §3.3.2: the bound β_max on the placement's tilt from the plane, from the distances d_i;
+/// e_i = d_i − d0 in `e`. False (verdict kNoBetaBound) when the paper's condition fails.
+bool beta_bound(const WheeledRobot& robot, const WheelRanges& d, WheelRanges& e, BoxAnalysis& out) {
+  const int n = out.wheel_count;
+  double sum_u2 = 0, sum_v2 = 0;
+  for (const Vec2& w : robot.wheels) {
+    sum_u2 += w.x() * w.x();
+    sum_v2 += w.y() * w.y();
+  }
+  // d0 = mean d_i (Σ l_i = 0 at the minimum and Σ u_i = Σ v_i = 0).
+  double sum_lo = 0, sum_hi = 0;
+  for (int i = 0; i < n; ++i) {
+    sum_lo += d[i].lo;
+    sum_hi += d[i].hi;
+  }
+  out.d0 = {sum_lo / n, sum_hi / n};
+  // d_i − d0 = (1 − 1/n) d_i − (1/n) Σ_{j≠i} d_j, bounded exactly.
+  double max_a = 0;
+  for (int i = 0; i < n; ++i) {
+    const double k = 1.0 - 1.0 / n;
+    e[i] = {k * d[i].lo - (sum_hi - d[i].hi) / n, k * d[i].hi - (sum_lo - d[i].lo) / n};
+    max_a += std::max(e[i].lo * e[i].lo, e[i].hi * e[i].hi);
+  }
+  // Footnote 6: extremes of Σ d_i u_i and Σ d_i v_i.
+  Range su{0, 0}, sv{0, 0};
+  for (int i = 0; i < n; ++i) {
+    const double u = robot.wheels[i].x(), v = robot.wheels[i].y();
+    su = add(su, scale(u, d[i]));
+    sv = add(sv, scale(v, d[i]));
+  }
+  const double mu = std::max(std::abs(su.lo), std::abs(su.hi));
+  const double mv = std::max(std::abs(sv.lo), std::abs(sv.hi));
+  out.max_a = max_a;
+  out.max_b = std::hypot(mu, mv);
+  out.min_c = std::min(sum_u2, sum_v2);
+  if (!(out.max_a < out.min_c) || !(out.max_b < out.min_c)) {
+    out.verdict = BoxVerdict::kNoBetaBound;
+    return false;
+  }
+  const double kk = out.max_b / (out.min_c - out.max_a);
+  out.beta_paper = paper_beta_max(kk);
+  out.beta_max = std::max(out.beta_paper, std::asin(out.max_b / out.min_c));
+  return true;
+}
+
+/// §3.3.3: Δφ, Δψ around the plane's attitude over the whole θ interval, and each spring's
+/// extension range, within β_max of the plane: this pass's domain (out.roll, out.pitch,
+/// out.extension set to it).
+Domain placement_ranges(const WheeledRobot& robot, const Arc& arc, const WheelRanges& e,
+                        BoxAnalysis& out) {
+  const double a = out.plane.x(), b = out.plane.y();
+  const double beta = out.beta_max;
+  const double nrm = std::sqrt(1.0 + a * a + b * b);
+  const Range t = arc.range(b, -a);  // cross slope × N, along the body's v axis
+  const Range s = arc.range(a, b);   // slope along the body's u axis
+  const Range roll_a{std::asin(std::clamp(t.lo / nrm, -1.0, 1.0)),
+                     std::asin(std::clamp(t.hi / nrm, -1.0, 1.0))};
+  const Range pitch_a{std::atan(s.lo), std::atan(s.hi)};
+  Domain pass;
+  pass.roll = {roll_a.lo - beta, roll_a.hi + beta};
+  const double big_phi = std::max(std::abs(pass.roll.lo), std::abs(pass.roll.hi));
+  pass.pitch = {-1e300, 1e300};
+  if (big_phi < 0.5 * kPi) {
+    const double half = beta / std::cos(big_phi);
+    pass.pitch = {pitch_a.lo - half, pitch_a.hi + half};
+  }
+  const double inv_cos = 1.0 / std::cos(beta), tan_b = std::tan(beta);
+  for (int i = 0; i < out.wheel_count; ++i) {
+    const double r = robot.wheels[i].norm();
+    pass.ext[i] = {(e[i].lo < 0 ? e[i].lo * inv_cos : e[i].lo) - tan_b * r,
+                   (e[i].hi > 0 ? e[i].hi * inv_cos : e[i].hi) + tan_b * r};
+  }
+  out.roll = pass.roll;
+  out.pitch = pass.pitch;
+  for (int i = 0; i < out.wheel_count; ++i) out.extension[i] = pass.ext[i];
+  return pass;
+}
+
+/// Every placement in Δr0 lies in this pass's Δr: `dom` becomes the intersection. The
+/// verdict: kSpring when it is empty (no configuration of the box has an admissible
+/// placement), kFree when it lies strictly inside the robot's limits (true: decided),
+/// otherwise the limit it reaches (false: another pass may narrow it).
+bool narrow_domain(const WheeledRobot& robot, const Domain& pass, Domain& dom, BoxAnalysis& out) {
+  const int n = out.wheel_count;
+  const double lmax = robot.max_spring_extension;
+  dom.roll = intersect(dom.roll, pass.roll);
+  dom.pitch = intersect(dom.pitch, pass.pitch);
+  bool any_empty = empty(dom.roll) || empty(dom.pitch);
+  for (int i = 0; i < n; ++i) {
+    dom.ext[i] = intersect(dom.ext[i], pass.ext[i]);
+    any_empty = any_empty || empty(dom.ext[i]);
+  }
+  if (any_empty) {
+    out.verdict = BoxVerdict::kSpring;
+    return true;
+  }
+  const bool attitude_ok =
+      strictly_inside(dom.roll, robot.max_roll) && strictly_inside(dom.pitch, robot.max_pitch);
+  bool spring_ok = true;
+  for (int i = 0; i < n; ++i) spring_ok = spring_ok && strictly_inside(dom.ext[i], lmax);
+  out.roll = dom.roll;
+  out.pitch = dom.pitch;
+  for (int i = 0; i < n; ++i) out.extension[i] = dom.ext[i];
+  if (attitude_ok && spring_ok) {
+    out.verdict = BoxVerdict::kFree;
+    return true;
+  }
+  out.verdict = attitude_ok ? BoxVerdict::kSpring : BoxVerdict::kAttitude;
+  return false;
+}
+
 BoxAnalysis analyse_box_impl(const WheeledRobot& robot, const RuledTerrain& terrain,
                              const ElevationSums* sums, const CsBox& in,
                              const BoxAnalysisOptions& options) {
@@ -334,205 +558,29 @@ BoxAnalysis analyse_box_impl(const WheeledRobot& robot, const RuledTerrain& terr
   if (box.x1 > box.x2) std::swap(box.x1, box.x2);
   if (box.y1 > box.y2) std::swap(box.y1, box.y2);
   if (box.theta1 > box.theta2) std::swap(box.theta1, box.theta2);
-
-  const int n = static_cast<int>(robot.wheels.size());
   const ElevationGrid& grid = terrain.grid();
-  const double h = grid.cellsize();
   BoxAnalysis out;
-  out.wheel_count = n;
-
-  double sum_u2 = 0, sum_v2 = 0;
-  for (const Vec2& w : robot.wheels) {
-    sum_u2 += w.x() * w.x();
-    sum_v2 += w.y() * w.y();
-  }
-  const double lmax = robot.max_spring_extension;
-
+  out.wheel_count = static_cast<int>(robot.wheels.size());
   Domain dom;
   dom.roll = {-robot.max_roll, robot.max_roll};
   dom.pitch = {-robot.max_pitch, robot.max_pitch};
-  for (int i = 0; i < n; ++i) dom.ext[i] = {-lmax, lmax};
-
-  std::array<long, WheeledRobot::kMaxWheels> i_lo{}, i_hi{}, j_lo{}, j_hi{};
-  thread_local std::vector<double> ax;  // a x of one region's columns (envelopes)
+  const double lmax = robot.max_spring_extension;
+  for (int i = 0; i < out.wheel_count; ++i) dom.ext[i] = {-lmax, lmax};
   const Vec2 centre(0.5 * (box.x1 + box.x2), 0.5 * (box.y1 + box.y2));
-
   const Arc arc(box.theta1, box.theta2);
+  ContactRegions regions;
   for (int pass = 0; pass <= options.refinements; ++pass) {
     out.passes = pass + 1;
-    // §3.2.1: contact regions. The wheel's projection in the heading frame,
-    // first two coordinates of Ry(−ψ) Rx(φ) (u, v, w0 + l), bounded by interval
-    // arithmetic over Δφ, Δψ, Δl_i; then the exact bounding box of that
-    // rectangle swept over [θ1, θ2] and translated over [x1, x2] × [y1, y2].
-    const Range sphi = sin_range(dom.roll), cphi = cos_range(dom.roll);
-    const Range spsi = sin_range(dom.pitch), cpsi = cos_range(dom.pitch);
-    for (int i = 0; i < n; ++i) {
-      const double u = robot.wheels[i].x(), v = robot.wheels[i].y();
-      const Range w{-robot.cg_height + dom.ext[i].lo, -robot.cg_height + dom.ext[i].hi};
-      const Range yp = add(scale(v, cphi), neg(mul(w, sphi)));
-      const Range xp = add(scale(u, cpsi), neg(mul(add(scale(v, sphi), mul(w, cphi)), spsi)));
-      Range rx{1e300, -1e300}, ry{1e300, -1e300};
-      for (double cx : {xp.lo, xp.hi}) {
-        for (double cy : {yp.lo, yp.hi}) {
-          const Range ox = arc.range(cx, -cy);
-          const Range oy = arc.range(cy, cx);
-          rx = {std::min(rx.lo, ox.lo), std::max(rx.hi, ox.hi)};
-          ry = {std::min(ry.lo, oy.lo), std::max(ry.hi, oy.hi)};
-        }
-      }
-      rx = {rx.lo + box.x1, rx.hi + box.x2};
-      ry = {ry.lo + box.y1, ry.hi + box.y2};
-      if (!node_range(rx.lo, rx.hi, grid.x_min(), h, grid.ncols(), i_lo[i], i_hi[i]) ||
-          !node_range(ry.lo, ry.hi, grid.y_min(), h, grid.nrows(), j_lo[i], j_hi[i])) {
-        out.verdict = BoxVerdict::kOffMap;
-        return out;
-      }
-      out.region_x[i] = {grid.x_min() + h * static_cast<double>(i_lo[i]),
-                         grid.x_min() + h * static_cast<double>(i_hi[i])};
-      out.region_y[i] = {grid.y_min() + h * static_cast<double>(j_lo[i]),
-                         grid.y_min() + h * static_cast<double>(j_hi[i])};
-    }
-
-    // §3.2.2: the average plane over the nodes of every contact region (a
-    // node in two regions counts twice; P_a is only a reference plane).
-    AveragePlaneAccumulator acc(centre);
-    for (int i = 0; i < n && sums; ++i) {
-      if (!sums->accumulate(i_lo[i], i_hi[i], j_lo[i], j_hi[i], acc)) {
-        out.verdict = BoxVerdict::kOffMap;
-        return out;
-      }
-    }
-    for (int i = 0; i < n && !sums; ++i) {
-      for (long jj = j_lo[i]; jj <= j_hi[i]; ++jj) {
-        const double y = grid.y_min() + h * static_cast<double>(jj);
-        for (long ii = i_lo[i]; ii <= i_hi[i]; ++ii) {
-          const auto ui = static_cast<std::size_t>(ii), uj = static_cast<std::size_t>(jj);
-          if (!grid.valid(ui, uj)) {
-            out.verdict = BoxVerdict::kOffMap;
-            return out;
-          }
-          acc.add(grid.x_min() + h * static_cast<double>(ii), y, grid.at(ui, uj));
-        }
-      }
-    }
-    out.points = acc.count();
-    Vec3 abc;
-    if (!acc.solve(abc)) {
-      out.verdict = BoxVerdict::kDegeneratePlane;
+    if (!contact_regions(robot, grid, box, arc, dom, regions, out)) {
+      out.verdict = BoxVerdict::kOffMap;
       return out;
     }
-    out.plane = abc;
-    const double a = abc.x(), b = abc.y(), c = abc.z();
-
-    // §3.2.3: envelopes δz_i^min, δz_i^max; the bilinear patches minus a plane
-    // take their extremes at the nodes, so these bound the whole surface over R_i.
-    const double ca = 1.0 / std::sqrt(1.0 + a * a + b * b);  // cos φ_a cos ψ_a
-    std::array<Range, WheeledRobot::kMaxWheels> d{};
-    const double* zs = grid.values().data();
-    for (int i = 0; i < n; ++i) {
-      Range r{1e300, -1e300};
-      const long w = i_hi[i] - i_lo[i] + 1;
-      ax.resize(static_cast<std::size_t>(w));
-      for (long ii = i_lo[i]; ii <= i_hi[i]; ++ii) {
-        ax[static_cast<std::size_t>(ii - i_lo[i])] =
-            a * (grid.x_min() + h * static_cast<double>(ii));
-      }
-      for (long jj = j_lo[i]; jj <= j_hi[i]; ++jj) {
-        const double y = grid.y_min() + h * static_cast<double>(jj);
-        row_envelope(
-            zs + static_cast<std::size_t>(jj) * grid.ncols() + static_cast<std::size_t>(i_lo[i]),
-            ax.data(), w, b * y, c, r.lo, r.hi);
-      }
-      out.dz[i] = r;
-      d[i] = {ca * r.lo, ca * r.hi};
-    }
-
-    // §3.3.2: d0 = mean d_i (Σ l_i = 0 at the minimum and Σ u_i = Σ v_i = 0).
-    double sum_lo = 0, sum_hi = 0;
-    for (int i = 0; i < n; ++i) {
-      sum_lo += d[i].lo;
-      sum_hi += d[i].hi;
-    }
-    out.d0 = {sum_lo / n, sum_hi / n};
-    // d_i − d0 = (1 − 1/n) d_i − (1/n) Σ_{j≠i} d_j, bounded exactly.
-    std::array<Range, WheeledRobot::kMaxWheels> e{};
-    double max_a = 0;
-    for (int i = 0; i < n; ++i) {
-      const double k = 1.0 - 1.0 / n;
-      e[i] = {k * d[i].lo - (sum_hi - d[i].hi) / n, k * d[i].hi - (sum_lo - d[i].lo) / n};
-      max_a += std::max(e[i].lo * e[i].lo, e[i].hi * e[i].hi);
-    }
-    // Footnote 6: extremes of Σ d_i u_i and Σ d_i v_i.
-    Range su{0, 0}, sv{0, 0};
-    for (int i = 0; i < n; ++i) {
-      const double u = robot.wheels[i].x(), v = robot.wheels[i].y();
-      su = add(su, scale(u, d[i]));
-      sv = add(sv, scale(v, d[i]));
-    }
-    const double mu = std::max(std::abs(su.lo), std::abs(su.hi));
-    const double mv = std::max(std::abs(sv.lo), std::abs(sv.hi));
-    out.max_a = max_a;
-    out.max_b = std::hypot(mu, mv);
-    out.min_c = std::min(sum_u2, sum_v2);
-    if (!(out.max_a < out.min_c) || !(out.max_b < out.min_c)) {
-      out.verdict = BoxVerdict::kNoBetaBound;
-      return out;
-    }
-    const double kk = out.max_b / (out.min_c - out.max_a);
-    out.beta_paper = paper_beta_max(kk);
-    out.beta_max = std::max(out.beta_paper, std::asin(out.max_b / out.min_c));
-    const double beta = out.beta_max;
-
-    // §3.3.3: Δφ, Δψ around the plane's attitude over the whole θ interval.
-    const double nrm = std::sqrt(1.0 + a * a + b * b);
-    const Range t = arc.range(b, -a);  // cross slope × N, along the body's v axis
-    const Range s = arc.range(a, b);   // slope along the body's u axis
-    const Range roll_a{std::asin(std::clamp(t.lo / nrm, -1.0, 1.0)),
-                       std::asin(std::clamp(t.hi / nrm, -1.0, 1.0))};
-    const Range pitch_a{std::atan(s.lo), std::atan(s.hi)};
-    Range roll{roll_a.lo - beta, roll_a.hi + beta};
-    const double big_phi = std::max(std::abs(roll.lo), std::abs(roll.hi));
-    Range pitch{-1e300, 1e300};
-    if (big_phi < 0.5 * kPi) {
-      const double half = beta / std::cos(big_phi);
-      pitch = {pitch_a.lo - half, pitch_a.hi + half};
-    }
-    std::array<Range, WheeledRobot::kMaxWheels> ext{};
-    const double inv_cos = 1.0 / std::cos(beta), tan_b = std::tan(beta);
-    for (int i = 0; i < n; ++i) {
-      const double r = robot.wheels[i].norm();
-      ext[i] = {(e[i].lo < 0 ? e[i].lo * inv_cos : e[i].lo) - tan_b * r,
-                (e[i].hi > 0 ? e[i].hi * inv_cos : e[i].hi) + tan_b * r};
-    }
-
-    // Every placement in Δr0 lies in this pass's Δr: keep the intersection.
-    dom.roll = intersect(dom.roll, roll);
-    dom.pitch = intersect(dom.pitch, pitch);
-    bool any_empty = empty(dom.roll) || empty(dom.pitch);
-    for (int i = 0; i < n; ++i) {
-      dom.ext[i] = intersect(dom.ext[i], ext[i]);
-      any_empty = any_empty || empty(dom.ext[i]);
-    }
-    out.roll = roll;
-    out.pitch = pitch;
-    for (int i = 0; i < n; ++i) out.extension[i] = ext[i];
-    if (any_empty) {
-      // No configuration of the box has an admissible placement.
-      out.verdict = BoxVerdict::kSpring;
-      return out;
-    }
-    const bool attitude_ok =
-        strictly_inside(dom.roll, robot.max_roll) && strictly_inside(dom.pitch, robot.max_pitch);
-    bool spring_ok = true;
-    for (int i = 0; i < n; ++i) spring_ok = spring_ok && strictly_inside(dom.ext[i], lmax);
-    out.roll = dom.roll;
-    out.pitch = dom.pitch;
-    for (int i = 0; i < n; ++i) out.extension[i] = dom.ext[i];
-    if (attitude_ok && spring_ok) {
-      out.verdict = BoxVerdict::kFree;
-      return out;
-    }
-    out.verdict = attitude_ok ? BoxVerdict::kSpring : BoxVerdict::kAttitude;
+    if (!average_plane(grid, sums, centre, regions, out)) return out;
+    const WheelRanges d = plane_distances(grid, regions, out);
+    WheelRanges e{};
+    if (!beta_bound(robot, d, e, out)) return out;
+    const Domain this_pass = placement_ranges(robot, arc, e, out);
+    if (narrow_domain(robot, this_pass, dom, out)) return out;
   }
   return out;
 }

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <queue>
 #include <sstream>
+#include <tuple>
 #include <unordered_set>
 #include <utility>
 
@@ -189,6 +190,237 @@ ValidityFunction neighbourhood_validity(ValidityFunction base, double rho, doubl
   };
 }
 
+namespace {
+
+/// One hait_search: A* over (x, y, θ) cells, one node per cell, the arcs of the controls
+/// validated every check_spacing, a Reeds–Shepp connection to the exact goal near it.
+class HaitSearch {
+ public:
+  HaitSearch(const ValidityFunction& validity, const PotentialFunction& potential,
+             const SE2Pose& start, const SE2Pose& goal, const HaitOptions& options)
+      : validity_(validity),
+        potential_(potential),
+        start_(start),
+        goal_(goal),
+        options_(options),
+        t0_(std::chrono::steady_clock::now()),
+        cell_(options.cell_size),
+        bins_(options.theta_bins),
+        tol_xy_(options.goal_position_tolerance > 0.0 ? options.goal_position_tolerance : cell_),
+        tol_th_(options.goal_heading_tolerance > 0.0 ? options.goal_heading_tolerance
+                                                     : kTwoPi / bins_),
+        rs_region_(options.rs_switch_distance > 0.0 ? options.rs_switch_distance
+                                                    : 3.0 * options.turning_radius),
+        rs_(options.turning_radius),
+        n_sub_(
+            std::max(1, static_cast<int>(std::ceil(options.step / options.check_spacing - 1e-9)))),
+        ds_(options.step / n_sub_) {}
+
+  HaitResult run() {
+    if (!ends_valid()) return std::move(result_);
+    const double h0 = heuristic(start_);
+    nodes_.push_back({start_, 0.0, -1, Control{}, false});
+    marked_.insert(cell_key(start_, cell_, bins_));
+    result_.nodes_created = 1;
+    if (!std::isfinite(h0)) {
+      return finish(HaitStatus::kNoPath, "the potential is infinite at the start " +
+                                             pose_string(start_) + ": goal unreachable");
+    }
+    open_.push({h0, 0});
+    std::int64_t goal_node = -1;
+    while (!open_.empty()) {
+      const std::int64_t id = open_.top().second;
+      open_.pop();
+      const Node node = nodes_[static_cast<std::size_t>(id)];
+      if (node.via_rs || at_goal(node.q)) {
+        goal_node = id;
+        break;
+      }
+      ++result_.nodes_developed;
+      if (options_.connect_goal && std::hypot(goal_.x - node.q.x, goal_.y - node.q.y) <= rs_region_)
+        connect_to_goal(node, id);
+      develop(node, id);
+      if (result_.nodes_created >= options_.max_nodes) {
+        return finish(HaitStatus::kNodeLimit,
+                      "node budget of " + std::to_string(options_.max_nodes) + " nodes exhausted");
+      }
+    }
+    if (goal_node < 0) {
+      return finish(HaitStatus::kNoPath, "every reachable cell explored, the goal " +
+                                             pose_string(goal_) + " was not reached");
+    }
+    return found(replay(goal_node));
+  }
+
+ private:
+  using Entry = std::pair<double, std::int64_t>;  // (f, node id); ties: older node first
+
+  void conclude(HaitStatus status, std::string message) {
+    result_.status = status;
+    result_.message = std::move(message);
+    result_.search_seconds = seconds_since(t0_);
+  }
+  HaitResult finish(HaitStatus status, std::string message) {
+    conclude(status, std::move(message));
+    return std::move(result_);
+  }
+
+  /// False (result concluded) when the start or the goal is not valid for the robot.
+  bool ends_valid() {
+    const char* outside = " (outside the allowed region)";
+    for (const auto& [which, q, status] : {std::tuple{"start", start_, HaitStatus::kStartInvalid},
+                                           std::tuple{"goal", goal_, HaitStatus::kGoalInvalid}}) {
+      const ConfigurationCheck check = validity_(q);
+      result_.placements += check.placements;
+      if (check.valid) continue;
+      const bool out = options_.allowed_region && !options_.allowed_region(q);
+      conclude(status, std::string(which) + " configuration " + pose_string(q) +
+                           " is not valid for the robot" + (out ? outside : ""));
+      return false;
+    }
+    return true;
+  }
+
+  double heuristic(const SE2Pose& q) const {
+    const double euclid = std::hypot(goal_.x - q.x, goal_.y - q.y);
+    if (options_.heuristic == HaitHeuristic::kEuclidean) return euclid;
+    const double p = options_.potential_weight * potential_(q);
+    if (options_.heuristic == HaitHeuristic::kPotential || euclid >= rs_region_) return p;
+    // The potential ignores the goal heading; add the Reeds–Shepp curve's excess over the
+    // straight line (the detour the heading costs, 0 when aligned), weighted from 1 at the
+    // goal down to 0 at the region's edge. A full-weight excess switched on at the edge made
+    // h jump there, and A* then developed the whole band just outside the region before
+    // entering it (hait-heuristics: 1988 nodes created against the potential's 1199).
+    const double weight = 1.0 - euclid / rs_region_;
+    return p + weight * std::max(0.0, rs_.distance(q, goal_) - euclid);
+  }
+
+  bool at_goal(const SE2Pose& q) const {
+    return std::hypot(goal_.x - q.x, goal_.y - q.y) <= tol_xy_ &&
+           std::abs(wrap_angle(goal_.theta - q.theta)) <= tol_th_;
+  }
+
+  /// Final connection: a valid Reeds–Shepp curve from the node to the exact goal.
+  void connect_to_goal(const Node& node, std::int64_t id) {
+    const std::vector<PathPoint> curve = rs_.sample(node.q, goal_, options_.check_spacing);
+    double cost = 0.0;
+    bool ok = true;
+    for (std::size_t k = 1; k < curve.size() && ok; ++k) {
+      const ConfigurationCheck c = validity_(curve[k].pose);
+      result_.placements += c.placements;
+      ok = c.valid;
+      const double piece =
+          curve[k].control.omega != 0
+              ? options_.turning_radius *
+                    std::abs(wrap_angle(curve[k].pose.theta - curve[k - 1].pose.theta))
+              : std::hypot(curve[k].pose.x - curve[k - 1].pose.x,
+                           curve[k].pose.y - curve[k - 1].pose.y);
+      cost += weighted(piece, c.margin, options_.margin_weight);
+    }
+    if (ok) {
+      nodes_.push_back({goal_, node.g + cost, id, Control{}, true});
+      ++result_.nodes_created;
+      open_.push({node.g + cost, static_cast<std::int64_t>(nodes_.size() - 1)});
+    }
+  }
+
+  /// A child per control whose arc is valid and ends in a cell not yet visited.
+  void develop(const Node& node, std::int64_t id) {
+    for (const Control& u : kControls) {
+      const SE2Pose end = apply_control(node.q, u, options_.step, options_.turning_radius);
+      const std::uint64_t key = cell_key(end, cell_, bins_);
+      if (marked_.count(key) != 0) continue;  // at most one node per cell
+      double cost = 0.0;
+      bool ok = true;
+      for (int k = 1; k <= n_sub_ && ok; ++k) {
+        const SE2Pose qk =
+            k == n_sub_ ? end : apply_control(node.q, u, ds_ * k, options_.turning_radius);
+        const ConfigurationCheck c = validity_(qk);
+        result_.placements += c.placements;
+        ok = c.valid;
+        cost += weighted(ds_, c.margin, options_.margin_weight);
+      }
+      if (!ok) continue;
+      // The cell is visited once its arc is valid, whatever the heuristic says: an
+      // unmarked cell would be validated again from every other parent reaching it.
+      marked_.insert(key);
+      const double h = heuristic(end);
+      if (!std::isfinite(h)) continue;  // the potential says the goal is unreachable from here
+      nodes_.push_back({end, node.g + cost, id, u, false});
+      ++result_.nodes_created;
+      open_.push({node.g + cost + h, static_cast<std::int64_t>(nodes_.size() - 1)});
+    }
+  }
+
+  /// The dense path to the goal node, each node's control replayed from its parent.
+  std::vector<PathPoint> replay(std::int64_t goal_node) {
+    std::vector<std::int64_t> chain;
+    for (std::int64_t k = goal_node; k >= 0; k = nodes_[static_cast<std::size_t>(k)].parent) {
+      chain.push_back(k);
+    }
+    std::reverse(chain.begin(), chain.end());
+    std::vector<PathPoint> path{{start_, Control{}}};
+    for (std::size_t c = 1; c < chain.size(); ++c) {
+      const Node& n = nodes_[static_cast<std::size_t>(chain[c])];
+      const SE2Pose from = path.back().pose;
+      if (n.via_rs) {
+        const std::vector<PathPoint> curve = rs_.sample(from, goal_, options_.check_spacing);
+        path.insert(path.end(), curve.begin() + 1, curve.end());
+        result_.connected_to_goal = true;
+        continue;
+      }
+      for (int k = 1; k <= n_sub_; ++k) {
+        path.push_back(
+            {k == n_sub_ ? n.q : apply_control(from, n.u, ds_ * k, options_.turning_radius), n.u});
+      }
+    }
+    return path;
+  }
+
+  /// The result for a path found: smoothed (HaitOptions::smooth), measured.
+  HaitResult found(std::vector<PathPoint> path) {
+    result_.search_seconds = seconds_since(t0_);
+    result_.unsmoothed_path = path;
+    result_.control_changes_unsmoothed = control_changes(path);
+    if (options_.smooth && path.size() >= 2) {
+      const auto ts = std::chrono::steady_clock::now();
+      HaitSmoothingOptions so = options_.smoothing;
+      so.check_spacing = options_.check_spacing;
+      HaitSmoothingReport report;
+      path = smooth_path(path, validity_, rs_, so, &report);
+      result_.placements += report.placements;
+      result_.smoothing_seconds = seconds_since(ts);
+    }
+    result_.path = std::move(path);
+    result_.control_changes = control_changes(result_.path);
+    result_.length_m = path_length(result_.path, options_.turning_radius);
+    result_.status = HaitStatus::kFound;
+    std::ostringstream msg;
+    msg << "path found: " << result_.length_m << " m, " << result_.control_changes
+        << " control changes, " << result_.nodes_created << " nodes created";
+    result_.message = msg.str();
+    return std::move(result_);
+  }
+
+  const ValidityFunction& validity_;
+  const PotentialFunction& potential_;
+  SE2Pose start_, goal_;
+  const HaitOptions& options_;
+  std::chrono::steady_clock::time_point t0_;
+  double cell_;
+  int bins_;
+  double tol_xy_, tol_th_, rs_region_;
+  ReedsShepp rs_;
+  int n_sub_;
+  double ds_;
+  std::vector<Node> nodes_;
+  std::unordered_set<std::uint64_t> marked_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open_;
+  HaitResult result_;
+};
+
+}  // namespace
+
 HaitResult hait_search(const ValidityFunction& robot_validity, const PotentialFunction& potential,
                        const SE2Pose& start, const SE2Pose& goal, const HaitOptions& options) {
   options.validate();
@@ -207,191 +439,7 @@ HaitResult hait_search(const ValidityFunction& robot_validity, const PotentialFu
     throw InputError("hait_search: heuristic '" + heuristic_name(options.heuristic) +
                      "' needs a potential function");
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  const double cell = options.cell_size;
-  const int bins = options.theta_bins;
-  const double tol_xy =
-      options.goal_position_tolerance > 0.0 ? options.goal_position_tolerance : cell;
-  const double tol_th =
-      options.goal_heading_tolerance > 0.0 ? options.goal_heading_tolerance : kTwoPi / bins;
-  const double rs_region =
-      options.rs_switch_distance > 0.0 ? options.rs_switch_distance : 3.0 * options.turning_radius;
-  const ReedsShepp rs(options.turning_radius);
-
-  HaitResult result;
-  auto finish = [&](HaitStatus status, std::string message) {
-    result.status = status;
-    result.message = std::move(message);
-    result.search_seconds = seconds_since(t0);
-    return result;
-  };
-
-  const ConfigurationCheck start_check = validity(start);
-  result.placements += start_check.placements;
-  const char* outside = " (outside the allowed region)";
-  if (!start_check.valid) {
-    const bool out = options.allowed_region && !options.allowed_region(start);
-    return finish(HaitStatus::kStartInvalid, "start configuration " + pose_string(start) +
-                                                 " is not valid for the robot" +
-                                                 (out ? outside : ""));
-  }
-  const ConfigurationCheck goal_check = validity(goal);
-  result.placements += goal_check.placements;
-  if (!goal_check.valid) {
-    const bool out = options.allowed_region && !options.allowed_region(goal);
-    return finish(HaitStatus::kGoalInvalid, "goal configuration " + pose_string(goal) +
-                                                " is not valid for the robot" +
-                                                (out ? outside : ""));
-  }
-
-  auto heuristic = [&](const SE2Pose& q) {
-    const double euclid = std::hypot(goal.x - q.x, goal.y - q.y);
-    if (options.heuristic == HaitHeuristic::kEuclidean) return euclid;
-    const double p = options.potential_weight * potential(q);
-    if (options.heuristic == HaitHeuristic::kPotential || euclid >= rs_region) return p;
-    // The potential ignores the goal heading; add the Reeds–Shepp curve's excess over the
-    // straight line (the detour the heading costs, 0 when aligned), weighted from 1 at the
-    // goal down to 0 at the region's edge. A full-weight excess switched on at the edge made
-    // h jump there, and A* then developed the whole band just outside the region before
-    // entering it (hait-heuristics: 1988 nodes created against the potential's 1199).
-    const double weight = 1.0 - euclid / rs_region;
-    return p + weight * std::max(0.0, rs.distance(q, goal) - euclid);
-  };
-  auto at_goal = [&](const SE2Pose& q) {
-    return std::hypot(goal.x - q.x, goal.y - q.y) <= tol_xy &&
-           std::abs(wrap_angle(goal.theta - q.theta)) <= tol_th;
-  };
-
-  std::vector<Node> nodes;
-  std::unordered_set<std::uint64_t> marked;
-  using Entry = std::pair<double, std::int64_t>;  // (f, node id); ties: older node first
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-
-  const double h0 = heuristic(start);
-  nodes.push_back({start, 0.0, -1, Control{}, false});
-  marked.insert(cell_key(start, cell, bins));
-  result.nodes_created = 1;
-  if (!std::isfinite(h0)) {
-    return finish(HaitStatus::kNoPath, "the potential is infinite at the start " +
-                                           pose_string(start) + ": goal unreachable");
-  }
-  open.push({h0, 0});
-
-  const int n_sub =
-      std::max(1, static_cast<int>(std::ceil(options.step / options.check_spacing - 1e-9)));
-  const double ds = options.step / n_sub;
-  std::int64_t goal_node = -1;
-
-  while (!open.empty()) {
-    const std::int64_t id = open.top().second;
-    open.pop();
-    const Node node = nodes[static_cast<std::size_t>(id)];
-    if (node.via_rs || at_goal(node.q)) {
-      goal_node = id;
-      break;
-    }
-    ++result.nodes_developed;
-
-    // Final connection: a valid Reeds–Shepp curve to the exact goal.
-    if (options.connect_goal && std::hypot(goal.x - node.q.x, goal.y - node.q.y) <= rs_region) {
-      const std::vector<PathPoint> curve = rs.sample(node.q, goal, options.check_spacing);
-      double cost = 0.0;
-      bool ok = true;
-      for (std::size_t k = 1; k < curve.size() && ok; ++k) {
-        const ConfigurationCheck c = validity(curve[k].pose);
-        result.placements += c.placements;
-        ok = c.valid;
-        const double piece =
-            curve[k].control.omega != 0
-                ? options.turning_radius *
-                      std::abs(wrap_angle(curve[k].pose.theta - curve[k - 1].pose.theta))
-                : std::hypot(curve[k].pose.x - curve[k - 1].pose.x,
-                             curve[k].pose.y - curve[k - 1].pose.y);
-        cost += weighted(piece, c.margin, options.margin_weight);
-      }
-      if (ok) {
-        nodes.push_back({goal, node.g + cost, id, Control{}, true});
-        ++result.nodes_created;
-        open.push({node.g + cost, static_cast<std::int64_t>(nodes.size() - 1)});
-      }
-    }
-
-    for (const Control& u : kControls) {
-      const SE2Pose end = apply_control(node.q, u, options.step, options.turning_radius);
-      const std::uint64_t key = cell_key(end, cell, bins);
-      if (marked.count(key) != 0) continue;  // at most one node per cell
-      double cost = 0.0;
-      bool ok = true;
-      for (int k = 1; k <= n_sub && ok; ++k) {
-        const SE2Pose qk =
-            k == n_sub ? end : apply_control(node.q, u, ds * k, options.turning_radius);
-        const ConfigurationCheck c = validity(qk);
-        result.placements += c.placements;
-        ok = c.valid;
-        cost += weighted(ds, c.margin, options.margin_weight);
-      }
-      if (!ok) continue;
-      // The cell is visited once its arc is valid, whatever the heuristic says: an
-      // unmarked cell would be validated again from every other parent reaching it.
-      marked.insert(key);
-      const double h = heuristic(end);
-      if (!std::isfinite(h)) continue;  // the potential says the goal is unreachable from here
-      nodes.push_back({end, node.g + cost, id, u, false});
-      ++result.nodes_created;
-      open.push({node.g + cost + h, static_cast<std::int64_t>(nodes.size() - 1)});
-    }
-    if (result.nodes_created >= options.max_nodes) {
-      return finish(HaitStatus::kNodeLimit,
-                    "node budget of " + std::to_string(options.max_nodes) + " nodes exhausted");
-    }
-  }
-  if (goal_node < 0) {
-    return finish(HaitStatus::kNoPath, "every reachable cell explored, the goal " +
-                                           pose_string(goal) + " was not reached");
-  }
-
-  // Rebuild the dense path by replaying each node's control from its parent.
-  std::vector<std::int64_t> chain;
-  for (std::int64_t k = goal_node; k >= 0; k = nodes[static_cast<std::size_t>(k)].parent) {
-    chain.push_back(k);
-  }
-  std::reverse(chain.begin(), chain.end());
-  std::vector<PathPoint> path{{start, Control{}}};
-  for (std::size_t c = 1; c < chain.size(); ++c) {
-    const Node& n = nodes[static_cast<std::size_t>(chain[c])];
-    const SE2Pose from = path.back().pose;
-    if (n.via_rs) {
-      const std::vector<PathPoint> curve = rs.sample(from, goal, options.check_spacing);
-      path.insert(path.end(), curve.begin() + 1, curve.end());
-      result.connected_to_goal = true;
-      continue;
-    }
-    for (int k = 1; k <= n_sub; ++k) {
-      path.push_back(
-          {k == n_sub ? n.q : apply_control(from, n.u, ds * k, options.turning_radius), n.u});
-    }
-  }
-  result.search_seconds = seconds_since(t0);
-  result.unsmoothed_path = path;
-  result.control_changes_unsmoothed = control_changes(path);
-  if (options.smooth && path.size() >= 2) {
-    const auto ts = std::chrono::steady_clock::now();
-    HaitSmoothingOptions so = options.smoothing;
-    so.check_spacing = options.check_spacing;
-    HaitSmoothingReport report;
-    path = smooth_path(path, validity, rs, so, &report);
-    result.placements += report.placements;
-    result.smoothing_seconds = seconds_since(ts);
-  }
-  result.path = std::move(path);
-  result.control_changes = control_changes(result.path);
-  result.length_m = path_length(result.path, options.turning_radius);
-  result.status = HaitStatus::kFound;
-  std::ostringstream msg;
-  msg << "path found: " << result.length_m << " m, " << result.control_changes
-      << " control changes, " << result.nodes_created << " nodes created";
-  result.message = msg.str();
-  return result;
+  return HaitSearch(validity, potential, start, goal, options).run();
 }
 
 }  // namespace talus

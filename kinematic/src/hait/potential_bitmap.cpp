@@ -55,42 +55,36 @@ void PotentialBitmapOptions::validate() const {
   if (connectivity != 8 && connectivity != 16) fail("connectivity", "8 or 16", connectivity);
 }
 
-PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
-                                 const PotentialBitmapOptions& options, const ElevationGrid* dz)
-    : options_(options) {
-  options_.validate();
-  const ElevationGrid& g = terrain.grid();
-  ncols_ = g.ncols();
-  nrows_ = g.nrows();
-  spacing_ = g.cellsize();
-  origin_ = {g.x_min(), g.y_min()};
-  const double h = spacing_;
-  if (!goal.allFinite() || !terrain.contains(goal)) {
-    std::ostringstream msg;
-    msg << "goal (" << goal.x() << ", " << goal.y() << ") is off the terrain [" << g.x_min() << ", "
-        << g.x_max() << "] x [" << g.y_min() << ", " << g.y_max() << "]";
-    throw InputError(msg.str());
-  }
-  if (dz) {
-    if (dz->ncols() != ncols_ || dz->nrows() != nrows_) {
-      throw InputError("terrain uncertainty grid shape differs from the terrain's");
-    }
-    for (std::size_t j = 0; j < nrows_; ++j)
-      for (std::size_t i = 0; i < ncols_; ++i)
-        if (dz->valid(i, j) && !(dz->at(i, j) >= 0.0 && std::isfinite(dz->at(i, j)))) {
-          std::ostringstream msg;
-          msg << "terrain uncertainty at node (" << i << ", " << j << ") must be finite and >= 0";
-          throw InputError(msg.str());
-        }
-  }
-  const std::size_t n = ncols_ * nrows_;
-  slope_.assign(n, kInf);
-  roughness_.assign(n, kInf);
-  cost_.assign(n, kInf);
+namespace {
 
-  // Cost bitmap: plane fit over each node's disc (file comment).
-  const std::vector<Offset> disc = disc_offsets(std::max(options_.robot_radius, h), h);
-  stats_.disc_nodes = disc.size();
+/// InputError unless the terrain uncertainty grid has the terrain's shape and finite,
+/// non-negative values.
+void require_valid_uncertainty(const ElevationGrid& dz, std::size_t ncols, std::size_t nrows) {
+  if (dz.ncols() != ncols || dz.nrows() != nrows) {
+    throw InputError("terrain uncertainty grid shape differs from the terrain's");
+  }
+  for (std::size_t j = 0; j < nrows; ++j)
+    for (std::size_t i = 0; i < ncols; ++i)
+      if (dz.valid(i, j) && !(dz.at(i, j) >= 0.0 && std::isfinite(dz.at(i, j)))) {
+        std::ostringstream msg;
+        msg << "terrain uncertainty at node (" << i << ", " << j << ") must be finite and >= 0";
+        throw InputError(msg.str());
+      }
+}
+
+/// Slope, roughness and cost of every node (+inf: an obstacle).
+struct CostBitmap {
+  std::vector<double> slope, roughness, cost;
+};
+
+/// The cost bitmap: a plane fitted over each node's disc of the robot's radius (file
+/// comment); a disc with a void is an obstacle.
+CostBitmap cost_bitmap(const ElevationGrid& g, const ElevationGrid* dz,
+                       const PotentialBitmapOptions& options, const std::vector<Offset>& disc) {
+  const std::size_t ncols = g.ncols(), nrows = g.nrows(), n = ncols * nrows;
+  const double h = g.cellsize();
+  CostBitmap out{std::vector<double>(n, kInf), std::vector<double>(n, kInf),
+                 std::vector<double>(n, kInf)};
   // Normal matrix of a disc with every node present: the same for all inner nodes.
   const auto normal_matrix = [&](auto&& present) {
     Mat3 a = Mat3::Zero();
@@ -102,12 +96,11 @@ PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
     return a;
   };
   const Mat3 full_inverse = normal_matrix([](const Offset&) { return true; }).inverse();
-  for (std::size_t j = 0; j < nrows_; ++j) {
-    for (std::size_t i = 0; i < ncols_; ++i) {
+  for (std::size_t j = 0; j < nrows; ++j) {
+    for (std::size_t i = 0; i < ncols; ++i) {
       const auto inside = [&](const Offset& o) {
         const long ii = static_cast<long>(i) + o.di, jj = static_cast<long>(j) + o.dj;
-        return ii >= 0 && jj >= 0 && ii < static_cast<long>(ncols_) &&
-               jj < static_cast<long>(nrows_);
+        return ii >= 0 && jj >= 0 && ii < static_cast<long>(ncols) && jj < static_cast<long>(nrows);
       };
       bool full = true, voids = false;
       double dz_max = 0.0;
@@ -138,55 +131,45 @@ PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
         dmin = std::min(dmin, d);
         dmax = std::max(dmax, d);
       }
-      const std::size_t k = j * ncols_ + i;
-      slope_[k] = std::atan(coef.tail<2>().norm());
-      roughness_[k] = (dmax - dmin) + 2.0 * dz_max;
-      if (slope_[k] <= options_.max_slope && roughness_[k] <= options_.max_roughness) {
-        cost_[k] = 1.0 + options_.slope_weight * slope_[k] / options_.max_slope +
-                   options_.roughness_weight * roughness_[k] / options_.max_roughness;
+      const std::size_t k = j * ncols + i;
+      out.slope[k] = std::atan(coef.tail<2>().norm());
+      out.roughness[k] = (dmax - dmin) + 2.0 * dz_max;
+      if (out.slope[k] <= options.max_slope && out.roughness[k] <= options.max_roughness) {
+        out.cost[k] = 1.0 + options.slope_weight * out.slope[k] / options.max_slope +
+                      options.roughness_weight * out.roughness[k] / options.max_roughness;
       }
     }
   }
+  return out;
+}
 
-  // Growing by rho (§5.3.1): the largest cost within distance rho.
-  if (options_.position_uncertainty > 0.0) {
-    // No offset reaches past the map's diagonal: a larger rho grows by the
-    // whole map, and its disc (O(rho^2) offsets) must not be built.
-    const double diagonal =
-        h * std::hypot(static_cast<double>(ncols_), static_cast<double>(nrows_));
-    const double radius = std::min(options_.position_uncertainty, diagonal);
-    require_memory(std::numbers::pi * std::pow(radius / h + 1.0, 2.0) * sizeof(Offset),
-                   "growing the potential bitmap by the position uncertainty",
-                   "use a smaller position uncertainty or a coarser terrain");
-    const std::vector<Offset> grow = disc_offsets(radius, h);
-    std::vector<double> grown(n);
-    for (std::size_t j = 0; j < nrows_; ++j)
-      for (std::size_t i = 0; i < ncols_; ++i) {
-        double c = 0.0;
-        for (const Offset& o : grow) {
-          const long ii = static_cast<long>(i) + o.di, jj = static_cast<long>(j) + o.dj;
-          if (ii < 0 || jj < 0 || ii >= static_cast<long>(ncols_) ||
-              jj >= static_cast<long>(nrows_))
-            continue;
-          c = std::max(c,
-                       cost_[static_cast<std::size_t>(jj) * ncols_ + static_cast<std::size_t>(ii)]);
-        }
-        grown[j * ncols_ + i] = c;
+/// Growing by rho (§5.3.1): the largest cost within distance `radius` of each node.
+std::vector<double> grown_cost(const std::vector<double>& cost, std::size_t ncols,
+                               std::size_t nrows, double h, double radius) {
+  require_memory(std::numbers::pi * std::pow(radius / h + 1.0, 2.0) * sizeof(Offset),
+                 "growing the potential bitmap by the position uncertainty",
+                 "use a smaller position uncertainty or a coarser terrain");
+  const std::vector<Offset> grow = disc_offsets(radius, h);
+  std::vector<double> grown(ncols * nrows);
+  for (std::size_t j = 0; j < nrows; ++j)
+    for (std::size_t i = 0; i < ncols; ++i) {
+      double c = 0.0;
+      for (const Offset& o : grow) {
+        const long ii = static_cast<long>(i) + o.di, jj = static_cast<long>(j) + o.dj;
+        if (ii < 0 || jj < 0 || ii >= static_cast<long>(ncols) || jj >= static_cast<long>(nrows))
+          continue;
+        c = std::max(c, cost[static_cast<std::size_t>(jj) * ncols + static_cast<std::size_t>(ii)]);
       }
-    cost_ = std::move(grown);
-  }
-  for (double c : cost_) stats_.obstacles += !(c < kInf);
+      grown[j * ncols + i] = c;
+    }
+  return grown;
+}
 
-  // Wave propagation from the goal node.
-  const auto gi = static_cast<std::size_t>(std::lround((goal.x() - origin_.x()) / h));
-  const auto gj = static_cast<std::size_t>(std::lround((goal.y() - origin_.y()) / h));
-  goal_node_ = g.node_position(gi, gj);
-  const std::size_t goal_index = gj * ncols_ + gi;
-  std::vector<double> wave_cost = cost_;
-  if (!(wave_cost[goal_index] < kInf)) {
-    stats_.goal_on_obstacle = true;
-    wave_cost[goal_index] = 1.0 + options_.slope_weight + options_.roughness_weight;
-  }
+/// The wave from `goal_index` over `wave_cost`: 8 (king) or 16 (also knight) moves, a move
+/// costing its length times the mean cost of the nodes it touches.
+ShortestPathTree propagate_wave(const std::vector<double>& wave_cost, std::size_t ncols,
+                                std::size_t nrows, double h, int connectivity,
+                                std::size_t goal_index) {
   struct Move {
     int di, dj;
     double length;
@@ -199,16 +182,16 @@ PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
       const int ai = std::abs(di), aj = std::abs(dj);
       const bool king = std::max(ai, aj) == 1;
       const bool knight = (ai == 2 && aj == 1) || (ai == 1 && aj == 2);
-      if (!king && !(knight && options_.connectivity == 16)) continue;
+      if (!king && !(knight && connectivity == 16)) continue;
       Move m{di, dj, h * std::hypot(di, dj), 0, 0, 0, 0, knight};
       if (ai == 2) m = {di, dj, m.length, di / 2, 0, di / 2, dj, true};
       if (aj == 2) m = {di, dj, m.length, 0, dj / 2, di, dj / 2, true};
       moves.push_back(m);
     }
   }
-  const auto nc = static_cast<long>(ncols_), nr = static_cast<long>(nrows_);
+  const auto nc = static_cast<long>(ncols), nr = static_cast<long>(nrows);
   const auto edges = [&](std::uint32_t node, auto&& emit) {
-    const long i = node % ncols_, j = node / ncols_;
+    const long i = node % ncols, j = node / ncols;
     const double c0 = wave_cost[node];
     for (const Move& m : moves) {
       const long ii = i + m.di, jj = j + m.dj;
@@ -226,10 +209,59 @@ PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
       emit(static_cast<std::uint32_t>(next), m.length * c);
     }
   };
+  const std::size_t n = ncols * nrows;
   if (n > std::numeric_limits<std::uint32_t>::max() - 1) {
     throw InputError("terrain too large for the potential bitmap's 32-bit node ids");
   }
-  ShortestPathTree tree = shortest_paths(n, static_cast<std::uint32_t>(goal_index), edges);
+  return shortest_paths(n, static_cast<std::uint32_t>(goal_index), edges);
+}
+
+}  // namespace
+
+PotentialBitmap::PotentialBitmap(const RuledTerrain& terrain, const Vec2& goal,
+                                 const PotentialBitmapOptions& options, const ElevationGrid* dz)
+    : options_(options) {
+  options_.validate();
+  const ElevationGrid& g = terrain.grid();
+  ncols_ = g.ncols();
+  nrows_ = g.nrows();
+  spacing_ = g.cellsize();
+  origin_ = {g.x_min(), g.y_min()};
+  const double h = spacing_;
+  if (!goal.allFinite() || !terrain.contains(goal)) {
+    std::ostringstream msg;
+    msg << "goal (" << goal.x() << ", " << goal.y() << ") is off the terrain [" << g.x_min() << ", "
+        << g.x_max() << "] x [" << g.y_min() << ", " << g.y_max() << "]";
+    throw InputError(msg.str());
+  }
+  if (dz) require_valid_uncertainty(*dz, ncols_, nrows_);
+  const std::vector<Offset> disc = disc_offsets(std::max(options_.robot_radius, h), h);
+  stats_.disc_nodes = disc.size();
+  CostBitmap bitmap = cost_bitmap(g, dz, options_, disc);
+  slope_ = std::move(bitmap.slope);
+  roughness_ = std::move(bitmap.roughness);
+  cost_ = std::move(bitmap.cost);
+  if (options_.position_uncertainty > 0.0) {
+    // No offset reaches past the map's diagonal: a larger rho grows by the
+    // whole map, and its disc (O(rho^2) offsets) must not be built.
+    const double diagonal =
+        h * std::hypot(static_cast<double>(ncols_), static_cast<double>(nrows_));
+    cost_ = grown_cost(cost_, ncols_, nrows_, h, std::min(options_.position_uncertainty, diagonal));
+  }
+  for (double c : cost_) stats_.obstacles += !(c < kInf);
+
+  // Wave propagation from the goal node.
+  const auto gi = static_cast<std::size_t>(std::lround((goal.x() - origin_.x()) / h));
+  const auto gj = static_cast<std::size_t>(std::lround((goal.y() - origin_.y()) / h));
+  goal_node_ = g.node_position(gi, gj);
+  const std::size_t goal_index = gj * ncols_ + gi;
+  std::vector<double> wave_cost = cost_;
+  if (!(wave_cost[goal_index] < kInf)) {
+    stats_.goal_on_obstacle = true;
+    wave_cost[goal_index] = 1.0 + options_.slope_weight + options_.roughness_weight;
+  }
+  ShortestPathTree tree =
+      propagate_wave(wave_cost, ncols_, nrows_, h, options_.connectivity, goal_index);
   potential_ = std::move(tree.cost);
   stats_.expanded = tree.expanded;
   for (double p : potential_) stats_.reached += (p < kInf);

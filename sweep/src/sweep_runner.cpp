@@ -19,6 +19,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <thread>
 #include <tuple>
 
@@ -46,23 +47,59 @@ std::string host_name() {
   return name;
 }
 
+/// A results file's size limit [bytes]: a million records of a kilobyte.
+constexpr std::size_t kMaxResultsFileBytes = std::size_t{1} << 30;
+/// A record's deepest nesting of arrays and objects: the sweep writes depth 3 (a record,
+/// its parameters or figures, a vector among them); JSON nested deeper is not a record, and
+/// nesting by the hundred thousand would exhaust the stack of a recursive destructor.
+constexpr int kMaxRecordDepth = 64;
+
+/// Nesting depth of the JSON text `line` (brackets outside strings), stopping past `limit`.
+int json_depth(std::string_view line, int limit) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : line) {
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+      if (deepest > limit) return deepest;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 /// The lines of a results file; a last line without its newline is torn
-/// (the writer died in the middle of it) and left out. With `repair` the
-/// file is cut back to its last complete line, so appends start cleanly.
+/// (the writer died in the middle of it) and left out, as is a line that is not
+/// a record (not JSON, no case_id, nested beyond kMaxRecordDepth): its case runs
+/// again. With `repair` the file is cut back to its last complete line, so
+/// appends start cleanly. A missing file has no records; anything but a regular
+/// file (a FIFO, a link to a device) or a file beyond kMaxResultsFileBytes is an
+/// InputError (read_input_file), before it is opened.
 std::vector<Json> read_records_file(const fs::path& path, bool repair) {
   std::vector<Json> records;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return records;
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  std::error_code missing;
+  if (!fs::exists(fs::symlink_status(path, missing))) return records;
+  const std::string text = read_input_file(path.string(), kMaxResultsFileBytes);
   const std::size_t complete = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
   std::size_t begin = 0;
   while (begin < complete) {
     const std::size_t end = text.find('\n', begin);
     const std::string line = text.substr(begin, end - begin);
     begin = end + 1;
-    if (line.empty()) continue;
+    if (line.empty() || json_depth(line, kMaxRecordDepth) > kMaxRecordDepth) continue;
     Json record = Json::parse(line, nullptr, /*allow_exceptions=*/false);
     if (record.is_object() && record.contains("case_id")) records.push_back(std::move(record));
   }

@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 #include <unistd.h>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -149,6 +150,51 @@ TEST(RasterIo, AVrtIsReadOnlyWhenEverySourceIsARegularFile) {
   expect_contains(read_error((dir / "wms.xml").string()), "not a raster GDAL can read");
 }
 
+/// A VRT of `tif`'s 10 x 10 pixels as one band of `data_type` with `band_elements` (Scale,
+/// Offset, UnitType) inside the band.
+std::string write_band_vrt(const fs::path& file, const std::string& tif,
+                           const std::string& band_elements,
+                           const std::string& data_type = "Float64") {
+  std::ofstream(file) << "<VRTDataset rasterXSize=\"10\" rasterYSize=\"10\">\n"
+                         "  <SRS>EPSG:32613</SRS>\n"
+                         "  <GeoTransform>557000, 30, 0, 4373500, 0, -30</GeoTransform>\n"
+                         "  <VRTRasterBand dataType=\""
+                      << data_type << "\" band=\"1\">\n    " << band_elements
+                      << "\n    <SimpleSource>\n      <SourceFilename>" << tif
+                      << "</SourceFilename>\n      <SourceBand>1</SourceBand>\n"
+                         "    </SimpleSource>\n  </VRTRasterBand>\n</VRTDataset>\n";
+  return file.string();
+}
+
+// Issue #39 item 3: a band's scale, offset and unit were ignored (an int16 DEM with scale 0.1
+// and offset 1000 read as 0-1190 m), a complex band read as its real part.
+TEST(RasterIo, ABandsScaleOffsetAndUnitGiveElevationsInMetres) {
+  const fs::path dir = scratch() / "scaled";
+  fs::create_directories(dir);
+  const std::string tif = (dir / "src.tif").string();
+  gdal_test::translate(
+      kWestBijou, tif,
+      {"-of", "GTiff", "-ot", "Float64", "-a_srs", "EPSG:32613", "-srcwin", "0", "0", "10", "10"});
+  const std::vector<double> raw = read_terrain(tif).grid.values();
+  const auto expect_mapped = [&](const TerrainRaster& r, double scale, double offset) {
+    ASSERT_EQ(r.grid.values().size(), raw.size());
+    for (std::size_t k = 0; k < raw.size(); ++k)
+      ASSERT_NEAR(r.grid.values()[k], raw[k] * scale + offset, 1e-9 * std::abs(raw[k] + offset));
+  };
+  expect_mapped(read_terrain(write_band_vrt(dir / "scaled.vrt", tif,
+                                            "<Offset>1000</Offset><Scale>0.1</Scale>")),
+                0.1, 1000.0);
+  expect_mapped(read_terrain(write_band_vrt(dir / "feet.vrt", tif, "<UnitType>ft</UnitType>")),
+                0.3048, 0.0);
+  expect_mapped(read_terrain(write_band_vrt(dir / "metres.vrt", tif, "<UnitType>m</UnitType>")),
+                1.0, 0.0);
+  expect_contains(read_error(write_band_vrt(dir / "celsius.vrt", tif, "<UnitType>degC</UnitType>")),
+                  "unit is 'degC'");
+  expect_contains(read_error(write_band_vrt(dir / "zero.vrt", tif, "<Scale>0</Scale>")), "scale 0");
+  expect_contains(read_error(write_band_vrt(dir / "complex.vrt", tif, "", "CFloat64")),
+                  "complex numbers");
+}
+
 /// Pixel (c, r from the north) of a 5 x 4 raster; NODATA -32768 at three pixels, NaN at one.
 TEST(RasterIo, NodataGeoTiffKeepsItsMask) {
   const int nx = 5, ny = 4;
@@ -201,6 +247,27 @@ std::string geographic_raster() {
   const std::string tif = (scratch() / "geographic.tif").string();
   gdal_test::write_raster(tif, nx, ny, {lon0, dx, 0.0, lat1, 0.0, -dx}, "EPSG:4326", values);
   return tif;
+}
+
+// Issue #39 item 4: `--reproject auto` on a strip round the pole warped to 7190 x 7190 pixels
+// (1.3 GB) before anything checked the size. The warp's output is sized first, within the
+// memory budget and a growth of 16 times the source, and refused with one line.
+TEST(RasterIo, AWarpBeyondTheMemoryBudgetIsRefusedBeforeWarping) {
+  const int nx = 3600, ny = 2;
+  const std::vector<double> values(static_cast<std::size_t>(nx * ny), 100.0);
+  const std::string tif = (scratch() / "polar_strip.tif").string();
+  gdal_test::write_raster(tif, nx, ny, {-180.0, 0.1, 0.0, 89.9, 0.0, -0.1}, "EPSG:4326", values);
+  ::setenv("TALUS_MEMORY_LIMIT_MB", "64", 1);
+  TerrainReadOptions options;
+  options.reproject = Reprojection::kAuto;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string message = read_error(tif, options);
+  ::unsetenv("TALUS_MEMORY_LIMIT_MB");
+  expect_contains(message, "warped to EPSG:32631");
+  // Within any budget the strip would grow from 7200 pixels to 10785 x 10785 (2.8 GB, 24 s).
+  ::unsetenv("TALUS_MEMORY_LIMIT_MB");
+  expect_contains(read_error(tif, options), "would grow from 7200 to");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
 }
 
 TEST(RasterIo, GeographicRasterIsRefusedWithoutReprojection) {
@@ -289,8 +356,8 @@ TEST(RasterIo, WrittenGeoTiffHasTheGridBandsNamesAndNodata) {
   for (std::size_t k = 0; k < 12; ++k) a[k] = 0.25 * static_cast<double>(k);
   a[5] = std::numeric_limits<double>::quiet_NaN();
   b[7] = std::numeric_limits<double>::infinity();
-  layers.bands.push_back({"first", a, "m/s", {{"heading_deg", "0"}}});
-  layers.bands.push_back({"second", b, "", {}});
+  layers.bands.push_back({"first", a, "", {{"heading_deg", "0"}}});
+  layers.bands.push_back({"second", b, "m/s", {}});
   const std::string out = (scratch() / "layers.tif").string();
   write_geotiff(layers, out);
   const gdal_test::ReadRaster r = gdal_test::read_raster(out);
@@ -321,8 +388,14 @@ TEST(RasterIo, WrittenGeoTiffHasTheGridBandsNamesAndNodata) {
       }
     }
   }
-  // And read back as a terrain, band 1 is the same node geometry.
-  const TerrainRaster back = read_terrain(out);
+  // Read back as a terrain: two bands, so which holds the elevations must be said; band 2's
+  // unit (m/s) is no length; band 1 is the same node geometry.
+  expect_contains(read_error(out), "the raster has 2 bands");
+  TerrainReadOptions choose;
+  choose.band = 2;
+  expect_contains(read_error(out, choose), "unit is 'm/s'");
+  choose.band = 1;
+  const TerrainRaster back = read_terrain(out, choose);
   EXPECT_EQ(back.grid.x_min(), 100.0);
   EXPECT_EQ(back.grid.y_min(), 200.0);
   EXPECT_EQ(back.grid.void_count(), 1u);

@@ -5,9 +5,11 @@
 #include <cpl_error.h>
 #include <cpl_string.h>
 #include <gdal.h>
+#include <gdal_alg.h>
 #include <gdal_utils.h>
 #include <ogr_srs_api.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -30,6 +32,9 @@ namespace {
 
 /// Largest raster read [nodes]: 8 bytes a node twice (read buffer and grid).
 constexpr double kMaxRasterNodes = 2.5e8;
+/// How many times its own pixel count a raster may grow by --reproject auto: a DEM warped to
+/// its UTM zone keeps about its count (1-2x); a strip round a pole squares it.
+constexpr double kMaxWarpGrowth = 16.0;
 
 void register_drivers() {
   static std::once_flag once;
@@ -157,9 +162,60 @@ int utm_zone_epsg(GDALDatasetH ds, OGRSpatialReferenceH srs, const std::string& 
   return (y >= 0.0 ? 32600 : 32700) + zone;
 }
 
+/// The size GDALWarp will give `ds` warped to `target` (its suggested output), refused
+/// beyond the raster node limit or the memory budget before any pixel is warped: a narrow
+/// strip near a pole can warp to a square many times its own size.
+void require_warp_fits(GDALDatasetH ds, const std::string& target, const std::string& source) {
+  Srs srs(OSRNewSpatialReference(nullptr));
+  char* wkt = nullptr;
+  if (OSRSetFromUserInput(srs.get(), target.c_str()) != OGRERR_NONE ||
+      OSRExportToWkt(srs.get(), &wkt) != OGRERR_NONE) {
+    CPLFree(wkt);
+    throw InputError(source + ": --reproject auto cannot describe " + target);
+  }
+  void* transformer =
+      GDALCreateGenImgProjTransformer(ds, GDALGetProjectionRef(ds), nullptr, wkt, FALSE, 0.0, 1);
+  CPLFree(wkt);
+  if (transformer == nullptr) {
+    throw InputError(source + ": --reproject auto cannot transform the raster to " + target + " (" +
+                     QuietErrors::last() + ")");
+  }
+  double gt[6];
+  int nx = 0, ny = 0;
+  const CPLErr err =
+      GDALSuggestedWarpOutput(ds, GDALGenImgProjTransform, transformer, gt, &nx, &ny);
+  GDALDestroyGenImgProjTransformer(transformer);
+  if (err != CE_None) {
+    throw InputError(source + ": --reproject auto cannot size the warped raster (" +
+                     QuietErrors::last() + ")");
+  }
+  const double nodes = static_cast<double>(nx) * static_cast<double>(ny);
+  const double source_nodes =
+      static_cast<double>(GDALGetRasterXSize(ds)) * static_cast<double>(GDALGetRasterYSize(ds));
+  if (nodes > kMaxWarpGrowth * std::max(source_nodes, 1e4)) {
+    throw InputError(source + ": warped to " + target + " the raster would grow from " +
+                     format(source_nodes) + " to " + std::to_string(nx) + " x " +
+                     std::to_string(ny) + " pixels (a strip along a pole or a meridian?); " +
+                     "warp it yourself at the resolution you want (gdalwarp -t_srs -tr)");
+  }
+  if (nodes > kMaxRasterNodes) {
+    throw InputError(source + ": warped to " + target + " the raster would have " +
+                     std::to_string(nx) + " x " + std::to_string(ny) +
+                     " pixels, more than Talus reads (" + format(kMaxRasterNodes) +
+                     "); crop it first (gdal_translate -projwin) or warp it yourself");
+  }
+  // The warped band (float64), then grid_of's pixels, values and mask.
+  require_memory(25.0 * nodes,
+                 source + " warped to " + target + " (" + std::to_string(nx) + " x " +
+                     std::to_string(ny) + " pixels)",
+                 "crop the raster first (gdal_translate -projwin) or warp it yourself (gdalwarp "
+                 "-tr)");
+}
+
 /// GDALWarp of `ds` to EPSG:`epsg` (bilinear, float64, NODATA NaN), in memory.
 Dataset warp_to(GDALDatasetH ds, int epsg, const std::string& source) {
   const std::string target = "EPSG:" + std::to_string(epsg);
+  require_warp_fits(ds, target, source);
   const char* argv[] = {"-of", "MEM",     "-t_srs",     target.c_str(), "-r",   "bilinear",
                         "-ot", "Float64", "-dstnodata", "nan",          nullptr};
   GDALWarpAppOptions* options = GDALWarpAppOptionsNew(const_cast<char**>(argv), nullptr);
@@ -172,6 +228,81 @@ Dataset warp_to(GDALDatasetH ds, int epsg, const std::string& source) {
                      QuietErrors::last() + ")");
   }
   return out;
+}
+
+/// The 1-based index of the elevation band: `requested`, or with 0 the raster's only band.
+int elevation_band(GDALDatasetH ds, int requested, const std::string& source) {
+  const int count = GDALGetRasterCount(ds);
+  if (requested == 0 && count != 1) {
+    throw InputError(source + ": the raster has " + std::to_string(count) +
+                     " bands; Talus reads one band of elevations: extract it first "
+                     "(gdal_translate -b N) or choose it (TerrainReadOptions::band)");
+  }
+  const int index = requested == 0 ? 1 : requested;
+  if (index > count) {
+    throw InputError(source + ": band " + std::to_string(index) + " requested, the raster has " +
+                     std::to_string(count));
+  }
+  return index;
+}
+
+/// raw → metres: the band's scale and offset, then its unit.
+struct ElevationScale {
+  double scale = 1.0, offset = 0.0, metres_per_unit = 1.0;
+  double operator()(double raw) const { return (raw * scale + offset) * metres_per_unit; }
+};
+
+/// The band's scale, offset and unit (raster_io.hpp's file comment); InputError for a complex
+/// band, a scale or offset that is not finite (or a zero scale), or a unit that is not a length.
+ElevationScale elevation_scale(GDALRasterBandH band, const std::string& source) {
+  if (GDALDataTypeIsComplex(GDALGetRasterDataType(band))) {
+    throw InputError(source + ": the elevation band holds complex numbers (" +
+                     GDALGetDataTypeName(GDALGetRasterDataType(band)) +
+                     "); Talus needs real elevations");
+  }
+  ElevationScale out;
+  int has_scale = 0, has_offset = 0;
+  out.scale = GDALGetRasterScale(band, &has_scale);
+  out.offset = GDALGetRasterOffset(band, &has_offset);
+  if (!has_scale) out.scale = 1.0;
+  if (!has_offset) out.offset = 0.0;
+  if (!std::isfinite(out.scale) || out.scale == 0.0 || !std::isfinite(out.offset)) {
+    throw InputError(source + ": the elevation band's scale " + format(out.scale) + " and offset " +
+                     format(out.offset) +
+                     " do not map its values to elevations (a finite, non-zero scale and a "
+                     "finite offset)");
+  }
+  const char* unit_type = GDALGetRasterUnitType(band);
+  std::string unit = unit_type ? unit_type : "";
+  for (char& c : unit) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" ||
+      unit == "meters") {
+    out.metres_per_unit = 1.0;
+  } else if (unit == "ft" || unit == "foot" || unit == "feet") {
+    out.metres_per_unit = 0.3048;
+  } else if (unit == "us survey foot" || unit == "ftus" || unit == "us-ft") {
+    out.metres_per_unit = 1200.0 / 3937.0;
+  } else {
+    throw InputError(source + ": the elevation band's unit is '" + printable(unit_type, 40) +
+                     "', not a length Talus knows (metres or feet); convert the band to metres "
+                     "first");
+  }
+  return out;
+}
+
+/// True when band `index` (0: the first) holds values that are not elevations in metres as
+/// they stand (a scale, an offset or another unit).
+bool scaled_band(GDALDatasetH ds, int index) {
+  if (index == 0) index = 1;
+  if (index > GDALGetRasterCount(ds)) return false;  // grid_of says so
+  GDALRasterBandH band = GDALGetRasterBand(ds, index);
+  int has_scale = 0, has_offset = 0;
+  const double scale = GDALGetRasterScale(band, &has_scale);
+  const double offset = GDALGetRasterOffset(band, &has_offset);
+  const char* unit = GDALGetRasterUnitType(band);
+  return (has_scale && scale != 1.0) || (has_offset && offset != 0.0) ||
+         (unit != nullptr && *unit != '\0' && std::string(unit) != "m" &&
+          std::string(unit) != "metre");
 }
 
 /// ElevationGrid from band `band_index` of `ds`, after every geometric check.
@@ -213,11 +344,8 @@ ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source
                      format(std::abs(gt[5])) +
                      "); Talus needs square pixels: resample it first (gdalwarp -tr H H)");
   }
-  if (band_index > GDALGetRasterCount(ds)) {
-    throw InputError(source + ": band " + std::to_string(band_index) +
-                     " requested, the raster has " + std::to_string(GDALGetRasterCount(ds)));
-  }
-  GDALRasterBandH band = GDALGetRasterBand(ds, band_index);
+  GDALRasterBandH band = GDALGetRasterBand(ds, elevation_band(ds, band_index, source));
+  const ElevationScale to_metres = elevation_scale(band, source);
   int has_nodata = 0;
   const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
   const std::size_t w = static_cast<std::size_t>(nx), rows = static_cast<std::size_t>(ny);
@@ -234,11 +362,12 @@ ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source
   for (std::size_t r = 0; r < rows; ++r) {
     const std::size_t j = north_up ? rows - 1 - r : r;
     for (std::size_t i = 0; i < w; ++i) {
-      const double z = pixels[r * w + i];
-      if (std::isnan(z) || (has_nodata && z == nodata)) {
+      const double raw = pixels[r * w + i];
+      if (std::isnan(raw) || (has_nodata && raw == nodata)) {
         grid.set_void(i, j);
         continue;
       }
+      const double z = to_metres(raw);
       if (!(std::abs(z) <= kMaxElevationMagnitude)) {
         throw InputError(source + ": pixel (column " + std::to_string(i) + ", row " +
                          std::to_string(r) + " from the north) is " + format(z) +
@@ -366,6 +495,12 @@ TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOption
                        " is geographic (degrees), not metres; pass --reproject auto to warp it "
                        "to the UTM zone of its centre (EPSG:" +
                        std::to_string(epsg) + "), or reproject it first (gdalwarp -t_srs)");
+    }
+    if (scaled_band(ds.get(), options.band)) {
+      throw InputError(source +
+                       ": the band has a scale, an offset or a unit other than metres, which "
+                       "--reproject auto does not carry through the warp; unscale it first "
+                       "(gdal_translate -unscale -ot Float64) or reproject it yourself");
     }
     ds = warp_to(ds.get(), epsg, source);
     srs = dataset_srs(ds.get());

@@ -69,8 +69,11 @@ Reprojection parse_reprojection(const std::string& text, const std::string& opti
 }
 
 void TerrainReadOptions::validate() const {
-  if (band < 1)
-    throw InputError("terrain band must be >= 1 (bands count from 1), got " + std::to_string(band));
+  if (band < 0)
+    throw InputError(
+        "terrain band must be >= 1 (bands count from 1), or 0 for a raster's only "
+        "band, got " +
+        std::to_string(band));
 }
 
 std::string TerrainRaster::brief_report() const {

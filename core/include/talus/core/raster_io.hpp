@@ -22,7 +22,13 @@
 ///   source footprint become NODATA. A projected CRS in other units (feet) is
 ///   refused;
 /// - at least 2 × 2 pixels, values finite and |z| <= kMaxElevationMagnitude
-///   except the band's NODATA value; NaN pixels are NODATA too.
+///   except the band's NODATA value; NaN pixels are NODATA too;
+/// - one band of real numbers (or the band chosen by options.band); the
+///   band's scale and offset are applied (z = raw × scale + offset, the
+///   NODATA test on the raw value), and its unit converted to metres (none,
+///   "m", "metre", "meter", "metres", "meters"; "ft", "foot", "feet" × 0.3048;
+///   "US survey foot", "ftUS" × 1200/3937; any other unit is refused). A
+///   scaled band is not warped (--reproject auto): unscale it first.
 /// Pixel (column c, row r from the north) is node (c, nrows - 1 - r) at the
 /// pixel's centre, as for ESRI grids.
 #include <cstddef>
@@ -60,9 +66,10 @@ Reprojection parse_reprojection(const std::string& text, const std::string& opti
 struct TerrainReadOptions {
   TerrainFormat format = TerrainFormat::kAuto;
   Reprojection reproject = Reprojection::kNone;
-  /// The band holding the elevations (1-based), GDAL rasters only.
-  int band = 1;
-  /// Throws InputError if band < 1.
+  /// The band holding the elevations (1-based), GDAL rasters only; 0 = the raster's only
+  /// band (a raster of several bands is then an InputError: which one holds elevations?).
+  int band = 0;
+  /// Throws InputError if band < 0.
   void validate() const;
 };
 

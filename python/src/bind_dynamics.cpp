@@ -10,6 +10,7 @@
 
 #include "bindings.hpp"
 #include "talus/bspline/surface_path.hpp"
+#include "talus/core/error.hpp"
 #include "talus/dynamics/admissible_set.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/dynamics/vehicle.hpp"
@@ -104,9 +105,11 @@ struct GeometryArrays {
   }
 };
 
+/// The station geometry (and `extra`, named `extra_name`) broadcast together; InputError
+/// naming the array and the index of the first element that is not finite.
 GeometryArrays geometry_arrays(const py::object& kappa_n, const py::object& kappa_g,
                                const py::object& k_t, const py::object& k_q, const py::object& k_r,
-                               const py::object& extra = py::none()) {
+                               const py::object& extra = py::none(), const char* extra_name = "") {
   py::tuple all = extra.is_none() ? py::tuple(py::module_::import("numpy").attr("broadcast_arrays")(
                                         kappa_n, kappa_g, k_t, k_q, k_r))
                                   : py::tuple(py::module_::import("numpy").attr("broadcast_arrays")(
@@ -119,6 +122,16 @@ GeometryArrays geometry_arrays(const py::object& kappa_n, const py::object& kapp
   }
   g.shape.assign(g.arrays[0].shape(), g.arrays[0].shape() + g.arrays[0].ndim());
   g.size = g.arrays[0].size();
+  const char* names[] = {"kappa_n", "kappa_g", "k_t", "k_q", "k_r", extra_name};
+  for (std::size_t a = 0; a < g.arrays.size(); ++a) {
+    for (py::ssize_t k = 0; k < g.size; ++k) {
+      if (!std::isfinite(g.arrays[a].data()[k])) {
+        throw InputError(std::string(names[a]) + "[" + std::to_string(k) + "] is " +
+                         std::to_string(g.arrays[a].data()[k]) +
+                         ": station geometry (and speeds, stations) must be finite");
+      }
+    }
+  }
   return g;
 }
 
@@ -153,7 +166,13 @@ py::dict bounds_on_arrays(const Vehicle& vehicle, const py::object& kappa_n,
                           const py::object& k_r, const py::object& speed) {
   vehicle.validate();
   const AdmissibleSet set(vehicle);
-  const GeometryArrays g = geometry_arrays(kappa_n, kappa_g, k_t, k_q, k_r, speed);
+  const GeometryArrays g = geometry_arrays(kappa_n, kappa_g, k_t, k_q, k_r, speed, "speed");
+  for (py::ssize_t k = 0; k < g.size; ++k) {
+    if (g.arrays[5].data()[k] < 0.0) {
+      throw InputError("speed[" + std::to_string(k) + "] is " +
+                       std::to_string(g.arrays[5].data()[k]) + ": speeds must be >= 0");
+    }
+  }
   py::array_t<double> a_min(g.shape), a_max(g.shape);
   py::array_t<bool> feasible(g.shape);
   std::vector<Constraint> lower(static_cast<std::size_t>(g.size)), upper(lower.size()),
@@ -189,8 +208,15 @@ VelocityLimits limits_from_geometry(const Vehicle& vehicle, const DoubleArray& s
                                     const py::object& kappa_n, const py::object& kappa_g,
                                     const py::object& k_t, const py::object& k_q,
                                     const py::object& k_r) {
-  const GeometryArrays g = geometry_arrays(kappa_n, kappa_g, k_t, k_q, k_r, s);
+  const GeometryArrays g = geometry_arrays(kappa_n, kappa_g, k_t, k_q, k_r, s, "s");
   if (g.shape.size() != 1) throw py::type_error("s and the geometry must be 1-D arrays");
+  for (py::ssize_t k = 1; k < g.size; ++k) {
+    if (!(g.arrays[5].data()[k] > g.arrays[5].data()[k - 1])) {
+      throw InputError("s must increase strictly: s[" + std::to_string(k) +
+                       "] = " + std::to_string(g.arrays[5].data()[k]) + " after s[" +
+                       std::to_string(k - 1) + "] = " + std::to_string(g.arrays[5].data()[k - 1]));
+    }
+  }
   std::vector<PathFrame> frames(static_cast<std::size_t>(g.size));
   for (py::ssize_t k = 0; k < g.size; ++k) {
     PathFrame& f = frames[static_cast<std::size_t>(k)];

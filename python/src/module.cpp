@@ -78,6 +78,10 @@ std::vector<Vec2> to_points(const DoubleArray& array, const char* what) {
   const auto a = array.unchecked<2>();
   for (py::ssize_t k = 0; k < array.shape(0); ++k) {
     points[static_cast<std::size_t>(k)] = Vec2(a(k, 0), a(k, 1));
+    if (!points[static_cast<std::size_t>(k)].allFinite()) {
+      throw InputError(std::string(what) + "[" + std::to_string(k) +
+                       "] is not finite: points must be finite x, y [m]");
+    }
   }
   return points;
 }

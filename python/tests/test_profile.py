@@ -133,3 +133,17 @@ def test_a_start_speed_above_the_limit_is_an_input_error(tmp_path, plane_asc):
     vehicle = talus.load_vehicle(str(vehicle_file(tmp_path, 0.7, max_speed=5.0)))
     with pytest.raises(talus.InputError):
         solve_straight(terrain, vehicle, (5.0, 0.0), (50.0, 0.0), 6.0, 0.0)
+
+
+def test_nan_geometry_negative_speeds_and_non_increasing_stations_are_input_errors():
+    # A NaN station gave v_max 15 and "traversable"; each is now refused, naming the array.
+    vehicle = talus.Vehicle()
+    vehicle.max_speed = 15.0
+    with pytest.raises(talus.InputError, match=r"kappa_g\[1\]"):
+        talus.speed_limits(vehicle, 0.0, [0.1, float("nan")], 0.0, 0.0, 1.0)
+    with pytest.raises(talus.InputError, match=r"speed\[0\]"):
+        talus.acceleration_bounds(vehicle, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0)
+    with pytest.raises(talus.InputError, match="s must increase strictly"):
+        talus.VelocityLimits.from_geometry(vehicle, [0.0, 1.0, 1.0], 0.0, 0.0, 0.0, 0.0, 1.0)
+    with pytest.raises(talus.InputError, match=r"points\[1\]"):
+        talus.Curve2.interpolate(np.array([[0.0, 0.0], [np.inf, 1.0], [2.0, 0.0]]))

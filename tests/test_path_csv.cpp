@@ -139,3 +139,30 @@ TEST(PathCsv, ReadsAFileAndNamesItInErrors) {
 
 }  // namespace
 }  // namespace talus
+
+namespace talus {
+namespace {
+
+// Issue #39 item 4: a 10^7-point path reached 1.6 GB before running out of memory. The
+// reader stops at the first point beyond kMaxPathPoints, naming its line.
+TEST(PathCsv, APathBeyondTheMostPointsIsRefusedAtItsFirstExtraLine) {
+  std::string text = "x,y\n";
+  text.reserve(16 * (kMaxPathPoints + 2));
+  for (std::size_t k = 0; k <= kMaxPathPoints; ++k) text += std::to_string(k) + ",0\n";
+  std::istringstream in(text);
+  try {
+    read_path_csv(in, "long.csv");
+    ADD_FAILURE() << "a path of " << kMaxPathPoints + 1 << " points was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("long.csv:" + std::to_string(kMaxPathPoints + 2) + ":"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("thin the path"), std::string::npos) << e.what();
+  }
+  text.resize(text.rfind(std::to_string(kMaxPathPoints) + ",0\n"));  // exactly the most
+  std::istringstream ok(text);
+  EXPECT_EQ(read_path_csv(ok, "long.csv").size(), kMaxPathPoints);
+}
+
+}  // namespace
+}  // namespace talus

@@ -121,6 +121,12 @@ std::vector<Vec2> parse_path_csv(std::string_view rest, const std::string& sourc
           << ") repeats the previous point: consecutive points must differ";
       fail(source_name, line, msg.str());
     }
+    if (points.size() == kMaxPathPoints) {
+      fail(source_name, line,
+           "more than " + std::to_string(kMaxPathPoints) +
+               " points: a path's way points feed an interpolating spline and its stations, "
+               "whose memory and time grow with them; thin the path first");
+    }
     points.push_back(p);
     last_nonblank = line;
   }

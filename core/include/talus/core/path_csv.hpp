@@ -16,11 +16,12 @@
 ///   exponent notation, optional sign) separated by one comma, spaces or tabs
 ///   around each allowed. Line endings may be LF or CRLF.
 /// - Blank lines are allowed only at the end of the file.
-/// - At least 2 points, and no two consecutive points equal.
+/// - At least 2 points, at most kMaxPathPoints, and no two consecutive points equal.
 ///
 /// Every deviation throws InputError naming the file and line, e.g.
 /// `path.csv:4: expected 2 columns x,y, got 3`. Since blank lines can only
 /// trail, point k (counted from 0) is always on line k + 2.
+#include <cstddef>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -28,6 +29,11 @@
 #include "talus/core/types.hpp"
 
 namespace talus {
+
+/// The most way points a path CSV may hold: a point every 10 cm over 100 km. Beyond it the
+/// interpolating spline and its stations would take gigabytes (10⁷ points reached 1.6 GB
+/// before running out of memory).
+inline constexpr std::size_t kMaxPathPoints = 1'000'000;
 
 /// Reads the points of a path CSV file at `path`.
 std::vector<Vec2> read_path_csv(const std::string& path);

@@ -172,6 +172,14 @@ TEST(CliPlacement, BadInputExitsOneWithOneLineAndNoFile) {
             " --configs " + quoted(write("ok.csv", "x,y,theta\n5,5,0\n")) + o,
         "nobody.yaml"}},
       out);
+  // 8 x 10^6 configurations reached 1.2 GB: the reader stops at the first one beyond 10^6.
+  std::string many = "x,y,theta\n";
+  many.reserve(7 * 1'000'002);
+  for (int k = 0; k <= 1'000'000; ++k) many += "5,5,0\n";
+  expect_bad_input("placement",
+                   {{base + " --configs " + quoted(write("many.csv", many)) + o,
+                     "many.csv:1000002: more than 1000000 configurations"}},
+                   out);
 }
 
 }  // namespace

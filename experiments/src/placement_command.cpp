@@ -95,6 +95,12 @@ std::vector<SE2Pose> read_configurations_csv(const std::string& file) {
     if (f.size() != 3) {
       fail(file, line, "expected 3 columns x,y,theta, got " + std::to_string(f.size()));
     }
+    if (out.size() == kMaxPlacementConfigurations) {
+      fail(file, line,
+           "more than " + std::to_string(kMaxPlacementConfigurations) +
+               " configurations: their placements and output rows are held in memory; split "
+               "the file");
+    }
     out.push_back({parse_field(f[0], "x", file, line), parse_field(f[1], "y", file, line),
                    parse_field(f[2], "theta", file, line)});
   }

@@ -39,12 +39,14 @@ inline constexpr const char* kPlacementHelp =
     "off the terrain, a missing or bad file: one line on stderr naming the file and line, "
     "nothing written)";
 
+/// The most configurations `talus placement` takes in one file (8 x 10^6 reached 1.2 GB).
+inline constexpr std::size_t kMaxPlacementConfigurations = 1'000'000;
+
 /// Reads a configurations CSV: line 1 the header `x,y,theta` (spaces around
 /// names allowed, an optional UTF-8 byte-order mark skipped), then one line
 /// `x,y,theta` of three finite numbers per configuration, LF or CRLF, blank
-/// lines only at the end, at least one configuration. Any deviation throws
-/// InputError naming the file and line (`C.csv:4: theta value 'a' is not a
-/// number`).
+/// lines only at the end, at least one and at most kMaxPlacementConfigurations. Any deviation
+/// throws InputError naming the file and line (`C.csv:4: theta value 'a' is not a number`).
 std::vector<SE2Pose> read_configurations_csv(const std::string& file);
 
 /// The header of OUT.csv for the given contact column names.

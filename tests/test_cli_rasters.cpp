@@ -56,6 +56,34 @@ TEST(CliRasters, TerrainInfoOfAGeoTiffEqualsTheAscsAndAddsTheCrs) {
   EXPECT_EQ(t.at("reprojected"), false);
 }
 
+// Issue #39 item 3: a multi-band file was read silently as band 1. Now the DEM must have one
+// band or the command names it with --band (declared once for every terrain option).
+TEST(CliRasters, AMultiBandDemNeedsItsBandNamed) {
+  const std::string tif = scratch_file("two_bands.tif");
+  gdal_test::translate(kWestBijouAsc, tif,
+                       {"-of", "GTiff", "-a_srs", "EPSG:32613", "-b", "1", "-b", "1"});
+  const RunResult plain = run_talus("terrain info " + quoted(tif));
+  EXPECT_EQ(plain.exit_code, 1);
+  EXPECT_NE(plain.err.find("the raster has 2 bands"), std::string::npos) << plain.err;
+  const RunResult second = run_talus("terrain info " + quoted(tif) + " --band 2");
+  const RunResult asc = run_talus("terrain info " + quoted(kWestBijouAsc));
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  const nlohmann::json a = parse_json(asc.out, "asc info"), b = parse_json(second.out, "band 2");
+  for (const char* key : {"ncols", "nrows", "zmin", "zmax", "voids"})
+    EXPECT_EQ(a.at(key), b.at(key));
+  const RunResult third = run_talus("terrain info " + quoted(tif) + " --band 3");
+  EXPECT_EQ(third.exit_code, 1);
+  EXPECT_NE(third.err.find("band 3 requested, the raster has 2"), std::string::npos) << third.err;
+  // The same option on a command that plans: it reaches load_terrain.
+  const RunResult plan = run_talus("plan --terrain " + quoted(tif) + " --vehicle " +
+                                   quoted(data_file("vehicles/rover.yaml")) +
+                                   " --start 557100,4373600 --goal 557300,4373700 --stage global"
+                                   " --no-figures --out " +
+                                   quoted(scratch_file("two_bands_plan")));
+  EXPECT_EQ(plan.exit_code, 1);
+  EXPECT_NE(plan.err.find("2 bands"), std::string::npos) << plan.err;
+}
+
 TEST(CliRasters, GeographicDemIsRefusedWithoutReprojectAndPlansAfterIt) {
   const std::string tif = geographic_tif();
   const RunResult refused = run_talus("terrain info " + quoted(tif));

@@ -19,6 +19,7 @@ struct BaselineRequest {
   std::string baseline;            ///< registry name, e.g. "hait"
   std::string terrain;             ///< DEM (load_terrain)
   std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
+  int band = 0;                    ///< --band: the DEM's elevation band (0 = its only band)
   std::string start;               ///< "X,Y,THETA": [m], [m], heading [rad]
   std::string goal;                ///< "X,Y,THETA"
   std::string output_dir;          ///< --out: created if needed

@@ -49,13 +49,13 @@ void check_path_options(const std::optional<long long>& stations,
 }
 
 TerrainPath build_terrain_path(const std::string& terrain_file, const std::string& path_file,
-                               const std::optional<double>& smoothing,
-                               const std::string& reproject) {
+                               const std::optional<double>& smoothing, const std::string& reproject,
+                               int band) {
   const PathPointSource source{path_file, terrain_file};
   const std::vector<Vec2> points = read_path_csv(path_file);
   check_no_reversal(points, source);  // before the terrain is read, as it always was
-  return surface_path_from_points(points, load_terrain(terrain_file, reproject).grid, smoothing,
-                                  source);
+  return surface_path_from_points(points, load_terrain(terrain_file, reproject, band).grid,
+                                  smoothing, source);
 }
 
 std::size_t default_station_count(double planar_length) {
@@ -73,8 +73,8 @@ nlohmann::json limits(const LimitsRequest& request) {
       {{"--terrain", request.terrain}, {"--path", request.path}, {"--vehicle", request.vehicle}});
 
   const Vehicle vehicle = load_vehicle(request.vehicle);
-  const TerrainPath terrain_path =
-      build_terrain_path(request.terrain, request.path, request.smoothing, request.reproject);
+  const TerrainPath terrain_path = build_terrain_path(
+      request.terrain, request.path, request.smoothing, request.reproject, request.band);
   const SurfacePath& path = *terrain_path.path;
 
   const std::size_t stations = request.stations ? static_cast<std::size_t>(*request.stations)

@@ -20,6 +20,7 @@ namespace talus::experiments {
 struct LimitsRequest {
   std::string terrain;             ///< DEM (load_terrain)
   std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
+  int band = 0;                    ///< --band: the DEM's elevation band (0 = its only band)
   std::string path;     ///< path CSV (read_path_csv): way points in the terrain's frame [m]
   std::string vehicle;  ///< vehicle YAML/JSON (load_vehicle)
   std::string output;   ///< CSV written here
@@ -47,14 +48,14 @@ void check_path_options(const std::optional<long long>& stations,
                         const std::optional<double>& smoothing, const std::string& output);
 
 /// Reads the way points of `path_file` (read_path_csv) and the terrain
-/// (load_terrain with `reproject`),
+/// (load_terrain with `reproject` and `band`),
 /// fits the B-patch (interpolating, or the smoothing fit with lambda
 /// `smoothing`), and lifts the interpolating cubic B-spline through the way
 /// points (chord-length parameters) onto it: surface_path_from_points, whose
 /// InputErrors name the point, file and line.
 TerrainPath build_terrain_path(const std::string& terrain_file, const std::string& path_file,
                                const std::optional<double>& smoothing,
-                               const std::string& reproject = "none");
+                               const std::string& reproject = "none", int band = 0);
 
 /// Appends the shortest text that reads back as exactly `value`; infinity is "inf".
 void append_csv_number(std::string& out, double value);

@@ -202,14 +202,21 @@ void add_generate_commands(CLI::App& terrain, GenerateOptions& o) {
   });
 }
 
+/// How a command reads its DEM besides its path: --reproject and --band, declared once for
+/// every command that takes a terrain (load_terrain).
+void add_raster_options(CLI::App& command, std::string& reproject, int& band) {
+  command.add_option("--reproject", reproject, ex::kReprojectHelp)
+      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
+      ->capture_default_str();
+  command.add_option("--band", band, ex::kBandHelp)->check(CLI::Range(1, 65535));
+}
+
 /// The inputs shared by `talus limits` and `talus profile`: terrain, path,
 /// vehicle and the optional smoothing of the terrain fit.
 template <typename Request>
 void add_path_input_options(CLI::App& command, Request& request) {
   command.add_option("--terrain", request.terrain, ex::kTerrainHelp)->required();
-  command.add_option("--reproject", request.reproject, ex::kReprojectHelp)
-      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
-      ->capture_default_str();
+  add_raster_options(command, request.reproject, request.band);
   command
       .add_option("--path", request.path,
                   "path CSV: header `x,y`, then one way point per line in the terrain's "
@@ -294,17 +301,17 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
   terrain->require_subcommand(1);
 
   std::string info_path, info_reproject = "none";
+  int info_band = 0;
   CLI::App* info = terrain->add_subcommand(
       "info",
       "print JSON: ncols, nrows, cellsize, xmin, xmax, ymin, ymax (node domain: the "
       "centres of the edge cells), zmin, zmax, voids, crs {label, epsg, name, wkt} (null when "
       "the file has none), driver (esri-ascii or GDAL's driver name), reprojected, source_crs");
   info->add_option("FILE", info_path, ex::kTerrainHelp)->required();
-  info->add_option("--reproject", info_reproject, ex::kReprojectHelp)
-      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
-      ->capture_default_str();
-  info->callback(
-      [&]() { std::cout << ex::terrain_info(info_path, info_reproject).dump(2) << "\n"; });
+  add_raster_options(*info, info_reproject, info_band);
+  info->callback([&]() {
+    std::cout << ex::terrain_info(info_path, info_reproject, info_band).dump(2) << "\n";
+  });
 
   ex::TerrainFitRequest fit_request;
   std::string fill;
@@ -313,9 +320,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "fit a bicubic B-patch and print JSON: max_node_residual, rms_residual [m], "
       "fit_seconds, patches");
   fit->add_option("FILE", fit_request.path, ex::kTerrainHelp)->required();
-  fit->add_option("--reproject", fit_request.reproject, ex::kReprojectHelp)
-      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
-      ->capture_default_str();
+  add_raster_options(*fit, fit_request.reproject, fit_request.band);
   fit->add_option("--smoothing", fit_request.smoothing,
                   "curvature weight lambda > 0 (dimensionless) of the smoothing fit; without it "
                   "the surface interpolates every node");
@@ -351,9 +356,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                              "curvature weight lambda > 0 of the smoothing fit; without it the "
                              "surface interpolates every node (NODATA filled by the nearest "
                              "node for the fit, NODATA in the output)");
-  traversability->add_option("--reproject", traversability_request.reproject, ex::kReprojectHelp)
-      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
-      ->capture_default_str();
+  add_raster_options(*traversability, traversability_request.reproject,
+                     traversability_request.band);
   traversability->add_option("-o,--output", traversability_request.output, "output GeoTIFF")
       ->required();
   traversability->callback(
@@ -454,9 +458,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "untraversable terrain, a vehicle without max_speed, a malformed X,Y, an unknown "
       "solver (one line on stderr, nothing written)");
   plan->add_option("--terrain", plan_request.terrain, ex::kTerrainHelp)->required();
-  plan->add_option("--reproject", plan_request.reproject, ex::kReprojectHelp)
-      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
-      ->capture_default_str();
+  add_raster_options(*plan, plan_request.reproject, plan_request.band);
   plan->add_flag("--rasters", plan_request.rasters,
                  "also write cost_to_go.tif (float32 GeoTIFF on the lattice in the DEM's CRS: "
                  "bands cost_from_start, cost_to_goal [s; inf = not reachable, NODATA = not "
@@ -593,9 +595,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "peak slip) and any failure (rollover, side_slip, loss_of_contact, stall). Writes "
       "DIR/trace.csv and DIR/summary.json; exit code 2 when the goal was not reached");
   simulate->add_option("--terrain", simulate_request.terrain, ex::kTerrainHelp)->required();
-  simulate->add_option("--reproject", simulate_request.reproject, ex::kReprojectHelp)
-      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
-      ->capture_default_str();
+  add_raster_options(*simulate, simulate_request.reproject, simulate_request.band);
   simulate
       ->add_option("--vehicle", simulate_request.vehicle,
                    "vehicle YAML with a body (mass, ...; data/vehicles/README.md)")
@@ -644,9 +644,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "reached, 2 when not (outputs written), 1 on bad input (one line on stderr, nothing "
       "written)");
   navigate->add_option("--terrain", navigate_request.terrain, ex::kTerrainHelp)->required();
-  navigate->add_option("--reproject", navigate_request.reproject, ex::kReprojectHelp)
-      ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
-      ->capture_default_str();
+  add_raster_options(*navigate, navigate_request.reproject, navigate_request.band);
   navigate
       ->add_option("--vehicle", navigate_request.vehicle,
                    "vehicle YAML with a body (mass, ...) and a finite max_speed, e.g. "
@@ -706,9 +704,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
     CLI::App* sub =
         baseline->add_subcommand(entry.name, entry.summary + ". " + ex::kBaselineOutputHelp);
     sub->add_option("--terrain", f.request.terrain, ex::kTerrainHelp)->required();
-    sub->add_option("--reproject", f.request.reproject, ex::kReprojectHelp)
-        ->check(CLI::IsMember({std::string("none"), std::string("auto")}))
-        ->capture_default_str();
+    add_raster_options(*sub, f.request.reproject, f.request.band);
     sub->add_option("--start", f.request.start,
                     "start configuration X,Y,THETA: position [m] in the terrain's frame, "
                     "heading [rad] counter-clockwise from east")
@@ -750,9 +746,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "configurations CSV with the header x,y,theta")
       ->required();
   placement->add_option("-o,--output", placement_request.output, "output .csv file")->required();
-  placement->add_option("--reproject", placement_request.reproject, ex::kReprojectHelp)
-      ->capture_default_str()
-      ->check(CLI::IsMember({std::string("none"), std::string("auto")}));
+  add_raster_options(*placement, placement_request.reproject, placement_request.band);
   placement->callback([&]() { std::cout << ex::run_placement(placement_request).dump(2) << "\n"; });
 
   std::string experiment_name, out_dir = "talus-out", data_dir;

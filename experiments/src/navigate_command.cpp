@@ -81,7 +81,7 @@ NavigateOutcome navigate(const NavigateRequest& request) {
                      "`mass: KG` (data/vehicles/README.md)");
   if (!std::isfinite(vehicle.max_speed))
     throw InputError(request.vehicle + ": the high-level plan needs a finite max_speed");
-  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject);
+  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject, request.band);
   for (const auto& [name, p] : {std::pair{"--start", start}, std::pair{"--goal", goal}}) {
     if (!terrain.grid.contains(p))
       throw InputError(std::string(name) + " " + format_number(p.x()) + "," + format_number(p.y()) +

@@ -19,6 +19,7 @@ namespace talus::experiments {
 struct NavigateRequest {
   std::string terrain;             ///< the fine DEM (load_terrain), no NODATA
   std::string reproject = "none";  ///< --reproject: none | auto
+  int band = 0;                    ///< --band: the DEM's elevation band (0 = its only band)
   std::string vehicle;             ///< vehicle file with a body and a finite max_speed
   std::string start, goal;         ///< "X,Y" [m] (parse_point)
   std::string output_dir;          ///< --out

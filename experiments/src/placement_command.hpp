@@ -16,6 +16,7 @@ namespace talus::experiments {
 struct PlacementRequest {
   std::string terrain;             ///< DEM (load_terrain: .asc or any GDAL raster)
   std::string reproject = "none";  ///< --reproject none|auto
+  int band = 0;                    ///< --band: the DEM's elevation band (0 = its only band)
   std::string robot;    ///< Haït robot file (load_robot): wheeled or articulated_chassis
   std::string configs;  ///< configurations CSV (read_configurations_csv)
   std::string output;   ///< CSV written here

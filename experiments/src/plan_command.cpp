@@ -486,7 +486,7 @@ PlanOutcome plan(const PlanRequest& request) {
     }
   }
 
-  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject);
+  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject, request.band);
   const ElevationGrid& grid = terrain.grid;
   check_in_domain("--start", start, grid, request.terrain);
   check_in_domain("--goal", goal, grid, request.terrain);

@@ -29,6 +29,7 @@ namespace talus::experiments {
 struct PlanRequest {
   std::string terrain;             ///< DEM (load_terrain)
   std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
+  int band = 0;                    ///< --band: the DEM's elevation band (0 = its only band)
   std::string vehicle;             ///< vehicle YAML/JSON (load_vehicle); needs a finite max_speed
   std::string start;               ///< "X,Y" in the terrain's frame [m] (parse_point)
   std::string goal;                ///< "X,Y" [m]

@@ -62,8 +62,8 @@ ProfileOutcome profile(const ProfileRequest& request) {
   check_speed_option("--v1", request.end_speed);
 
   const Vehicle vehicle = load_vehicle(request.vehicle);
-  const TerrainPath terrain_path =
-      build_terrain_path(request.terrain, request.path, request.smoothing, request.reproject);
+  const TerrainPath terrain_path = build_terrain_path(
+      request.terrain, request.path, request.smoothing, request.reproject, request.band);
   const SurfacePath& path = *terrain_path.path;
   const std::size_t stations = request.stations ? static_cast<std::size_t>(*request.stations)
                                                 : default_profile_station_count(path.length());

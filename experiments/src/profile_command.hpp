@@ -16,6 +16,7 @@ namespace talus::experiments {
 struct ProfileRequest {
   std::string terrain;             ///< DEM (load_terrain)
   std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
+  int band = 0;                    ///< --band: the DEM's elevation band (0 = its only band)
   std::string path;          ///< path CSV (read_path_csv): way points in the terrain's frame [m]
   std::string vehicle;       ///< vehicle YAML/JSON (load_vehicle)
   std::string output;        ///< CSV written here

@@ -146,7 +146,7 @@ SimulateOutcome simulate(const SimulateRequest& request) {
                      ": the simulation needs the vehicle's body: add at least `mass: KG` "
                      "(and optionally inertia, suspension and tyre keys, data/vehicles/README.md)");
   const ReferenceTrajectory reference = read_trajectory_csv(request.trajectory);
-  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject);
+  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject, request.band);
   const ElevationGrid& grid = terrain.grid;
   for (std::size_t i : {std::size_t{0}, reference.points.size() - 1}) {
     if (!grid.contains(reference.points[i]))

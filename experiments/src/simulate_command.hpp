@@ -18,6 +18,7 @@ namespace talus::experiments {
 struct SimulateRequest {
   std::string terrain;             ///< DEM (load_terrain)
   std::string reproject = "none";  ///< --reproject: none | auto
+  int band = 0;                    ///< --band: the DEM's elevation band (0 = its only band)
   std::string vehicle;             ///< vehicle file with a body (`mass`, ...)
   /// CSV with a header naming at least the columns x, y and v (the
   /// trajectory.csv of `talus plan` and `talus profile`); other columns are ignored.

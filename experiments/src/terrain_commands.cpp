@@ -81,8 +81,8 @@ std::string heading_band_name(std::size_t k) {
 
 }  // namespace
 
-nlohmann::json terrain_info(const std::string& path, const std::string& reproject) {
-  const TerrainRaster terrain = load_terrain(path, reproject);
+nlohmann::json terrain_info(const std::string& path, const std::string& reproject, int band) {
+  const TerrainRaster terrain = load_terrain(path, reproject, band);
   const ElevationGrid& grid = terrain.grid;
   const auto range = grid.elevation_range();
   nlohmann::json out;
@@ -104,7 +104,7 @@ nlohmann::json terrain_info(const std::string& path, const std::string& reprojec
 }
 
 nlohmann::json terrain_fit(const TerrainFitRequest& request) {
-  ElevationGrid grid = load_terrain(request.path, request.reproject).grid;
+  ElevationGrid grid = load_terrain(request.path, request.reproject, request.band).grid;
   if (request.fill_nearest) grid = fill_voids(grid, VoidFill::kNearest);
   const auto start = std::chrono::steady_clock::now();
   const BPatch patch = request.smoothing ? BPatch::fit_smoothing(grid, *request.smoothing)
@@ -145,7 +145,7 @@ nlohmann::json terrain_traversability(const TraversabilityRequest& request) {
                      format_number(*request.smoothing));
   }
   const Vehicle vehicle = load_vehicle(request.vehicle);
-  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject);
+  const TerrainRaster terrain = load_terrain(request.terrain, request.reproject, request.band);
   const ElevationGrid& grid = terrain.grid;
   const BPatch surface = [&] {
     try {

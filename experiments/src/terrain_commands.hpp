@@ -12,7 +12,8 @@ namespace talus::experiments {
 /// bounds, elevation range, number of NODATA nodes, and the CRS (crs: label,
 /// epsg, name, wkt; null fields when unknown), the reader (driver) and
 /// whether it was reprojected (source_crs then names the file's own).
-nlohmann::json terrain_info(const std::string& path, const std::string& reproject = "none");
+nlohmann::json terrain_info(const std::string& path, const std::string& reproject = "none",
+                            int band = 0);
 
 /// `talus terrain fit FILE [--smoothing LAMBDA] [--fill nearest] [--reproject R]`.
 struct TerrainFitRequest {
@@ -20,6 +21,7 @@ struct TerrainFitRequest {
   std::optional<double> smoothing;  ///< lambda of the smoothing fit; none = interpolating fit
   bool fill_nearest = false;        ///< fill NODATA by the nearest valid node before fitting
   std::string reproject = "none";   ///< load_terrain
+  int band = 0;                     ///< --band: the DEM's elevation band (0 = its only band)
 };
 nlohmann::json terrain_fit(const TerrainFitRequest& request);
 
@@ -30,6 +32,7 @@ struct TraversabilityRequest {
   std::string vehicle;              ///< vehicle YAML/JSON (load_vehicle)
   std::string output;               ///< the GeoTIFF; the preview is OUT with extension .png
   std::string reproject = "none";   ///< load_terrain
+  int band = 0;                     ///< --band: the DEM's elevation band (0 = its only band)
   long long headings = 16;          ///< TraversabilityOptions::headings (1 to 360)
   std::optional<double> smoothing;  ///< lambda of the smoothing fit; none = interpolating fit
 };

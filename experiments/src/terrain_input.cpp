@@ -4,9 +4,10 @@
 
 namespace talus::experiments {
 
-TerrainRaster load_terrain(const std::string& path, const std::string& reproject) {
+TerrainRaster load_terrain(const std::string& path, const std::string& reproject, int band) {
   TerrainReadOptions options;
   options.reproject = parse_reprojection(reproject);
+  options.band = band;
   TerrainRaster terrain = read_terrain(path, options);
   // Every file the read reached (a VRT's sources, world files, .prj) is out of the
   // outputs' reach for the rest of the command.

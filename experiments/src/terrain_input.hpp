@@ -19,7 +19,14 @@ inline constexpr const char* kReprojectHelp =
     "what to do with a geographic (degrees) DEM: none = refuse it; auto = warp it (bilinear) to "
     "the WGS 84 UTM zone of its centre on square pixels";
 
-/// read_terrain(path) with Reprojection parse_reprojection(reproject).
-TerrainRaster load_terrain(const std::string& path, const std::string& reproject = "none");
+/// Help text of every --band option.
+inline constexpr const char* kBandHelp =
+    "the DEM's band of elevations (1-based) when it has several; by default a DEM must have "
+    "one band";
+
+/// read_terrain(path) with Reprojection parse_reprojection(reproject) and `band` (0: the
+/// DEM's only band).
+TerrainRaster load_terrain(const std::string& path, const std::string& reproject = "none",
+                           int band = 0);
 
 }  // namespace talus::experiments

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <random>
+#include <string>
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/detail/smoothing_solver.hpp"
@@ -461,6 +463,28 @@ TEST(BPatchSmoothing, RejectsBadLambdaAndTooFewNodes) {
     for (std::size_t i = 0; i < 8; ++i)
       if (i + j > 0) empty.set_void(i, j);
   EXPECT_THROW(BPatch::fit_smoothing(empty, 1.0), InputError);
+}
+
+}  // namespace
+}  // namespace talus
+
+namespace talus {
+namespace {
+
+// Issue #39 item 4: the fit of a large DEM is budgeted before its matrices are allocated
+// (48 bytes a node), one line naming the size and what to do.
+TEST(BPatchBudget, AFitBeyondTheMemoryBudgetIsRefusedBeforeAllocating) {
+  const ElevationGrid grid(1500, 1500, 1.0, 0.0, 0.0);  // 20 MB; its fit 108 MB
+  ::setenv("TALUS_MEMORY_LIMIT_MB", "64", 1);
+  std::string message;
+  try {
+    BPatch::interpolate(grid);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  ::unsetenv("TALUS_MEMORY_LIMIT_MB");
+  EXPECT_NE(message.find("fitting a B-patch to 1500 x 1500 nodes"), std::string::npos) << message;
+  EXPECT_NE(message.find("crop or decimate"), std::string::npos) << message;
 }
 
 }  // namespace

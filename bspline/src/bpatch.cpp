@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "talus/core/error.hpp"
+#include "talus/core/memory_budget.hpp"
 #include "uniform_cubic.hpp"
 #include "uniform_quintic.hpp"
 
@@ -95,6 +96,12 @@ BPatch BPatch::interpolate(const ElevationGrid& grid, int degree) {
   }
   require_fit_size(grid, degree);
   const std::size_t nc = grid.ncols(), nr = grid.nrows();
+  // The right-hand sides, the half-solved and the solved control values (each a padded
+  // double per node), the transposed result and the cell mask, alive together.
+  require_memory(
+      48.0 * static_cast<double>(nc + 4) * static_cast<double>(nr + 4),
+      "fitting a B-patch to " + std::to_string(nc) + " x " + std::to_string(nr) + " nodes",
+      "crop or decimate the DEM first (gdal_translate -srcwin or -outsize)");
   if (grid.void_count() > 0) {
     for (std::size_t j = 0; j < nr; ++j)
       for (std::size_t i = 0; i < nc; ++i)

@@ -6,6 +6,7 @@
 #include <unistd.h>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -268,6 +269,30 @@ TEST(RasterIo, AWarpBeyondTheMemoryBudgetIsRefusedBeforeWarping) {
   ::unsetenv("TALUS_MEMORY_LIMIT_MB");
   expect_contains(read_error(tif, options), "would grow from 7200 to");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+}
+
+// A command that fits a surface budgets the fit with the read, so an 8000 x 8000 DEM it could
+// not fit is refused before its pixels are read (it was read at 1.2 GB, then ran out of memory).
+TEST(RasterIo, TheCallersWorkPerNodeIsBudgetedBeforeThePixelsAreRead) {
+  const int n = 1500;
+  const std::string tif = (scratch() / "large.tif").string();
+  gdal_test::write_raster(tif, n, n, {0.0, 1.0, 0.0, 1500.0, 0.0, -1.0}, "EPSG:32613",
+                          std::vector<double>(static_cast<std::size_t>(n) * n, 10.0));
+  ::setenv("TALUS_MEMORY_LIMIT_MB", "64", 1);
+  TerrainReadOptions options;  // 17 bytes a pixel: 36 MiB
+  std::string read_alone;
+  try {
+    read_alone = read_terrain(tif, options).brief_report();
+  } catch (const InputError& e) {
+    read_alone = std::string("refused: ") + e.what();
+  }
+  options.bytes_per_node_after = 48.0;  // and a fit: 140 MiB
+  const std::string with_fit = read_error(tif, options);
+  ::unsetenv("TALUS_MEMORY_LIMIT_MB");
+  EXPECT_EQ(read_alone.find("refused"), std::string::npos) << read_alone;
+  expect_contains(with_fit, "(1500 x 1500 pixels, read and fitted)");
+  options.bytes_per_node_after = -1.0;
+  expect_contains(read_error(tif, options), "bytes_per_node_after");
 }
 
 TEST(RasterIo, GeographicRasterIsRefusedWithoutReprojection) {

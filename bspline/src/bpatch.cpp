@@ -96,10 +96,8 @@ BPatch BPatch::interpolate(const ElevationGrid& grid, int degree) {
   }
   require_fit_size(grid, degree);
   const std::size_t nc = grid.ncols(), nr = grid.nrows();
-  // The right-hand sides, the half-solved and the solved control values (each a padded
-  // double per node), the transposed result and the cell mask, alive together.
   require_memory(
-      48.0 * static_cast<double>(nc + 4) * static_cast<double>(nr + 4),
+      kInterpolationBytesPerNode * static_cast<double>(nc + 4) * static_cast<double>(nr + 4),
       "fitting a B-patch to " + std::to_string(nc) + " x " + std::to_string(nr) + " nodes",
       "crop or decimate the DEM first (gdal_translate -srcwin or -outsize)");
   if (grid.void_count() > 0) {

@@ -165,7 +165,8 @@ int utm_zone_epsg(GDALDatasetH ds, OGRSpatialReferenceH srs, const std::string& 
 /// The size GDALWarp will give `ds` warped to `target` (its suggested output), refused
 /// beyond the raster node limit or the memory budget before any pixel is warped: a narrow
 /// strip near a pole can warp to a square many times its own size.
-void require_warp_fits(GDALDatasetH ds, const std::string& target, const std::string& source) {
+void require_warp_fits(GDALDatasetH ds, const std::string& target, const std::string& source,
+                       double bytes_per_node_after) {
   Srs srs(OSRNewSpatialReference(nullptr));
   char* wkt = nullptr;
   if (OSRSetFromUserInput(srs.get(), target.c_str()) != OGRERR_NONE ||
@@ -204,8 +205,8 @@ void require_warp_fits(GDALDatasetH ds, const std::string& target, const std::st
                      " pixels, more than Talus reads (" + format(kMaxRasterNodes) +
                      "); crop it first (gdal_translate -projwin) or warp it yourself");
   }
-  // The warped band (float64), then grid_of's pixels, values and mask.
-  require_memory(25.0 * nodes,
+  // The warped band (float64), then grid_of's pixels, values and mask, then the caller's work.
+  require_memory((25.0 + bytes_per_node_after) * nodes,
                  source + " warped to " + target + " (" + std::to_string(nx) + " x " +
                      std::to_string(ny) + " pixels)",
                  "crop the raster first (gdal_translate -projwin) or warp it yourself (gdalwarp "
@@ -213,9 +214,9 @@ void require_warp_fits(GDALDatasetH ds, const std::string& target, const std::st
 }
 
 /// GDALWarp of `ds` to EPSG:`epsg` (bilinear, float64, NODATA NaN), in memory.
-Dataset warp_to(GDALDatasetH ds, int epsg, const std::string& source) {
+Dataset warp_to(GDALDatasetH ds, int epsg, const std::string& source, double bytes_per_node_after) {
   const std::string target = "EPSG:" + std::to_string(epsg);
-  require_warp_fits(ds, target, source);
+  require_warp_fits(ds, target, source, bytes_per_node_after);
   const char* argv[] = {"-of", "MEM",     "-t_srs",     target.c_str(), "-r",   "bilinear",
                         "-ot", "Float64", "-dstnodata", "nan",          nullptr};
   GDALWarpAppOptions* options = GDALWarpAppOptionsNew(const_cast<char**>(argv), nullptr);
@@ -306,7 +307,8 @@ bool scaled_band(GDALDatasetH ds, int index) {
 }
 
 /// ElevationGrid from band `band_index` of `ds`, after every geometric check.
-ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source) {
+ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source,
+                      double bytes_per_node_after) {
   const int nx = GDALGetRasterXSize(ds), ny = GDALGetRasterYSize(ds);
   if (nx < 2 || ny < 2) {
     throw InputError(source + ": the raster has " + std::to_string(nx) + " x " +
@@ -317,9 +319,10 @@ ElevationGrid grid_of(GDALDatasetH ds, int band_index, const std::string& source
                      std::to_string(ny) + " pixels, more than Talus reads (" +
                      format(kMaxRasterNodes) + "); crop it first (gdal_translate -srcwin)");
   }
-  // The pixels as doubles, the grid's values and its mask.
-  require_memory(17.0 * static_cast<double>(nx) * static_cast<double>(ny),
-                 source + " (" + std::to_string(nx) + " x " + std::to_string(ny) + " pixels)",
+  // The pixels as doubles, the grid's values and its mask, then the caller's work.
+  require_memory((17.0 + bytes_per_node_after) * static_cast<double>(nx) * static_cast<double>(ny),
+                 source + " (" + std::to_string(nx) + " x " + std::to_string(ny) + " pixels" +
+                     (bytes_per_node_after > 0.0 ? ", read and fitted" : "") + ")",
                  "crop or resample the raster first (gdal_translate -srcwin, gdalwarp -tr)");
   double gt[6];
   if (GDALGetGeoTransform(ds, gt) != CE_None) {
@@ -502,7 +505,7 @@ TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOption
                        "--reproject auto does not carry through the warp; unscale it first "
                        "(gdal_translate -unscale -ot Float64) or reproject it yourself");
     }
-    ds = warp_to(ds.get(), epsg, source);
+    ds = warp_to(ds.get(), epsg, source, options.bytes_per_node_after);
     srs = dataset_srs(ds.get());
     out.reprojected = true;
   }
@@ -518,7 +521,7 @@ TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOption
     out.crs = describe(srs.get());
   }
   if (!out.reprojected) out.source_crs = out.crs;
-  out.grid = grid_of(ds.get(), options.band, source);
+  out.grid = grid_of(ds.get(), options.band, source, options.bytes_per_node_after);
   return out;
 }
 

@@ -74,6 +74,9 @@ void TerrainReadOptions::validate() const {
         "terrain band must be >= 1 (bands count from 1), or 0 for a raster's only "
         "band, got " +
         std::to_string(band));
+  if (!(bytes_per_node_after >= 0.0) || !std::isfinite(bytes_per_node_after))
+    throw InputError("TerrainReadOptions.bytes_per_node_after must be finite and >= 0, got " +
+                     std::to_string(bytes_per_node_after));
 }
 
 std::string TerrainRaster::brief_report() const {

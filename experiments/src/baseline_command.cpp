@@ -149,7 +149,9 @@ BaselineOutcome run_baseline(const BaselineRequest& request) {
   if (!folder_taken) {
     throw InputError("--out " + request.output_dir + ": rank 0 could not take the output folder");
   }
-  const RuledTerrain terrain(load_terrain(request.terrain, request.reproject, request.band).grid);
+  const RuledTerrain terrain(load_terrain(request.terrain, request.reproject, request.band,
+                                          /*fits_surface=*/false)
+                                 .grid);
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
     throw InputError(request.terrain + ": the planner needs at least 2 x 2 nodes");
   }

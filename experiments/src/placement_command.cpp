@@ -122,7 +122,9 @@ nlohmann::json run_placement(const PlacementRequest& request) {
       "-o", request.output,
       {{"--terrain", request.terrain}, {"--robot", request.robot}, {"--configs", request.configs}});
   Robot robot = load_robot(request.robot);
-  const RuledTerrain terrain(load_terrain(request.terrain, request.reproject, request.band).grid);
+  const RuledTerrain terrain(load_terrain(request.terrain, request.reproject, request.band,
+                                          /*fits_surface=*/false)
+                                 .grid);
   if (terrain.grid().ncols() < 2 || terrain.grid().nrows() < 2) {
     throw InputError(request.terrain + ": a placement needs at least 2 x 2 nodes");
   }

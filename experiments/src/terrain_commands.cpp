@@ -82,7 +82,7 @@ std::string heading_band_name(std::size_t k) {
 }  // namespace
 
 nlohmann::json terrain_info(const std::string& path, const std::string& reproject, int band) {
-  const TerrainRaster terrain = load_terrain(path, reproject, band);
+  const TerrainRaster terrain = load_terrain(path, reproject, band, /*fits_surface=*/false);
   const ElevationGrid& grid = terrain.grid;
   const auto range = grid.elevation_range();
   nlohmann::json out;

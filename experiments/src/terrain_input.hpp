@@ -25,8 +25,10 @@ inline constexpr const char* kBandHelp =
     "one band";
 
 /// read_terrain(path) with Reprojection parse_reprojection(reproject) and `band` (0: the
-/// DEM's only band).
+/// DEM's only band). `fits_surface`: the command fits a B-patch to the grid, whose memory
+/// the read budgets first (TerrainReadOptions::bytes_per_node_after), so a DEM too large
+/// to fit is refused before its pixels are read.
 TerrainRaster load_terrain(const std::string& path, const std::string& reproject = "none",
-                           int band = 0);
+                           int band = 0, bool fits_surface = true);
 
 }  // namespace talus::experiments

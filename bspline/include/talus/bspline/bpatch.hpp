@@ -58,8 +58,13 @@ class BPatch {
   /// Needs at least 4 × 4 nodes (6 × 6 for degree 5). `degree` 3 (default: the bicubic B-patch,
   /// C²) or 5 (biquintic, C⁴: curvatures with continuous derivatives, which
   /// the simultaneous NLP's constraint Jacobian needs to converge; about
-  /// twice the evaluation cost); anything else is an InputError.
+  /// twice the evaluation cost); anything else is an InputError. Its matrices need about
+  /// kInterpolationBytesPerNode bytes a node, checked against the memory budget first.
   static BPatch interpolate(const ElevationGrid& grid, int degree = 3);
+  /// Peak memory of interpolate() per grid node [bytes]: the right-hand sides, the
+  /// half-solved and the solved control values (a padded double each), the transposed
+  /// result and the cell mask, alive together.
+  static constexpr double kInterpolationBytesPerNode = 48.0;
   /// Smoothing fit with curvature weight lambda > 0 (see the file comment);
   /// NODATA nodes are left out of the data term. Throws InputError for
   /// lambda <= 0 or fewer than 3 valid nodes, SolverError if CHOLMOD (the

@@ -69,7 +69,12 @@ struct TerrainReadOptions {
   /// The band holding the elevations (1-based), GDAL rasters only; 0 = the raster's only
   /// band (a raster of several bands is then an InputError: which one holds elevations?).
   int band = 0;
-  /// Throws InputError if band < 0.
+  /// Memory the caller will need per node once the grid is read [bytes] (>= 0, finite; a
+  /// B-patch fit: BPatch::kInterpolationBytesPerNode): counted with the read's own in its
+  /// memory budget check, so a command that could not hold its work refuses before reading a
+  /// pixel (GDAL rasters, whose size is known before their pixels are read).
+  double bytes_per_node_after = 0.0;
+  /// Throws InputError if band < 0 or bytes_per_node_after is negative or not finite.
   void validate() const;
 };
 

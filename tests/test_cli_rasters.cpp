@@ -248,6 +248,19 @@ TEST(CliRasters, AnOutputOntoAFileTheTerrainReachedIsRefusedAndTheFileKept) {
   const RunResult ok = run_talus("terrain traversability --terrain " + quoted(vrt) + " --vehicle " +
                                  quoted(vehicle) + " -o " + quoted((dir / "out.tif").string()));
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  // A world file beside the DEM is an input too (GDAL lists it): an output of its name is
+  // refused and the georeferencing kept.
+  const std::string dem = (dir / "dem.tif").string(), world = (dir / "dem.tfw").string();
+  gdal_test::translate(
+      kWestBijouAsc, dem,
+      {"-of", "GTiff", "-a_srs", "EPSG:32613", "-srcwin", "0", "0", "20", "20", "-co", "TFW=YES"});
+  ASSERT_TRUE(fs::exists(world));
+  const std::string world_before = read_text(world);
+  const RunResult onto_world = run_talus("terrain traversability --terrain " + quoted(dem) +
+                                         " --vehicle " + quoted(vehicle) + " -o " + quoted(world));
+  EXPECT_EQ(onto_world.exit_code, 1) << onto_world.err;
+  EXPECT_NE(onto_world.err.find("is an input of this run"), std::string::npos) << onto_world.err;
+  EXPECT_EQ(read_text(world), world_before);
 }
 
 TEST(CliRasters, PlanRastersWritesCostToGoAndGeoJsonInTheDemsCrs) {

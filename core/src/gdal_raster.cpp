@@ -452,6 +452,32 @@ void check_vrt_sources(const std::string& path, int depth = 0) {
   }
 }
 
+/// The files beside the DEM `path` that describe it, whether or not GDAL used them (an
+/// internal geotransform outranks a world file, which GDAL then does not list): world files
+/// (.wld, .<first and last letter of the extension>w such as .tfw, .<extension>w), .prj,
+/// .aux.xml, .ovr and .msk. Those that exist as regular files.
+std::vector<std::string> sidecar_files(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path dem(path);
+  std::string ext = dem.extension().string();  // ".tif"
+  std::vector<fs::path> candidates;
+  for (const char* replaced : {".wld", ".prj"})
+    candidates.push_back(fs::path(dem).replace_extension(replaced));
+  if (ext.size() >= 3) {
+    candidates.push_back(
+        fs::path(dem).replace_extension(std::string(".") + ext[1] + ext.back() + "w"));  // .tfw
+    candidates.push_back(fs::path(dem).replace_extension(ext + "w"));                    // .tifw
+  }
+  for (const char* appended : {".aux.xml", ".ovr", ".msk"})
+    candidates.push_back(fs::path(path + appended));
+  std::vector<std::string> out;
+  for (const fs::path& c : candidates) {
+    std::error_code ec;
+    if (fs::is_regular_file(c, ec)) out.push_back(c.string());
+  }
+  return out;
+}
+
 }  // namespace
 
 TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOptions& options) {
@@ -481,6 +507,7 @@ TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOption
     CSLDestroy(files);
   }
   if (out.files.empty()) out.files.push_back(path);
+  for (std::string& sidecar : sidecar_files(path)) out.files.push_back(std::move(sidecar));
   if (GDALDriverH driver = GDALGetDatasetDriver(ds.get())) {
     out.driver = GDALGetDriverShortName(driver);
   }

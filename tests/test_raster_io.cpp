@@ -92,15 +92,18 @@ TEST(RasterIo, AscTakesItsCrsFromAPrjBesideIt) {
   expect_contains(read_error((dir / "dem.asc").string()), "dem.prj: not a coordinate reference");
 }
 
-/// A VRT of one band of `width` x `height` pixels whose source is `source_xml` (the
-/// <SourceFilename> element and any extra band attributes).
+/// A VRT of one band of 10 x 10 pixels whose source is `source_xml` (the <SourceFilename>
+/// element), with extra band attributes, band elements (Scale, Offset, UnitType) and type.
 std::string write_vrt(const fs::path& file, const std::string& source_xml,
-                      const std::string& band_attributes = "") {
+                      const std::string& band_attributes = "",
+                      const std::string& band_elements = "",
+                      const std::string& data_type = "Float64") {
   std::ofstream(file) << "<VRTDataset rasterXSize=\"10\" rasterYSize=\"10\">\n"
                          "  <SRS>EPSG:32613</SRS>\n"
                          "  <GeoTransform>557000, 30, 0, 4373500, 0, -30</GeoTransform>\n"
-                         "  <VRTRasterBand dataType=\"Float64\" band=\"1\""
-                      << band_attributes << ">\n    <SimpleSource>\n      " << source_xml
+                         "  <VRTRasterBand dataType=\""
+                      << data_type << "\" band=\"1\"" << band_attributes << ">\n    "
+                      << band_elements << "\n    <SimpleSource>\n      " << source_xml
                       << "\n      <SourceBand>1</SourceBand>\n    </SimpleSource>\n"
                          "  </VRTRasterBand>\n</VRTDataset>\n";
   return file.string();
@@ -156,15 +159,8 @@ TEST(RasterIo, AVrtIsReadOnlyWhenEverySourceIsARegularFile) {
 std::string write_band_vrt(const fs::path& file, const std::string& tif,
                            const std::string& band_elements,
                            const std::string& data_type = "Float64") {
-  std::ofstream(file) << "<VRTDataset rasterXSize=\"10\" rasterYSize=\"10\">\n"
-                         "  <SRS>EPSG:32613</SRS>\n"
-                         "  <GeoTransform>557000, 30, 0, 4373500, 0, -30</GeoTransform>\n"
-                         "  <VRTRasterBand dataType=\""
-                      << data_type << "\" band=\"1\">\n    " << band_elements
-                      << "\n    <SimpleSource>\n      <SourceFilename>" << tif
-                      << "</SourceFilename>\n      <SourceBand>1</SourceBand>\n"
-                         "    </SimpleSource>\n  </VRTRasterBand>\n</VRTDataset>\n";
-  return file.string();
+  return write_vrt(file, "<SourceFilename>" + tif + "</SourceFilename>", "", band_elements,
+                   data_type);
 }
 
 // Issue #39 item 3: a band's scale, offset and unit were ignored (an int16 DEM with scale 0.1

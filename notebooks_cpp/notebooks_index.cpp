@@ -50,10 +50,10 @@ constexpr Page kPages[] = {
 /// The "N of M checks held" sentence of a page, or "" if it has none.
 std::string checks_line(const std::filesystem::path& page) {
   std::ifstream in(page);
-  std::string line;
-  while (std::getline(in, line))
-    if (line.find("checks held in this run") != std::string::npos) return line;
-  return "";
+  std::string line, found;
+  while (found.empty() && std::getline(in, line))
+    if (line.find("checks held in this run") != std::string::npos) found = line;
+  return found;
 }
 
 }  // namespace

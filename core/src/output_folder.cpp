@@ -105,6 +105,17 @@ OutputFolder::~OutputFolder() {
   if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
 }
 
+void OutputFolder::refuse_foreign_files(const std::vector<std::string>& names) const {
+  if (nested_) return;  // the enclosing run's commit judges its folder
+  const std::set<std::string> previous = read_manifest(dir_);
+  for (const std::string& name : names) {
+    if (fs::exists(dir_ / name) && !previous.count(name)) {
+      throw InputError(option_ + " " + printable((dir_ / name).string(), 200) +
+                       " exists and was not written by talus; move it or choose another folder");
+    }
+  }
+}
+
 void OutputFolder::commit() {
   if (nested_) {  // written in place; the enclosing run commits it
     committed_ = true;
@@ -115,13 +126,8 @@ void OutputFolder::commit() {
     staged.push_back(entry.path().filename().string());
   }
   std::sort(staged.begin(), staged.end());
+  refuse_foreign_files(staged);
   const std::set<std::string> previous = read_manifest(dir_);
-  for (const std::string& name : staged) {
-    if (fs::exists(dir_ / name) && !previous.count(name)) {
-      throw InputError(option_ + " " + printable((dir_ / name).string(), 200) +
-                       " exists and was not written by talus; move it or choose another folder");
-    }
-  }
   // Out with the previous result, its summary first: from here until the new
   // summary lands, the folder holds no summary.json that could vouch for it.
   std::error_code error;

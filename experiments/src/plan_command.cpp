@@ -456,10 +456,34 @@ Vec2 parse_point(const std::string& option, const std::string& text) {
                    text + "'");
 }
 
+namespace {
+
+/// The files `talus plan` may write for `request` (a user's file of one of these names is
+/// refused before planning, not after).
+std::vector<std::string> plan_output_names(const PlanRequest& request) {
+  std::vector<std::string> names = {"summary.json", "candidates.csv", "fields.csv"};
+  if (request.rasters) {
+    names.push_back("cost_to_go.tif");
+    names.push_back("trajectory.geojson");
+  }
+  if (request.stage == kPlanStageFull) {
+    names.push_back("trajectory.csv");
+    names.push_back("optima.csv");
+    if (request.figures) {
+      names.push_back("plan.png");
+      names.push_back("profile.png");
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
 PlanOutcome plan(const PlanRequest& request) {
   const auto start_time = Clock::now();
   check_plan_options(request);
   OutputFolder out(request.output_dir);  // locked for the whole run
+  out.refuse_foreign_files(plan_output_names(request));
   const Vec2 start = parse_point("--start", request.start);
   const Vec2 goal = parse_point("--goal", request.goal);
   if (start == goal) {

@@ -15,6 +15,7 @@
 ///   atomic step, and final_path() names where the files will be after it.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace talus {
 
@@ -41,6 +42,11 @@ class OutputFolder {
   /// anything moves, if a staged name exists in the folder and the manifest
   /// does not list it.
   void commit();
+
+  /// InputError now, as commit() would at the end, if one of `names` (the files the run may
+  /// write) exists in the folder and the manifest does not list it: a run whose result could
+  /// not be committed fails before its work.
+  void refuse_foreign_files(const std::vector<std::string>& names) const;
 
  private:
   std::filesystem::path dir_, staging_;

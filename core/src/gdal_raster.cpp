@@ -251,6 +251,7 @@ int elevation_band(GDALDatasetH ds, int requested, const std::string& source) {
 struct ElevationScale {
   double scale = 1.0, offset = 0.0, metres_per_unit = 1.0;
   double operator()(double raw) const { return (raw * scale + offset) * metres_per_unit; }
+  bool identity() const { return scale == 1.0 && offset == 0.0 && metres_per_unit == 1.0; }
 };
 
 /// The band's scale, offset and unit (raster_io.hpp's file comment); InputError for a complex
@@ -289,21 +290,6 @@ ElevationScale elevation_scale(GDALRasterBandH band, const std::string& source) 
                      "first");
   }
   return out;
-}
-
-/// True when band `index` (0: the first) holds values that are not elevations in metres as
-/// they stand (a scale, an offset or another unit).
-bool scaled_band(GDALDatasetH ds, int index) {
-  if (index == 0) index = 1;
-  if (index > GDALGetRasterCount(ds)) return false;  // grid_of says so
-  GDALRasterBandH band = GDALGetRasterBand(ds, index);
-  int has_scale = 0, has_offset = 0;
-  const double scale = GDALGetRasterScale(band, &has_scale);
-  const double offset = GDALGetRasterOffset(band, &has_offset);
-  const char* unit = GDALGetRasterUnitType(band);
-  return (has_scale && scale != 1.0) || (has_offset && offset != 0.0) ||
-         (unit != nullptr && *unit != '\0' && std::string(unit) != "m" &&
-          std::string(unit) != "metre");
 }
 
 /// ElevationGrid from band `band_index` of `ds`, after every geometric check.
@@ -526,7 +512,9 @@ TerrainRaster gdal_read_terrain(const std::string& path, const TerrainReadOption
                        "to the UTM zone of its centre (EPSG:" +
                        std::to_string(epsg) + "), or reproject it first (gdalwarp -t_srs)");
     }
-    if (scaled_band(ds.get(), options.band)) {
+    const ElevationScale band_scale = elevation_scale(
+        GDALGetRasterBand(ds.get(), elevation_band(ds.get(), options.band, source)), source);
+    if (!band_scale.identity()) {
       throw InputError(source +
                        ": the band has a scale, an offset or a unit other than metres, which "
                        "--reproject auto does not carry through the warp; unscale it first "

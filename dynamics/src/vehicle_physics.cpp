@@ -15,12 +15,11 @@ AdmissibleSet VehiclePhysics::admissible_set(const Vehicle& vehicle) const {
   conditions.add({Constraint::kContact, 0.0, 0.0, 1.0, -vehicle.contact_reserve * vehicle.gravity});
   const double friction = (1.0 - vehicle.friction_reserve) * vehicle.friction;
   add_model_conditions(vehicle, conditions);
-  // (1 − ε_d) max_accel − f_t >= 0 and (1 − ε_d) max_decel + f_t >= 0 (ε_d = drive_reserve).
-  const double drive_share = 1.0 - vehicle.drive_reserve;
+  // planned_max_accel − f_t >= 0 and planned_max_decel + f_t >= 0 (the drive reserve kept).
   if (std::isfinite(vehicle.max_accel))
-    conditions.add({Constraint::kDrive, -1.0, 0.0, 0.0, drive_share * vehicle.max_accel});
+    conditions.add({Constraint::kDrive, -1.0, 0.0, 0.0, vehicle.planned_max_accel()});
   if (std::isfinite(vehicle.max_decel))
-    conditions.add({Constraint::kBrake, 1.0, 0.0, 0.0, drive_share * vehicle.max_decel});
+    conditions.add({Constraint::kBrake, 1.0, 0.0, 0.0, vehicle.planned_max_decel()});
   // Contract: finite coefficients; sliding and max speed are the cone's and
   // the speed limit's own names; a traction condition holds at f_t = 0
   // wherever the lateral part of sliding does (R >= 0, |f_q| <= mu R), so it

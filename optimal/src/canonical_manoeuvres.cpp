@@ -134,10 +134,6 @@ std::vector<CanonicalManoeuvre> all_canonical_manoeuvres() {
 
 namespace {
 
-/// The drive and brake limits the planner uses [m/s²]: the vehicle's less its drive reserve.
-double planned_drive(const Vehicle& v) { return (1.0 - v.drive_reserve) * v.max_accel; }
-double planned_brake(const Vehicle& v) { return (1.0 - v.drive_reserve) * v.max_decel; }
-
 /// A flat circle of radius 2 m.
 ManoeuvreCase flat_circle_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehicle) {
   const double g = vehicle.gravity, mu = vehicle.friction;
@@ -218,8 +214,8 @@ ManoeuvreCase side_slope_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehic
   const double theta = plane.slope;
   const double bound = g * std::cos(theta) * std::sqrt(mu * mu - std::tan(theta) * std::tan(theta));
   c.limit_kind = AnalyticLimitKind::kAcceleration;
-  c.analytic_limit = std::min(bound, planned_drive(vehicle));
-  c.analytic_brake_limit = std::min(bound, planned_brake(vehicle));
+  c.analytic_limit = std::min(bound, vehicle.planned_max_accel());
+  c.analytic_brake_limit = std::min(bound, vehicle.planned_max_decel());
   c.key_from = 0.0;
   c.key_to = 14.0;
   c.description =
@@ -237,8 +233,8 @@ ManoeuvreCase straight_drive_brake_case(CanonicalManoeuvre manoeuvre, const Vehi
   ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)),
                   straight_path(3.0, 17.0, 4.0));
   c.limit_kind = AnalyticLimitKind::kAcceleration;
-  c.analytic_limit = std::min(planned_drive(vehicle), mu * g);
-  c.analytic_brake_limit = std::min(planned_brake(vehicle), mu * g);
+  c.analytic_limit = std::min(vehicle.planned_max_accel(), mu * g);
+  c.analytic_brake_limit = std::min(vehicle.planned_max_decel(), mu * g);
   c.key_from = 0.0;
   c.key_to = 14.0;
   c.description =

@@ -108,6 +108,10 @@ struct Vehicle {
 
   /// tan(max_steering) / (2 half_wheelbase) [1/m]; +inf without a steering limit.
   double max_curvature() const;
+  /// The planner's drive and brake limits [m/s²]: (1 − drive_reserve) max_accel and
+  /// (1 − drive_reserve) max_decel (+inf where unlimited).
+  double planned_max_accel() const { return (1.0 - drive_reserve) * max_accel; }
+  double planned_max_decel() const { return (1.0 - drive_reserve) * max_decel; }
   /// Throws InputError naming the field, its value and what is expected.
   void validate() const;
   /// Field by field (NaN fields compare unequal).

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -126,6 +127,50 @@ TEST(ClosedLoopCheck, TheSpeedScaleLimitIsBracketedByAReachingAndAFailingDrive) 
       EXPECT_FALSE(d.reached()) << d.speed_scale;
     }
   }
+}
+
+/// 20 m straight on flat ground with the UGV's top speed lowered to 2 m/s: the plan cruises at
+/// its top speed, so no scale above 1 can be driven faster, and nothing slides or lifts.
+TEST(ClosedLoopCheck, AVehicleThatCannotKeepTheScaledScheduleBoundsTheSpeedScale) {
+  const BPatch ground = BPatch::interpolate(ElevationGrid(25, 13, 1.0, 0.0, 0.0));
+  Vehicle vehicle = ugv();
+  vehicle.max_speed = 2.0;
+  std::vector<Curve2::Point> points;
+  for (int i = 0; i <= 20; ++i) points.emplace_back(2.0 + i, 6.0);
+  const Trajectory t =
+      evaluate_trajectory(ground, vehicle, Curve2::interpolate(points), TrajectoryOptions{});
+  ASSERT_TRUE(t.feasible()) << t.message;
+
+  // Reaching alone: every scale up to 2 reaches the goal, at the top speed, about half as fast
+  // as the schedule at 2 asks (the tracker never asks for more than the top speed; without that
+  // the UGV's 3 m/s^2 drive would keep the 4 m/s cruise within ~20 %).
+  SpeedScaleLimitOptions reaching;
+  reaching.highest = 2.0;
+  reaching.tolerance = 0.1;
+  reaching.schedule_tolerance = std::numeric_limits<double>::infinity();
+  const SpeedScaleLimit lenient = find_speed_scale_limit(ground, vehicle, t, reaching);
+  ASSERT_EQ(lenient.status, SpeedScaleLimitStatus::kReachesHighest) << lenient.brief_report();
+  EXPECT_EQ(lenient.bounding_reason(), "");
+  EXPECT_GT(lenient.largest_reaching_drive()->schedule_ratio(), 1.7);
+
+  // On schedule (10 %): the ratio grows like the scale over the cruise, so s* is just above 1
+  // and bounded by the schedule, not by a failure event.
+  SpeedScaleLimitOptions on_schedule = reaching;
+  on_schedule.schedule_tolerance = 0.1;
+  on_schedule.tolerance = 0.02;
+  const SpeedScaleLimit tight = find_speed_scale_limit(ground, vehicle, t, on_schedule);
+  std::cout << tight.brief_report() << "\n";
+  ASSERT_EQ(tight.status, SpeedScaleLimitStatus::kBracketed);
+  EXPECT_GE(tight.largest_reaching_scale, 1.0);
+  EXPECT_LE(tight.smallest_failing_scale, 1.2);
+  EXPECT_EQ(tight.bounding_reason(), "behind_schedule");
+  ASSERT_NE(tight.bounding_failure(), nullptr);
+  EXPECT_TRUE(tight.bounding_failure()->reached());
+  EXPECT_FALSE(tight.bounding_failure()->kept_schedule(0.1));
+  EXPECT_TRUE(tight.largest_reaching_drive()->kept_schedule(0.1));
+
+  on_schedule.schedule_tolerance = -0.1;
+  EXPECT_THROW(find_speed_scale_limit(ground, vehicle, t, on_schedule), InputError);
 }
 
 TEST(ClosedLoopCheck, TheSpeedScaleLimitSaysWhenTheBracketIsTooLowOrTooHigh) {

@@ -274,7 +274,8 @@ class Tracker {
   double min_lookahead() const { return min_lookahead_; }
   /// The speed the tracker aims for at arc length s [m/s].
   double desired(double s) const {
-    return std::max(options_.min_speed, options_.speed_scale * path_.speed(s));
+    return std::max(options_.min_speed,
+                    std::min(options_.speed_scale * path_.speed(s), vehicle_.max_speed));
   }
 
   VehicleControls operator()(double t, const VehicleState& state) const {
@@ -366,7 +367,7 @@ class Tracker {
                                   -options_.integral_limit, options_.integral_limit);
     // The planned acceleration v dv/ds at the desired speed (zero on the floor).
     const double planned = options_.speed_scale * path_.speed(preview);
-    const double feed_forward = planned > options_.min_speed
+    const double feed_forward = planned > options_.min_speed && planned < vehicle_.max_speed
                                     ? planned * options_.speed_scale * path_.speed_slope(preview)
                                     : 0.0;
     return vehicle_.body->mass *
@@ -446,9 +447,9 @@ TrackingResult track_trajectory(const BPatch& surface, const Vehicle& vehicle,
   VehicleSimulationOptions sim = options.simulation;
   sim.end_time = options.time_factor * result.planned_time + options.time_margin;
   const Vec2 heading = reference.points[1] - reference.points[0];
-  const VehicleState start = resting_state(surface, vehicle, reference.points.front(),
-                                           std::atan2(heading.y(), heading.x()),
-                                           options.speed_scale * reference.speed.front());
+  const VehicleState start = resting_state(
+      surface, vehicle, reference.points.front(), std::atan2(heading.y(), heading.x()),
+      std::min(options.speed_scale * reference.speed.front(), vehicle.max_speed));
   result.simulation = simulate_vehicle(surface, vehicle, start, tracker, sim);
   const VehicleSimulationResult& r = result.simulation;
   result.status = from_simulation(r.status);

@@ -111,9 +111,7 @@ std::string s_star_text(const Outcome& o) {
     case SpeedScaleLimitStatus::kBracketed:
       break;
   }
-  const ClosedLoopDrive* failure = o.limit.bounding_failure();
-  return fmt("%.3f", o.limit.largest_reaching_scale) + " (" +
-         std::string(failure != nullptr ? to_string(failure->result.status) : "") + ")";
+  return fmt("%.3f", o.limit.largest_reaching_scale) + " (" + o.limit.bounding_reason() + ")";
 }
 
 /// Utilisation against the speed scale, one line per manoeuvre.

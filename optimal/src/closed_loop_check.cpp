@@ -41,6 +41,15 @@ void ClosedLoopOptions::validate() const {
   tracking.validate();
 }
 
+double ClosedLoopDrive::schedule_ratio() const {
+  return reached() ? result.travel_time / result.planned_time
+                   : std::numeric_limits<double>::quiet_NaN();
+}
+
+bool ClosedLoopDrive::kept_schedule(double tolerance) const {
+  return reached() && result.travel_time <= (1.0 + tolerance) * result.planned_time;
+}
+
 std::size_t ClosedLoopResult::reached() const {
   return static_cast<std::size_t>(std::count_if(
       drives.begin(), drives.end(), [](const ClosedLoopDrive& d) { return d.reached(); }));
@@ -85,6 +94,10 @@ void SpeedScaleLimitOptions::validate() const {
     throw InputError("SpeedScaleLimitOptions.tolerance: must be finite and > 0, got " +
                      std::to_string(tolerance));
   }
+  if (!(schedule_tolerance >= 0.0)) {
+    throw InputError("SpeedScaleLimitOptions.schedule_tolerance: must be >= 0 (+inf: off), got " +
+                     std::to_string(schedule_tolerance));
+  }
   tracking.validate();
 }
 
@@ -116,14 +129,18 @@ const ClosedLoopDrive* SpeedScaleLimit::largest_reaching_drive() const {
   return drive_at(drives, largest_reaching_scale);
 }
 
+std::string SpeedScaleLimit::bounding_reason() const {
+  const ClosedLoopDrive* failure = bounding_failure();
+  if (failure == nullptr) return "";
+  return failure->reached() ? "behind_schedule" : std::string(to_string(failure->result.status));
+}
+
 std::string SpeedScaleLimit::brief_report() const {
   char line[256];
-  const ClosedLoopDrive* failure = bounding_failure();
+  const std::string reason = bounding_reason();
   std::snprintf(line, sizeof line, "s* = %.3f (%s; smallest failing scale %.3f%s%s), %zu drives",
                 largest_reaching_scale, std::string(to_string(status)).c_str(),
-                smallest_failing_scale, failure != nullptr ? ": " : "",
-                failure != nullptr ? std::string(to_string(failure->result.status)).c_str() : "",
-                drives.size());
+                smallest_failing_scale, reason.empty() ? "" : ": ", reason.c_str(), drives.size());
   return line;
 }
 
@@ -133,11 +150,12 @@ SpeedScaleLimit find_speed_scale_limit(const BPatch& surface, const Vehicle& veh
   options.validate();
   const ReferenceTrajectory reference = reference_trajectory(trajectory);
   SpeedScaleLimit result;
+  result.schedule_tolerance = options.schedule_tolerance;
   auto drive = [&](double scale) {
     TrackingOptions tracking = options.tracking;
     tracking.speed_scale = scale;
     result.drives.push_back({scale, track_trajectory(surface, vehicle, reference, tracking)});
-    return result.drives.back().reached();
+    return result.drives.back().kept_schedule(options.schedule_tolerance);
   };
   // Invariant: every scale at or below `reach` is taken to reach, every scale at or above
   // `fail` to fail; the ends are assumptions until driven.

@@ -33,11 +33,14 @@
 ///   is slower there (a braking zone ahead: the force, which acts with the
 ///   loop's lag, is then on time), else s_p = s (an acceleration ahead is not
 ///   anticipated: it would take the vehicle above the plan at its station);
-///   at least min_speed until the goal; plus feed-forward of the weight's component along the
+///   at least min_speed until the goal and at most the vehicle's top speed (Vehicle::max_speed:
+///   a profile scaled above it is not asked of the drive, which has no top speed of its own in
+///   the simulation); plus feed-forward of the weight's component along the
 ///   heading (g sin θ_up, θ_up the terrain's grade along the chassis heading over the wheelbase:
 ///   the chord from the rear to the front axle's ground point, not the chassis pitch, which rides
 ///   the suspension's oscillation on wheel-scale ground) and of the planned acceleration a_p = v_p
-///   dv_p/ds at s_p (v_p = speed_scale · v_ref, 0 while v_p is below the floor): F = m (g sin θ_up
+///   dv_p/ds at s_p (v_p = speed_scale · v_ref, 0 while v_p is below the floor or above the top
+///   speed): F = m (g sin θ_up
 ///   + a_p + kp e + ki ∫e), the integral clamped to ±integral_limit (anti-windup). The simulation
 ///   clips F to the vehicle's drive and brake limits.
 /// The projection s is the arc length along the reference polyline in the

@@ -407,7 +407,7 @@ TEST(GlobalSearchThreads, AnyThreadCountGivesTheSerialCandidatesAndFields) {
   EXPECT_THROW(global_search(terrain, v, {3, 30}, {77, 30}, options), InputError);
 }
 
-// The stop function is polled between the parallel batches of edge costs (on the calling
+// The termination is polled between the parallel batches of edge costs (on the calling
 // thread only): a stop after the first batch ends the search there.
 TEST(GlobalSearchThreads, StopIsPolledBetweenTheBatchesOfEdgeCosts) {
   const BPatch terrain = bumps();
@@ -418,7 +418,7 @@ TEST(GlobalSearchThreads, StopIsPolledBetweenTheBatchesOfEdgeCosts) {
   const std::size_t nodes = global_search(terrain, v, {3, 30}, {77, 30}, options).nodes;
   // Sampling the surface polls once per node (interval 1); the edge stage then once per batch.
   std::size_t calls = 0;
-  options.stop = [&] { return ++calls > nodes + 1; };
+  options.termination = Termination::when([&] { return ++calls > nodes + 1; });
   const GlobalSearchResult r = global_search(terrain, v, {3, 30}, {77, 30}, options);
   EXPECT_EQ(r.status, GlobalSearchStatus::kStopped);
   EXPECT_NE(r.message.find("computing the edge costs"), std::string::npos) << r.message;

@@ -244,7 +244,7 @@ TEST(GlobalSearchStop, ExpandsAtMostOneBatchAfterTheStopIsDue) {
     o.stop_interval = due.interval;
     std::size_t polls = 0;
     // "The deadline passes" after `due.polls` polls said no.
-    o.stop = [&polls, due] { return polls++ >= due.polls; };
+    o.termination = Termination::when([&polls, due] { return polls++ >= due.polls; });
     const GlobalSearchResult r = global_search(c.terrain, c.vehicle, c.start, c.goal, o);
     ASSERT_EQ(r.status, GlobalSearchStatus::kStopped) << due.polls;
     EXPECT_EQ(polls, due.polls + 1);  // it stopped at the first yes
@@ -263,13 +263,13 @@ TEST(GlobalSearchStop, AStopAfterTheGoalWasReachedKeepsARealPath) {
   std::size_t total = 0;
   GlobalSearchOptions o = c.options;
   o.stop_interval = 64;
-  o.stop = [&total] {
+  o.termination = Termination::when([&total] {
     ++total;
     return false;
-  };
+  });
   global_search(c.terrain, c.vehicle, c.start, c.goal, o);
   std::size_t polls = 0;
-  o.stop = [&polls, total] { return ++polls >= total; };
+  o.termination = Termination::when([&polls, total] { return ++polls >= total; });
   const GlobalSearchResult r = global_search(c.terrain, c.vehicle, c.start, c.goal, o);
   ASSERT_EQ(r.status, GlobalSearchStatus::kStopped) << r.message;
   ASSERT_EQ(r.candidates.size(), 1u) << r.message;
@@ -284,7 +284,7 @@ TEST(GlobalSearchStop, ANeverTrueStopChangesNothing) {
     const Case& c = cases[i];
     const GlobalSearchResult a = global_search(c.terrain, c.vehicle, c.start, c.goal, c.options);
     GlobalSearchOptions o = c.options;
-    o.stop = [] { return false; };
+    o.termination = Termination::when([] { return false; });
     o.stop_interval = 7;
     const GlobalSearchResult b = global_search(c.terrain, c.vehicle, c.start, c.goal, o);
     ASSERT_EQ(a.candidates.size(), b.candidates.size()) << c.name;

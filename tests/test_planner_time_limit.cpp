@@ -1,4 +1,4 @@
-// The planner's time limit (PlannerOptions::time_limit), hit deterministically
+// The planner's time limit (PlannerOptions::termination), hit deterministically
 // through an injected clock: in the global stage before any route (no
 // trajectory), just before the first candidate (its initial fit, feasible),
 // and inside the first candidate's optimisation (its best point so far); a
@@ -49,7 +49,7 @@ TEST(PlannerTimeLimit, AGenerousLimitGivesBitIdenticalResults) {
   for (const PathSolver solver : {PathSolver::kIpopt}) {
     const PlannerResult free = plan(problem_on(surface), two_candidates(solver));
     PlannerOptions options = two_candidates(solver);
-    options.time_limit = 1e6;
+    options.termination = Termination::time_budget(1e6);
     const PlannerResult limited = plan(problem_on(surface), options);
     ASSERT_EQ(free.status, PlannerStatus::kOk);
     ASSERT_EQ(limited.status, PlannerStatus::kOk) << limited.brief_report();
@@ -72,8 +72,7 @@ TEST(PlannerTimeLimit, ALimitPassedBeforeTheFirstCandidateReturnsItsInitialFitFe
   for (const PathSolver solver : {PathSolver::kIpopt, PathSolver::kNloptBobyqa}) {
     PlannerOptions options = two_candidates(solver);
     double now = 0.0;
-    options.clock = [&now] { return now; };
-    options.time_limit = 10.0;
+    options.termination = Termination::time_budget(10.0, [&now] { return now; });
     // The deadline passes just as the local stage begins.
     options.progress = [&now](const PlannerProgress& p) {
       if (p.stage == PlannerStage::kLocalOptimisation) now = 100.0;
@@ -106,8 +105,8 @@ TEST(PlannerTimeLimit, ALimitInTheGlobalStageBeforeAnyRouteGivesNoTrajectory) {
   const BPatch surface = hill_surface();
   PlannerOptions options = two_candidates(PathSolver::kIpopt);
   double ticks = 0.0;
-  options.clock = [&ticks] { return ticks++; };  // one tick per look at the clock
-  options.time_limit = 2.5;                      // passes while the lattice is being sampled
+  // One tick per look at the clock: passes while the lattice is being sampled.
+  options.termination = Termination::time_budget(2.5, [&ticks] { return ticks++; });
   const PlannerResult r = plan(problem_on(surface), options);
   ASSERT_EQ(r.status, PlannerStatus::kTimeLimit) << r.brief_report();
   EXPECT_EQ(r.global.status, GlobalSearchStatus::kStopped);
@@ -121,10 +120,10 @@ TEST(PlannerTimeLimit, ALimitDuringTheOptimisationKeepsItsBestPointSoFar) {
   const BPatch surface = hill_surface();
   PlannerOptions options = two_candidates(PathSolver::kIpopt);
   double ticks = 0.0;
-  options.clock = [&ticks] { return ticks++; };
+  const auto clock = [&ticks] { return ticks++; };
   // First, where the local stage starts on this clock.
   double at_local = -1.0;
-  options.time_limit = 1e12;
+  options.termination = Termination::time_budget(1e12, clock);
   options.progress = [&](const PlannerProgress& p) {
     if (p.stage == PlannerStage::kLocalOptimisation && p.candidate == 0) at_local = ticks;
     return true;
@@ -134,7 +133,7 @@ TEST(PlannerTimeLimit, ALimitDuringTheOptimisationKeepsItsBestPointSoFar) {
   ASSERT_GT(free.candidates[0].optimization->iterations, 4u);
   // Then a limit 3 ticks (Ipopt iterations) into candidate 0's optimisation.
   ticks = 0.0;
-  options.time_limit = at_local + 3.0;
+  options.termination = Termination::time_budget(at_local + 3.0, clock);
   options.progress = nullptr;
   const PlannerResult r = plan(problem_on(surface), options);
   ASSERT_EQ(r.status, PlannerStatus::kTimeLimit) << r.brief_report();
@@ -158,7 +157,7 @@ TEST(PlannerTimeLimit, TheOptimiserStopsAtItsOwnLimitWithTheInitialFit) {
     PathOptimizerOptions options;
     options.control_points = 6;
     options.solver = solver;
-    options.time_limit = 1e-9;  // passed before the solver's first look
+    options.termination = Termination::time_budget(1e-9);  // passed before the solver's first look
     const OptimizedPath p = optimize_path(surface, point_mass_rover(0.4), polyline, options);
     EXPECT_EQ(p.solver_status, "time_limit") << to_string(solver);
     EXPECT_FALSE(p.solver_failed);
@@ -167,7 +166,7 @@ TEST(PlannerTimeLimit, TheOptimiserStopsAtItsOwnLimitWithTheInitialFit) {
   PathOptimizerOptions simultaneous;
   simultaneous.control_points = 6;
   simultaneous.formulation = PathFormulation::kSimultaneous;
-  simultaneous.stop = [] { return true; };
+  simultaneous.termination = Termination::when([] { return true; });
   const OptimizedPath s = optimize_path(surface, point_mass_rover(0.4), polyline, simultaneous);
   EXPECT_EQ(s.solver_status, "time_limit");
   EXPECT_EQ(s.phase, 1);  // phase 2 never started
@@ -175,15 +174,36 @@ TEST(PlannerTimeLimit, TheOptimiserStopsAtItsOwnLimitWithTheInitialFit) {
 }
 
 TEST(PlannerTimeLimit, ANonPositiveLimitIsAnInputError) {
-  const BPatch surface = hill_surface();
   for (const double limit : {0.0, -1.0, std::nan("")}) {
-    PlannerOptions options;
-    options.time_limit = limit;
-    EXPECT_THROW(plan(problem_on(surface), options), InputError) << limit;
-    PathOptimizerOptions local;
-    local.time_limit = limit;
-    EXPECT_THROW(local.validate(), InputError) << limit;
+    EXPECT_THROW(Termination::time_budget(limit), InputError) << limit;
   }
+}
+
+// A stop request in the same termination: status kStopped, not kTimeLimit, whether it comes
+// before the global search or between candidates.
+TEST(PlannerTimeLimit, AStopRequestStopsThePlanWithStatusStopped) {
+  const BPatch surface = hill_surface();
+  PlannerOptions options = two_candidates(PathSolver::kIpopt);
+  options.termination = Termination::time_budget(1e6) | Termination::when([] { return true; });
+  const PlannerResult early = plan(problem_on(surface), options);
+  EXPECT_EQ(early.status, PlannerStatus::kStopped) << early.brief_report();
+  EXPECT_EQ(early.global.status, GlobalSearchStatus::kStopped);
+  EXPECT_NE(early.global.message.find("stop_requested"), std::string::npos) << early.global.message;
+  EXPECT_EQ(early.best(), nullptr);
+
+  bool requested = false;
+  options.termination = Termination::when([&requested] { return requested; });
+  options.progress = [&requested](const PlannerProgress& p) {
+    if (p.stage == PlannerStage::kLocalOptimisation && p.candidate == 1) requested = true;
+    return true;
+  };
+  const PlannerResult late = plan(problem_on(surface), options);
+  EXPECT_EQ(late.status, PlannerStatus::kStopped) << late.brief_report();
+  EXPECT_EQ(late.global.status, GlobalSearchStatus::kOk);
+  // Candidate 1's solver saw the request at its first look (its status says "time_limit", the
+  // one status of a solver stopped by its termination); the plan reports the request.
+  ASSERT_EQ(late.candidates.size(), 2u);
+  EXPECT_EQ(late.candidates[1].optimization->solver_status, "time_limit");
 }
 
 }  // namespace

@@ -432,7 +432,7 @@ PlannerOptions planner_options(const PlanRequest& request) {
   options.global.threads = static_cast<std::size_t>(request.threads);
   options.global.braking_rule = request.braking_rule;
   options.global.turn_limit = request.turn_limit;
-  options.time_limit = request.time_limit;
+  options.termination = Termination::time_budget(request.time_limit);
   options.feedback_rounds = static_cast<std::size_t>(request.feedback_rounds);
   options.optimize = request.stage == kPlanStageFull;
   options.local.solver = parse_path_solver(request.solver);

@@ -45,7 +45,7 @@ struct PlanRequest {
   /// GlobalSearchOptions::threads: threads computing the lattice's edge
   /// costs (0 = one per hardware thread); the plan is the same for any count.
   long long threads = 1;
-  /// PlannerOptions::time_limit [s] (> 0; +inf = none).
+  /// The plan's time budget (PlannerOptions::termination) [s] (> 0; +inf = none).
   double time_limit = std::numeric_limits<double>::infinity();
   /// PlannerOptions::feedback_rounds (>= 0).
   int feedback_rounds = 8;

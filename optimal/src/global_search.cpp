@@ -662,7 +662,10 @@ class LatticeSearch {
     result_.origin = lattice.origin();
   }
 
-  bool stop() const { return options_.stop && options_.stop(); }
+  bool stop() const {
+    reason_ = options_.termination.check();
+    return reason_ != TerminationReason::kNone;
+  }
   GlobalSearchResult& result() { return result_; }
   /// The graph's edges out of (forward) or into (reverse) a state, for shortest_paths.
   static auto forward(const RouteGraph& graph) {
@@ -682,9 +685,9 @@ class LatticeSearch {
 
   GlobalSearchResult stopped(const char* phase) {
     std::ostringstream msg;
-    msg << "stopped by GlobalSearchOptions::stop while " << phase << " (" << result_.expanded
-        << " nodes expanded); " << result_.candidates.size() << " candidate"
-        << (result_.candidates.size() == 1 ? "" : "s") << " found by then";
+    msg << "stopped by GlobalSearchOptions::termination (" << to_string(reason_) << ") while "
+        << phase << " (" << result_.expanded << " nodes expanded); " << result_.candidates.size()
+        << " candidate" << (result_.candidates.size() == 1 ? "" : "s") << " found by then";
     return finish(GlobalSearchStatus::kStopped, msg.str());
   }
 
@@ -884,6 +887,7 @@ class LatticeSearch {
   }
 
   std::chrono::steady_clock::time_point t0_;
+  mutable TerminationReason reason_ = TerminationReason::kNone;
   const BPatch& terrain_;
   const AdmissibleSet& set_;
   const GlobalSearchOptions& options_;
@@ -1175,18 +1179,22 @@ GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const V
   const WholeMap whole_map = [workspace](double at) {
     return workspace != nullptr ? &workspace->lattice(at) : nullptr;
   };
-  if (options.stop && options.stop()) {
+  // Armed once: every stage below polls the same deadlines.
+  GlobalSearchOptions armed = options;
+  armed.termination = options.termination.start();
+  if (const TerminationReason reason = armed.termination.check();
+      reason != TerminationReason::kNone) {
     GlobalSearchResult result;
     result.status = GlobalSearchStatus::kStopped;
-    result.message = "stopped by GlobalSearchOptions::stop before the search started";
+    result.message = "stopped by GlobalSearchOptions::termination (" +
+                     std::string(to_string(reason)) + ") before the search started";
     result.resolution = options.resolution;
     return result;
   }
   if (options.resolution == GlobalSearchResolution::kMulti) {
-    return search_coarse_to_fine(terrain, vehicle, set, start, goal, options, spacing, whole_map,
-                                 t0);
+    return search_coarse_to_fine(terrain, vehicle, set, start, goal, armed, spacing, whole_map, t0);
   }
-  GlobalSearchResult result = search_lattice(terrain, vehicle, set, start, goal, options, spacing,
+  GlobalSearchResult result = search_lattice(terrain, vehicle, set, start, goal, armed, spacing,
                                              nullptr, whole_map(spacing));
   result.corridor_width = 0.0;
   return result;

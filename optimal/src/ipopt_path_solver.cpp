@@ -128,7 +128,7 @@ class PathNlp : public Ipopt::TNLP {
                              Number, Number, Number, Number, Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
     iterations_ = static_cast<std::size_t>(iteration);
-    if (problem_.expired && problem_.expired()) {
+    if (problem_.termination.should_stop()) {
       timed_out_ = true;
       return false;
     }

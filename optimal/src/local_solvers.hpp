@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "talus/core/termination.hpp"
 #include "talus/optimal/path_time_objective.hpp"
 
 namespace talus::detail {
@@ -46,9 +47,9 @@ struct BoxProblem {
   std::size_t max_evaluations = 400;
   double relative_tolerance = 1e-5;
   double initial_step = 1.0;  ///< derivative-free trust-region radius [m]
-  /// Polled every iteration (Ipopt) or evaluation (NLopt): true stops the
-  /// solver with status "time_limit". Empty: never.
-  std::function<bool()> expired;
+  /// Polled every iteration (Ipopt) or evaluation (NLopt), armed: once it
+  /// holds the solver stops with status "time_limit". Default: never.
+  Termination termination;
 };
 
 struct SolverRun {

@@ -39,7 +39,7 @@ std::string result_text(nlopt::result r) {
 struct Context {
   TrackedObjective& objective;
   std::size_t calls = 0;
-  std::function<bool()> expired;  ///< BoxProblem::expired
+  const Termination& termination;  ///< BoxProblem::termination
   bool timed_out = false;
 };
 
@@ -48,7 +48,7 @@ struct Context {
 // regions then step back.
 double penalised(unsigned n, const double* z, double* gradient, void* data) {
   auto& context = *static_cast<Context*>(data);
-  if (context.expired && context.expired()) {
+  if (context.termination.should_stop()) {
     context.timed_out = true;
     throw nlopt::forced_stop();
   }
@@ -73,7 +73,7 @@ SolverRun run_nlopt(nlopt::algorithm algorithm, TrackedObjective& objective,
   };
   optimizer.set_lower_bounds(to_vector(problem.lower));
   optimizer.set_upper_bounds(to_vector(problem.upper));
-  Context context{objective, 0, problem.expired, false};
+  Context context{objective, 0, problem.termination, false};
   optimizer.set_min_objective(penalised, &context);
   optimizer.set_maxeval(static_cast<int>(problem.max_evaluations));
   optimizer.set_ftol_rel(problem.relative_tolerance);

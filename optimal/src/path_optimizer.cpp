@@ -110,7 +110,7 @@ detail::SimultaneousProblem simultaneous_problem(const BPatch& terrain, const Ve
   nlp.lower = box.lower;
   nlp.upper = box.upper;
   nlp.tolerance = options.simultaneous_tolerance;
-  nlp.stop = box.expired;
+  nlp.termination = box.termination;
   return nlp;
 }
 
@@ -183,7 +183,7 @@ OptimizedPath optimize_simultaneous(const BPatch& terrain, const Vehicle& vehicl
   // from phase 1's point and speeds.
   std::optional<Curve2> lateral_curve;
   int phase = 1;
-  if (usable(run) && !(box.expired && box.expired())) {
+  if (usable(run) && !box.termination.should_stop()) {
     const double lateral_time = objective.evaluate(run.variables);
     lateral_curve.emplace(objective.curve(run.variables));
     nlp.initial = &*lateral_curve;
@@ -312,9 +312,6 @@ void PathOptimizerOptions::validate() const {
     throw InputError("PathOptimizerOptions.simultaneous_lateral_iterations must be >= 1");
   if (!(simultaneous_tolerance > 0.0) || !std::isfinite(simultaneous_tolerance))
     throw InputError("PathOptimizerOptions.simultaneous_tolerance must be positive");
-  if (!(time_limit > 0.0)) {
-    throw InputError("PathOptimizerOptions.time_limit must be > 0 [s] (+inf = none)");
-  }
   for (const std::size_t m : more_control_points)
     if (m < 4) throw InputError("PathOptimizerOptions.more_control_points must each be >= 4");
   if (polish_station_factor < 1)
@@ -450,8 +447,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 /// the expiry and BOBYQA's initial step.
 detail::BoxProblem box_problem(const BPatch& terrain, const Eigen::VectorXd& start,
                                const std::vector<Vec2>& initial_polyline,
-                               const PathOptimizerOptions& options,
-                               std::chrono::steady_clock::time_point started) {
+                               const PathOptimizerOptions& options) {
   detail::BoxProblem problem;
   problem.start = start;
   const long n = problem.start.size();
@@ -483,12 +479,7 @@ detail::BoxProblem box_problem(const BPatch& terrain, const Eigen::VectorXd& sta
   problem.max_iterations = options.max_iterations;
   problem.max_evaluations = options.max_evaluations;
   problem.relative_tolerance = options.relative_tolerance;
-  if (options.stop || std::isfinite(options.time_limit)) {
-    const double limit = options.time_limit;
-    problem.expired = [stop = options.stop, limit, started] {
-      return (stop && stop()) || seconds_since(started) >= limit;
-    };
-  }
+  problem.termination = options.termination;  // armed by optimize_path
   // BOBYQA's trust region must fit in the box twice over (NLopt refuses
   // otherwise): elongated or tiny domains cap it.
   double narrowest = std::numeric_limits<double>::infinity();  // of the free coordinates
@@ -525,7 +516,7 @@ OptimizedPath simultaneous_attempts(const BPatch& terrain, const Vehicle& vehicl
       {"fit", out.solver_status, out.converged, out.travel_time, out.iterations, out.seconds});
   if (std::isfinite(out.travel_time)) out.attempts.back().curve = out.curve;
   for (std::size_t r = 1; r <= options.restarts && !out.attempts.back().converged; ++r) {
-    if (problem.expired && problem.expired()) break;
+    if (problem.termination.should_stop()) break;
     detail::BoxProblem restart = problem;
     const auto point =
         restart_point(r, objective.variables(out.curve.control_points()), objective, restarts.first,
@@ -590,7 +581,7 @@ void nested_attempts(PathTimeObjective& objective, const detail::BoxProblem& pro
   for (std::size_t r = 0; r <= options.restarts; ++r) {
     detail::BoxProblem box = problem;
     if (r > 0) {
-      if (search.attempts.back().converged || (problem.expired && problem.expired())) break;
+      if (search.attempts.back().converged || problem.termination.should_stop()) break;
       const auto point = restart_point(r, search.best, objective, restarts.first, restarts.last,
                                        restarts.sigma, problem, restarts.random);
       if (!point) break;
@@ -706,8 +697,7 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
                               control_points, stations, options.speeds);
   const Eigen::VectorXd start = objective.variables(fit.curve->control_points());
   const double initial_time = objective.evaluate(start);
-  const detail::BoxProblem problem =
-      box_problem(terrain, start, initial_polyline, options, started);
+  const detail::BoxProblem problem = box_problem(terrain, start, initial_polyline, options);
   RestartSource restarts{
       initial_polyline.front(), initial_polyline.back(),
       options.restart_perturbation > 0.0 ? options.restart_perturbation : 2.0 * terrain.cellsize(),
@@ -724,7 +714,7 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
   search.best = problem.start;
   search.best_time = initial_time;
   nested_attempts(objective, problem, options, restarts, search);
-  if (options.polish && !(problem.expired && problem.expired())) {
+  if (options.polish && !problem.termination.should_stop()) {
     polish_attempt(terrain, vehicle, objective, problem, control_points, stations, restarts,
                    options, initial_time, search);
   }
@@ -747,17 +737,16 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                             const PathOptimizerOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
-  OptimizedPath best = tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, options));
-  const auto elapsed = [started] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  };
+  // Armed once: every fit, attempt and solver below polls the same deadline.
+  PathOptimizerOptions armed = options;
+  armed.termination = options.termination.start();
+  OptimizedPath best = tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, armed));
   for (const std::size_t m : options.more_control_points) {
-    if ((options.stop && options.stop()) || elapsed() >= options.time_limit) break;
-    PathOptimizerOptions further = options;
+    if (armed.termination.should_stop()) break;
+    PathOptimizerOptions further = armed;
     further.more_control_points.clear();
     further.control_points = m;
     further.max_control_points = std::max(further.max_control_points, m);
-    further.time_limit = options.time_limit - elapsed();
     std::optional<OptimizedPath> next;
     try {
       next.emplace(tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, further)));
@@ -782,7 +771,7 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
     best.evaluations = evaluations;
     best.gradient_evaluations = gradients;
   }
-  best.seconds = elapsed();
+  best.seconds = seconds_since(started);
   return best;
 }
 

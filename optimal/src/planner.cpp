@@ -193,9 +193,6 @@ void PlannerOptions::validate() const {
   global.validate();
   local.validate();
   require_station_spacing(station_spacing, "PlannerOptions.station_spacing");
-  if (!(time_limit > 0.0)) {
-    throw InputError("PlannerOptions.time_limit must be > 0 [s] (+inf = none)");
-  }
   if (!(std::isfinite(feedback_radius) && feedback_radius >= 0.0)) {
     throw InputError(
         "PlannerOptions.feedback_radius must be a finite number >= 0 [m] (0 = two lattice "
@@ -485,13 +482,8 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   problem.validate();
   options.validate();
   PlannerResult result;
-  // The time limit, on the injected clock or the steady one.
-  const auto now = [&options, started] {
-    return options.clock ? options.clock() : seconds_since(started);
-  };
-  const bool limited = std::isfinite(options.time_limit);
-  const double deadline = limited ? now() + options.time_limit : 0.0;
-  const auto expired = [&] { return limited && now() >= deadline; };
+  // Armed once: the global search and every candidate's solvers poll the same deadline.
+  const Termination termination = options.termination.start();
   const auto keep_going = [&](PlannerStage stage, std::size_t candidate) {
     if (!options.progress) return true;
     const PlannerProgress progress{stage, candidate, result.global.candidates.size(),
@@ -509,25 +501,22 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     return std::move(result);
   };
   constexpr const char* kStopMessage = "stopped by the progress callback";
+  constexpr const char* kRequestMessage = "stopped by PlannerOptions::termination (stop requested)";
   std::ostringstream limit_text;
-  limit_text << "time limit of " << options.time_limit << " s reached";
+  limit_text << "time limit of " << termination.time_budget() << " s reached";
 
   if (!keep_going(PlannerStage::kGlobalSearch, 0))
     return finish(PlannerStatus::kStopped, kStopMessage);
   const auto global_started = Clock::now();
   GlobalSearchOptions global = options.global;
-  if (limited) {
-    global.stop = [&expired, user = options.global.stop] { return (user && user()) || expired(); };
-  }
+  global.termination = options.global.termination | termination;
   // The feedback rounds search the same lattice again: its edge costs are kept.
   GlobalSearchWorkspace search_workspace;
   result.global = global_search(*problem.surface, problem.vehicle, problem.start, problem.goal,
                                 global, search_workspace);
 
   PathOptimizerOptions local = local_stage_options(problem, options);
-  if (limited) {
-    local.stop = [&expired, user = options.local.stop] { return (user && user()) || expired(); };
-  }
+  local.termination = options.local.termination | termination;
   TimeOptimalProfileSolver workspace;
   std::vector<bool> followable;
   if (options.optimize && result.global.status == GlobalSearchStatus::kOk) {
@@ -536,7 +525,8 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   result.seconds.global = seconds_since(global_started);
   bool global_cut = false;
   if (result.global.status == GlobalSearchStatus::kStopped) {
-    if (!expired()) return finish(PlannerStatus::kStopped, result.global.message);
+    if (termination.check() != TerminationReason::kTimeLimit)
+      return finish(PlannerStatus::kStopped, result.global.message);
     global_cut = true;
     if (result.global.candidates.empty()) {
       return finish(PlannerStatus::kTimeLimit, limit_text.str() +
@@ -562,7 +552,10 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   std::vector<std::size_t> cut_short;
   for (std::size_t c = 0; c < result.global.candidates.size(); ++c) {
     // Past the limit, only until one trajectory is feasible (its fit alone).
-    const bool late = expired();
+    const TerminationReason reason = termination.check();
+    if (reason == TerminationReason::kStopRequested)
+      return finish(PlannerStatus::kStopped, kRequestMessage);
+    const bool late = reason == TerminationReason::kTimeLimit;
     if (late && result.best_candidate) {
       for (std::size_t k = c; k < result.global.candidates.size(); ++k) {
         result.not_optimised.push_back(k);
@@ -584,6 +577,8 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
       result.best_candidate = c;
     }
   }
+  if (termination.check() == TerminationReason::kStopRequested)
+    return finish(PlannerStatus::kStopped, kRequestMessage);
   if (global_cut || !cut_short.empty() || !result.not_optimised.empty()) {
     return finish(PlannerStatus::kTimeLimit,
                   time_limit_message(limit_text.str(), global_cut, cut_short, result));

@@ -388,7 +388,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
                              Number, Number, Number, Number, Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
     iterations_ = static_cast<std::size_t>(iteration);
-    if (problem_.stop && problem_.stop()) {
+    if (problem_.termination.should_stop()) {
       timed_out_ = true;
       return false;
     }

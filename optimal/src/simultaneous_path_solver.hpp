@@ -33,6 +33,7 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
+#include "talus/core/termination.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
 
@@ -63,8 +64,9 @@ struct SimultaneousProblem {
   double tolerance = 1e-6;  ///< Ipopt's tol
   /// Start near a point believed close to the optimum (warm start).
   bool warm_start = false;
-  /// Polled every iteration: true stops Ipopt (status "time_limit"). Empty: never.
-  std::function<bool()> stop;
+  /// Polled every iteration, armed: once it holds Ipopt stops (status
+  /// "time_limit"). Default: never.
+  Termination termination;
 };
 
 struct SimultaneousRun {

@@ -361,8 +361,13 @@ void bind_planner(py::module_& m) {
       .def_readwrite("local", &PlannerOptions::local)
       .def_readwrite("optimize", &PlannerOptions::optimize)
       .def_readwrite("station_spacing", &PlannerOptions::station_spacing)
-      .def_readwrite("time_limit", &PlannerOptions::time_limit,
-                     "[s] (> 0; inf = none): the best trajectory so far, status TIME_LIMIT")
+      .def_property(
+          "time_limit", [](const PlannerOptions& o) { return o.termination.time_budget(); },
+          [](PlannerOptions& o, double seconds) {
+            o.termination = Termination::time_budget(seconds);
+          },
+          "[s] (> 0; inf = none): the best trajectory so far, status TIME_LIMIT (sets the "
+          "options' termination to this time budget)")
       .def_readwrite("progress", &PlannerOptions::progress,
                      "None, or a callable(PlannerProgress) -> bool; False stops the plan")
       .def("validate", &PlannerOptions::validate);

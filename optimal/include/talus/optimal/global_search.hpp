@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
+#include "talus/core/termination.hpp"
 #include "talus/dynamics/vehicle.hpp"
 
 namespace talus {
@@ -96,15 +97,16 @@ struct GlobalSearchOptions {
   /// kMulti: the corridor's first half-width around the coarse candidates [m]
   /// (>= 0); 0 = 4 coarse lattice spacings.
   double corridor_width = 0.0;
-  /// Polled before the search starts and then every `stop_interval` node
+  /// When to give up (core/termination.hpp; armed when the search starts):
+  /// polled before the search starts and then every `stop_interval` node
   /// expansions (Dijkstra / A*, each with its lazily computed edge costs),
-  /// node surface samples or candidate seeds; true cuts the search short
-  /// with status kStopped (used by the planner's time limit). So the search
-  /// runs at most one batch of stop_interval expansions past the moment
-  /// `stop` would first have said yes (in the candidate extraction, one
-  /// O(nodes) step: the sort of the seeds or one candidate's distance map).
-  /// Empty: never stops.
-  std::function<bool()> stop;
+  /// node surface samples or candidate seeds; once it holds the search ends
+  /// with status kStopped (the planner passes its own, armed, termination).
+  /// So the search runs at most one batch of stop_interval expansions past
+  /// the moment it first held (in the candidate extraction, one O(nodes)
+  /// step: the sort of the seeds or one candidate's distance map).
+  /// Default: never.
+  Termination termination;
   std::size_t stop_interval = 1024;  ///< >= 1
   /// Threads computing the lattice's edge costs (0 = one per hardware
   /// thread). With more than one, and both cost fields wanted (cost_fields
@@ -155,7 +157,7 @@ struct GlobalSearchOptions {
 enum class GlobalSearchStatus {
   kOk,           ///< at least one candidate
   kUnreachable,  ///< the goal cannot be reached from the start; see `message`
-  /// GlobalSearchOptions::stop cut the search short; `candidates` holds what
+  /// GlobalSearchOptions::termination cut the search short; `candidates` holds what
   /// was found by then (possibly none, e.g. when it stopped before the goal
   /// was reached; a route found by a search stopped before its end is a real,
   /// not necessarily minimum-time, path), `message` says where it stopped.

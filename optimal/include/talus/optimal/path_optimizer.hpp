@@ -54,6 +54,7 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
+#include "talus/core/termination.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
 
@@ -131,17 +132,16 @@ struct PathOptimizerOptions {
   /// With L-BFGS phase 2 stalled on the tests' flat plane and smooth hill
   /// (1000 iterations without convergence).
   bool simultaneous_limited_memory = false;
-  /// Wall-clock limit of one optimize_path call [s] (> 0; +inf = none),
-  /// counted from its start (steady clock). Polled at every Ipopt iteration
-  /// (both formulations) and every NLopt evaluation: the solver stops there
-  /// with the best path evaluated so far (at least the initial fit) and
+  /// When to give up (core/termination.hpp), armed when optimize_path
+  /// starts (a time budget counts from there; the planner passes its own,
+  /// armed, termination). Polled at every Ipopt iteration (both
+  /// formulations) and every NLopt evaluation: once it holds the solver stops
+  /// there with the best path evaluated so far (at least the initial fit) and
   /// solver_status "time_limit". The initial fit itself is not interrupted.
-  double time_limit = std::numeric_limits<double>::infinity();
-  /// Polled with time_limit; true stops the solver likewise (the planner's
-  /// deadline on its own clock). Empty: never.
-  std::function<bool()> stop;
+  /// Default: never.
+  Termination termination;
   /// Restarts (>= 0) after a solve that ends without converging (on an
-  /// iteration or evaluation cap, or a solver error), within time_limit:
+  /// iteration or evaluation cap, or a solver error), within the termination:
   /// the first from the best point so far with fresh solver state (Ipopt's
   /// barrier parameter and quasi-Newton memory, NLopt's trust region), each
   /// further one from that point with every interior control point moved

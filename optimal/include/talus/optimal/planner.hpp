@@ -40,7 +40,9 @@
 /// failure, a stop request, the time limit) are statuses; only invalid input
 /// throws InputError.
 ///
-/// The time limit (PlannerOptions::time_limit) is checked by the global
+/// The termination (PlannerOptions::termination: a time limit, a stop
+/// request, or both; core/termination.hpp) is armed once when plan() starts
+/// and checked by the global
 /// search every GlobalSearchOptions::stop_interval node expansions, before
 /// each candidate's optimisation and at every solver iteration (Ipopt) or
 /// evaluation (NLopt). On it plan() returns status kTimeLimit with the best
@@ -69,6 +71,7 @@
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
+#include "talus/core/termination.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "talus/optimal/path_optimizer.hpp"
@@ -135,12 +138,14 @@ struct PlannerOptions {
   /// its next step (status kStopped, what was done so far kept). A step is
   /// one candidate's optimisation, bounded by local.max_evaluations.
   std::function<bool(const PlannerProgress&)> progress;
-  /// Budget of the whole plan [s] (> 0; +inf = none): see the file comment.
-  /// A generous limit changes nothing (bit-identical results).
-  double time_limit = std::numeric_limits<double>::infinity();
-  /// The clock of time_limit: seconds on any monotone scale. Empty = the
-  /// steady clock. Tests inject one to hit the limit deterministically.
-  std::function<double()> clock;
+  /// When the whole plan gives up (see the file comment): for example
+  /// Termination::time_budget(10.0) for a 10 s limit (status kTimeLimit),
+  /// Termination::when(flag) for a stop request (status kStopped), or both
+  /// with `|`. Armed when plan() starts; global.termination and
+  /// local.termination still apply to their own stage (a local time budget
+  /// per candidate). A generous limit changes nothing (bit-identical
+  /// results). Default: never.
+  Termination termination;
   /// Throws InputError naming the field.
   void validate() const;
 };
@@ -149,8 +154,8 @@ enum class PlannerStatus {
   kOk,           ///< a best trajectory exists (or, with optimize = false, candidates)
   kUnreachable,  ///< the global search found no route from start to goal
   kInfeasible,   ///< candidates exist, but none has a feasible trajectory
-  kStopped,      ///< the progress callback asked to stop
-  /// PlannerOptions::time_limit was reached: the best feasible trajectory
+  kStopped,      ///< the progress callback or a stop request in the termination said stop
+  /// The termination's time budget ran out: the best feasible trajectory
   /// found by then, if any; `message` and not_optimised say what was left.
   kTimeLimit,
 };
@@ -188,7 +193,7 @@ struct CandidateOutcome {
   /// The followability check passed: the optimiser's initial path
   /// (fit_initial_path) has an admissible profile at the search's stations.
   bool followable = false;
-  /// The time limit stopped this candidate's optimisation (solver_status
+  /// The termination stopped this candidate's optimisation (solver_status
   /// "time_limit"), or it had passed before it began (only its initial fit).
   bool time_limited = false;
   double seconds = 0.0;  ///< this candidate's local stage and evaluations [s]

@@ -3,7 +3,7 @@
 // points, two restarts) against the former default (an 8-point fit and a
 // further start at 16, no restart) in the same run, on seeds 1-5: the
 // terrain generated and fitted outside the timing, then talus::plan from
-// kBatteryStart to kBatteryGoal with the battery's point-mass UGV. Counters:
+// scenarios::kBatteryStart to scenarios::kBatteryGoal with the battery's point-mass UGV. Counters:
 // the best trajectory's travel time [s] and the local stage's objective
 // evaluations. Medians:
 //   ./build/benchmarks/bench_battery_plan --benchmark_repetitions=3
@@ -13,13 +13,13 @@
 #include <cstdint>
 #include <map>
 
-#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/optimal/planner.hpp"
+#include "talus/scenarios/fractal_battery.hpp"
 
 namespace {
 
-namespace battery = talus::experiments;
+namespace battery = talus::scenarios;
 
 const talus::BPatch& surface(std::int64_t seed) {
   static std::map<std::int64_t, talus::BPatch> surfaces;

@@ -9,15 +9,13 @@
 #include <random>
 #include <vector>
 
-#include "hait_scenarios.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/chassis_placement.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/kinematic/hait/placement.hpp"
+#include "talus/scenarios/hait_robots.hpp"
 
 namespace {
-
-namespace ex = talus::experiments;
 
 const talus::HaitScenario& scenario() {
   static const talus::HaitScenario s = talus::hait_heuristics_scenario(false);
@@ -28,11 +26,11 @@ const talus::RuledTerrain& terrain() {
   return t;
 }
 const talus::Robot& chassis() {
-  static const talus::Robot r = ex::load_hait_chassis(TALUS_DATA_DIR);
+  static const talus::Robot r = talus::scenarios::load_hait_chassis(TALUS_DATA_DIR);
   return r;
 }
 const talus::Robot& wheeled() {
-  static const talus::Robot r = ex::load_hait_wheeled(TALUS_DATA_DIR);
+  static const talus::Robot r = talus::scenarios::load_hait_wheeled(TALUS_DATA_DIR);
   return r;
 }
 

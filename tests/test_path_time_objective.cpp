@@ -6,10 +6,10 @@
 #include <limits>
 #include <random>
 
-#include "fractal_battery.hpp"
 #include "talus/core/error.hpp"
 #include "talus/dynamics/path_velocity_limits.hpp"
 #include "talus/optimal/path_time_objective.hpp"
+#include "talus/scenarios/fractal_battery.hpp"
 #include "terrain_test_support.hpp"
 #include "vehicle_test_support.hpp"
 
@@ -182,9 +182,9 @@ TEST(PathTimeObjective, GradientWithBrakesOnlyMovingEndsAndUtmCoordinates) {
 // 25 battery plans, 2 after).
 TEST(PathTimeObjective, AStationAtTheEdgeOfATipOfTheSlidingLimitKeepsTheAdjointGradient) {
   const BPatch terrain =
-      BPatch::interpolate(generate_fractal_terrain(experiments::battery_terrain(2)));
-  PathTimeObjective objective(terrain, experiments::battery_point_mass_ugv(),
-                              experiments::kBatteryStart, experiments::kBatteryGoal, 16, 1793, {});
+      BPatch::interpolate(generate_fractal_terrain(scenarios::battery_terrain(2)));
+  PathTimeObjective objective(terrain, scenarios::battery_point_mass_ugv(),
+                              scenarios::kBatteryStart, scenarios::kBatteryGoal, 16, 1793, {});
   const std::vector<double> point = {
       4.8006015604918026, 3.9961784414680657, 6.7728746421058883, 3.1306739766234832,
       5.7654721870557859, 9.0670620077550037, 4.7995032902675021, 18.50941737981525,

@@ -20,7 +20,6 @@
 #include <string>
 #include <vector>
 
-#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
@@ -30,6 +29,7 @@
 #include "talus/optimal/planner.hpp"
 #include "talus/optimal/trajectory.hpp"
 #include "talus/optimal/verify_profile.hpp"
+#include "talus/scenarios/fractal_battery.hpp"
 
 namespace talus {
 namespace {
@@ -143,7 +143,7 @@ void expect_candidates_off_the_chute(const BPatch& surface, const PlannerResult&
 
 TEST(PlannerFeedback, TheChuteIsSteeperThanAtanMuConcaveBelowAndCannotBeDrivenStraight) {
   const BPatch surface = chute_surface();
-  const Vehicle ugv = experiments::battery_point_mass_ugv();                     // issue #12's UGV
+  const Vehicle ugv = scenarios::battery_point_mass_ugv();                       // issue #12's UGV
   EXPECT_GT(surface.evaluate({12.0, 0.0}).gradient.norm(), 1.2 * ugv.friction);  // 53° vs 35°
   EXPECT_GT(surface.evaluate({14.0, 0.0}).hessian(0, 0), 0.0);  // concave below the steepest point
   const Trajectory direct = evaluate_trajectory(
@@ -158,7 +158,7 @@ TEST(PlannerFeedback, TheChuteIsSteeperThanAtanMuConcaveBelowAndCannotBeDrivenSt
 /// it and the feedback loop has nothing to do.
 TEST(PlannerFeedback, TheLatticeBrakingRuleRefusesTheChuteItself) {
   const BPatch surface = chute_surface();
-  const Vehicle ugv = experiments::battery_point_mass_ugv();  // issue #12's UGV
+  const Vehicle ugv = scenarios::battery_point_mass_ugv();  // issue #12's UGV
   PlannerOptions options;
   options.local.max_evaluations = 20;
   options.local.more_control_points.clear();
@@ -179,7 +179,7 @@ TEST(PlannerFeedback, TheLatticeBrakingRuleRefusesTheChuteItself) {
 /// the corridors keep off the chute, and the plan ends feasible and verified.
 TEST(PlannerFeedback, WithoutTheBrakingRuleTheFeedbackLoopRemovesTheChute) {
   const BPatch surface = chute_surface();
-  const Vehicle ugv = experiments::battery_point_mass_ugv();  // issue #12's UGV
+  const Vehicle ugv = scenarios::battery_point_mass_ugv();  // issue #12's UGV
   const PlanningProblem problem(surface, ugv, kChuteStart, kChuteGoal);
   PlannerOptions options;
   options.global.braking_rule = false;
@@ -223,10 +223,9 @@ TEST(PlannerFeedback, WithoutTheBrakingRuleTheFeedbackLoopRemovesTheChute) {
 // plans in the scan of that change.)
 TEST(PlannerStations, AnOptimumWithoutAProfileAtTheFinalStationsGivesWayToTheFastestAttempt) {
   const BPatch surface =
-      BPatch::interpolate(generate_fractal_terrain(experiments::battery_terrain(4)));
-  const Vehicle ugv = experiments::battery_point_mass_ugv();
-  const PlanningProblem problem(surface, ugv, experiments::kBatteryStart,
-                                experiments::kBatteryGoal);
+      BPatch::interpolate(generate_fractal_terrain(scenarios::battery_terrain(4)));
+  const Vehicle ugv = scenarios::battery_point_mass_ugv();
+  const PlanningProblem problem(surface, ugv, scenarios::kBatteryStart, scenarios::kBatteryGoal);
   PlannerOptions options;
   options.global.candidates = 1;
   options.local.station_spacing = 0.6;

@@ -6,12 +6,12 @@
 #include <random>
 #include <vector>
 
-#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/optimal/trajectory.hpp"
 #include "talus/optimal/verify_profile.hpp"
+#include "talus/scenarios/fractal_battery.hpp"
 
 namespace talus {
 namespace {
@@ -144,8 +144,8 @@ TEST(VerifyProfile, AStepBeyondTheBrakeLimitIsOutOfBounds) {
 /// s̈ interval alone would have rejected it.
 TEST(VerifyProfile, AStepIntoTheTipOfASlidingLimitIsMeasuredInForce) {
   const BPatch surface =
-      BPatch::interpolate(generate_fractal_terrain(experiments::battery_terrain(17)));
-  const Vehicle ugv = experiments::battery_point_mass_ugv();
+      BPatch::interpolate(generate_fractal_terrain(scenarios::battery_terrain(17)));
+  const Vehicle ugv = scenarios::battery_point_mass_ugv();
   std::vector<double> breakpoints;
   for (int i = 0; i <= 13; ++i) breakpoints.push_back(i / 13.0);
   const std::vector<Vec2> control_points{{2, 2},

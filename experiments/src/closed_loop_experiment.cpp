@@ -13,8 +13,6 @@
 #include <utility>
 #include <vector>
 
-#include "experiment_terrain.hpp"
-#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/sample_statistics.hpp"
@@ -28,6 +26,8 @@
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/bundled_dem.hpp"
+#include "talus/scenarios/fractal_battery.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -85,14 +85,15 @@ Case run_case(std::string terrain, const BPatch& surface, const Vehicle& vehicle
 }
 
 Case run_battery_case(std::uint64_t seed, const Vehicle& vehicle) {
-  const BPatch surface = BPatch::interpolate(generate_fractal_terrain(battery_terrain(seed)));
-  return run_case("seed " + std::to_string(seed), surface, vehicle, kBatteryStart, kBatteryGoal,
-                  0.02);
+  const BPatch surface =
+      BPatch::interpolate(generate_fractal_terrain(scenarios::battery_terrain(seed)));
+  return run_case("seed " + std::to_string(seed), surface, vehicle, scenarios::kBatteryStart,
+                  scenarios::kBatteryGoal, 0.02);
 }
 
 /// A bundled DEM with `vehicle` from 10 % to 90 % of its diagonal, traced every second.
 Case run_dem_case(const fs::path& data_dir, std::string_view stem, const Vehicle& vehicle) {
-  const ElevationGrid grid = load_bundled_dem(data_dir, stem, "closed-loop-plans");
+  const ElevationGrid grid = scenarios::load_bundled_dem(data_dir, stem, "closed-loop-plans");
   const Vec2 low(grid.x_min(), grid.y_min()), high(grid.x_max(), grid.y_max());
   return run_case(std::string(stem), BPatch::interpolate(grid), vehicle, low + 0.1 * (high - low),
                   low + 0.9 * (high - low), 1.0);

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "hait_figures.hpp"
-#include "hait_scenarios.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
@@ -29,6 +28,7 @@
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/hait_robots.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -149,7 +149,7 @@ Row compare(const std::string& name, const HaitScenario& s, const Robot& robot,
 
 void run_dynamic_vs_kinematic(const ExperimentContext& context) {
   require_gnuplot();
-  const Robot robot = load_hait_chassis(context.data_dir);
+  const Robot robot = scenarios::load_hait_chassis(context.data_dir);
   const Vehicle vehicle = matched_vehicle(context.data_dir);
   std::vector<std::pair<std::string, HaitScenario>> scenarios{
       {"crescent", hait_heuristics_scenario(context.quick)},

@@ -15,7 +15,6 @@
 #include <utility>
 #include <vector>
 
-#include "experiment_terrain.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/relief.hpp"
 #include "talus/core/elevation_grid.hpp"
@@ -32,6 +31,7 @@
 #include "talus/report/plot.hpp"
 #include "talus/report/relief_raster.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/bundled_dem.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -913,7 +913,7 @@ void run_global_search_experiment(const ExperimentContext& context) {
   require_gnuplot();
   const fs::path out_dir = context.output_dir;
 
-  const fs::path dem_file = bundled_dem_file(context.data_dir, kDemStem);
+  const fs::path dem_file = scenarios::bundled_dem_file(context.data_dir, kDemStem);
   const ElevationGrid dem = read_esri_ascii(dem_file.string());
   ElevationGrid cropped = crop_grid(dem, kCrop);
   const auto fit_start = Clock::now();

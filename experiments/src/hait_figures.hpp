@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "hait_scenarios.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/types.hpp"
 #include "talus/kinematic/configuration_space.hpp"
+#include "talus/scenarios/hait_robots.hpp"
 
 namespace talus::experiments {
 

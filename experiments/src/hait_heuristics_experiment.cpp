@@ -13,13 +13,13 @@
 
 #include "hait_experiments.hpp"
 #include "hait_figures.hpp"
-#include "hait_scenarios.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/hait_robots.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -98,7 +98,7 @@ double seconds(const HaitResult& r) {
 
 void run_hait_heuristics(const ExperimentContext& context) {
   require_gnuplot();
-  const Robot robot = load_hait_chassis(context.data_dir);
+  const Robot robot = scenarios::load_hait_chassis(context.data_dir);
   const std::vector<std::uint64_t> seeds(
       kSeeds.begin(),
       kSeeds.begin() + static_cast<std::ptrdiff_t>(context.quick ? kQuickSeeds : kSeeds.size()));

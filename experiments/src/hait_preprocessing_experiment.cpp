@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "hait_experiments.hpp"
-#include "hait_scenarios.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/core/sample_statistics.hpp"
 #include "talus/core/stopwatch.hpp"
@@ -22,6 +21,7 @@
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/hait_robots.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -75,7 +75,7 @@ void write_series(std::ofstream& out, const std::vector<Sample>& samples,
 
 void run_hait_preprocessing(const ExperimentContext& context) {
   require_gnuplot();
-  const Robot robot = load_hait_chassis(context.data_dir);
+  const Robot robot = scenarios::load_hait_chassis(context.data_dir);
   const ArticulatedChassis& chassis = std::get<ArticulatedChassis>(robot);
   const bool quick = context.quick;
   const int repeats = quick ? 1 : 2;

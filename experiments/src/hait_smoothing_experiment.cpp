@@ -10,7 +10,6 @@
 
 #include "hait_experiments.hpp"
 #include "hait_figures.hpp"
-#include "hait_scenarios.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
 #include "talus/kinematic/hait/hait_planner.hpp"
@@ -21,6 +20,7 @@
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/hait_robots.hpp"
 
 namespace talus::experiments {
 
@@ -69,7 +69,7 @@ constexpr double kPaperBefore = 40.0, kPaperAfter = 13.0;
 void run_hait_smoothing(const ExperimentContext& context) {
   require_gnuplot();
   const HaitScenario scenario = hait_heuristics_scenario(context.quick);
-  const Robot robot = load_hait_chassis(context.data_dir);
+  const Robot robot = scenarios::load_hait_chassis(context.data_dir);
   const RuledTerrain terrain(scenario.grid);
   const double radius = HaitOptions{}.turning_radius;
 

@@ -13,7 +13,6 @@
 
 #include "hait_experiments.hpp"
 #include "hait_figures.hpp"
-#include "hait_scenarios.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/ruled_terrain.hpp"
@@ -24,6 +23,7 @@
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/hait_robots.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -69,7 +69,7 @@ struct Case {
 void run_hait_uncertainty(const ExperimentContext& context) {
   require_gnuplot();
   const HaitScenario scenario = hait_gorge_scenario(context.quick);
-  const Robot robot = load_hait_chassis(context.data_dir);
+  const Robot robot = scenarios::load_hait_chassis(context.data_dir);
   const RuledTerrain terrain(scenario.grid);
   // The terrain itself, so that `talus baseline hait` can replay the query.
   write_esri_ascii(scenario.grid, (context.output_dir / "terrain.asc").string());

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/sample_statistics.hpp"
 #include "talus/core/stopwatch.hpp"
@@ -21,6 +20,7 @@
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/fractal_battery.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -91,7 +91,8 @@ struct TerrainFacts {
 /// Talus's plan (default options) on the fine map, start to goal; NaN without one.
 double fine_optimal_time(const ElevationGrid& g, const Vehicle& vehicle) {
   const PlannerResult fine =
-      plan(PlanningProblem(BPatch::interpolate(g), vehicle, kBatteryStart, kBatteryGoal),
+      plan(PlanningProblem(BPatch::interpolate(g), vehicle, scenarios::kBatteryStart,
+                           scenarios::kBatteryGoal),
            PlannerOptions{});
   return fine.best() != nullptr ? fine.best()->travel_time() : kNaN;
 }
@@ -171,7 +172,7 @@ std::vector<Run> run_battery(const Battery& battery, std::size_t seeds, const Ve
                              std::vector<TerrainFacts>& facts) {
   std::vector<Run> runs;
   for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
-    FractalTerrainOptions terrain = battery_terrain(seed);
+    FractalTerrainOptions terrain = scenarios::battery_terrain(seed);
     terrain.height_scale = battery.height_scale;
     const ElevationGrid grid = generate_fractal_terrain(terrain);
     facts.push_back(terrain_facts(grid, vehicle));
@@ -180,8 +181,8 @@ std::vector<Run> run_battery(const Battery& battery, std::size_t seeds, const Ve
       run.seed = seed;
       run.battery = battery.key;
       run.method = &method;
-      run.result =
-          navigate_layered(grid, vehicle, kBatteryStart, kBatteryGoal, options_for(method));
+      run.result = navigate_layered(grid, vehicle, scenarios::kBatteryStart,
+                                    scenarios::kBatteryGoal, options_for(method));
       std::cerr << "iagnemma-table1" << (battery.key.empty() ? "" : " (" + battery.key + ")")
                 << ": seed " << seed << " " << method.name << ": " << to_string(run.result.status)
                 << (run.failure().empty() ? "" : " (" + run.failure() + ")") << "\n";
@@ -273,7 +274,7 @@ std::vector<FigureLink> representative_figures(const std::vector<Run>& runs, con
     if (runs[k].planned()) shown = k;
   std::vector<FigureLink> links;
   if (shown == runs.size()) return links;
-  FractalTerrainOptions terrain = battery_terrain(runs[shown].seed);
+  FractalTerrainOptions terrain = scenarios::battery_terrain(runs[shown].seed);
   terrain.height_scale = battery.height_scale;
   const BPatch surface = BPatch::interpolate(generate_fractal_terrain(terrain));
   for (std::size_t m = 0; m < kMethods.size(); ++m) {
@@ -288,8 +289,8 @@ std::vector<FigureLink> representative_figures(const std::vector<Run>& runs, con
     data.surface = &surface;
     data.waypoints = &r.result.waypoints;
     data.result = &*r.result.navigation;
-    data.start = kBatteryStart;
-    data.goal = kBatteryGoal;
+    data.start = scenarios::kBatteryStart;
+    data.goal = scenarios::kBatteryGoal;
     data.title = who + ": " + std::string(to_string(r.result.status)) +
                  (r.failure().empty() ? "" : " (" + r.failure() + ")");
     render_navigation_figures(out, stem, data);

@@ -14,7 +14,6 @@
 #include <string_view>
 #include <vector>
 
-#include "experiment_terrain.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/relief.hpp"
@@ -36,6 +35,7 @@
 #include "talus/report/plot.hpp"
 #include "talus/report/relief_raster.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/bundled_dem.hpp"
 #include "west_bijou_path.hpp"
 
 namespace talus::experiments {
@@ -1068,9 +1068,10 @@ void run_optimal_profile(const ExperimentContext& context) {
   const auto start = Clock::now();
   // Fail in a second, not after the computation, if the figures cannot be drawn.
   require_gnuplot();
-  const fs::path dem_file = bundled_dem_file(context.data_dir, kWestBijouStem);
-  const ElevationGrid dem = load_bundled_dem(context.data_dir, kWestBijouStem, "optimal-profile");
-  const ElevationGrid rover = scaled_grid(dem, kRoverScale);
+  const fs::path dem_file = scenarios::bundled_dem_file(context.data_dir, kWestBijouStem);
+  const ElevationGrid dem =
+      scenarios::load_bundled_dem(context.data_dir, kWestBijouStem, "optimal-profile");
+  const ElevationGrid rover = scenarios::scaled_grid(dem, kRoverScale);
   const auto range = rover.elevation_range();
   if (!range) throw InputError("optimal-profile: " + dem_file.string() + " has no valid node");
 

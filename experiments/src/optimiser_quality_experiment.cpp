@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "fractal_battery.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/sample_statistics.hpp"
@@ -22,6 +21,7 @@
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/fractal_battery.hpp"
 
 namespace talus::experiments {
 namespace {
@@ -241,12 +241,12 @@ std::vector<Problem> battery_problems(std::size_t seeds) {
     Problem p;
     p.name = "fractal seed " + std::to_string(seed);
     p.battery = true;
-    const ElevationGrid grid = generate_fractal_terrain(battery_terrain(seed));
+    const ElevationGrid grid = generate_fractal_terrain(scenarios::battery_terrain(seed));
     p.surface = std::make_shared<const BPatch>(BPatch::interpolate(grid));
     p.quintic_surface = std::make_shared<const BPatch>(BPatch::interpolate(grid, 5));
-    p.vehicle = battery_point_mass_ugv();
-    p.start = kBatteryStart;
-    p.goal = kBatteryGoal;
+    p.vehicle = scenarios::battery_point_mass_ugv();
+    p.start = scenarios::kBatteryStart;
+    p.goal = scenarios::kBatteryGoal;
     out.push_back(std::move(p));
   }
   return out;

@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "experiment_terrain.hpp"
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/bspline_curve.hpp"
 #include "talus/bspline/relief.hpp"
@@ -30,6 +29,7 @@
 #include "talus/report/plot.hpp"
 #include "talus/report/relief_raster.hpp"
 #include "talus/report/report.hpp"
+#include "talus/scenarios/bundled_dem.hpp"
 #include "west_bijou_path.hpp"
 
 namespace talus::experiments {
@@ -742,14 +742,15 @@ void summarise(const std::vector<CaseResult>& cases, ExperimentSummary& summary)
 void run_velocity_limits(const ExperimentContext& context) {
   // Fail in a second, not after the computation, if the figures cannot be drawn.
   require_gnuplot();
-  const ElevationGrid dem = load_bundled_dem(context.data_dir, kWestBijouStem, "velocity-limits");
+  const ElevationGrid dem =
+      scenarios::load_bundled_dem(context.data_dir, kWestBijouStem, "velocity-limits");
   const std::vector<VehicleSpec> vehicles = make_vehicles();
   const std::size_t stations = context.quick ? kQuickStations : kFullStations;
 
   const std::vector<TerrainCase> terrains = {
       {"dem", "West Bijou DEM, 25 m cells", 1.0, dem},
       {"rover", "West Bijou scaled by 1/25 (1 m cells)", kRoverScale,
-       scaled_grid(dem, kRoverScale)},
+       scenarios::scaled_grid(dem, kRoverScale)},
   };
   std::vector<CaseResult> cases;
   for (const TerrainCase& terrain : terrains) {

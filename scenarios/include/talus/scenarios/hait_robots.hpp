@@ -9,7 +9,7 @@
 #include "talus/kinematic/hait/hait_scenarios.hpp"
 #include "talus/kinematic/hait/robot.hpp"
 
-namespace talus::experiments {
+namespace talus::scenarios {
 
 /// The robot of the reproductions: data/robots/marsokhod_chassis.yaml (the
 /// paper's results are for the articulated chassis of LAAS's Lama).
@@ -17,4 +17,4 @@ Robot load_hait_chassis(const std::filesystem::path& data_dir);
 /// data/robots/rover4_sprung.yaml, the sprung rigid body.
 Robot load_hait_wheeled(const std::filesystem::path& data_dir);
 
-}  // namespace talus::experiments
+}  // namespace talus::scenarios

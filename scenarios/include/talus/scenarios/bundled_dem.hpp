@@ -1,13 +1,13 @@
 #pragma once
 /// @file
-/// Terrains as the experiments use them: a bundled DEM by name, and a grid
-/// rescaled to another size (data/terrain/README.md, "Rover-scale use").
+/// The bundled DEMs (data/terrain/) by name, and a grid rescaled to another
+/// size (data/terrain/README.md, "Rover-scale use").
 #include <filesystem>
 #include <string_view>
 
 #include "talus/core/elevation_grid.hpp"
 
-namespace talus::experiments {
+namespace talus::scenarios {
 
 /// The bundled DEM `data_dir`/terrain/`stem`.asc.
 std::filesystem::path bundled_dem_file(const std::filesystem::path& data_dir,
@@ -22,4 +22,4 @@ ElevationGrid load_bundled_dem(const std::filesystem::path& data_dir, std::strin
 /// curvatures (d²z/dx²) multiplied by 1/k. Voids stay voids.
 ElevationGrid scaled_grid(const ElevationGrid& grid, double k);
 
-}  // namespace talus::experiments
+}  // namespace talus::scenarios

@@ -1,4 +1,4 @@
-#include "experiment_terrain.hpp"
+#include "talus/scenarios/bundled_dem.hpp"
 
 #include <string>
 #include <system_error>
@@ -6,7 +6,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 
-namespace talus::experiments {
+namespace talus::scenarios {
 
 std::filesystem::path bundled_dem_file(const std::filesystem::path& data_dir,
                                        std::string_view stem) {
@@ -38,4 +38,4 @@ ElevationGrid scaled_grid(const ElevationGrid& grid, double k) {
   return out;
 }
 
-}  // namespace talus::experiments
+}  // namespace talus::scenarios

@@ -4,15 +4,16 @@
 /// 2008, §V): 129 × 129 nodes at 0.24 m (two wheel diameters), fractal
 /// dimension 2.05, height scale 4.2 m (35 wheel diameters), a 1 m
 /// undulation over 30 m and six 1 m peaks, one terrain per seed; every case
-/// runs from kBatteryStart to kBatteryGoal. Shared by the experiments that
-/// use it (closed-loop-plans, optimiser-quality).
+/// runs from kBatteryStart to kBatteryGoal. Shared by the experiments
+/// (closed-loop-plans, optimiser-quality, iagnemma-table1, ...), tests and
+/// benchmarks.
 #include <cstdint>
 
 #include "talus/core/terrain_generators.hpp"
 #include "talus/core/types.hpp"
 #include "talus/dynamics/vehicle.hpp"
 
-namespace talus::experiments {
+namespace talus::scenarios {
 
 inline const Vec2 kBatteryStart{2.0, 2.0};   ///< [m]
 inline const Vec2 kBatteryGoal{28.5, 28.5};  ///< [m]
@@ -42,4 +43,4 @@ inline Vehicle battery_point_mass_ugv() {
   return v;
 }
 
-}  // namespace talus::experiments
+}  // namespace talus::scenarios

@@ -1,10 +1,10 @@
-#include "hait_scenarios.hpp"
+#include "talus/scenarios/hait_robots.hpp"
 
 #include <string>
 
 #include "talus/core/error.hpp"
 
-namespace talus::experiments {
+namespace talus::scenarios {
 namespace {
 
 Robot load_robot_file(const std::filesystem::path& data_dir, const char* stem) {
@@ -25,4 +25,4 @@ Robot load_hait_wheeled(const std::filesystem::path& data_dir) {
   return load_robot_file(data_dir, "rover4_sprung");
 }
 
-}  // namespace talus::experiments
+}  // namespace talus::scenarios

@@ -1,6 +1,6 @@
 // The local stage alone, nested (with and without the polish) against the
 // simultaneous formulation, on the
-// smooth case of tests/test_simultaneous_stage.cpp: an 8 m Gaussian hill
+// smooth case of tests/optimal/test_simultaneous_stage.cpp: an 8 m Gaussian hill
 // (σ 7 m) on an 80 × 60 m map at 1 m cells, a point mass with μ 0.4, from
 // (5, 30) to (75, 30), started from the global search's best candidate
 // (computed once, outside the timing). Counters: the exact travel time of

@@ -81,16 +81,6 @@ struct SimultaneousRun {
   double nlp_time = std::numeric_limits<double>::quiet_NaN();  ///< its objective [s]
 };
 
-/// Groups of the first `columns` of a symmetric matrix's `variables` columns
-/// (its sparsity given by `lower_entries`, (row, column) pairs with row >=
-/// column) such that no row has an entry in two columns of one group: a
-/// finite-difference probe moving a whole group then recovers each of its
-/// columns as a probe of its own would (Curtis, Powell & Reid 1974; greedy
-/// distance-2 colouring). Throws InputError for an entry out of range.
-std::vector<std::vector<std::size_t>> probe_groups(
-    const std::vector<std::pair<int, int>>& lower_entries, std::size_t columns,
-    std::size_t variables);
-
 /// Solves the NLP from `problem.initial`. Ipopt's restoration phase lets it
 /// start where the initial b (or the path itself) violates the constraints.
 SimultaneousRun run_simultaneous(const SimultaneousProblem& problem);

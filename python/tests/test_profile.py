@@ -1,6 +1,6 @@
 """Limits and the time-optimal profile through the bindings: bit for bit the C++
 results (the helper tests/reference.cpp runs the same case through the library),
-and the closed forms the C++ tests use (tests/test_time_optimal_profile.cpp)."""
+and the closed forms the C++ tests use (tests/optimal/test_time_optimal_profile.cpp)."""
 import math
 
 import numpy as np

@@ -4,7 +4,7 @@
 /// Dacre-Wright–Siméon, Eldershaw–Yim, Iagnemma–Shimoda–Shiller):
 /// one query plan(terrain, start, goal) → BaselineResult, and the planner's own
 /// validity check of a configuration on a terrain, so that a shared
-/// conformance test (tests/test_baseline_conformance.cpp) can hold every
+/// conformance test (tests/kinematic/test_baseline_conformance.cpp) can hold every
 /// baseline to the same contract.
 ///
 /// Error policy (core/error.hpp): a malformed query (a non-finite pose, a start

@@ -7,9 +7,9 @@
 #include <numbers>
 #include <random>
 
-#include "../optimal/src/step_controls.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/terrain_generators.hpp"
+#include "talus/dynamics/admissible_set.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
 #include "talus/optimal/trajectory.hpp"
 #include "terrain_test_support.hpp"
@@ -284,7 +284,7 @@ TEST(TimeOptimalProfile, InvariantsOnRandomFractalPaths) {
     const TimeOptimalProfile p = solver.solve(limits, {});
     if (p.status != ProfileStatus::kOk) continue;
     ++solved;
-    const detail::VehicleConstants c(v);
+    const AdmissibleSet c(v);
     double t = 0.0;
     for (std::size_t k = 0; k < p.v.size(); ++k) {
       EXPECT_LE(p.v[k], p.v_max[k] * (1 + 1e-9) + 1e-9) << "station " << k;
@@ -308,21 +308,19 @@ TEST(TimeOptimalProfile, InvariantsOnRandomFractalPaths) {
         const double u_in = (x_up - p.v[k - 1] * p.v[k - 1]) / (2 * ds_prev);
         const double u_out = (p.v[k + 1] * p.v[k + 1] - x_up) / (2 * ds);
         const bool in_ok =
-            !detail::admissible_controls(c, limits.geometry(k - 1), p.v[k - 1] * p.v[k - 1], 0, 0,
-                                         INFINITY)
+            !c.accelerations_along(limits.geometry(k - 1), p.v[k - 1] * p.v[k - 1], 0, 0, INFINITY)
                  .empty() &&
             [&] {
-              auto a = detail::admissible_controls(c, limits.geometry(k - 1),
-                                                   p.v[k - 1] * p.v[k - 1], 0, 0, INFINITY);
-              auto b = detail::admissible_controls(c, limits.geometry(k), x_up, 0, 0,
-                                                   p.v_max[k] * p.v_max[k]);
+              auto a = c.accelerations_along(limits.geometry(k - 1), p.v[k - 1] * p.v[k - 1], 0, 0,
+                                             INFINITY);
+              auto b =
+                  c.accelerations_along(limits.geometry(k), x_up, 0, 0, p.v_max[k] * p.v_max[k]);
               return u_in >= std::max(a.lower, b.lower) && u_in <= std::min(a.upper, b.upper);
             }();
         const bool out_ok = [&] {
-          auto a = detail::admissible_controls(c, limits.geometry(k), x_up, 0, 0,
-                                               p.v_max[k] * p.v_max[k]);
-          auto b = detail::admissible_controls(c, limits.geometry(k + 1), p.v[k + 1] * p.v[k + 1],
-                                               0, 0, INFINITY);
+          auto a = c.accelerations_along(limits.geometry(k), x_up, 0, 0, p.v_max[k] * p.v_max[k]);
+          auto b = c.accelerations_along(limits.geometry(k + 1), p.v[k + 1] * p.v[k + 1], 0, 0,
+                                         INFINITY);
           return u_out >= std::max(a.lower, b.lower) && u_out <= std::min(a.upper, b.upper);
         }();
         EXPECT_FALSE(in_ok && out_ok)

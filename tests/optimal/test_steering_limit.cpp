@@ -165,13 +165,12 @@ TEST(SteeringLimit, TheTrackerSteersWithinTheVehiclesLimit) {
   EXPECT_LE(peak, 0.35 + 1e-12);
 }
 
-
 // The steering rows of the nested formulation: κ at every station against the curve's own
 // curvature, and their derivatives against central differences.
 TEST(SteeringLimit, TheCurvatureRowsAndTheirDerivativesAreExact) {
   const BPatch flat = BPatch::interpolate(ElevationGrid(13, 13, 1.0, 0.0, 0.0));
-  const std::vector<Vec2> control = {Vec2(1, 1), Vec2(3, 1.5), Vec2(5, 4), Vec2(4, 7),
-                                     Vec2(7, 8), Vec2(9, 6), Vec2(10, 10)};
+  const std::vector<Vec2> control = {Vec2(1, 1), Vec2(3, 1.5), Vec2(5, 4),  Vec2(4, 7),
+                                     Vec2(7, 8), Vec2(9, 6),   Vec2(10, 10)};
   PathTimeObjective objective(flat, ugv(), control.front(), control.back(), control.size(), 41,
                               ProfileOptions{});
   const Eigen::VectorXd z = objective.variables(control);
@@ -227,7 +226,7 @@ TEST(SteeringLimit, TheLocalStageTurnsAtTheLimitAndNoTighter) {
   const BPatch flat = BPatch::interpolate(ElevationGrid(21, 21, 1.0, 0.0, 0.0));
   Vehicle v = ugv();
   v.max_steering = std::atan(0.6 * 0.27);  // 0.6 1/m
-  std::vector<Vec2> corridor;  // a half circle of radius 3 m, from heading east to west
+  std::vector<Vec2> corridor;              // a half circle of radius 3 m, from heading east to west
   for (int i = 0; i <= 24; ++i) {
     const double t = -M_PI / 2 + M_PI * i / 24.0;
     corridor.emplace_back(4.0 + 3.0 * std::cos(t), 10.0 + 3.0 * std::sin(t));

@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "simultaneous_path_solver.hpp"
 #include "talus/core/error.hpp"
 #include "talus/optimal/global_search.hpp"
+#include "talus/optimal/hessian_probes.hpp"
 #include "talus/optimal/path_optimizer.hpp"
 #include "talus/optimal/path_time_objective.hpp"
 #include "talus/optimal/trajectory.hpp"
@@ -185,7 +185,7 @@ std::vector<std::pair<int, int>> banded_pattern(int controls, int stations, int 
 TEST(SimultaneousHessianProbes, NoRowSeesTwoColumnsOfOneGroup) {
   const int controls = 55, stations = 435;
   const auto pattern = banded_pattern(controls, stations, 8);
-  const auto groups = detail::probe_groups(pattern, controls, controls + stations);
+  const auto groups = probe_groups(pattern, controls, controls + stations);
   // Every column in exactly one group.
   std::vector<int> seen(controls, 0);
   for (const auto& g : groups)
@@ -211,7 +211,7 @@ TEST(SimultaneousHessianProbes, NoRowSeesTwoColumnsOfOneGroup) {
 }
 
 TEST(SimultaneousHessianProbes, RejectsAnEntryOutOfRange) {
-  EXPECT_THROW(detail::probe_groups({{7, 0}}, 2, 5), InputError);
+  EXPECT_THROW(probe_groups({{7, 0}}, 2, 5), InputError);
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include "talus/kinematic/baseline_registry.hpp"
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
 #include "talus/kinematic/eldershaw_yim/eldershaw_yim_baseline.hpp"
+#include "talus/planners/planner_registry.hpp"
 #include "talus/report/dacre_wright_outputs.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
@@ -58,7 +59,7 @@ void check_on_map(const char* option, const SE2Pose& q, const RuledTerrain& terr
 /// The planner from the registry; a bad option value is named as its flag.
 std::unique_ptr<BaselinePlanner> make_planner(const BaselineRequest& request) {
   try {
-    return BaselineRegistry::builtin().make(request.baseline, request.options);
+    return planner_registry().make(request.baseline, request.options);
   } catch (const BaselineOptionError& e) {
     throw InputError("--" + e.key() + ": " + e.reason());
   }

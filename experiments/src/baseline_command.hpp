@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// The `talus baseline NAME` command's work, separate from argument parsing:
-/// any registered kinematic baseline (talus::BaselineRegistry::builtin()) on a
-/// terrain file, writing the path, a JSON summary and a map.
+/// any registered kinematic baseline (talus::planner_registry(): the kinematic baselines and
+/// "talus") on a terrain file, writing the path, a JSON summary and a map.
 #include <string>
 
 #include <nlohmann/json.hpp>

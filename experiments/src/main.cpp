@@ -25,6 +25,7 @@
 #include "talus/core/output_folder.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
+#include "talus/planners/planner_registry.hpp"
 #include "terrain_commands.hpp"
 #include "terrain_input.hpp"
 
@@ -696,7 +697,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
     std::map<std::string, bool> flags;
   };
   std::list<BaselineFlags> baseline_flags;  // stable addresses for CLI11's bindings
-  const BaselineRegistry& baselines = BaselineRegistry::builtin();
+  const BaselineRegistry& baselines = planner_registry();
   for (const std::string& name : baselines.names()) {
     const BaselineEntry& entry = baselines.entry(name);
     BaselineFlags& f = baseline_flags.emplace_back();

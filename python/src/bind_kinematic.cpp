@@ -1,5 +1,5 @@
 /// @file
-/// kinematic: every registered baseline planner (BaselineRegistry::builtin()),
+/// kinematic: every registered baseline planner (planner_registry()),
 /// listed and run by name with its text options, on the ruled terrain.
 #include <memory>
 #include <string>
@@ -11,6 +11,7 @@
 #include "talus/kinematic/baseline_options.hpp"
 #include "talus/kinematic/baseline_planner.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
+#include "talus/planners/planner_registry.hpp"
 
 namespace talus::python {
 namespace {
@@ -150,19 +151,19 @@ void bind_kinematic(py::module_& m) {
           "Plans from start to goal, each (x, y, theta); releases the GIL.");
 
   m.def(
-      "baseline_names", [] { return BaselineRegistry::builtin().names(); },
+      "baseline_names", [] { return planner_registry().names(); },
       "The registered baselines, in registration order (talus baseline NAME).");
   m.def(
       "baseline",
       [](const std::string& name) -> const BaselineEntry& {
-        return BaselineRegistry::builtin().entry(name);
+        return planner_registry().entry(name);
       },
       py::arg("name"), py::return_value_policy::reference,
       "The registry entry called `name`; InputError listing the names if there is none.");
   m.def(
       "make_baseline",
       [](const std::string& name, const py::dict& options) {
-        return BaselineRegistry::builtin().make(name, text_options(options));
+        return planner_registry().make(name, text_options(options));
       },
       py::arg("name"), py::arg("options") = py::dict(),
       "A configured planner; options as in `talus baseline NAME --KEY VALUE` (strings, numbers "
@@ -172,7 +173,7 @@ void bind_kinematic(py::module_& m) {
       [](const std::string& name, const RuledTerrain& terrain, const std::vector<double>& start,
          const std::vector<double>& goal, const py::dict& options) {
         const std::unique_ptr<BaselinePlanner> planner =
-            BaselineRegistry::builtin().make(name, text_options(options));
+            planner_registry().make(name, text_options(options));
         const SE2Pose a = to_pose(start, "start"), b = to_pose(goal, "goal");
         const py::gil_scoped_release release;
         return planner->plan(terrain, a, b);

@@ -12,7 +12,7 @@ import talus
 # (relative to data/robots; the Iagnemma navigator drives a vehicle file).
 ROBOTS = {"hait": "marsokhod_chassis.yaml", "dacre-wright": "dacre_wright_six_wheel.yaml",
           "eldershaw-yim": "eldershaw_spider.yaml",
-          "iagnemma": "../vehicles/iagnemma_ugv.yaml"}
+          "iagnemma": "../vehicles/iagnemma_ugv.yaml", "talus": "../vehicles/iagnemma_ugv.yaml"}
 START, GOAL = (2.0, 3.0, 0.0), (10.0, 9.0, 1.5)
 
 

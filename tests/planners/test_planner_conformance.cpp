@@ -1,5 +1,6 @@
-// The contract every kinematic baseline in BaselineRegistry::builtin() must
-// meet, instantiated over the registry's names (after OMPL's
+// The contract every planner in planner_registry() must meet (the kinematic
+// baselines and Talus's own two-stage planner, "talus"), instantiated over the
+// registry's names (after OMPL's
 // tests/base/PlannerTest.h): a straight route on flat ground is found; an
 // enclosed goal is "no path"; an invalid start or goal is its status; reruns
 // are bit-identical; the path's ends match the query; every pose of a path
@@ -19,7 +20,7 @@
 
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/kinematic/baseline_registry.hpp"
+#include "talus/planners/planner_registry.hpp"
 
 namespace talus {
 namespace {
@@ -40,6 +41,7 @@ BaselineOptions conformance_options(const std::string& name) {
       {"dacre-wright", {{"robot", TALUS_DATA_DIR "/robots/dacre_wright_six_wheel.yaml"}}},
       {"eldershaw-yim", {{"robot", TALUS_DATA_DIR "/robots/eldershaw_spider.yaml"}}},
       {"iagnemma", {{"robot", TALUS_DATA_DIR "/vehicles/iagnemma_ugv.yaml"}}},
+      {"talus", {{"robot", TALUS_DATA_DIR "/vehicles/iagnemma_ugv.yaml"}}},
   };
   const auto it = options.find(name);
   return it == options.end() ? BaselineOptions{} : it->second;
@@ -91,7 +93,7 @@ class BaselineConformance : public ::testing::TestWithParam<std::string> {
   std::unique_ptr<BaselinePlanner> make(BaselineOptions extra = {}) const {
     BaselineOptions o = conformance_options(GetParam());
     for (const auto& [key, value] : extra) o[key] = value;
-    return BaselineRegistry::builtin().make(GetParam(), o);
+    return planner_registry().make(GetParam(), o);
   }
 
   /// A found path that starts and ends at the query, has one motion label per
@@ -196,7 +198,7 @@ TEST_P(BaselineConformance, BadOptionsAndQueriesThrowInputError) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Registered, BaselineConformance,
-                         ::testing::ValuesIn(BaselineRegistry::builtin().names()),
+                         ::testing::ValuesIn(planner_registry().names()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            std::string name = info.param;
                            for (char& c : name) c = std::isalnum(c) ? c : '_';

@@ -13,10 +13,10 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
-#include "talus/dynamics/potential_field_navigation.hpp"
 #include "talus/dynamics/trajectory_tracking.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/vehicle_simulation.hpp"
+#include "talus/navigation/potential_field_navigation.hpp"
 
 namespace {
 
@@ -107,7 +107,7 @@ void BM_TrackingASlalomOnRoughGround(benchmark::State& state) {
 BENCHMARK(BM_TrackingASlalomOnRoughGround)->Unit(benchmark::kMillisecond);
 
 /// Potential-field navigation over the crest of the lookahead test
-/// (tests/dynamics/test_vehicle_simulation_navigation.cpp: 0.25 m high, σ 0.7 m) to a
+/// (tests/navigation/test_vehicle_simulation_navigation.cpp: 0.25 m high, σ 0.7 m) to a
 /// goal 20 m away at 5.5 m/s, standard (arg 0) or with the §IV lookahead
 /// (arg 1). Counter us_per_tick: the whole run's wall time per control tick
 /// (simulation included); the lookahead's own cost is the difference between

@@ -14,7 +14,7 @@
 #include "talus/core/stopwatch.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/dynamics/vehicle.hpp"
-#include "talus/optimal/layered_navigation.hpp"
+#include "talus/navigation/layered_navigation.hpp"
 #include "talus/optimal/planner.hpp"
 #include "talus/report/navigation_figures.hpp"
 #include "talus/report/number_format.hpp"

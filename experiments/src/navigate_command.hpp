@@ -2,14 +2,14 @@
 /// @file
 /// The `talus navigate` command's work, separate from argument parsing: the
 /// layered scheme of Iagnemma, Shimoda & Shiller (navigate_layered,
-/// optimal/layered_navigation.hpp) on a terrain file, its trace and summary.
+/// navigation/layered_navigation.hpp) on a terrain file, its trace and summary.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "talus/optimal/layered_navigation.hpp"
+#include "talus/navigation/layered_navigation.hpp"
 
 namespace talus::experiments {
 

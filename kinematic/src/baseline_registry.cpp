@@ -6,7 +6,6 @@
 #include "talus/kinematic/dacre_wright/dacre_wright_baseline.hpp"
 #include "talus/kinematic/eldershaw_yim/eldershaw_yim_baseline.hpp"
 #include "talus/kinematic/hait/hait_baseline.hpp"
-#include "talus/kinematic/iagnemma/iagnemma_baseline.hpp"
 
 namespace talus {
 
@@ -16,7 +15,6 @@ const BaselineRegistry& BaselineRegistry::builtin() {
     r.add(hait_baseline_entry());
     r.add(dacre_wright_baseline_entry());
     r.add(eldershaw_yim_baseline_entry());
-    r.add(iagnemma_baseline_entry());
     return r;
   }();
   return registry;

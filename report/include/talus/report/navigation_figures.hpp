@@ -16,8 +16,8 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/types.hpp"
-#include "talus/dynamics/potential_field_navigation.hpp"
 #include "talus/dynamics/trajectory_tracking.hpp"
+#include "talus/navigation/potential_field_navigation.hpp"
 
 namespace talus {
 

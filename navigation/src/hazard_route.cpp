@@ -1,4 +1,4 @@
-#include "talus/kinematic/iagnemma/hazard_route.hpp"
+#include "talus/navigation/hazard_route.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/graph_search.hpp"
 #include "talus/core/grid_window.hpp"
-#include "talus/dynamics/hazard_detection.hpp"
+#include "talus/navigation/hazard_detection.hpp"
 
 namespace talus {
 namespace {

@@ -36,12 +36,12 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/types.hpp"
-#include "talus/dynamics/hazard_detection.hpp"
-#include "talus/dynamics/navigation_lookahead.hpp"
-#include "talus/dynamics/trajectory_space_field.hpp"
 #include "talus/dynamics/trajectory_tracking.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/dynamics/vehicle_simulation.hpp"
+#include "talus/navigation/hazard_detection.hpp"
+#include "talus/navigation/navigation_lookahead.hpp"
+#include "talus/navigation/trajectory_space_field.hpp"
 
 namespace talus {
 

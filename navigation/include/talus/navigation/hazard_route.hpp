@@ -3,13 +3,13 @@
 /// The high-level layer of the Iagnemma–Shimoda–Shiller baseline
 /// (iagnemma_baseline.hpp): a shortest route over the grid nodes that are not
 /// hazards, and the waypoints along it that the potential-field navigator
-/// (dynamics/potential_field_navigation.hpp) drives through.
+/// (potential_field_navigation.hpp) drives through.
 ///
 /// The paper's high-level layer is the time-optimal planner of Section II on
 /// coarse map data; in Talus that planner is in optimal/, which the kinematic
 /// layer cannot use (core ← bspline ← dynamics ← optimal / kinematic). This
 /// route is the documented stand-in (`talus navigate`,
-/// optimal/layered_navigation.hpp, is the paper's layered scheme with Talus's
+/// navigation/layered_navigation.hpp, is the paper's layered scheme with Talus's
 /// own planner):
 /// - the map: the terrain's grid, decimated by `coarse_factor` (every k-th
 ///   node, decimate_grid: the coarse data of the paper) and interpolated as a

@@ -1,4 +1,4 @@
-// The Iagnemma–Shimoda–Shiller baseline (kinematic/iagnemma/) beyond the
+// The Iagnemma–Shimoda–Shiller baseline (navigation/) beyond the
 // conformance suite: its goal tolerance, its options, the high-level route
 // (clearance, waypoints, an enclosed goal), the standard field without the
 // lookahead, and a failure of the simulated vehicle as no_path.
@@ -13,10 +13,11 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/ruled_terrain.hpp"
-#include "talus/dynamics/hazard_detection.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
-#include "talus/kinematic/iagnemma/hazard_route.hpp"
-#include "talus/kinematic/iagnemma/iagnemma_baseline.hpp"
+#include "talus/navigation/hazard_detection.hpp"
+#include "talus/navigation/hazard_route.hpp"
+#include "talus/navigation/iagnemma_baseline.hpp"
+#include "talus/planners/planner_registry.hpp"
 
 namespace talus {
 namespace {
@@ -41,7 +42,7 @@ ElevationGrid hills_grid(const std::vector<Vec2>& hills) {
 std::unique_ptr<BaselinePlanner> make(BaselineOptions extra = {}) {
   BaselineOptions o{{"robot", ugv_file()}};
   for (const auto& [key, value] : extra) o[key] = value;
-  return BaselineRegistry::builtin().make("iagnemma", o);
+  return planner_registry().make("iagnemma", o);
 }
 
 TEST(IagnemmaBaseline, GoalToleranceIsTheWaypointRadiusWithTheHeadingFree) {
@@ -55,10 +56,10 @@ TEST(IagnemmaBaseline, GoalToleranceIsTheWaypointRadiusWithTheHeadingFree) {
 }
 
 TEST(IagnemmaBaseline, OptionsNeedAVehicleWithABody) {
-  EXPECT_THROW(BaselineRegistry::builtin().make("iagnemma", {}), BaselineOptionError);
-  EXPECT_THROW(BaselineRegistry::builtin().make("iagnemma",
-                                                {{"robot", TALUS_DATA_DIR "/vehicles/rover.yaml"}}),
-               InputError);
+  EXPECT_THROW(planner_registry().make("iagnemma", {}), BaselineOptionError);
+  EXPECT_THROW(
+      planner_registry().make("iagnemma", {{"robot", TALUS_DATA_DIR "/vehicles/rover.yaml"}}),
+      InputError);
   EXPECT_THROW(make({{"lookahead", "maybe"}}), BaselineOptionError);
   EXPECT_THROW(make({{"waypoint-radius", "0"}}), BaselineOptionError);
   EXPECT_THROW(make({{"coarse-factor", "0"}}), BaselineOptionError);

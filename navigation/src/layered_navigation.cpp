@@ -1,4 +1,4 @@
-#include "talus/optimal/layered_navigation.hpp"
+#include "talus/navigation/layered_navigation.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -13,8 +13,8 @@
 
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/types.hpp"
-#include "talus/dynamics/potential_field_navigation.hpp"
 #include "talus/dynamics/vehicle.hpp"
+#include "talus/navigation/potential_field_navigation.hpp"
 #include "talus/optimal/planner.hpp"
 
 namespace talus {

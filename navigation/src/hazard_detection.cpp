@@ -1,4 +1,4 @@
-#include "talus/dynamics/hazard_detection.hpp"
+#include "talus/navigation/hazard_detection.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 #include <random>
 
 #include "talus/core/error.hpp"
-#include "talus/dynamics/trajectory_space_field.hpp"
+#include "talus/navigation/trajectory_space_field.hpp"
 
 namespace talus {
 namespace {

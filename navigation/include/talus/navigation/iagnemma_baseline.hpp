@@ -28,7 +28,7 @@
 ///   optimal/ and cannot be used from kinematic/; here it is a shortest route
 ///   over the grid nodes that are not hazards by the navigator's own test
 ///   (hazard_route.hpp), optionally on the decimated grid. `talus navigate`
-///   (optimal/layered_navigation.hpp) is the paper's layered scheme with
+///   (layered_navigation.hpp) is the paper's layered scheme with
 ///   Talus's planner as the high-level layer.
 /// - A hazard is the navigator's (hazard_detection.hpp): a node whose slope
 ///   exceeds atan(min(μ, b/h)) or whose 3 × 3 relief exceeds the wheel

@@ -1,4 +1,4 @@
-#include "talus/kinematic/iagnemma/iagnemma_baseline.hpp"
+#include "talus/navigation/iagnemma_baseline.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,9 +10,9 @@
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
-#include "talus/dynamics/hazard_detection.hpp"
-#include "talus/dynamics/potential_field_navigation.hpp"
-#include "talus/kinematic/iagnemma/hazard_route.hpp"
+#include "talus/navigation/hazard_detection.hpp"
+#include "talus/navigation/hazard_route.hpp"
+#include "talus/navigation/potential_field_navigation.hpp"
 
 namespace talus {
 namespace {

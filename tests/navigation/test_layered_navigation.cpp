@@ -11,7 +11,7 @@
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/dynamics/vehicle.hpp"
-#include "talus/optimal/layered_navigation.hpp"
+#include "talus/navigation/layered_navigation.hpp"
 
 namespace talus {
 namespace {

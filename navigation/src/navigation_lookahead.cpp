@@ -1,4 +1,4 @@
-#include "talus/dynamics/navigation_lookahead.hpp"
+#include "talus/navigation/navigation_lookahead.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "talus/dynamics/potential_field_navigation.hpp"
+#include "talus/navigation/potential_field_navigation.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "talus/dynamics/trajectory_space_field.hpp"
+#include "talus/navigation/trajectory_space_field.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -14,9 +14,9 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
-#include "talus/dynamics/hazard_detection.hpp"
-#include "talus/dynamics/navigation_lookahead.hpp"
-#include "talus/dynamics/potential_field_navigation.hpp"
+#include "talus/navigation/hazard_detection.hpp"
+#include "talus/navigation/navigation_lookahead.hpp"
+#include "talus/navigation/potential_field_navigation.hpp"
 
 namespace talus {
 namespace {

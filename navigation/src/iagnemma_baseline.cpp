@@ -5,14 +5,19 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <utility>
 
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/grid_window.hpp"
 #include "talus/navigation/hazard_detection.hpp"
 #include "talus/navigation/hazard_route.hpp"
+#include "talus/navigation/layered_navigation.hpp"
 #include "talus/navigation/potential_field_navigation.hpp"
+#include "talus/optimal/closed_loop_check.hpp"
+#include "talus/optimal/planner.hpp"
 
 namespace talus {
 namespace {
@@ -52,6 +57,10 @@ std::vector<BaselineOptionSpec> option_specs() {
        "vehicle YAML with a simulation body (mass, wheels, ...; data/vehicles/README.md), e.g. "
        "data/vehicles/iagnemma_ugv.yaml",
        false, true},
+      {"high-level", d.time_optimal_plan ? "plan" : "route",
+       "plan: Talus's time-optimal plan on the coarse map, as the paper's section II; route: a "
+       "shortest hazard-free route over the grid's nodes keeping route-clearance (the default: "
+       "the navigator follows a plan that passes hazards closely poorly)"},
       {"coarse-factor", std::to_string(d.coarse_factor),
        "the high-level route's grid is every k-th node of the terrain's (>= 1; 1 = the terrain's "
        "own grid)"},
@@ -79,6 +88,10 @@ std::vector<BaselineOptionSpec> option_specs() {
 std::unique_ptr<BaselinePlanner> make(const BaselineOptions& text) {
   const BaselineOptionReader reader(option_specs(), text);
   IagnemmaOptions o;
+  const std::string& high_level = reader.text("high-level");
+  if (high_level != "plan" && high_level != "route")
+    throw BaselineOptionError("high-level", "must be plan or route, got '" + high_level + "'");
+  o.time_optimal_plan = high_level == "plan";
   o.coarse_factor = reader.count("coarse-factor", 1);
   o.waypoint_spacing = reader.number("waypoint-spacing", 1e-6, 1e6);
   o.route_clearance = reader.number("route-clearance", 0.0, 1e6);
@@ -150,6 +163,7 @@ std::vector<BaselineSetting> IagnemmaBaseline::settings() const {
       {"robot", "max_speed", vehicle_.max_speed},
       {"robot", "mass", body.mass},
       {"robot", "wheel_radius", body.wheel_radius},
+      {"options", "high_level", std::string(options_.time_optimal_plan ? "plan" : "route")},
       {"options", "coarse_factor", static_cast<long long>(options_.coarse_factor)},
       {"options", "waypoint_spacing", options_.waypoint_spacing},
       {"options", "route_clearance", options_.route_clearance},
@@ -175,6 +189,73 @@ ValidityFunction IagnemmaBaseline::validity(const RuledTerrain& terrain) const {
   };
 }
 
+namespace {
+
+double waypoint_speed(const IagnemmaOptions& options, const Vehicle& vehicle) {
+  return options.speed > 0.0 ? options.speed : vehicle.max_speed;
+}
+
+/// The hazard-free route's waypoints at the constant waypoint speed; `failure` says why there
+/// are none.
+ReferenceTrajectory route_high_level(const IagnemmaOptions& options_, const Vehicle& vehicle_,
+                                     const RuledTerrain& terrain, const HazardMap& hazards,
+                                     const SE2Pose& start, const SE2Pose& goal, BaselineResult& out,
+                                     std::string& failure) {
+  // On the terrain's own grid the fine map's hazards are the route's.
+  const HazardRoute route =
+      options_.coarse_factor == 1
+          ? plan_hazard_route(terrain.grid(), hazards.mask(), start.position(), goal.position(),
+                              options_.route_clearance)
+          : plan_hazard_route(terrain.grid(), vehicle_, start.position(), goal.position(),
+                              options_.coarse_factor, options_.route_clearance);
+  out.counters["route_nodes"] = route.route_nodes;
+  out.counters["route_expansions"] = route.expansions;
+  out.counters["route_hazard_nodes"] = route.hazard_nodes;
+  if (!route.found) {
+    failure = "no hazard-free route over the grid's nodes from the start to the goal";
+    return {};
+  }
+  return route_waypoints(route.points, options_.waypoint_spacing,
+                         waypoint_speed(options_, vehicle_));
+}
+
+/// The time-optimal plan's waypoints on the coarse map, the profile's speeds capped at the
+/// waypoint speed; `failure` says why there are none.
+ReferenceTrajectory plan_high_level(const IagnemmaOptions& options_, const Vehicle& vehicle_,
+                                    const RuledTerrain& terrain, const BPatch& fine,
+                                    const SE2Pose& start, const SE2Pose& goal, BaselineResult& out,
+                                    std::string& failure) {
+  std::optional<BPatch> coarse;
+  if (options_.coarse_factor > 1)
+    coarse.emplace(BPatch::interpolate(decimate_grid(terrain.grid(), options_.coarse_factor)));
+  PlanningProblem problem(coarse ? *coarse : fine, vehicle_, start.position(), goal.position());
+  problem.start_heading = start.theta;
+  PlannerOptions options;
+  options.global.threads = 1;  // plan() may run on several threads at once
+  PlannerResult planned;
+  try {
+    planned = plan(problem, options);
+  } catch (const InputError& refused) {  // e.g. a start the planner's vehicle cannot stand on
+    failure = std::string("the time-optimal planner refused the query: ") + refused.what();
+    return {};
+  }
+  out.counters["plan_candidates"] = planned.global.candidates.size();
+  out.counters["plan_nodes_expanded"] = planned.global.expanded;
+  const Trajectory* best = planned.best();
+  if (best == nullptr) {
+    failure = "no time-optimal high-level plan (" + std::string(to_string(planned.status)) +
+              "): " + planned.message;
+    return {};
+  }
+  ReferenceTrajectory waypoints =
+      plan_waypoints(reference_trajectory(*best), options_.waypoint_spacing);
+  const double cap = waypoint_speed(options_, vehicle_);
+  for (double& v : waypoints.speed) v = std::min(v, cap);
+  return waypoints;
+}
+
+}  // namespace
+
 BaselineResult IagnemmaBaseline::solve(const RuledTerrain& terrain, const SE2Pose& start,
                                        const SE2Pose& goal) const {
   BaselineResult out;
@@ -198,29 +279,21 @@ BaselineResult IagnemmaBaseline::solve(const RuledTerrain& terrain, const SE2Pos
     return out;
   }
 
-  // High level: the hazard-free route and its waypoints; on the terrain's own
-  // grid the fine map's hazards are the route's.
-  const HazardRoute route =
-      options_.coarse_factor == 1
-          ? plan_hazard_route(terrain.grid(), hazards.mask(), start.position(), goal.position(),
-                              options_.route_clearance)
-          : plan_hazard_route(terrain.grid(), vehicle_, start.position(), goal.position(),
-                              options_.coarse_factor, options_.route_clearance);
+  // High level: the waypoints of the time-optimal plan (or of the hazard-free route).
+  std::string no_high_level;
+  const ReferenceTrajectory waypoints =
+      options_.time_optimal_plan
+          ? plan_high_level(options_, vehicle_, terrain, surface, start, goal, out, no_high_level)
+          : route_high_level(options_, vehicle_, terrain, hazards, start, goal, out, no_high_level);
   const auto t2 = Clock::now();
-  out.stage_seconds["route"] = seconds_between(t1, t2);
-  out.counters["route_nodes"] = route.route_nodes;
-  out.counters["route_expansions"] = route.expansions;
-  out.counters["route_hazard_nodes"] = route.hazard_nodes;
-  out.flags["route_found"] = route.found;
-  if (!route.found) {
+  out.stage_seconds["high_level"] = seconds_between(t1, t2);
+  out.flags["route_found"] = no_high_level.empty();
+  if (!no_high_level.empty()) {
     out.status = BaselineStatus::kNoPath;
-    out.message = "no hazard-free route over the grid's nodes from the start to the goal";
+    out.message = no_high_level;
     out.search_seconds = seconds_between(t1, t2);
     return out;
   }
-  const double speed = options_.speed > 0.0 ? options_.speed : vehicle_.max_speed;
-  const ReferenceTrajectory waypoints =
-      route_waypoints(route.points, options_.waypoint_spacing, speed);
   out.counters["waypoints"] = waypoints.points.size();
 
   // Low level: the potential-field navigator on the fine map.

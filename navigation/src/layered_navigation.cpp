@@ -52,13 +52,11 @@ std::string LayeredNavigationResult::brief_report() const {
   return line + (navigation ? navigation->brief_report() : std::string());
 }
 
-namespace {
-
-/// Every `spacing` metres of the reference's planar length, and its last
-/// point. The plan stops at the goal, but a waypoint speed of 0 would stop
-/// the navigator short of it (its run ends within waypoint_radius of the
-/// goal): the goal gets the speed of the waypoint before it.
-ReferenceTrajectory waypoints_along(const ReferenceTrajectory& reference, double spacing) {
+ReferenceTrajectory plan_waypoints(const ReferenceTrajectory& reference, double spacing) {
+  if (reference.points.size() < 2 || reference.speed.size() != reference.points.size())
+    throw InputError("plan_waypoints: the reference needs two or more points with speeds");
+  if (!(spacing > 0.0) || !std::isfinite(spacing))
+    throw InputError("plan_waypoints: the spacing must be > 0 [m]");
   ReferenceTrajectory out;
   double since = 0.0;
   for (std::size_t k = 1; k < reference.points.size(); ++k) {
@@ -72,8 +70,6 @@ ReferenceTrajectory waypoints_along(const ReferenceTrajectory& reference, double
   if (out.speed.size() >= 2) out.speed.back() = out.speed[out.speed.size() - 2];
   return out;
 }
-
-}  // namespace
 
 LayeredNavigationResult navigate_layered(const ElevationGrid& fine, const Vehicle& vehicle,
                                          const Vec2& start, const Vec2& goal,
@@ -100,7 +96,7 @@ LayeredNavigationResult navigate_layered(const ElevationGrid& fine, const Vehicl
   result.optimal_time = best->travel_time();
   const double spacing =
       options.waypoint_spacing > 0.0 ? options.waypoint_spacing : 4.0 * coarse_surface.cellsize();
-  result.waypoints = waypoints_along(reference_trajectory(*best), spacing);
+  result.waypoints = plan_waypoints(reference_trajectory(*best), spacing);
   const Vec2 first = result.waypoints.points.front() - start;
   const double yaw = std::atan2(first.y(), first.x());
   result.navigation.emplace(navigate_potential_field(fine_surface, vehicle, start, yaw,

@@ -133,6 +133,31 @@ TEST(HazardRoute, WaypointsEverySpacingAndTheGoalLast) {
   EXPECT_THROW(route_waypoints({{0, 0}, {1, 0}}, 0.0, 1.0), InputError);
 }
 
+// The paper's high level: Talus's time-optimal plan on the coarse map, its waypoints carrying
+// the profile's speeds capped at `speed`; no plan into a closed ring of hills.
+TEST(IagnemmaBaseline, TheTimeOptimalPlanAsTheHighLevel) {
+  EXPECT_THROW(make({{"high-level", "astar"}}), BaselineOptionError);
+  const auto planner = make({{"high-level", "plan"}});
+  const auto& settings = planner->settings();
+  const auto it = std::find_if(settings.begin(), settings.end(),
+                               [](const BaselineSetting& s) { return s.key == "high_level"; });
+  ASSERT_NE(it, settings.end());
+  EXPECT_EQ(std::get<std::string>(it->value), "plan");
+  const RuledTerrain flat(hills_grid({}));
+  const BaselineResult r = planner->plan(flat, {2, 6, 0}, {10, 6, 0});
+  ASSERT_TRUE(r.found()) << r.brief_report();
+  EXPECT_GE(r.counters.at("plan_candidates"), 1u);
+  EXPECT_EQ(r.counters.at("waypoints_reached"), r.counters.at("waypoints"));
+  EXPECT_LE((r.path.back().position() - Vec2(10, 6)).norm(), 0.2);
+  std::vector<Vec2> ring;
+  for (int k = 0; k < 20; ++k)
+    ring.emplace_back(6 + 3.5 * std::cos(2 * kPi * k / 20), 6 + 3.5 * std::sin(2 * kPi * k / 20));
+  const BaselineResult none =
+      planner->plan(RuledTerrain(hills_grid(ring)), {1.5, 1.5, 0}, {6, 6, 0});
+  EXPECT_EQ(none.status, BaselineStatus::kNoPath) << none.brief_report();
+  EXPECT_NE(none.message.find("time-optimal"), std::string::npos) << none.message;
+}
+
 TEST(IagnemmaBaseline, TheStandardFieldAlsoDrivesToTheGoalOnFlatGround) {
   const RuledTerrain flat(hills_grid({}));
   const BaselineResult r = make({{"lookahead", "false"}})->plan(flat, {2, 6, 0}, {10, 6, 0});

@@ -65,6 +65,14 @@ struct LayeredNavigationResult {
   std::string brief_report() const;
 };
 
+/// The waypoints of a planned trajectory's reference: a point every `spacing`
+/// metres (> 0) of its planar length, and its last point, each with the
+/// profile's speed there; the last (the goal) gets the speed of the one
+/// before it, since a waypoint speed of 0 would stop the navigator short of
+/// the goal (its run ends within waypoint_radius of it). InputError for
+/// fewer than two points or a spacing <= 0.
+ReferenceTrajectory plan_waypoints(const ReferenceTrajectory& reference, double spacing);
+
 /// Plans on decimate_grid(fine, coarse_factor) and navigates on `fine`
 /// (both interpolated by BPatch::interpolate) from rest at `start`, heading
 /// towards the first waypoint, to `goal`. InputError for invalid input (a

@@ -999,7 +999,8 @@ TileMask corridor_tiles(const std::vector<CandidatePath>& candidates, const Vec2
 }  // namespace
 
 struct GlobalSearchWorkspace::Impl {
-  const BPatch* terrain = nullptr;
+  const BPatch* terrain = nullptr;  // the lattices' terrain, recognised by its identity()
+  std::uint64_t terrain_identity = 0;
   std::optional<Vehicle> vehicle;
   int connectivity = 0;
   bool braking_rule = true;
@@ -1008,13 +1009,14 @@ struct GlobalSearchWorkspace::Impl {
 
   /// Drops the lattices unless they were made for these.
   void bind(const BPatch& t, const Vehicle& v, const GlobalSearchOptions& options) {
-    if (terrain == &t && vehicle && *vehicle == v && connectivity == options.connectivity &&
-        braking_rule == options.braking_rule) {
+    if (terrain_identity == t.identity() && vehicle && *vehicle == v &&
+        connectivity == options.connectivity && braking_rule == options.braking_rule) {
       return;
     }
     lattices.clear();
     set = std::make_unique<AdmissibleSet>(v);
     terrain = &t;
+    terrain_identity = t.identity();
     vehicle = v;
     connectivity = options.connectivity;
     braking_rule = options.braking_rule;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <optional>
 
 #include "global_search_test_support.hpp"
 #include "talus/core/error.hpp"
@@ -485,6 +486,34 @@ TEST(GlobalSearchWorkspace, ReusesTheEdgeCostsAndGivesTheSearchWithoutIt) {
   EXPECT_EQ(workspace.lattices(), 1u);
   workspace.clear();
   EXPECT_EQ(workspace.lattices(), 0u);
+}
+
+// A workspace recognises its terrain by BPatch::identity(), not by address: a new terrain
+// built where a destroyed one stood is another terrain (the workspace used to reuse the old
+// lattice's samples and costs there, the reason clear() had to be called), and a copy too.
+TEST(GlobalSearchWorkspace, ANewTerrainAtADestroyedOnesAddressIsAnotherTerrain) {
+  const Vehicle v = point_mass_rover(0.3);
+  GlobalSearchOptions options;
+  GlobalSearchWorkspace workspace;
+  std::optional<BPatch> slot;
+  slot.emplace(bumps());
+  const BPatch* address = &*slot;
+  const GlobalSearchResult on_bumps =
+      global_search(*slot, v, {3, 30}, {77, 30}, options, workspace);
+  ASSERT_EQ(on_bumps.status, GlobalSearchStatus::kOk);
+  slot.reset();
+  slot.emplace(BPatch::interpolate(
+      terrain_test::grid_from_function([](double, double) { return 0.0; }, 0, 0, 80, 60, 1.0)));
+  ASSERT_EQ(&*slot, address);  // the new terrain stands where the old one did
+  const GlobalSearchResult reused = global_search(*slot, v, {3, 30}, {77, 30}, options, workspace);
+  expect_same_search(reused, global_search(*slot, v, {3, 30}, {77, 30}, options));
+  EXPECT_GT(reused.edges_evaluated, 0u);
+  EXPECT_LT(reused.candidates.front().cost_seconds, on_bumps.candidates.front().cost_seconds);
+  // The same terrain again keeps the lattice; a copy of it is another object.
+  EXPECT_EQ(global_search(*slot, v, {3, 30}, {77, 30}, options, workspace).edges_evaluated, 0u);
+  const BPatch copy = *slot;
+  EXPECT_NE(copy.identity(), slot->identity());
+  EXPECT_GT(global_search(copy, v, {3, 30}, {77, 30}, options, workspace).edges_evaluated, 0u);
 }
 
 // Coarse to fine: the coarse lattice is kept, the corridors are not; same result.

@@ -33,6 +33,7 @@
 #include <Eigen/Core>
 
 #include "talus/core/elevation_grid.hpp"
+#include "talus/core/instance_id.hpp"
 #include "talus/core/types.hpp"
 
 namespace talus {
@@ -108,6 +109,11 @@ class BPatch {
   /// Residuals of the surface at the valid nodes of `grid` (same geometry).
   BPatchFitReport residuals(const ElevationGrid& grid) const;
 
+  /// This surface object's identity (core/instance_id.hpp): caches built for
+  /// it (GlobalSearchWorkspace) recognise it by this, not by its address. A
+  /// copy, a moved-to or an assigned-to surface has a new one.
+  std::uint64_t identity() const { return identity_.value(); }
+
  private:
   BPatch(const ElevationGrid& grid, Eigen::MatrixXd control, int degree = 3);
   SurfacePoint evaluate_quintic(std::size_t i, std::size_t j, double tu, double tv) const;
@@ -119,6 +125,7 @@ class BPatch {
   double h_ = 1.0, inverse_h_ = 1.0, x_min_ = 0.0, y_min_ = 0.0;
   Eigen::MatrixXd control_;
   std::vector<unsigned char> cell_on_data_;  ///< per cell, (ncols-1) × (nrows-1)
+  InstanceId identity_;
 };
 
 }  // namespace talus

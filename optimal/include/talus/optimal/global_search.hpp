@@ -242,11 +242,10 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
 /// a workspace; GlobalSearchResult::edges_evaluated counts only the edges
 /// the search itself computed. Lattices of the whole map are kept (with
 /// kMulti: the coarse one; the corridors are not). A workspace used with
-/// another terrain (by address), vehicle, connectivity or braking rule drops
-/// what it held. It refers to the terrain it was last used with: that
-/// terrain must outlive its use, and clear() it before using it with a new
-/// terrain that may occupy a destroyed one's address. Not for concurrent use
-/// from several threads.
+/// another terrain (BPatch::identity(), never its address: a new terrain at a
+/// destroyed one's address is another terrain), vehicle, connectivity or
+/// braking rule drops what it held. Not for concurrent use from several
+/// threads.
 class GlobalSearchWorkspace {
  public:
   GlobalSearchWorkspace();

@@ -283,7 +283,7 @@ void render_plan_figures(const PlanRequest& request, const ElevationGrid& grid,
                          const std::filesystem::path& dir) {
   const Trajectory& best = *result.best();
   PlanMapData map;
-  map.surface = problem.surface;
+  map.surface = problem.surface.get();
   map.origin = Vec2(grid.x_min(), grid.y_min());
   map.width = grid.x_max() - grid.x_min();
   map.height = grid.y_max() - grid.y_min();
@@ -526,7 +526,7 @@ PlanOutcome plan(const PlanRequest& request) {
   }());
   const double fit_seconds = seconds_since(fit_start);
 
-  PlanningProblem problem(*outcome.surface, vehicle, start, goal);
+  PlanningProblem problem(outcome.surface, vehicle, start, goal);
   if (request.stage == kPlanStageFull) {  // the global stage ignores speeds
     problem.start_speed = request.start_speed;
     problem.end_speed = request.end_speed;

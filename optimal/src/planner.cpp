@@ -4,10 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <utility>
 
 #include "talus/bspline/curve_fit.hpp"
+#include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
 
 namespace talus {
@@ -465,6 +467,18 @@ std::string time_limit_message(std::string message, bool global_cut,
   return message;
 }
 
+/// `trajectory`'s path shares the ownership of `surface`, which it refers to: a trajectory
+/// copied out of the result outlives the problem and the result safely.
+void keep_surface(Trajectory& trajectory, const std::shared_ptr<const BPatch>& surface) {
+  if (!trajectory.path) return;
+  struct Owner {
+    std::shared_ptr<const SurfacePath> path;
+    std::shared_ptr<const BPatch> surface;
+  };
+  const auto owner = std::make_shared<const Owner>(Owner{trajectory.path, surface});
+  trajectory.path = std::shared_ptr<const SurfacePath>(owner, owner->path.get());
+}
+
 std::string infeasible_message(const PlannerResult& result) {
   std::string message = "no candidate has a feasible trajectory (see each candidate's message)";
   if (result.feedback_rounds > 0) {
@@ -491,6 +505,11 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     return options.progress(progress);
   };
   const auto finish = [&](PlannerStatus status, std::string message) {
+    result.surface = problem.surface;
+    for (CandidateOutcome& c : result.candidates) {
+      keep_surface(c.initial, problem.surface);
+      keep_surface(c.trajectory, problem.surface);
+    }
     result.status = status;
     result.message = std::move(message);
     result.seconds.total = seconds_since(started);

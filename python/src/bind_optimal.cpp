@@ -1,10 +1,11 @@
 /// @file
 /// optimal: the time-optimal profile, the one evaluation rule
 /// (evaluate_trajectory), the global search and the two-stage planner.
-/// Lifetimes: a Trajectory refers to the surface it was evaluated on and a
-/// PlanningProblem to its surface (non-owning pointers in C++), so the Python
-/// objects keep those surfaces alive (py::keep_alive), and everything read out
-/// of a result keeps the result alive.
+/// Lifetimes: a Trajectory from evaluate_trajectory refers to the surface it
+/// was evaluated on (a non-owning pointer in C++), so the Python object keeps
+/// that surface alive (py::keep_alive); a PlanningProblem holds its own copy
+/// of the surface, which its results share; everything read out of a result
+/// keeps the result alive.
 #include <memory>
 #include <optional>
 #include <string>
@@ -312,7 +313,7 @@ void bind_planner(py::module_& m) {
       .def_readonly("seconds", &OptimizedPath::seconds);
 
   py::class_<PlanningProblem>(m, "PlanningProblem",
-                              "What to plan (talus::PlanningProblem); keeps its surface alive.")
+                              "What to plan (talus::PlanningProblem); holds a copy of its surface.")
       .def(py::init([](const BPatch& surface, const Vehicle& vehicle, const Vec2& start,
                        const Vec2& goal, double start_speed, double end_speed,
                        std::optional<double> start_heading, std::optional<double> goal_heading) {
@@ -325,8 +326,7 @@ void bind_planner(py::module_& m) {
            }),
            py::arg("surface"), py::arg("vehicle"), py::arg("start"), py::arg("goal"),
            py::arg("start_speed") = 0.0, py::arg("end_speed") = 0.0,
-           py::arg("start_heading") = py::none(), py::arg("goal_heading") = py::none(),
-           py::keep_alive<1, 2>())
+           py::arg("start_heading") = py::none(), py::arg("goal_heading") = py::none())
       .def_property_readonly(
           "surface", [](const PlanningProblem& p) -> const BPatch& { return *p.surface; },
           py::return_value_policy::reference_internal)

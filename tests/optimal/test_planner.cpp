@@ -8,10 +8,12 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "talus/bspline/bpatch.hpp"
+#include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
 #include "talus/optimal/planner.hpp"
 #include "talus/optimal/trajectory.hpp"
@@ -67,6 +69,33 @@ TEST(Planner, FlatPlaneStraightRunMatchesTheAnalyticRestToRestTime) {
   EXPECT_NEAR(result.best()->length(), 50.0, 1e-6);
   EXPECT_EQ(result.best_candidate, 0u);
   EXPECT_TRUE(result.message.empty());
+}
+
+// The problem shares (or copies) its surface, the result holds it, and a trajectory copied
+// out of the result keeps it alive through its path: nothing dangles once the caller's
+// surface, the problem and the result are gone (the sanitizer build checks the reads).
+TEST(Planner, ATrajectoryOutlivesTheCallersSurfaceTheProblemAndTheResult) {
+  Trajectory kept;
+  double planned = 0.0;
+  {
+    const BPatch surface = surface_of(hill);
+    const PlannerResult result =
+        plan(PlanningProblem(surface, point_mass_rover(0.7), {5, 20}, {55, 20}), quick_options(1));
+    ASSERT_NE(result.best(), nullptr) << result.brief_report();
+    ASSERT_NE(result.surface, nullptr);
+    EXPECT_NE(result.surface.get(), &surface);  // the problem's own copy
+    EXPECT_EQ(&result.best()->path->surface(), result.surface.get());
+    kept = *result.best();
+    planned = kept.travel_time();
+  }
+  ASSERT_TRUE(kept.path);
+  const PathFrame middle = kept.path->frame_at_parameter(0.5);  // evaluates the surface
+  EXPECT_NEAR(middle.point.z(), kept.path->surface().elevation(middle.point.head<2>()), 1e-9);
+  EXPECT_GT(planned, 0.0);
+  // A shared surface is not copied.
+  const auto shared = std::make_shared<const BPatch>(surface_of(hill));
+  const PlanningProblem problem(shared, point_mass_rover(0.7), {5, 20}, {55, 20});
+  EXPECT_EQ(problem.surface.get(), shared.get());
 }
 
 TEST(Planner, AroundAHillTheBestIsTheFastestCandidateAndNoneIsSlowerThanItsFit) {

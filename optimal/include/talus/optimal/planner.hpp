@@ -64,6 +64,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -81,10 +82,18 @@ namespace talus {
 
 /// What to plan: a vehicle from `start` to `goal` on a fitted surface.
 struct PlanningProblem {
+  /// Shares `terrain` (not null): the problem, its copies and every result
+  /// planned from it keep it alive.
+  PlanningProblem(std::shared_ptr<const BPatch> terrain, Vehicle model, const Vec2& from,
+                  const Vec2& to)
+      : surface(std::move(terrain)), vehicle(std::move(model)), start(from), goal(to) {}
+  /// Copies `terrain` into a shared surface (its control points: pass a
+  /// shared_ptr to share one without the copy).
   PlanningProblem(const BPatch& terrain, Vehicle model, const Vec2& from, const Vec2& to)
-      : surface(&terrain), vehicle(std::move(model)), start(from), goal(to) {}
-  /// Not owned: it must outlive the problem and the result's trajectories.
-  const BPatch* surface;
+      : PlanningProblem(std::make_shared<const BPatch>(terrain), std::move(model), from, to) {}
+  /// The fitted surface; the trajectories of a result refer to it and keep it
+  /// alive (PlannerResult::surface and each trajectory's path).
+  std::shared_ptr<const BPatch> surface;
   Vehicle vehicle;           ///< needs a finite max_speed (the global cost is time at the limit)
   Vec2 start;                ///< [m], in the surface's domain
   Vec2 goal;                 ///< [m], in the surface's domain
@@ -210,6 +219,9 @@ struct PlannerTimings {
 
 struct PlannerResult {
   PlannerStatus status = PlannerStatus::kUnreachable;
+  /// The problem's surface, which every trajectory below refers to: the
+  /// result (and each trajectory's path, even copied out of it) keeps it alive.
+  std::shared_ptr<const BPatch> surface;
   std::string message;  ///< why, when not kOk; empty otherwise
   /// The global search whose candidates were optimised (after feedback
   /// rounds, the kept round's); its edges_evaluated counts the edge costs

@@ -26,8 +26,7 @@ int main(int argc, char** argv) {
     std::cout << result.brief_report();
     if (const talus::Trajectory* best = result.best()) {
       const talus::TimeOptimalProfile& profile = best->profile;
-      std::cout << "arrives after " << profile.t.back() << " s at "
-                << profile.v.back() << " m/s\n";
+      std::cout << "arrives after " << profile.t.back() << " s at " << profile.v.back() << " m/s\n";
     }
     return result.status == talus::PlannerStatus::kOk ? 0 : 2;
   } catch (const talus::Error& error) {  // bad input: files, options

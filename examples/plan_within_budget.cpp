@@ -17,7 +17,9 @@
 
 namespace {
 std::atomic<bool> interrupted{false};
-void on_interrupt(int) { interrupted = true; }
+void on_interrupt(int) {
+  interrupted = true;
+}
 }  // namespace
 
 int main(int argc, char** argv) {

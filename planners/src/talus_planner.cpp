@@ -37,9 +37,8 @@ ConfigurationCheck pass_check(const RuledTerrain& terrain, const BPatch& surface
   const Vec2 p = pose.position();
   if (!std::isfinite(pose.theta) || !terrain.has_data(p) || !surface.contains(p)) return {};
   try {
-    const PathFrame frame = lift_to_surface(p, surface.evaluate(p),
-                                            Vec2(std::cos(pose.theta), std::sin(pose.theta)),
-                                            Vec2::Zero());
+    const PathFrame frame = lift_to_surface(
+        p, surface.evaluate(p), Vec2(std::cos(pose.theta), std::sin(pose.theta)), Vec2::Zero());
     const StationGeometry g = station_geometry(frame, surface, set.wheels());
     const SpeedLimits limits = set.speed_limits(g);
     if (!limits.traversable || !(limits.v_max > 0.0) || limits.v_min > 0.0 ||

@@ -36,30 +36,10 @@ inline constexpr int kBaselineNoPathExitCode = 2;
 inline constexpr const char* kBaselinePathCsvHeader = "x,y,theta,control";
 
 /// What `talus baseline NAME` writes, for its --help.
-inline constexpr const char* kBaselineOutputHelp =
-    "Angles in radians, counter-clockwise from east. Writes, in --out DIR (created if needed): "
-    "path.csv (columns x,y,theta,control: every configuration of the path from start to goal, "
-    "control = the motion reaching it as the planner names it, e.g. forward, forward-left, "
-    "reverse-right, or none on the first row), summary.json (status found | no_path | "
-    "start_invalid | goal_invalid | budget_exceeded, message, the planner's counters, "
-    "preprocessing_seconds, search_seconds, length_m, the planner's settings such as robot and "
-    "options, ...; also printed) and path.png (the path over shaded relief). dacre-wright also "
-    "writes "
-    "voxels.csv (columns level,x_min,x_max,y_min,y_max,theta_min,theta_max,status: every voxel "
-    "whose state was decided, analysed or combined from its sons above p0, status FREE or "
-    "MIXED), channel.csv (columns step,voxel: the channel from the start's voxel to the goal's, "
-    "voxel = 0-based data row of voxels.csv), octree.png (FREE voxels at four headings of the "
-    "path, the channel and the path) and the summary keys voxels_analysed_per_level, "
-    "free_volume_fraction, voxels_decided, free_leaves, reference_level. eldershaw-yim also "
-    "writes prm_points.csv (point,ix,iy,itheta,x,y,theta), prm_edges.csv "
-    "(new_point,old_point), steps.csv (the foot plan: step,move,cg_x,cg_y,cg_theta then "
-    "foot_x_i,foot_y_i,foot_z_i,contact_i per leg i), cgmap.png (the footmap and the CGmap of "
-    "the start's heading slice, the route and its footprints) and the summary keys "
-    "footmap_invalid_nodes, cgmap_cells, foot_plan_status, feedback_cells. Exit code 0 when a "
-    "path is found; 2 when none exists, the start or goal configuration is invalid or the "
-    "budget ran out (summary still written); 1 on bad input: malformed numbers or options, "
-    "missing or bad files, a start or goal off the map or on NODATA (one line on stderr, "
-    "nothing written)";
+/// What `talus baseline NAME` writes and how it exits, for NAME's --help: the
+/// outputs every planner writes, then NAME's own (dacre-wright's octree
+/// files, eldershaw-yim's roadmap and foot plan), then the exit codes.
+std::string baseline_output_help(const std::string& name);
 
 /// Parses "X,Y,THETA" (three finite numbers, spaces allowed around them) given
 /// to `option`; anything else is an InputError naming the option and the text.

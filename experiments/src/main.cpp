@@ -702,8 +702,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
     const BaselineEntry& entry = baselines.entry(name);
     BaselineFlags& f = baseline_flags.emplace_back();
     f.request.baseline = entry.name;
-    CLI::App* sub =
-        baseline->add_subcommand(entry.name, entry.summary + ". " + ex::kBaselineOutputHelp);
+    CLI::App* sub = baseline->add_subcommand(
+        entry.name, entry.summary + ". " + ex::baseline_output_help(entry.name));
     sub->add_option("--terrain", f.request.terrain, ex::kTerrainHelp)->required();
     add_raster_options(*sub, f.request.reproject, f.request.band);
     sub->add_option("--start", f.request.start,

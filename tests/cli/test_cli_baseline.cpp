@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
@@ -262,6 +263,27 @@ TEST(CliBaseline, HelpDocumentsTheOptions) {
   EXPECT_EQ(b.exit_code, 0);
   EXPECT_NE(b.out.find("hait"), std::string::npos);
   EXPECT_NE(b.out.find("iagnemma"), std::string::npos);
+  EXPECT_NE(b.out.find("talus"), std::string::npos);  // Talus's own planner, registered beside
+}
+
+// Each planner's --help documents its own outputs only (issue #40): the octree files under
+// dacre-wright, the foot plan under eldershaw-yim, neither under the others.
+TEST(CliBaseline, HelpDocumentsEachPlannersOwnOutputsOnly) {
+  const std::map<std::string, std::vector<std::string>> own = {
+      {"dacre-wright", {"voxels.csv", "channel.csv", "octree.png"}},
+      {"eldershaw-yim", {"prm_points.csv", "steps.csv", "cgmap.png"}},
+      {"hait", {}},
+      {"iagnemma", {}},
+      {"talus", {}}};
+  for (const auto& [name, files] : own) {
+    const RunResult r = run_talus("baseline " + name + " --help");
+    ASSERT_EQ(r.exit_code, 0) << name;
+    EXPECT_NE(r.out.find("path.csv"), std::string::npos) << name;
+    EXPECT_NE(r.out.find("Exit code"), std::string::npos) << name;
+    for (const auto& [other, other_files] : own)
+      for (const std::string& file : other_files)
+        EXPECT_EQ(r.out.find(file) != std::string::npos, other == name) << name << ": " << file;
+  }
 }
 
 }  // namespace

@@ -633,4 +633,37 @@ void gdal_write_png(const RgbaImage& image, const std::string& file, const std::
   }
 }
 
+std::vector<Vec2> gdal_to_longitude_latitude(const GeoReference& crs,
+                                             const std::vector<Vec2>& points) {
+  const QuietErrors quiet;
+  Srs from(OSRNewSpatialReference(nullptr));
+  if (OSRSetFromUserInput(from.get(), crs.wkt.c_str()) != OGRERR_NONE)
+    throw InputError("cannot read the CRS " + crs.label() + " (" + QuietErrors::last() + ")");
+  OSRSetAxisMappingStrategy(from.get(), OAMS_TRADITIONAL_GIS_ORDER);
+  Srs wgs84(OSRNewSpatialReference(nullptr));
+  OSRImportFromEPSG(wgs84.get(), 4326);
+  OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);  // longitude first
+  std::unique_ptr<void, TransformDeleter> transform(
+      OCTNewCoordinateTransformation(from.get(), wgs84.get()));
+  if (!transform)
+    throw InputError("cannot transform " + crs.label() + " to WGS 84 (" + QuietErrors::last() +
+                     ")");
+  std::vector<double> x(points.size()), y(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    x[k] = points[k].x();
+    y[k] = points[k].y();
+  }
+  std::vector<int> ok(points.size(), 0);
+  OCTTransformEx(transform.get(), static_cast<int>(points.size()), x.data(), y.data(), nullptr,
+                 ok.data());
+  std::vector<Vec2> out(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (!ok[k] || !std::isfinite(x[k]) || !(std::abs(y[k]) <= 90.0))
+      throw InputError("cannot transform the point (" + format(points[k].x()) + ", " +
+                       format(points[k].y()) + ") of " + crs.label() + " to WGS 84");
+    out[k] = Vec2(x[k], y[k]);
+  }
+  return out;
+}
+
 }  // namespace talus::detail

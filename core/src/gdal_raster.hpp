@@ -17,5 +17,8 @@ std::optional<GeoReference> gdal_read_prj(const std::string& prj_path);
 void gdal_write_geotiff(const RasterLayers& layers, const std::string& file,
                         const std::string& path);
 void gdal_write_png(const RgbaImage& image, const std::string& file, const std::string& path);
+/// to_longitude_latitude() through GDAL (crs known).
+std::vector<Vec2> gdal_to_longitude_latitude(const GeoReference& crs,
+                                             const std::vector<Vec2>& points);
 
 }  // namespace talus::detail

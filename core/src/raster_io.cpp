@@ -171,6 +171,16 @@ void write_geotiff(const RasterLayers& layers, const std::string& path) {
 #endif
 }
 
+std::vector<Vec2> to_longitude_latitude(const GeoReference& crs, const std::vector<Vec2>& points) {
+  if (!crs.known())
+    throw InputError("cannot give longitude and latitude: the coordinates' CRS is unknown");
+#ifdef TALUS_WITH_GDAL
+  return detail::gdal_to_longitude_latitude(crs, points);
+#else
+  no_gdal("longitude and latitude");
+#endif
+}
+
 void write_png(const RgbaImage& image, const std::string& path) {
   if (image.width == 0 || image.height == 0 ||
       image.rgba.size() != 4 * image.width * image.height) {

@@ -464,8 +464,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                  "also write cost_to_go.tif (float32 GeoTIFF on the lattice in the DEM's CRS: "
                  "bands cost_from_start, cost_to_goal [s; inf = not reachable, NODATA = not "
                  "computed] and unreachable (1/0)) and trajectory.geojson (the best "
-                 "trajectory, or with --stage global the best candidate, as a LineString "
-                 "x, y, z in the DEM's CRS, and every candidate's lattice path)");
+                 "trajectory as a LineString and every candidate's lattice path, per RFC 7946: "
+                 "WGS 84 longitude, latitude, with each point's x, y in the DEM's CRS kept as "
+                 "the property projected_coordinates; a DEM without a CRS keeps its x, y, "
+                 "noted in coordinates_note)");
   plan->add_option("--start", plan_request.start, "start X,Y in the terrain's frame [m]")
       ->required();
   plan->add_option("--goal", plan_request.goal, "goal X,Y in the terrain's frame [m]")->required();

@@ -43,43 +43,66 @@ RasterLayers cost_to_go_layers(const GlobalSearchResult& result, const GeoRefere
 }
 
 std::string plan_geojson(const PlannerResult& result, const GeoReference& crs) {
-  nlohmann::json features = nlohmann::json::array();
+  // Each feature's planar points in the DEM's CRS, transformed together once.
+  struct Line {
+    std::vector<Vec2> points;
+    std::vector<double> z;  // empty for a candidate's lattice path
+    nlohmann::json properties;
+  };
+  std::vector<Line> lines;
   if (const Trajectory* best = result.best()) {
     const VelocityLimits& limits = *best->limits;
     constexpr std::size_t kMaxPoints = 5000;
     const std::size_t stride =
         std::max<std::size_t>(1, (limits.size() + kMaxPoints - 1) / kMaxPoints);
-    nlohmann::json coordinates = nlohmann::json::array();
-    for (std::size_t k = 0; k < limits.size(); k += stride) {
+    Line line;
+    const auto add = [&](std::size_t k) {
       const Vec3& p = limits.frame(k).point;
-      coordinates.push_back({p.x(), p.y(), p.z()});
-    }
-    if ((limits.size() - 1) % stride != 0) {
-      const Vec3& p = limits.frame(limits.size() - 1).point;
-      coordinates.push_back({p.x(), p.y(), p.z()});
-    }
-    features.push_back(
-        {{"type", "Feature"},
-         {"properties",
-          {{"kind", "trajectory"}, {"travel_time", finite_or_null(best->travel_time())}}},
-         {"geometry", {{"type", "LineString"}, {"coordinates", std::move(coordinates)}}}});
+      line.points.emplace_back(p.x(), p.y());
+      line.z.push_back(p.z());
+    };
+    for (std::size_t k = 0; k < limits.size(); k += stride) add(k);
+    if ((limits.size() - 1) % stride != 0) add(limits.size() - 1);
+    line.properties = {{"kind", "trajectory"},
+                       {"travel_time", finite_or_null(best->travel_time())}};
+    lines.push_back(std::move(line));
   }
   for (std::size_t c = 0; c < result.global.candidates.size(); ++c) {
     const CandidatePath& path = result.global.candidates[c];
-    nlohmann::json coordinates = nlohmann::json::array();
-    for (const Vec2& v : path.vertices) coordinates.push_back({v.x(), v.y()});
+    lines.push_back({path.vertices,
+                     {},
+                     {{"kind", "candidate"},
+                      {"candidate", c},
+                      {"cost_seconds", finite_or_null(path.cost_seconds)},
+                      {"length_m", finite_or_null(path.length_m)}}});
+  }
+  const bool geographic = crs.known() && gdal_available();
+  nlohmann::json features = nlohmann::json::array();
+  for (Line& line : lines) {
+    const std::vector<Vec2> shown =
+        geographic ? to_longitude_latitude(crs, line.points) : line.points;
+    nlohmann::json coordinates = nlohmann::json::array(), projected = nlohmann::json::array();
+    for (std::size_t k = 0; k < shown.size(); ++k) {
+      nlohmann::json point = {shown[k].x(), shown[k].y()},
+                     own = {line.points[k].x(), line.points[k].y()};
+      if (!line.z.empty()) {
+        point.push_back(line.z[k]);
+        own.push_back(line.z[k]);
+      }
+      coordinates.push_back(std::move(point));
+      projected.push_back(std::move(own));
+    }
+    if (geographic) line.properties["projected_coordinates"] = std::move(projected);
     features.push_back({{"type", "Feature"},
-                        {"properties",
-                         {{"kind", "candidate"},
-                          {"candidate", c},
-                          {"cost_seconds", finite_or_null(path.cost_seconds)},
-                          {"length_m", finite_or_null(path.length_m)}}},
+                        {"properties", std::move(line.properties)},
                         {"geometry", {{"type", "LineString"}, {"coordinates", coordinates}}}});
   }
   nlohmann::json out = {{"type", "FeatureCollection"}, {"features", std::move(features)}};
-  if (crs.epsg) {
-    out["crs"] = {{"type", "name"},
-                  {"properties", {{"name", "urn:ogc:def:crs:EPSG::" + std::to_string(*crs.epsg)}}}};
+  if (geographic) {
+    out["projected_crs"] = crs.label();
+  } else {
+    out["coordinates_note"] =
+        "the DEM's own x, y [m], not RFC 7946 longitude and latitude: its CRS is unknown";
   }
   return out.dump(1) + "\n";
 }

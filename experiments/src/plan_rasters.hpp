@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `talus plan --rasters`: the global search's cost-to-go fields as a
-/// GeoTIFF and the planned paths as GeoJSON, both in the DEM's CRS.
+/// GeoTIFF in the DEM's CRS and the planned paths as GeoJSON (RFC 7946).
 #include <string>
 
 #include "talus/core/georeference.hpp"
@@ -20,11 +20,16 @@ inline constexpr const char* kUnreachableBand = "unreachable";
 /// unreachable (1 where cost_from_start is inf, 0 elsewhere).
 RasterLayers cost_to_go_layers(const GlobalSearchResult& result, const GeoReference& crs);
 
-/// A GeoJSON FeatureCollection (with a named "crs" member when the CRS has
-/// an EPSG code): the best trajectory (full stage: its stations' x, y, z,
-/// thinned to at most 5000 points; properties kind "trajectory",
-/// travel_time) when there is one, then each candidate's lattice path (kind
-/// "candidate", candidate, cost_seconds, length_m; x, y).
+/// A GeoJSON FeatureCollection per RFC 7946: coordinates in WGS 84
+/// longitude, latitude (through GDAL's transformation from `crs`), each
+/// feature's points in the DEM's CRS kept as its property
+/// projected_coordinates and that CRS named by the member projected_crs; the
+/// best trajectory (full stage: its stations, thinned to at most 5000 points,
+/// with their z; properties kind "trajectory", travel_time) when there is
+/// one, then each candidate's lattice path (kind "candidate", candidate,
+/// cost_seconds, length_m). A DEM whose CRS is unknown keeps its own x, y as
+/// coordinates, and the member coordinates_note says so. InputError when GDAL
+/// cannot transform a point.
 std::string plan_geojson(const PlannerResult& result, const GeoReference& crs);
 
 }  // namespace talus::experiments

@@ -263,7 +263,7 @@ TEST(CliRasters, AnOutputOntoAFileTheTerrainReachedIsRefusedAndTheFileKept) {
   EXPECT_EQ(read_text(world), world_before);
 }
 
-TEST(CliRasters, PlanRastersWritesCostToGoAndGeoJsonInTheDemsCrs) {
+TEST(CliRasters, PlanRastersWritesCostToGoInTheDemsCrsAndRfc7946GeoJson) {
   const std::string dir = scratch_file("plan_rasters");
   fs::remove_all(dir);
   const std::string vehicle = point_mass_vehicle("plan_rover.yaml", 0.7, 10.0);
@@ -300,14 +300,28 @@ TEST(CliRasters, PlanRastersWritesCostToGoAndGeoJsonInTheDemsCrs) {
   EXPECT_NEAR(cost.bands[1].values[s], best, 1e-5 * best);
   EXPECT_NEAR(cost.bands[0].values[g], best, 1e-5 * best);
   EXPECT_EQ(cost.bands[2].values[s], 0.0);
-  // GeoJSON: the candidates' lattice paths in EPSG:32613.
+  // GeoJSON per RFC 7946 (issue #40): longitude and latitude, the candidates' lattice paths in
+  // EPSG:32613 kept as properties. The start node transformed here by GDAL on its own.
   const nlohmann::json geo = parse_json(read_text(dir + "/trajectory.geojson"), "geojson");
   EXPECT_EQ(geo.at("type"), "FeatureCollection");
-  EXPECT_EQ(geo.at("crs").at("properties").at("name"), "urn:ogc:def:crs:EPSG::32613");
+  EXPECT_FALSE(geo.contains("crs"));  // RFC 7946 removed it: WGS 84 is implied
+  EXPECT_NE(geo.at("projected_crs").get<std::string>().find("EPSG:32613"), std::string::npos);
   ASSERT_GE(geo.at("features").size(), 1u);
   const nlohmann::json& first = geo.at("features")[0];
   EXPECT_EQ(first.at("properties").at("kind"), "candidate");
-  EXPECT_EQ(first.at("geometry").at("coordinates")[0][0], j.at("start_node")[0]);
+  EXPECT_EQ(first.at("properties").at("projected_coordinates")[0][0], j.at("start_node")[0]);
+  EXPECT_EQ(first.at("properties").at("projected_coordinates")[0][1], j.at("start_node")[1]);
+  const auto [lon, lat] = gdal_test::utm_to_longitude_latitude(
+      32613, j.at("start_node")[0].get<double>(), j.at("start_node")[1].get<double>());
+  EXPECT_NEAR(first.at("geometry").at("coordinates")[0][0].get<double>(), lon, 1e-9);
+  EXPECT_NEAR(first.at("geometry").at("coordinates")[0][1].get<double>(), lat, 1e-9);
+  EXPECT_NEAR(lon, -104.3, 0.1);  // West Bijou, Colorado
+  EXPECT_NEAR(lat, 39.5, 0.1);
+  // GDAL's own GeoJSON driver reads it, and places the first vertex at the same point.
+  const auto [feature_count, x0, y0] = gdal_test::first_vector_point(dir + "/trajectory.geojson");
+  EXPECT_EQ(feature_count, static_cast<long long>(geo.at("features").size()));
+  EXPECT_NEAR(x0, lon, 1e-9);
+  EXPECT_NEAR(y0, lat, 1e-9);
   EXPECT_EQ(j.at("files").at("cost_to_go"), dir + "/cost_to_go.tif");
 }
 

@@ -9,11 +9,14 @@
 #include <cpl_error.h>
 #include <gdal.h>
 #include <gdal_utils.h>
+#include <ogr_api.h>
 #include <ogr_srs_api.h>
 
 #include <array>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace talus::gdal_test {
@@ -128,6 +131,46 @@ inline int epsg_of_wkt(const std::string& wkt) {
   }
   OSRDestroySpatialReference(h);
   return code;
+}
+
+/// (longitude, latitude) [degrees] of (x, y) in the WGS 84 UTM zone `epsg`, by GDAL's OSR.
+inline std::pair<double, double> utm_to_longitude_latitude(int epsg, double x, double y) {
+  OGRSpatialReferenceH utm = OSRNewSpatialReference(nullptr),
+                       wgs84 = OSRNewSpatialReference(nullptr);
+  OSRImportFromEPSG(utm, epsg);
+  OSRImportFromEPSG(wgs84, 4326);
+  OSRSetAxisMappingStrategy(utm, OAMS_TRADITIONAL_GIS_ORDER);
+  OSRSetAxisMappingStrategy(wgs84, OAMS_TRADITIONAL_GIS_ORDER);
+  OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(utm, wgs84);
+  EXPECT_TRUE(t != nullptr && OCTTransform(t, 1, &x, &y, nullptr));
+  OCTDestroyCoordinateTransformation(t);
+  OSRDestroySpatialReference(utm);
+  OSRDestroySpatialReference(wgs84);
+  return {x, y};
+}
+
+/// A vector file opened by GDAL: its first layer's feature count and the first point of its
+/// first feature's geometry.
+inline std::tuple<long long, double, double> first_vector_point(const std::string& path) {
+  GDALAllRegister();
+  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
+  EXPECT_NE(ds, nullptr) << path;
+  if (ds == nullptr) return {0, 0.0, 0.0};
+  OGRLayerH layer = GDALDatasetGetLayer(ds, 0);
+  const long long count = OGR_L_GetFeatureCount(layer, 1);
+  OGR_L_ResetReading(layer);
+  OGRFeatureH feature = OGR_L_GetNextFeature(layer);
+  double x = 0.0, y = 0.0;
+  if (feature != nullptr) {
+    OGRGeometryH g = OGR_F_GetGeometryRef(feature);
+    if (g != nullptr && OGR_G_GetPointCount(g) > 0) {
+      x = OGR_G_GetX(g, 0);
+      y = OGR_G_GetY(g, 0);
+    }
+    OGR_F_Destroy(feature);
+  }
+  GDALClose(ds);
+  return {count, x, y};
 }
 
 }  // namespace talus::gdal_test

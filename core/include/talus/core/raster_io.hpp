@@ -40,6 +40,7 @@
 
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/georeference.hpp"
+#include "talus/core/types.hpp"
 
 namespace talus {
 
@@ -146,5 +147,11 @@ struct RgbaImage {
 /// InputError for an empty or mis-sized image or a write failure; without
 /// GDAL, always.
 void write_png(const RgbaImage& image, const std::string& path);
+
+/// `points` (x, y in `crs`) as WGS 84 (longitude, latitude) [degrees], in
+/// that order (RFC 7946's), through GDAL's transformation. Throws InputError
+/// when `crs` is unknown, GDAL cannot transform it or a point, or (without
+/// GDAL) always.
+std::vector<Vec2> to_longitude_latitude(const GeoReference& crs, const std::vector<Vec2>& points);
 
 }  // namespace talus

@@ -14,6 +14,7 @@
 
 #include <cstdlib>
 #include <limits>
+#include <memory>
 #include <string>
 
 #include "talus/core/esri_ascii.hpp"
@@ -72,9 +73,10 @@ void BM_FullPlan(benchmark::State& state) {
   double best = std::numeric_limits<double>::infinity(), global_best = best;
   std::size_t evaluations = 0;
   for (auto _ : state) {
-    const talus::BPatch terrain = talus::BPatch::fit_smoothing(dem(), 1.0);
+    const auto terrain =
+        std::make_shared<const talus::BPatch>(talus::BPatch::fit_smoothing(dem(), 1.0));
     const talus::PlannerResult result = talus::plan(
-        talus::PlanningProblem(terrain, rover(), start_point(terrain), goal_point(terrain)),
+        talus::PlanningProblem(terrain, rover(), start_point(*terrain), goal_point(*terrain)),
         options);
     if (result.status != talus::PlannerStatus::kOk) state.SkipWithError("no trajectory");
     best = result.travel_time();

@@ -73,7 +73,7 @@ TerminationReason Termination::check() const {
   return TerminationReason::kNone;
 }
 
-double Termination::time_budget() const {
+double Termination::smallest_budget() const {
   double budget = std::numeric_limits<double>::infinity();
   for (const Condition& c : conditions_) budget = std::min(budget, c.budget);
   return budget;

@@ -176,13 +176,15 @@ void verify(const Problem& p, const BPatch& surface, const PlannerOptions& optio
 
 Run run_plan(const Problem& p, const Configuration& configuration) {
   const PathOptimizerOptions& local = configuration.local;
-  const BPatch& surface = configuration.in_reference() ? *p.surface : *p.quintic_surface;
+  const std::shared_ptr<const BPatch>& shared =
+      configuration.in_reference() ? p.surface : p.quintic_surface;
+  const BPatch& surface = *shared;
   PlannerOptions options;
   options.local = local;
   if (local.formulation == PathFormulation::kSimultaneous && local.station_spacing == 0.0) {
     options.local.station_spacing = search_station_spacing(local, surface, p.vehicle);
   }
-  const PlanningProblem problem(surface, p.vehicle, p.start, p.goal);
+  const PlanningProblem problem(shared, p.vehicle, p.start, p.goal);
   const PlannerResult result = plan(problem, options);
   Run run;
   run.comparable = configuration.in_reference();

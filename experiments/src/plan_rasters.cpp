@@ -77,13 +77,15 @@ std::string plan_geojson(const PlannerResult& result, const GeoReference& crs) {
                       {"length_m", finite_or_null(path.length_m)}}});
   }
   const bool geographic = crs.known() && gdal_available();
+  std::vector<Vec2> shown;
+  for (const Line& line : lines) shown.insert(shown.end(), line.points.begin(), line.points.end());
+  if (geographic) shown = to_longitude_latitude(crs, shown);
   nlohmann::json features = nlohmann::json::array();
+  std::size_t at = 0;  // the line's first point in `shown`
   for (Line& line : lines) {
-    const std::vector<Vec2> shown =
-        geographic ? to_longitude_latitude(crs, line.points) : line.points;
     nlohmann::json coordinates = nlohmann::json::array(), projected = nlohmann::json::array();
-    for (std::size_t k = 0; k < shown.size(); ++k) {
-      nlohmann::json point = {shown[k].x(), shown[k].y()},
+    for (std::size_t k = 0; k < line.points.size(); ++k, ++at) {
+      nlohmann::json point = {shown[at].x(), shown[at].y()},
                      own = {line.points[k].x(), line.points[k].y()};
       if (!line.z.empty()) {
         point.push_back(line.z[k]);

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
-#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -222,13 +221,15 @@ ReferenceTrajectory route_high_level(const IagnemmaOptions& options_, const Vehi
 /// The time-optimal plan's waypoints on the coarse map, the profile's speeds capped at the
 /// waypoint speed; `failure` says why there are none.
 ReferenceTrajectory plan_high_level(const IagnemmaOptions& options_, const Vehicle& vehicle_,
-                                    const RuledTerrain& terrain, const BPatch& fine,
-                                    const SE2Pose& start, const SE2Pose& goal, BaselineResult& out,
+                                    const RuledTerrain& terrain,
+                                    const std::shared_ptr<const BPatch>& fine, const SE2Pose& start,
+                                    const SE2Pose& goal, BaselineResult& out,
                                     std::string& failure) {
-  std::optional<BPatch> coarse;
-  if (options_.coarse_factor > 1)
-    coarse.emplace(BPatch::interpolate(decimate_grid(terrain.grid(), options_.coarse_factor)));
-  PlanningProblem problem(coarse ? *coarse : fine, vehicle_, start.position(), goal.position());
+  const std::shared_ptr<const BPatch> map =
+      options_.coarse_factor == 1 ? fine
+                                  : std::make_shared<const BPatch>(BPatch::interpolate(
+                                        decimate_grid(terrain.grid(), options_.coarse_factor)));
+  PlanningProblem problem(map, vehicle_, start.position(), goal.position());
   problem.start_heading = start.theta;
   PlannerOptions options;
   options.global.threads = 1;  // plan() may run on several threads at once
@@ -262,7 +263,9 @@ BaselineResult IagnemmaBaseline::solve(const RuledTerrain& terrain, const SE2Pos
   out.flags = {
       {"lookahead", options_.lookahead}, {"route_found", false}, {"vehicle_failed", false}};
   const auto t0 = Clock::now();
-  const BPatch surface = BPatch::interpolate(terrain.grid());
+  // Shared: the time-optimal high level plans on it too when coarse-factor is 1.
+  const auto fine = std::make_shared<const BPatch>(BPatch::interpolate(terrain.grid()));
+  const BPatch& surface = *fine;
   const HazardMap hazards(terrain, surface, vehicle_);
   const auto t1 = Clock::now();
   out.preprocessing_seconds = seconds_between(t0, t1);
@@ -283,7 +286,7 @@ BaselineResult IagnemmaBaseline::solve(const RuledTerrain& terrain, const SE2Pos
   std::string no_high_level;
   const ReferenceTrajectory waypoints =
       options_.time_optimal_plan
-          ? plan_high_level(options_, vehicle_, terrain, surface, start, goal, out, no_high_level)
+          ? plan_high_level(options_, vehicle_, terrain, fine, start, goal, out, no_high_level)
           : route_high_level(options_, vehicle_, terrain, hazards, start, goal, out, no_high_level);
   const auto t2 = Clock::now();
   out.stage_seconds["high_level"] = seconds_between(t1, t2);

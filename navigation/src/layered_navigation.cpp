@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <utility>
 
 #include "talus/bspline/bpatch.hpp"
@@ -78,11 +79,13 @@ LayeredNavigationResult navigate_layered(const ElevationGrid& fine, const Vehicl
   vehicle.validate();
   if (!vehicle.body) throw InputError("navigate_layered: the vehicle has no body (mass, ...)");
   const BPatch fine_surface = BPatch::interpolate(fine);
-  const BPatch coarse_surface = BPatch::interpolate(decimate_grid(fine, options.coarse_factor));
+  const auto coarse = std::make_shared<const BPatch>(
+      BPatch::interpolate(decimate_grid(fine, options.coarse_factor)));
+  const BPatch& coarse_surface = *coarse;
   LayeredNavigationResult result;
   const auto started = std::chrono::steady_clock::now();
   const PlannerResult plan_result =
-      plan(PlanningProblem(coarse_surface, vehicle, start, goal), options.planner);
+      plan(PlanningProblem(coarse, vehicle, start, goal), options.planner);
   result.plan_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   result.plan_status = plan_result.status;

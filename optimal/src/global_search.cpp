@@ -16,6 +16,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/graph_search.hpp"
 #include "talus/core/memory_budget.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/admissible_set.hpp"
 
 namespace talus {
@@ -638,10 +639,6 @@ EdgeCost edge_cost(const BPatch& terrain, const Vehicle& vehicle, const Vec2& a,
 }
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 /// One search of one lattice: its result as it grows, and the steps that grow it.
 class LatticeSearch {

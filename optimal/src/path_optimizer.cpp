@@ -14,6 +14,7 @@
 #include "simultaneous_path_solver.hpp"
 #include "talus/bspline/curve_fit.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/optimal/path_time_objective.hpp"
 #include "talus/optimal/trajectory.hpp"
 
@@ -437,10 +438,6 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
 }
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 /// The solvers' box round the fit's variables `start`: half a cell inside the
 /// domain (grown to hold the fit), the heading points pinned, the budgets,

@@ -11,15 +11,10 @@
 #include "talus/bspline/curve_fit.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/stopwatch.hpp"
 
 namespace talus {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string point_text(const Vec2& p) {
   std::ostringstream text;
@@ -522,7 +517,7 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   constexpr const char* kStopMessage = "stopped by the progress callback";
   constexpr const char* kRequestMessage = "stopped by PlannerOptions::termination (stop requested)";
   std::ostringstream limit_text;
-  limit_text << "time limit of " << termination.time_budget() << " s reached";
+  limit_text << "time limit of " << termination.smallest_budget() << " s reached";
 
   if (!keep_going(PlannerStage::kGlobalSearch, 0))
     return finish(PlannerStatus::kStopped, kStopMessage);

@@ -8,6 +8,7 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/bspline/surface_path.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/stopwatch.hpp"
 #include "talus/core/termination.hpp"
 #include "talus/dynamics/admissible_set.hpp"
 #include "talus/dynamics/wheel_contact.hpp"
@@ -16,10 +17,6 @@
 
 namespace talus {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 std::shared_ptr<const BPatch> fit(const RuledTerrain& terrain, double smoothing) {
   return std::make_shared<const BPatch>(smoothing > 0.0
@@ -64,23 +61,18 @@ BaselineStatus status_of(PlannerStatus status) {
   return BaselineStatus::kNoPath;
 }
 
-/// The best trajectory's stations as poses, heading = the planar tangent.
-void fill_path(const Trajectory& best, BaselineResult& r) {
+/// The best trajectory's stations as poses (heading = the planar tangent), the query's own
+/// poses at the ends (the local stage pins the positions and headings; the stations' tangents
+/// agree to rounding), and their planar length.
+void fill_path(const Trajectory& best, const SE2Pose& start, const SE2Pose& goal,
+               BaselineResult& r) {
   const VelocityLimits& limits = *best.limits;
   for (std::size_t k = 0; k < limits.size(); ++k) {
     const PathFrame& f = limits.frame(k);
-    const SE2Pose pose{f.point.x(), f.point.y(), std::atan2(f.tangent.y(), f.tangent.x())};
-    if (!r.path.empty()) r.length_m += (pose.position() - r.path.back().position()).norm();
-    r.path.push_back(pose);
+    r.path.push_back({f.point.x(), f.point.y(), std::atan2(f.tangent.y(), f.tangent.x())});
   }
-}
-
-/// The query's own poses at the ends (the local stage pins the positions and headings; the
-/// stations' tangents agree to rounding).
-void pin_ends(const SE2Pose& start, const SE2Pose& goal, BaselineResult& r) {
   r.path.front() = start;
   r.path.back() = goal;
-  r.length_m = 0.0;
   for (std::size_t k = 1; k < r.path.size(); ++k)
     r.length_m += (r.path[k].position() - r.path[k - 1].position()).norm();
 }
@@ -169,7 +161,7 @@ BaselineResult TalusPlanner::solve(const RuledTerrain& terrain, const SE2Pose& s
   if (!pass_check(terrain, *surface, set, vehicle_.max_speed, goal).valid)
     return finish(BaselineStatus::kGoalInvalid, "the vehicle cannot pass the goal's pose");
 
-  PlanningProblem problem(*surface, vehicle_, start.position(), goal.position());
+  PlanningProblem problem(surface, vehicle_, start.position(), goal.position());
   problem.start_heading = start.theta;
   problem.goal_heading = goal.theta;
   PlannerOptions options;
@@ -189,8 +181,7 @@ BaselineResult TalusPlanner::solve(const RuledTerrain& terrain, const SE2Pose& s
   if (status != BaselineStatus::kFound) {
     return finish(status, std::string(to_string(planned.status)) + ": " + planned.message);
   }
-  fill_path(*planned.best(), r);
-  pin_ends(start, goal, r);
+  fill_path(*planned.best(), start, goal, r);
   return finish(status, "travel time " + std::to_string(planned.travel_time()) + " s");
 }
 

@@ -362,7 +362,7 @@ void bind_planner(py::module_& m) {
       .def_readwrite("optimize", &PlannerOptions::optimize)
       .def_readwrite("station_spacing", &PlannerOptions::station_spacing)
       .def_property(
-          "time_limit", [](const PlannerOptions& o) { return o.termination.time_budget(); },
+          "time_limit", [](const PlannerOptions& o) { return o.termination.smallest_budget(); },
           [](PlannerOptions& o, double seconds) {
             o.termination = Termination::time_budget(seconds);
           },

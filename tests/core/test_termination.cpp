@@ -16,7 +16,7 @@ TEST(Termination, TheDefaultNeverHolds) {
   const Termination never;
   EXPECT_TRUE(never.never());
   EXPECT_EQ(never.start().check(), TerminationReason::kNone);
-  EXPECT_EQ(never.time_budget(), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(never.smallest_budget(), std::numeric_limits<double>::infinity());
   EXPECT_EQ(never.remaining(), std::numeric_limits<double>::infinity());
   EXPECT_TRUE(Termination::time_budget(std::numeric_limits<double>::infinity()).never());
   EXPECT_TRUE(Termination::when({}).never());
@@ -25,7 +25,7 @@ TEST(Termination, TheDefaultNeverHolds) {
 TEST(Termination, ABudgetHoldsFromItsDeadlineOnAndOnlyOnceArmed) {
   double now = 100.0;
   const Termination budget = Termination::time_budget(2.0, [&now] { return now; });
-  EXPECT_EQ(budget.time_budget(), 2.0);
+  EXPECT_EQ(budget.smallest_budget(), 2.0);
   now = 1e9;
   EXPECT_EQ(budget.check(), TerminationReason::kNone);  // not armed: options do not age
   now = 100.0;
@@ -60,7 +60,7 @@ TEST(Termination, CombinedConditionsHoldWhenEitherDoesAndNameTheFirst) {
   // Two budgets: the smaller is "the time limit" and the earlier deadline.
   const Termination two = Termination::time_budget(7.0, [&now] { return now; }) |
                           Termination::time_budget(3.0, [&now] { return now; });
-  EXPECT_EQ(two.time_budget(), 3.0);
+  EXPECT_EQ(two.smallest_budget(), 3.0);
   now = 0.0;
   EXPECT_EQ(two.start().remaining(), 3.0);
 }

@@ -55,7 +55,7 @@ class Termination {
   bool should_stop() const { return check() != TerminationReason::kNone; }
   /// The smallest time budget [s] (+inf when there is none): what a report
   /// or an echo of the options calls "the time limit".
-  double time_budget() const;
+  double smallest_budget() const;
   /// Seconds left to the earliest armed deadline (+inf when none is armed;
   /// may be negative once passed).
   double remaining() const;

@@ -87,10 +87,11 @@ struct PlanningProblem {
   PlanningProblem(std::shared_ptr<const BPatch> terrain, Vehicle model, const Vec2& from,
                   const Vec2& to)
       : surface(std::move(terrain)), vehicle(std::move(model)), start(from), goal(to) {}
-  /// Copies `terrain` into a shared surface (its control points: pass a
-  /// shared_ptr to share one without the copy).
-  PlanningProblem(const BPatch& terrain, Vehicle model, const Vec2& from, const Vec2& to)
-      : PlanningProblem(std::make_shared<const BPatch>(terrain), std::move(model), from, to) {}
+  /// Takes `terrain` into a shared surface: a temporary is moved, a named
+  /// surface copied (pass a shared_ptr to share one without the copy).
+  PlanningProblem(BPatch terrain, Vehicle model, const Vec2& from, const Vec2& to)
+      : PlanningProblem(std::make_shared<const BPatch>(std::move(terrain)), std::move(model), from,
+                        to) {}
   /// The fitted surface; the trajectories of a result refer to it and keep it
   /// alive (PlannerResult::surface and each trajectory's path).
   std::shared_ptr<const BPatch> surface;

@@ -13,6 +13,7 @@
 #include "experiment.hpp"
 #include "limits_command.hpp"
 #include "navigate_command.hpp"
+#include "parameter_options.hpp"
 #include "placement_command.hpp"
 #include "plan_command.hpp"
 #include "profile_command.hpp"
@@ -25,6 +26,7 @@
 #include "talus/core/output_folder.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
+#include "talus/optimal/planner_parameters.hpp"
 #include "talus/planners/planner_registry.hpp"
 #include "terrain_commands.hpp"
 #include "terrain_input.hpp"
@@ -479,21 +481,7 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "lattice search only")
       ->capture_default_str()
       ->check(CLI::IsMember({std::string(ex::kPlanStageFull), std::string(ex::kPlanStageGlobal)}));
-  plan->add_option("--candidates", plan_request.candidates,
-                   "distinct candidate corridors wanted (>= 1; fewer when no other corridor "
-                   "costs at most twice the best)")
-      ->capture_default_str();
-  plan->add_option("--lattice-spacing", plan_request.lattice_spacing,
-                   "lattice node spacing [m]; 0 = the terrain's cell size")
-      ->capture_default_str();
-  plan->add_option("--station-spacing", plan_request.station_spacing,
-                   "station spacing of the final profiles [m]; 0 = max(cell size, the vehicle's "
-                   "half_track) / 10 (0.1 m at 1 m cells for the rover, 1.5 km on 15 km cells); at "
-                   "least 0.001 m otherwise")
-      ->capture_default_str();
-  plan->add_option("--connectivity", plan_request.connectivity,
-                   "neighbours per lattice node: 8, 16 or 32")
-      ->capture_default_str();
+  ex::add_parameter_options(*plan, talus::planner_parameters(), plan_request.planner);
   plan->add_option("--smoothing", plan_request.smoothing,
                    "curvature weight lambda > 0 of the smoothing fit; without it the surface "
                    "interpolates every node");
@@ -502,71 +490,6 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "curvature with continuous derivatives, so the simultaneous NLP and --polish "
                    "converge far more often on rough ground; not with --smoothing)")
       ->capture_default_str();
-  plan->add_option("--control-points", plan_request.control_points,
-                   "control points of each optimised clamped cubic (4 to 64; start and goal "
-                   "fixed), --stage full")
-      ->capture_default_str();
-  plan->add_option("--more-control-points", plan_request.more_control_points,
-                   "--stage full: further starts of each candidate's local stage from fits with "
-                   "these control-point counts (comma-separated, each 4 to 64; 0 = none), the "
-                   "fastest kept; optima[].attempts[].control_points says which fit each solve "
-                   "started from")
-      ->delimiter(',')
-      ->capture_default_str();
-  plan->add_option("--solver", plan_request.solver,
-                   "local solver, --stage full: ipopt (interior point, exact gradient), "
-                   "nlopt-lbfgs (exact gradient) or nlopt-bobyqa (derivative-free); nested "
-                   "formulation only")
-      ->capture_default_str();
-  plan->add_option("--formulation", plan_request.formulation,
-                   "local stage, --stage full: nested (the travel time of the exact profile as a "
-                   "function of the control points) or simultaneous (direct transcription: "
-                   "control points and squared speeds in one smooth NLP, Ipopt; the reported "
-                   "time is still the exact profile's)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({std::string("nested"), std::string("simultaneous")}));
-  plan->add_option("--restarts", plan_request.restarts,
-                   "--stage full: restarts of a candidate's local optimisation when it ends "
-                   "without converging (an iteration or evaluation cap): the first from its best "
-                   "point with fresh solver state, the others from that point perturbed "
-                   "laterally by two cells (seeded); optima[].attempts lists every solve with "
-                   "its status")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 100));
-  plan->add_flag("--polish", plan_request.polish,
-                 "--stage full, nested formulation: polish each candidate's optimum with the "
-                 "simultaneous NLP in lateral offsets, which converges by Ipopt's own status "
-                 "where the nested objective's kinks stop the solver on a cap "
-                 "(optima[].attempts lists it as start polish; it costs about 0.3-2 s per "
-                 "candidate and start on the fractal battery)");
-  plan->add_option("--resolution", plan_request.resolution,
-                   "global search: full (every lattice node) or multi (a coarse lattice 4x "
-                   "coarser, then the fine lattice in a corridor around its candidates, widened "
-                   "while needed; no fields.csv)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({std::string("full"), std::string("multi")}));
-  plan->add_option("--threads", plan_request.threads,
-                   "threads computing the global search's edge costs (0 = one per hardware "
-                   "thread); the plan is the same for any count")
-      ->capture_default_str();
-  plan->add_option("--time-limit", plan_request.time_limit,
-                   "wall-clock budget of the plan [s] (> 0; default none): returns the best "
-                   "feasible trajectory so far with status time_limit");
-  plan->add_option("--feedback-rounds", plan_request.feedback_rounds,
-                   "--stage full: how many times the global search may be re-run with the "
-                   "stretches excluded where a candidate's initial fit has no admissible profile "
-                   "(a disc of two lattice spacings round the failing station; 0 = off); "
-                   "summary: feedback_rounds, excluded_regions, optima[].followable")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1000));
-  plan->add_flag("!--no-braking-rule", plan_request.braking_rule,
-                 "global search: keep the lattice edges on which the vehicle could not brake at "
-                 "any speed (by default they are untraversable); the feedback loop then removes "
-                 "those no profile drives. For studying the rule and the loop");
-  plan->add_flag("!--no-turn-limit", plan_request.turn_limit,
-                 "global search: let the lattice's routes turn more sharply than the vehicle's "
-                 "steering limit (max_steering) realises between two edges; the local stage still "
-                 "keeps it. Position-only search, connectivity + 1 times fewer states");
   plan->add_option("--v0", plan_request.start_speed, "speed at the start [m/s], >= 0, --stage full")
       ->capture_default_str();
   plan->add_option("--v1", plan_request.end_speed, "speed at the goal [m/s], >= 0, --stage full")

@@ -24,6 +24,7 @@
 #include "talus/dynamics/limit_summary.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/optimal/planner.hpp"
+#include "talus/optimal/planner_parameters.hpp"
 #include "talus/report/plan_figures.hpp"
 #include "talus/report/plot.hpp"
 #include "terrain_input.hpp"
@@ -39,31 +40,11 @@ nlohmann::json point_json(const Vec2& p) {
   return nlohmann::json::array({p.x(), p.y()});
 }
 
-/// Option checks that need no file.
+/// Checks of the request's own options (the planner's are checked by their
+/// table as they are set, and again by PlannerOptions::validate()).
 void check_plan_options(const PlanRequest& request) {
   if (request.stage != kPlanStageGlobal && request.stage != kPlanStageFull) {
     throw InputError("--stage must be full or global, got " + request.stage);
-  }
-  try {
-    parse_path_solver(request.solver);
-  } catch (const InputError& e) {
-    throw InputError(std::string("--solver: ") + e.what());
-  }
-  try {
-    parse_path_formulation(request.formulation);
-  } catch (const InputError& e) {
-    throw InputError(std::string("--formulation: ") + e.what());
-  }
-  if (request.control_points < 4 || request.control_points > kMaxPlanControlPoints) {
-    throw InputError("--control-points must be in [4, " + std::to_string(kMaxPlanControlPoints) +
-                     "], got " + std::to_string(request.control_points));
-  }
-  const bool none = request.more_control_points == std::vector<long long>{0};
-  for (const long long m : none ? std::vector<long long>{} : request.more_control_points) {
-    if (m < 4 || m > kMaxPlanControlPoints)
-      throw InputError("--more-control-points must each be in [4, " +
-                       std::to_string(kMaxPlanControlPoints) + "] (or a single 0 for none), got " +
-                       std::to_string(m));
   }
   for (const auto& [option, speed] :
        {std::pair{"--v0", request.start_speed}, std::pair{"--v1", request.end_speed}}) {
@@ -79,37 +60,7 @@ void check_plan_options(const PlanRequest& request) {
                        format_number(*heading));
     }
   }
-  if (request.candidates < 1) {
-    throw InputError("--candidates must be at least 1, got " + std::to_string(request.candidates));
-  }
-  if (!(std::isfinite(request.lattice_spacing) && request.lattice_spacing >= 0.0)) {
-    throw InputError(
-        "--lattice-spacing must be a finite number >= 0 [m] (0 = the terrain's "
-        "cell size), got " +
-        format_number(request.lattice_spacing));
-  }
-  if (!(std::isfinite(request.station_spacing) && request.station_spacing >= 0.0)) {
-    throw InputError(
-        "--station-spacing must be a finite number >= 0 [m] (0 = max(cell size, half-track) / "
-        "10), got " +
-        format_number(request.station_spacing));
-  }
-  if (request.threads < 0 || request.threads > 1024)
-    throw InputError("--threads must be 0 (one per hardware thread) to 1024, got " +
-                     std::to_string(request.threads));
-  if (request.connectivity != 8 && request.connectivity != 16 && request.connectivity != 32) {
-    throw InputError("--connectivity must be 8, 16 or 32, got " +
-                     std::to_string(request.connectivity));
-  }
-  try {
-    parse_global_search_resolution(request.resolution);
-  } catch (const InputError& e) {
-    throw InputError(std::string("--resolution: ") + e.what());
-  }
-  if (!(request.time_limit > 0.0)) {
-    throw InputError("--time-limit must be a number of seconds > 0, got " +
-                     format_number(request.time_limit));
-  }
+  planner_parameters().check(request.planner, ParameterSpelling::kCli);
   if (request.smoothing && !(std::isfinite(*request.smoothing) && *request.smoothing > 0.0)) {
     throw InputError("--smoothing must be a positive finite number (lambda), got " +
                      format_number(*request.smoothing));
@@ -346,7 +297,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
 
   nlohmann::json optima = nlohmann::json::array();
   for (const CandidateOutcome& c : result.candidates) {
-    optima.push_back(optimum_json(c, request.solver));
+    optima.push_back(optimum_json(c, std::string(to_string(options.local.solver))));
   }
   if (result.status == PlannerStatus::kInfeasible) {
     summary["status"] = "infeasible";
@@ -388,16 +339,14 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   summary["switching_points"] =
       best ? nlohmann::json(best->profile.switching_points.size()) : nullptr;
   summary["optima"] = std::move(optima);
-  summary["solver"] = request.solver;
-  summary["formulation"] = request.formulation;
-  summary["restarts"] = request.restarts;
-  summary["polish"] = request.polish;
+  // The local stage's entries of the echo that summary.json has always had at its top level.
+  for (const char* key :
+       {"solver", "formulation", "restarts", "polish", "control_points", "more_control_points"})
+    summary[key] = summary.at("options").at(key);
   summary["optimality_note"] =
       "optima[].optimality: largest projected-gradient component of the travel time at the "
       "returned path [s/m], from the adjoint gradient (for every solver); the travel time is "
       "piecewise smooth, so a local optimum can sit on a kink with a non-zero value";
-  summary["control_points"] = request.control_points;
-  summary["more_control_points"] = options.local.more_control_points;
   summary["start_speed"] = request.start_speed;
   summary["end_speed"] = request.end_speed;
   summary["start_heading"] =
@@ -422,29 +371,9 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
 
 /// The request's options as the library planner's.
 PlannerOptions planner_options(const PlanRequest& request) {
-  PlannerOptions options;
-  options.global.lattice_spacing = request.lattice_spacing;
-  options.station_spacing = request.station_spacing;
-  options.global.connectivity = request.connectivity;
-  options.global.candidates = static_cast<std::size_t>(request.candidates);
+  PlannerOptions options = request.planner;
   options.global.cost_fields = true;  // fields.csv
-  options.global.resolution = parse_global_search_resolution(request.resolution);
-  options.global.threads = static_cast<std::size_t>(request.threads);
-  options.global.braking_rule = request.braking_rule;
-  options.global.turn_limit = request.turn_limit;
-  options.termination = Termination::time_budget(request.time_limit);
-  options.feedback_rounds = static_cast<std::size_t>(request.feedback_rounds);
   options.optimize = request.stage == kPlanStageFull;
-  options.local.solver = parse_path_solver(request.solver);
-  options.local.formulation = parse_path_formulation(request.formulation);
-  options.local.restarts = static_cast<std::size_t>(request.restarts);
-  options.local.polish = request.polish;
-  options.local.control_points = static_cast<std::size_t>(request.control_points);
-  options.local.more_control_points.clear();
-  for (const long long m : request.more_control_points)
-    if (m != 0) options.local.more_control_points.push_back(static_cast<std::size_t>(m));
-  options.local.max_control_points =
-      std::max(options.local.max_control_points, options.local.control_points);
   return options;
 }
 
@@ -566,8 +495,6 @@ PlanOutcome plan(const PlanRequest& request) {
   summary["message"] = time_limited ? nlohmann::json(planned.message)
                        : reachable  ? nlohmann::json(nullptr)
                                     : nlohmann::json(result.message);
-  summary["time_limit"] = finite_or_null(request.time_limit);
-  summary["resolution"] = request.resolution;
   summary["coarse_nodes"] = result.coarse_nodes;
   summary["corridor_widenings"] = result.corridor_widenings;
   summary["stage"] = request.stage;
@@ -577,16 +504,13 @@ PlanOutcome plan(const PlanRequest& request) {
                                ? nlohmann::json(nullptr)
                                : nlohmann::json(result.candidates.front().cost_seconds);
   summary["candidates"] = std::move(candidates);
-  summary["candidates_requested"] = request.candidates;
+  summary["candidates_requested"] = options.global.candidates;
   summary["start"] = point_json(start);
   summary["goal"] = point_json(goal);
   summary["start_node"] = point_json(result.start_node);
   summary["goal_node"] = point_json(result.goal_node);
   summary["lattice_spacing"] = result.spacing;
   summary["lattice"] = nlohmann::json::array({result.nx, result.ny});
-  summary["connectivity"] = request.connectivity;
-  summary["braking_rule"] = request.braking_rule;
-  summary["turn_limit"] = request.turn_limit;
   summary["turn_limit_relaxed"] = result.turn_limit_relaxed;
   summary["search_message"] = result.message;
   summary["nodes"] = result.nodes;
@@ -607,6 +531,10 @@ PlanOutcome plan(const PlanRequest& request) {
       {"geojson",
        request.rasters ? nlohmann::json(out.final_path("trajectory.geojson").string()) : nullptr},
       {"summary", summary_file}};
+  summary["options"] = parameters_json(planner_parameters(), options);
+  // The global stage's entries of the echo that summary.json has always had at its top level.
+  for (const char* key : {"time_limit", "resolution", "connectivity", "braking_rule", "turn_limit"})
+    summary[key] = summary["options"].at(key);
   summary["fit_seconds"] = fit_seconds;
   summary["search_seconds"] = result.search_seconds;
   if (request.stage == kPlanStageGlobal) {

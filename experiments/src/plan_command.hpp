@@ -21,11 +21,10 @@
 namespace talus::experiments {
 
 /// `talus plan --terrain T.asc --start X,Y --goal X,Y --vehicle V.yaml
-/// [--stage full|global] [--candidates K] [--lattice-spacing M] [--connectivity C]
-/// [--smoothing LAMBDA | --surface-degree 5] [--control-points M] [--more-control-points M2,...]
-/// [--solver ipopt|nlopt-lbfgs|nlopt-bobyqa] [--formulation nested|simultaneous]
-/// [--restarts R] [--polish] [--v0 A]
-/// [--v1 B] [--time-limit SECONDS] [--resolution full|multi] [--threads N] --out DIR`.
+/// [--stage full|global] [--smoothing LAMBDA | --surface-degree 5]
+/// [--v0 A] [--v1 B] [--start-heading H] [--goal-heading H] [PLANNER OPTIONS] --out DIR`,
+/// the planner options being those of talus::planner_parameters()
+/// (planner_parameters.hpp), generated from its table.
 struct PlanRequest {
   std::string terrain;             ///< DEM (load_terrain)
   std::string reproject = "none";  ///< --reproject: none | auto (load_terrain)
@@ -33,42 +32,16 @@ struct PlanRequest {
   std::string vehicle;             ///< vehicle YAML/JSON (load_vehicle); needs a finite max_speed
   std::string start;               ///< "X,Y" in the terrain's frame [m] (parse_point)
   std::string goal;                ///< "X,Y" [m]
-  std::string stage = "full";      ///< "full" or "global"
+  std::string stage = "full";      ///< "full" or "global" (PlannerOptions::optimize)
   std::string output_dir;          ///< --out: created if needed
-  long long candidates = 3;        ///< distinct candidates wanted (>= 1)
-  double lattice_spacing = 0.0;    ///< [m]; 0 = the terrain's cell size
-  /// Final profile's station spacing [m]; 0 = default_station_spacing(surface, vehicle).
-  double station_spacing = 0.0;
-  int connectivity = 16;  ///< 8, 16 or 32
-  /// The global search's GlobalSearchOptions::resolution: "full" or "multi".
-  std::string resolution = "full";
-  /// GlobalSearchOptions::threads: threads computing the lattice's edge
-  /// costs (0 = one per hardware thread); the plan is the same for any count.
-  long long threads = 1;
-  /// The plan's time budget (PlannerOptions::termination) [s] (> 0; +inf = none).
-  double time_limit = std::numeric_limits<double>::infinity();
-  /// PlannerOptions::feedback_rounds (>= 0).
-  int feedback_rounds = 8;
-  /// GlobalSearchOptions::braking_rule (false: --no-braking-rule).
-  bool braking_rule = true;
-  /// GlobalSearchOptions::turn_limit (false: --no-turn-limit).
-  bool turn_limit = true;
+  /// The planner's options as planner_parameters() sets them (the CLI's
+  /// defaults are the library's); `optimize` follows `stage` and the
+  /// global search always computes the cost fields (fields.csv).
+  PlannerOptions planner;
   /// lambda of the smoothing fit; none = interpolating fit.
   std::optional<double> smoothing;
   /// Degree of the interpolating B-patch: 3 (bicubic) or 5 (biquintic, no smoothing).
   int surface_degree = 3;
-  // The local stage (--stage full only).
-  /// Of each optimised clamped cubic (4 to 64; PathOptimizerOptions's default).
-  long long control_points = static_cast<long long>(PathOptimizerOptions{}.control_points);
-  /// PathOptimizerOptions::more_control_points (each 4 to 64; its default,
-  /// none); a single 0 = none.
-  std::vector<long long> more_control_points = {};
-  std::string solver = "ipopt";  ///< ipopt, nlopt-lbfgs or nlopt-bobyqa (parse_path_solver)
-  /// nested or simultaneous (parse_path_formulation; PathOptimizerOptions::formulation).
-  std::string formulation = "nested";
-  /// PathOptimizerOptions::restarts (>= 0) after an optimisation that does not converge.
-  int restarts = static_cast<int>(PathOptimizerOptions{}.restarts);
-  bool polish = false;                  ///< --polish: PathOptimizerOptions::polish
   double start_speed = 0.0;             ///< --v0 [m/s] (finite, >= 0, <= max_speed)
   double end_speed = 0.0;               ///< --v1 [m/s]
   std::optional<double> start_heading;  ///< --start-heading [rad] (finite)
@@ -82,9 +55,6 @@ struct PlanRequest {
 /// The stages `--stage` accepts.
 inline constexpr const char* kPlanStageGlobal = "global";
 inline constexpr const char* kPlanStageFull = "full";
-
-/// Largest --control-points accepted.
-inline constexpr long long kMaxPlanControlPoints = 64;
 
 /// At most about this many rows per candidate in DIR/optima.csv.
 inline constexpr std::size_t kMaxOptimaRows = 2000;
@@ -135,7 +105,8 @@ struct PlanOutcome {
 /// expanded, reachable_nodes, search_seconds, start_node and goal_node ([x, y]
 /// of the snapped lattice nodes), start, goal, lattice_spacing, lattice
 /// ([nx, ny]), connectivity, candidates_requested, stage, fit, surface_degree, smoothing,
-/// vehicle_max_speed, files, fit_seconds and seconds.
+/// vehicle_max_speed, files, fit_seconds, seconds and `options`: every
+/// planner parameter's value by its name (planner_parameters(), generated).
 ///
 /// With --stage full, each candidate (its first and last vertices replaced by
 /// the exact start and goal) is optimised with optimize_path (--solver, M control

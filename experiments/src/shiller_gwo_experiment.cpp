@@ -13,6 +13,7 @@
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/terrain_generators.hpp"
 #include "talus/optimal/local_stage_summary.hpp"
+#include "talus/optimal/planner_parameters.hpp"
 #include "talus/report/figure.hpp"
 #include "talus/report/number_format.hpp"
 #include "talus/report/plot.hpp"
@@ -87,10 +88,11 @@ Run run_plan(const Case& c, const std::string& vehicle, const std::string& solve
   request.vehicle = vehicle;
   request.start = c.start;
   request.goal = c.goal;
-  request.candidates = candidates;
+  const ParameterTable<PlannerOptions>& parameters = planner_parameters();
+  parameters.set(request.planner, "candidates", candidates);
   request.smoothing = 1.0;  // DEM striping and fBm roughness: see global-search
-  request.solver = solver;
-  request.control_points = control_points;
+  parameters.set(request.planner, "solver", solver);
+  parameters.set(request.planner, "control_points", control_points);
   request.output_dir = dir.string();
   return {c.name, solver, control_points, plan(request)};
 }

@@ -1,4 +1,5 @@
 #include "talus/optimal/planner.hpp"
+#include "talus/optimal/planner_parameters.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -187,6 +188,7 @@ std::string_view to_string(PlannerStatus status) {
 }
 
 void PlannerOptions::validate() const {
+  planner_parameters().check(*this);  // the declared bounds, named by field
   global.validate();
   local.validate();
   require_station_spacing(station_spacing, "PlannerOptions.station_spacing");

@@ -15,9 +15,11 @@
 #include <pybind11/functional.h>
 
 #include "bindings.hpp"
+#include "parameter_bindings.hpp"
 #include "talus/optimal/global_search.hpp"
 #include "talus/optimal/path_optimizer.hpp"
 #include "talus/optimal/planner.hpp"
+#include "talus/optimal/planner_parameters.hpp"
 #include "talus/optimal/time_optimal_profile.hpp"
 #include "talus/optimal/trajectory.hpp"
 
@@ -353,24 +355,35 @@ void bind_planner(py::module_& m) {
       .def_readonly("candidates", &PlannerProgress::candidates)
       .def_readonly("seconds", &PlannerProgress::seconds);
 
-  py::class_<PlannerOptions>(m, "PlannerOptions",
-                             "Options of plan() (talus::PlannerOptions); `global_search` is "
-                             "C++'s `global` (a Python keyword).")
-      .def(py::init<>())
+  py::class_<PlannerOptions> options(
+      m, "PlannerOptions",
+      "Options of plan() (talus::PlannerOptions). PlannerOptions(**kwargs) sets any of "
+      "planner_parameters() by name (the same names, bounds and documentation as `talus plan`'s "
+      "options), and each is an attribute; `global_search` is C++'s `global` (a Python "
+      "keyword).");
+  options
+      .def(py::init([](const py::kwargs& kwargs) {
+             PlannerOptions o;
+             for (const auto& [key, value] : kwargs)
+               set_parameter(planner_parameters(), o, key.cast<std::string>(), value);
+             return o;
+           }),
+           "PlannerOptions(**kwargs): the defaults, with the named planner_parameters() set")
       .def_readwrite("global_search", &PlannerOptions::global)
       .def_readwrite("local", &PlannerOptions::local)
       .def_readwrite("optimize", &PlannerOptions::optimize)
-      .def_readwrite("station_spacing", &PlannerOptions::station_spacing)
-      .def_property(
-          "time_limit", [](const PlannerOptions& o) { return o.termination.smallest_budget(); },
-          [](PlannerOptions& o, double seconds) {
-            o.termination = Termination::time_budget(seconds);
-          },
-          "[s] (> 0; inf = none): the best trajectory so far, status TIME_LIMIT (sets the "
-          "options' termination to this time budget)")
       .def_readwrite("progress", &PlannerOptions::progress,
                      "None, or a callable(PlannerProgress) -> bool; False stops the plan")
+      .def(
+          "parameters",
+          [](const PlannerOptions& o) { return parameter_values(planner_parameters(), o); },
+          "{name: value} of every planner parameter (as summary.json's `options`)")
       .def("validate", &PlannerOptions::validate);
+  add_parameter_attributes(options, planner_parameters());
+  m.def(
+      "planner_parameters", [] { return describe_parameters(planner_parameters()); },
+      "The declared planner parameters: [{name, kind, doc, default, lower, upper, choices, "
+      "cli}], as talus/optimal/planner_parameters.hpp declares them");
 
   py::enum_<PlannerStatus>(m, "PlannerStatus")
       .value("OK", PlannerStatus::kOk)

@@ -147,3 +147,27 @@ def test_start_and_goal_headings_are_kept(rover):
     problem.start_heading = float("nan")
     with pytest.raises(talus.InputError):
         talus.plan(problem, options)
+
+
+def test_planner_options_are_generated_from_the_declared_table():
+    described = {p["name"]: p for p in talus.planner_parameters()}
+    assert {"candidates", "connectivity", "time_limit", "solver", "more_control_points"} <= set(described)
+    assert described["connectivity"]["choices"] == [8, 16, 32]
+    assert described["braking_rule"]["cli"] == "--no-braking-rule"
+    options = talus.PlannerOptions(candidates=2, connectivity=32, solver="nlopt-lbfgs",
+                                   time_limit=5, more_control_points=[8, 24], polish=True)
+    # The attributes are the nested C++ members, so both views agree.
+    assert options.global_search.candidates == 2 and options.candidates == 2
+    assert options.global_search.connectivity == 32
+    assert options.time_limit == 5.0
+    assert options.more_control_points == [8, 24]
+    assert options.parameters()["solver"] == "nlopt-lbfgs"
+    defaults = talus.PlannerOptions().parameters()
+    assert all(defaults[name] == p["default"] for name, p in described.items())
+    with pytest.raises(ValueError, match="connectivity must be 8, 16 or 32, got 12"):
+        options.connectivity = 12
+    with pytest.raises(ValueError, match=r"candidates must be an integer in \[1, 1000\], got 2.5"):
+        talus.PlannerOptions(candidates=2.5)
+    with pytest.raises(ValueError, match="has no parameter 'colour'"):
+        talus.PlannerOptions(colour=1)
+    assert options.connectivity == 32

@@ -192,11 +192,6 @@ void PlannerOptions::validate() const {
   global.validate();
   local.validate();
   require_station_spacing(station_spacing, "PlannerOptions.station_spacing");
-  if (!(std::isfinite(feedback_radius) && feedback_radius >= 0.0)) {
-    throw InputError(
-        "PlannerOptions.feedback_radius must be a finite number >= 0 [m] (0 = two lattice "
-        "spacings)");
-  }
 }
 
 const Trajectory* PlannerResult::best() const {

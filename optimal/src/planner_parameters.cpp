@@ -71,6 +71,10 @@ std::vector<Parameter<Options>> planner_level() {
           "candidate's initial fit has no admissible profile (a disc round the failing "
           "station; 0 = off)"),
       real_parameter<Options>(
+          "feedback_radius", [](auto& o) -> auto& { return o.feedback_radius; }, 0.0, kInfinity,
+          "radius of each stretch the feedback rounds exclude when first excluded [m] (it doubles "
+          "each round a failure falls inside it again); 0 = two lattice spacings"),
+      real_parameter<Options>(
           "station_spacing", [](auto& o) -> auto& { return o.station_spacing; }, 0.0, kInfinity,
           "station spacing of the final profiles [m]; 0 = max(cell size, the vehicle's "
           "half_track) / 10 (0.1 m at 1 m cells for the rover); at least 0.001 m otherwise"),

@@ -171,3 +171,25 @@ def test_planner_options_are_generated_from_the_declared_table():
     with pytest.raises(ValueError, match="has no parameter 'colour'"):
         talus.PlannerOptions(colour=1)
     assert options.connectivity == 32
+
+
+def test_every_front_end_shows_the_same_declared_parameters(cli, west_bijou, rover, tmp_path):
+    described = {p["name"]: p for p in talus.planner_parameters()}
+    code, help_text, err = cli("plan", "--help")
+    assert code == 0, err
+    for p in described.values():
+        assert p["cli"] in help_text, p["cli"]
+    # A parameter given on the command line is applied and echoed under `options`
+    # with every other parameter, each equal to what Python's PlannerOptions holds.
+    out = tmp_path / "plan"
+    code, stdout, err = cli("plan", "--terrain", west_bijou, "--vehicle", rover,
+                            "--start", ",".join(map(number_text, START)),
+                            "--goal", ",".join(map(number_text, GOAL)), "--stage", "global",
+                            "--feedback-radius", 75, "--connectivity", 8, "--no-turn-limit",
+                            "--out", out)
+    assert code == 0, err
+    echoed = json.loads(stdout)["options"]
+    expected = talus.PlannerOptions(feedback_radius=75.0, connectivity=8,
+                                    turn_limit=False).parameters()
+    expected["time_limit"] = None  # JSON has no inf
+    assert echoed == expected

@@ -23,6 +23,7 @@ TEST(PlannerParameters, EachParameterSetsItsMember) {
   t.set_text(o, "braking_rule", "false");
   t.set_text(o, "turn_limit", "false");
   t.set_text(o, "feedback_rounds", "2");
+  t.set_text(o, "feedback_radius", "1.5");
   t.set_text(o, "station_spacing", "0.05");
   t.set_text(o, "time_limit", "3");
   t.set_text(o, "control_points", "56");
@@ -39,6 +40,7 @@ TEST(PlannerParameters, EachParameterSetsItsMember) {
   EXPECT_FALSE(o.global.braking_rule);
   EXPECT_FALSE(o.global.turn_limit);
   EXPECT_EQ(o.feedback_rounds, 2u);
+  EXPECT_EQ(o.feedback_radius, 1.5);
   EXPECT_EQ(o.station_spacing, 0.05);
   EXPECT_EQ(o.termination.smallest_budget(), 3.0);
   EXPECT_EQ(o.local.control_points, 56u);

@@ -80,13 +80,15 @@ BPatch::BPatch(const ElevationGrid& grid, Eigen::MatrixXd control, int degree)
       h_(grid.cellsize()),
       inverse_h_(1.0 / grid.cellsize()),
       x_min_(grid.x_min()),
-      y_min_(grid.y_min()),
-      control_(std::move(control)),
-      cell_on_data_((grid.ncols() - 1) * (grid.nrows() - 1), 1) {
+      y_min_(grid.y_min()) {
+  auto data = std::make_shared<Coefficients>();
+  data->control = std::move(control);
+  data->cell_on_data.assign((ncols_ - 1) * (nrows_ - 1), 1);
   for (std::size_t j = 0; j + 1 < nrows_; ++j)
     for (std::size_t i = 0; i + 1 < ncols_; ++i)
-      cell_on_data_[j * (ncols_ - 1) + i] = grid.valid(i, j) && grid.valid(i + 1, j) &&
-                                            grid.valid(i, j + 1) && grid.valid(i + 1, j + 1);
+      data->cell_on_data[j * (ncols_ - 1) + i] = grid.valid(i, j) && grid.valid(i + 1, j) &&
+                                                 grid.valid(i, j + 1) && grid.valid(i + 1, j + 1);
+  data_ = std::move(data);
 }
 
 BPatch BPatch::interpolate(const ElevationGrid& grid, int degree) {
@@ -164,7 +166,7 @@ bool BPatch::on_data(const Vec2& p) const {
   std::size_t i, j;
   double tu, tv;
   locate(p, i, j, tu, tv);
-  return cell_on_data_[j * (ncols_ - 1) + i] != 0;
+  return data_->cell_on_data[j * (ncols_ - 1) + i] != 0;
 }
 
 double BPatch::elevation(const Vec2& p) const {
@@ -172,12 +174,12 @@ double BPatch::elevation(const Vec2& p) const {
   double tu, tv;
   locate(p, i, j, tu, tv);
   if (degree_ == 5)
-    return contract_quintic(control_, i, j, detail::quintic_basis(tu, 0),
+    return contract_quintic(data_->control, i, j, detail::quintic_basis(tu, 0),
                             detail::quintic_basis(tv, 0));
   const detail::CubicBasis bu = detail::cubic_basis(tu), bv = detail::cubic_basis(tv);
   double z = 0.0;
   for (int b = 0; b < 4; ++b) {
-    const double* column = control_.col(static_cast<long>(j) + b).data() + i;
+    const double* column = data_->control.col(static_cast<long>(j) + b).data() + i;
     double row = 0.0;
     for (int a = 0; a < 4; ++a) row += bu.value[a] * column[a];
     z += bv.value[b] * row;
@@ -194,7 +196,7 @@ SurfacePoint BPatch::evaluate(const Vec2& p) const {
   // Contract along u first (value, first, second derivative), then along v.
   double r0[4], r1[4], r2[4];
   for (int b = 0; b < 4; ++b) {
-    const double* column = control_.col(static_cast<long>(j) + b).data() + i;
+    const double* column = data_->control.col(static_cast<long>(j) + b).data() + i;
     r0[b] = r1[b] = r2[b] = 0.0;
     for (int a = 0; a < 4; ++a) {
       r0[b] += bu.value[a] * column[a];
@@ -225,12 +227,12 @@ SurfacePoint BPatch::evaluate_quintic(std::size_t i, std::size_t j, double tu, d
   const auto v0 = quintic_basis(tv, 0), v1 = quintic_basis(tv, 1), v2 = quintic_basis(tv, 2);
   const double inv_h = inverse_h_, inv_h2 = inv_h * inv_h;
   SurfacePoint out;
-  out.z = contract_quintic(control_, i, j, u0, v0);
-  out.gradient = {contract_quintic(control_, i, j, u1, v0) * inv_h,
-                  contract_quintic(control_, i, j, u0, v1) * inv_h};
-  const double xy = contract_quintic(control_, i, j, u1, v1) * inv_h2;
-  out.hessian << contract_quintic(control_, i, j, u2, v0) * inv_h2, xy, xy,
-      contract_quintic(control_, i, j, u0, v2) * inv_h2;
+  out.z = contract_quintic(data_->control, i, j, u0, v0);
+  out.gradient = {contract_quintic(data_->control, i, j, u1, v0) * inv_h,
+                  contract_quintic(data_->control, i, j, u0, v1) * inv_h};
+  const double xy = contract_quintic(data_->control, i, j, u1, v1) * inv_h2;
+  out.hessian << contract_quintic(data_->control, i, j, u2, v0) * inv_h2, xy, xy,
+      contract_quintic(data_->control, i, j, u0, v2) * inv_h2;
   return out;
 }
 
@@ -245,16 +247,17 @@ Eigen::Vector4d BPatch::third_derivatives(const Vec2& p) const {
     const auto v0 = quintic_basis(tv, 0), v1 = quintic_basis(tv, 1), v2 = quintic_basis(tv, 2),
                v3 = quintic_basis(tv, 3);
     const double inv_h3 = inverse_h_ * inverse_h_ * inverse_h_;
-    return Eigen::Vector4d(
-               contract_quintic(control_, i, j, u3, v0), contract_quintic(control_, i, j, u2, v1),
-               contract_quintic(control_, i, j, u1, v2), contract_quintic(control_, i, j, u0, v3)) *
+    return Eigen::Vector4d(contract_quintic(data_->control, i, j, u3, v0),
+                           contract_quintic(data_->control, i, j, u2, v1),
+                           contract_quintic(data_->control, i, j, u1, v2),
+                           contract_quintic(data_->control, i, j, u0, v3)) *
            inv_h3;
   }
   const detail::CubicBasis bu = detail::cubic_basis(tu), bv = detail::cubic_basis(tv);
   const auto& third = detail::kCubicThird;
   double r0[4], r1[4], r2[4], r3[4];
   for (int b = 0; b < 4; ++b) {
-    const double* column = control_.col(static_cast<long>(j) + b).data() + i;
+    const double* column = data_->control.col(static_cast<long>(j) + b).data() + i;
     r0[b] = r1[b] = r2[b] = r3[b] = 0.0;
     for (int a = 0; a < 4; ++a) {
       r0[b] += bu.value[a] * column[a];
@@ -300,7 +303,7 @@ BPatchFitReport BPatch::residuals(const ElevationGrid& grid) const {
         const double wb = (b == 1) ? 4.0 / 6.0 : 1.0 / 6.0;
         for (int a = 0; a < 3; ++a) {
           const double wa = (a == 1) ? 4.0 / 6.0 : 1.0 / 6.0;
-          z += wa * wb * control_(static_cast<long>(i) + a, static_cast<long>(j) + b);
+          z += wa * wb * data_->control(static_cast<long>(i) + a, static_cast<long>(j) + b);
         }
       }
       const double r = std::abs(z - grid.at(i, j));

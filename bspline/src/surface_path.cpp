@@ -131,7 +131,7 @@ ArcLengthTable make_table(const BPatch& surface, const Curve2& curve) {
 }  // namespace
 
 SurfacePath::SurfacePath(const BPatch& surface, Curve2 curve)
-    : surface_(&surface), curve_(std::move(curve)), arc_length_(make_table(surface, curve_)) {}
+    : surface_(surface), curve_(std::move(curve)), arc_length_(make_table(surface, curve_)) {}
 
 namespace {
 
@@ -147,13 +147,13 @@ PathFrame frame_without_arc_length(const BPatch& surface, const Curve2& curve, d
 }  // namespace
 
 PathFrame SurfacePath::frame_at_parameter(double sigma) const {
-  PathFrame f = frame_without_arc_length(*surface_, curve_, sigma);
+  PathFrame f = frame_without_arc_length(surface_, curve_, sigma);
   f.s = arc_length_.arc_length(sigma);
   return f;
 }
 
 PathFrame SurfacePath::frame_at_arc_length(double s) const {
-  PathFrame f = frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s));
+  PathFrame f = frame_without_arc_length(surface_, curve_, arc_length_.parameter(s));
   f.s = s;
   return f;
 }
@@ -170,7 +170,7 @@ void SurfacePath::sample_uniform_parameter(std::size_t stations,
   for (std::size_t k = 0; k < stations; ++k) {
     const double sigma = (k + 1 == stations) ? end : begin + step * static_cast<double>(k);
     PathFrame& f = frames[k];
-    f = frame_without_arc_length(*surface_, curve_, sigma);
+    f = frame_without_arc_length(surface_, curve_, sigma);
     f.s = (k == 0) ? 0.0 : arc_length_.arc_length(sigma, piece);
   }
 }
@@ -183,7 +183,7 @@ std::vector<PathFrame> SurfacePath::sample(std::size_t stations) const {
   std::size_t piece = 0;  // the inverse map's bracket, carried from station to station
   for (std::size_t k = 0; k < stations; ++k) {
     const double s = (k + 1 == stations) ? total : total * static_cast<double>(k) / (stations - 1);
-    PathFrame f = frame_without_arc_length(*surface_, curve_, arc_length_.parameter(s, piece));
+    PathFrame f = frame_without_arc_length(surface_, curve_, arc_length_.parameter(s, piece));
     f.s = s;
     frames.push_back(f);
   }

@@ -22,24 +22,33 @@ void VelocityLimits::compute(const SurfacePath& path, std::size_t stations) {
                  "speed limits at " + std::to_string(stations) + " stations",
                  "use fewer stations (--stations)");
   path.sample_uniform_parameter(stations, frames_);
-  compute_limits(&path.surface());
+  compute_on(path.surface());
 }
 
-void VelocityLimits::compute(const std::vector<PathFrame>& frames, const BPatch* surface) {
+void VelocityLimits::compute(const std::vector<PathFrame>& frames, const BPatch& surface) {
   if (frames.size() < 2) throw InputError("a path needs at least 2 stations");
   frames_ = frames;
-  compute_limits(surface);
+  compute_on(surface);
 }
 
-void VelocityLimits::compute_limits(const BPatch* surface) {
-  const std::size_t stations = frames_.size();
-  geometry_.resize(stations);
-  limits_.resize(stations);
-  for (std::size_t k = 0; k < stations; ++k) {
-    geometry_[k] = surface != nullptr ? station_geometry(frames_[k], *surface, wheels())
-                                      : StationGeometry::from(frames_[k]);
-    limits_[k] = set_.speed_limits(geometry_[k]);
-  }
+void VelocityLimits::compute(const std::vector<PathFrame>& frames) {
+  if (frames.size() < 2) throw InputError("a path needs at least 2 stations");
+  frames_ = frames;
+  geometry_.resize(frames_.size());
+  for (std::size_t k = 0; k < frames_.size(); ++k) geometry_[k] = StationGeometry::from(frames_[k]);
+  compute_limits();
+}
+
+void VelocityLimits::compute_on(const BPatch& surface) {
+  geometry_.resize(frames_.size());
+  for (std::size_t k = 0; k < frames_.size(); ++k)
+    geometry_[k] = station_geometry(frames_[k], surface, wheels());
+  compute_limits();
+}
+
+void VelocityLimits::compute_limits() {
+  limits_.resize(geometry_.size());
+  for (std::size_t k = 0; k < geometry_.size(); ++k) limits_[k] = set_.speed_limits(geometry_[k]);
 }
 
 std::size_t VelocityLimits::first_untraversable() const {

@@ -286,7 +286,7 @@ std::vector<FigureLink> representative_figures(const std::vector<Run>& runs, con
     const std::string who =
         battery.title + ", seed " + std::to_string(r.seed) + ", " + r.method->name;
     NavigationFigureData data;
-    data.surface = &surface;
+    data.surface = surface;
     data.waypoints = &r.result.waypoints;
     data.result = &*r.result.navigation;
     data.start = scenarios::kBatteryStart;

@@ -138,7 +138,7 @@ NavigateOutcome navigate(const NavigateRequest& request) {
   if (plots) {
     const BPatch surface = BPatch::interpolate(terrain.grid);
     NavigationFigureData figure;
-    figure.surface = &surface;
+    figure.surface = surface;
     figure.waypoints = &r.waypoints;
     figure.result = &*r.navigation;
     figure.start = start;

@@ -234,7 +234,7 @@ void render_plan_figures(const PlanRequest& request, const ElevationGrid& grid,
                          const std::filesystem::path& dir) {
   const Trajectory& best = *result.best();
   PlanMapData map;
-  map.surface = problem.surface.get();
+  map.surface = *problem.surface;
   map.origin = Vec2(grid.x_min(), grid.y_min());
   map.width = grid.x_max() - grid.x_min();
   map.height = grid.y_max() - grid.y_min();

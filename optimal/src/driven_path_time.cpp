@@ -151,7 +151,7 @@ DrivenPathResult driven_path_time(const BPatch& surface, const Vehicle& vehicle,
     piece.length = s;
     piece.stations = frames.size();
     VelocityLimits limits(vehicle);
-    limits.compute(frames, &surface);
+    limits.compute(frames, surface);
     const TimeOptimalProfile profile = profile_solver.solve(limits, profile_options);
     piece.status = profile.status;
     piece.travel_time = profile.status == ProfileStatus::kOk ? profile.travel_time : kInf;

@@ -996,8 +996,9 @@ TileMask corridor_tiles(const std::vector<CandidatePath>& candidates, const Vec2
 }  // namespace
 
 struct GlobalSearchWorkspace::Impl {
-  const BPatch* terrain = nullptr;  // the lattices' terrain, recognised by its identity()
-  std::uint64_t terrain_identity = 0;
+  // The lattices' terrain (a copy shares its coefficients, so the lattices
+  // never outlive it), recognised by its identity().
+  std::optional<BPatch> terrain;
   std::optional<Vehicle> vehicle;
   int connectivity = 0;
   bool braking_rule = true;
@@ -1006,14 +1007,13 @@ struct GlobalSearchWorkspace::Impl {
 
   /// Drops the lattices unless they were made for these.
   void bind(const BPatch& t, const Vehicle& v, const GlobalSearchOptions& options) {
-    if (terrain_identity == t.identity() && vehicle && *vehicle == v &&
+    if (terrain && terrain->identity() == t.identity() && vehicle && *vehicle == v &&
         connectivity == options.connectivity && braking_rule == options.braking_rule) {
       return;
     }
     lattices.clear();
     set = std::make_unique<AdmissibleSet>(v);
-    terrain = &t;
-    terrain_identity = t.identity();
+    terrain = t;
     vehicle = v;
     connectivity = options.connectivity;
     braking_rule = options.braking_rule;

@@ -28,7 +28,7 @@ PathTimeObjective::PathTimeObjective(const BPatch& terrain, const Vehicle& vehic
                                      const Vec2& start, const Vec2& goal,
                                      std::size_t control_points, std::size_t stations,
                                      const ProfileOptions& speeds)
-    : terrain_(&terrain),
+    : terrain_(terrain),
       vehicle_(vehicle),
       start_(start),
       goal_(goal),
@@ -83,7 +83,9 @@ Curve2 PathTimeObjective::curve(const Eigen::VectorXd& z) const {
   return Curve2(knots_, control_points(z));
 }
 
-std::size_t PathTimeObjective::curvature_samples() const { return steering_->size(); }
+std::size_t PathTimeObjective::curvature_samples() const {
+  return steering_->size();
+}
 
 bool PathTimeObjective::curvatures(const Eigen::VectorXd& z, double* values,
                                    double* jacobian) const {
@@ -108,10 +110,10 @@ double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
     }
     planar_[k] = p;
     const Vec2 position = p.col(0);
-    if (!terrain_->contains(position) || !terrain_->on_data(position)) return kInfinity;
+    if (!terrain_.contains(position) || !terrain_.on_data(position)) return kInfinity;
     if (!(p.col(1).norm() > 0.0)) return kInfinity;  // a cusp: no frame
     PathFrame& f = frames_[k];
-    f = lift_to_surface(position, terrain_->evaluate(position), p.col(1), p.col(2));
+    f = lift_to_surface(position, terrain_.evaluate(position), p.col(1), p.col(2));
     f.parameter = sigma_[k];
     if (k == 0) {
       f.s = 0.0;
@@ -188,7 +190,7 @@ bool PathTimeObjective::adjoint_gradient(Eigen::VectorXd& gradient) {
     outer[6] = h * h / 12.0 * (after - before);
     outer[7] = sensitivity.geometry[k][5];
     const Eigen::Matrix<double, 1, 6> local =
-        outer * detail::station_derivatives(*terrain_, planar_[k], limits_.wheels()).jacobian;
+        outer * detail::station_derivatives(terrain_, planar_[k], limits_.wheels()).jacobian;
     for (int b = 0; b < 4; ++b) {
       const std::size_t i = first_basis_[k] + static_cast<std::size_t>(b);
       if (i == 0 || i + 1 == control_points_) continue;  // start and goal are fixed
@@ -208,7 +210,7 @@ void PathTimeObjective::finite_difference_gradient(const Eigen::VectorXd& z,
   const double center = travel_time(z);
   for (long i = 0; i < z.size(); ++i) {
     // Absolute, tied to the terrain: map coordinates can be 1e6 m (UTM).
-    const double step = 1e-5 * terrain_->cellsize();
+    const double step = 1e-5 * terrain_.cellsize();
     probe[i] = z[i] + step;
     const double plus = travel_time(probe);
     probe[i] = z[i] - step;

@@ -229,7 +229,7 @@ VelocityLimits limits_from_geometry(const Vehicle& vehicle, const DoubleArray& s
     f.k_r = sg.k_r;
   }
   VelocityLimits limits(vehicle);
-  limits.compute(frames, nullptr);  // geometry given without a surface: wheels at the c.g.
+  limits.compute(frames);  // geometry given without a surface: wheels at the c.g.
   return limits;
 }
 

@@ -1,11 +1,10 @@
 /// @file
 /// optimal: the time-optimal profile, the one evaluation rule
 /// (evaluate_trajectory), the global search and the two-stage planner.
-/// Lifetimes: a Trajectory from evaluate_trajectory refers to the surface it
-/// was evaluated on (a non-owning pointer in C++), so the Python object keeps
-/// that surface alive (py::keep_alive); a PlanningProblem holds its own copy
-/// of the surface, which its results share; everything read out of a result
-/// keeps the result alive.
+/// Lifetimes: a BPatch copy shares its coefficients, so a Trajectory, its
+/// SurfacePath and a GlobalSearchWorkspace hold the surface they were made
+/// on themselves and need nothing kept alive for them; everything read out
+/// of a result keeps the result alive.
 #include <memory>
 #include <optional>
 #include <string>
@@ -135,7 +134,7 @@ void bind_profile(py::module_& m) {
 
   py::class_<Trajectory>(m, "Trajectory",
                          "A path on the surface with its limits and time-optimal profile "
-                         "(talus::Trajectory); keeps its surface alive.")
+                         "(talus::Trajectory); holds its surface.")
       .def_property_readonly(
           "path",
           py::cpp_function(
@@ -161,7 +160,7 @@ void bind_profile(py::module_& m) {
         return evaluate_trajectory(surface, vehicle, curve, options);
       },
       py::arg("surface"), py::arg("vehicle"), py::arg("curve"),
-      py::arg("options") = TrajectoryOptions{}, py::keep_alive<0, 1>(),
+      py::arg("options") = TrajectoryOptions{},
       "The one evaluation rule: lift `curve` onto `surface`, limits every "
       "options.station_spacing metres, the time-optimal profile.");
 }
@@ -233,18 +232,15 @@ void bind_global_search(py::module_& m) {
   py::class_<GlobalSearchWorkspace>(m, "GlobalSearchWorkspace",
                                     "Edge costs kept between global searches of one surface "
                                     "and vehicle (same results, each later search a graph "
-                                    "search only); it keeps every surface it served alive")
+                                    "search only); it holds its own copy of the surface it serves")
       .def(py::init<>())
       .def("lattices", &GlobalSearchWorkspace::lattices)
       .def("clear", &GlobalSearchWorkspace::clear);
-  // keep_alive<6, 1>: the workspace refers to the surface (its lattices hold
-  // references to it), so the surface lives at least as long as the workspace.
   m.def("global_search",
         py::overload_cast<const BPatch&, const Vehicle&, const Vec2&, const Vec2&,
                           const GlobalSearchOptions&, GlobalSearchWorkspace&>(&global_search),
         py::arg("surface"), py::arg("vehicle"), py::arg("start"), py::arg("goal"),
-        py::arg("options"), py::arg("workspace"), py::keep_alive<6, 1>(),
-        py::call_guard<py::gil_scoped_release>());
+        py::arg("options"), py::arg("workspace"), py::call_guard<py::gil_scoped_release>());
 }
 
 void bind_planner(py::module_& m) {

@@ -171,9 +171,8 @@ void bind_surface(py::module_& m) {
   py::class_<SurfacePath, std::shared_ptr<SurfacePath>>(
       m, "SurfacePath",
       "A planar curve lifted onto a BPatch with its 3-D arc length (talus::SurfacePath); "
-      "keeps the surface alive.")
-      .def(py::init<const BPatch&, Curve2>(), py::arg("surface"), py::arg("curve"),
-           py::keep_alive<1, 2>())
+      "holds the surface (a BPatch copy shares its coefficients).")
+      .def(py::init<const BPatch&, Curve2>(), py::arg("surface"), py::arg("curve"))
       .def("curve", &SurfacePath::curve)
       .def("length", &SurfacePath::length, "3-D length [m]");
 }

@@ -33,11 +33,16 @@ def test_a_workspace_keeps_the_edge_costs_and_changes_no_result(west_bijou, rove
     assert not (again.candidates[0].vertices.shape == first.candidates[0].vertices.shape
                 and (again.candidates[0].vertices == first.candidates[0].vertices).all())
 
-    # The workspace keeps the surface alive; clear() drops the lattices.
+    # The workspace holds its own copy of the surface (shared coefficients): the
+    # caller's object can go, and a search on a copy of it still reuses the lattice.
+    kept = talus.PlanningProblem(surface, vehicle, START, GOAL).surface
     probe = weakref.ref(surface)
     del surface
     gc.collect()
-    assert probe() is not None
+    assert probe() is None
+    reused = talus.global_search(kept, vehicle, START, GOAL, options, workspace)
+    assert reused.edges_evaluated == 0
+    same(reused, again)
     workspace.clear()
     assert workspace.lattices() == 0
 

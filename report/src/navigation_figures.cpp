@@ -125,7 +125,7 @@ void render_angles(const std::filesystem::path& dir, const std::string& stem,
 
 void render_navigation_figures(const std::filesystem::path& dir, const std::string& stem,
                                const NavigationFigureData& data) {
-  if (data.surface == nullptr || data.waypoints == nullptr || data.result == nullptr)
+  if (!data.surface || data.waypoints == nullptr || data.result == nullptr)
     throw InputError("render_navigation_figures: surface, waypoints and result are required");
   render_map(dir, stem, data);
   render_speed(dir, stem, data);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 
 #include "path_test_support.hpp"
 #include "talus/bspline/surface_path.hpp"
@@ -189,6 +190,24 @@ TEST(SurfacePath, APathLeavingTheTerrainIsAnInputError) {
 
 namespace talus {
 namespace {
+
+// A path holds its surface (BPatch copies share their immutable coefficients): it stays
+// valid once the caller's surface object is gone, and copies of a surface are the same
+// surface (one identity) while a new fit is another.
+TEST(SurfacePath, OutlivesTheSurfaceObjectItWasBuiltOn) {
+  const ElevationGrid grid =
+      grid_around_origin([](double x, double y) { return 0.1 * x * y; }, 10, 1.0);
+  std::optional<BPatch> surface(BPatch::interpolate(grid));
+  const SurfacePath path(*surface, segment({-5, -2}, {5, 3}));
+  const PathFrame before = path.frame_at_arc_length(0.5 * path.length());
+  const std::uint64_t identity = surface->identity();
+  surface.reset();
+  const PathFrame after = path.frame_at_arc_length(0.5 * path.length());
+  EXPECT_EQ(after.point, before.point);
+  EXPECT_EQ(after.kappa_n, before.kappa_n);
+  EXPECT_EQ(path.surface().identity(), identity);
+  EXPECT_NE(BPatch::interpolate(grid).identity(), identity);
+}
 
 TEST(SurfacePath, CopiesAndMovesStayValidAfterTheOriginalIsGone) {
   const BPatch flat =

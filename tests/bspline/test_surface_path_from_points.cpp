@@ -43,7 +43,7 @@ TEST(SurfacePathFromPoints, PlaneGivesTheExactLengths) {
   ASSERT_TRUE(tp.surface && tp.path);
   EXPECT_EQ(tp.planar_length, 8.0);
   EXPECT_NEAR(tp.path->length(), 8.0 * std::sqrt(1.25), 1e-9);
-  EXPECT_EQ(&tp.path->surface(), tp.surface.get());
+  EXPECT_EQ(tp.path->surface().identity(), tp.surface->identity());  // the same surface
   EXPECT_NEAR(tp.surface->evaluate(Vec2(3.3, 7.1)).z, 1.65, 1e-12);  // interpolating fit
   // The smoothing fit reproduces a plane too (its penalty vanishes on it).
   const TerrainPath smooth = surface_path_from_points(points, grid, 1.0, kSource);

@@ -490,7 +490,8 @@ TEST(GlobalSearchWorkspace, ReusesTheEdgeCostsAndGivesTheSearchWithoutIt) {
 
 // A workspace recognises its terrain by BPatch::identity(), not by address: a new terrain
 // built where a destroyed one stood is another terrain (the workspace used to reuse the old
-// lattice's samples and costs there, the reason clear() had to be called), and a copy too.
+// lattice's samples and costs there, the reason clear() had to be called), and so is a new
+// fit of the same grid; a copy is the same terrain.
 TEST(GlobalSearchWorkspace, ANewTerrainAtADestroyedOnesAddressIsAnotherTerrain) {
   const Vehicle v = point_mass_rover(0.3);
   GlobalSearchOptions options;
@@ -509,11 +510,20 @@ TEST(GlobalSearchWorkspace, ANewTerrainAtADestroyedOnesAddressIsAnotherTerrain) 
   expect_same_search(reused, global_search(*slot, v, {3, 30}, {77, 30}, options));
   EXPECT_GT(reused.edges_evaluated, 0u);
   EXPECT_LT(reused.candidates.front().cost_seconds, on_bumps.candidates.front().cost_seconds);
-  // The same terrain again keeps the lattice; a copy of it is another object.
+  // The same terrain again keeps the lattice; so does a copy of it (the same immutable
+  // coefficients), even once the original is gone: the workspace holds its own copy.
   EXPECT_EQ(global_search(*slot, v, {3, 30}, {77, 30}, options, workspace).edges_evaluated, 0u);
   const BPatch copy = *slot;
-  EXPECT_NE(copy.identity(), slot->identity());
-  EXPECT_GT(global_search(copy, v, {3, 30}, {77, 30}, options, workspace).edges_evaluated, 0u);
+  EXPECT_EQ(copy.identity(), slot->identity());
+  slot.reset();
+  const GlobalSearchResult on_copy = global_search(copy, v, {3, 30}, {77, 30}, options, workspace);
+  EXPECT_EQ(on_copy.edges_evaluated, 0u);
+  expect_same_search(on_copy, reused);
+  // A new fit of the same grid is another terrain.
+  const BPatch refit = BPatch::interpolate(
+      terrain_test::grid_from_function([](double, double) { return 0.0; }, 0, 0, 80, 60, 1.0));
+  EXPECT_NE(refit.identity(), copy.identity());
+  EXPECT_GT(global_search(refit, v, {3, 30}, {77, 30}, options, workspace).edges_evaluated, 0u);
 }
 
 // Coarse to fine: the coarse lattice is kept, the corridors are not; same result.

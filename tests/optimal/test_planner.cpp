@@ -84,7 +84,7 @@ TEST(Planner, ATrajectoryOutlivesTheCallersSurfaceTheProblemAndTheResult) {
     ASSERT_NE(result.best(), nullptr) << result.brief_report();
     ASSERT_NE(result.surface, nullptr);
     EXPECT_NE(result.surface.get(), &surface);  // the problem's own copy
-    EXPECT_EQ(&result.best()->path->surface(), result.surface.get());
+    EXPECT_EQ(result.best()->path->surface().identity(), result.surface->identity());
     kept = *result.best();
     planned = kept.travel_time();
   }

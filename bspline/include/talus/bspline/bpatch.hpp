@@ -28,6 +28,8 @@
 ///   control points and over 20000) and PCG stalls, the whole system is
 ///   solved by CHOLMOD instead.
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -87,7 +89,7 @@ class BPatch {
   /// (ncols + degree − 1) × (nrows + degree − 1) control values, entry (a, b)
   /// weighting the basis functions centred on node (a − (degree − 1)/2,
   /// b − (degree − 1)/2).
-  const Eigen::MatrixXd& control_points() const { return control_; }
+  const Eigen::MatrixXd& control_points() const { return data_->control; }
 
   bool contains(const Vec2& p) const;
   /// False where the source grid had a NODATA node at a corner of p's cell:
@@ -109,10 +111,11 @@ class BPatch {
   /// Residuals of the surface at the valid nodes of `grid` (same geometry).
   BPatchFitReport residuals(const ElevationGrid& grid) const;
 
-  /// This surface object's identity (core/instance_id.hpp): caches built for
-  /// it (GlobalSearchWorkspace) recognise it by this, not by its address. A
-  /// copy, a moved-to or an assigned-to surface has a new one.
-  std::uint64_t identity() const { return identity_.value(); }
+  /// This surface's identity (core/instance_id.hpp): caches built for it
+  /// (GlobalSearchWorkspace) recognise it by this, not by its address. Every
+  /// fit has a new one; a copy is the same surface (its coefficients are
+  /// shared and immutable) and keeps it.
+  std::uint64_t identity() const { return data_->identity.value(); }
 
  private:
   BPatch(const ElevationGrid& grid, Eigen::MatrixXd control, int degree = 3);
@@ -123,9 +126,16 @@ class BPatch {
   int degree_ = 3;
   std::size_t ncols_ = 0, nrows_ = 0;
   double h_ = 1.0, inverse_h_ = 1.0, x_min_ = 0.0, y_min_ = 0.0;
-  Eigen::MatrixXd control_;
-  std::vector<unsigned char> cell_on_data_;  ///< per cell, (ncols-1) × (nrows-1)
-  InstanceId identity_;
+  /// The fit's coefficients, immutable and shared by every copy of the
+  /// surface: a BPatch is a cheap value (a copy costs a reference count, not
+  /// the grid), so paths, problems and results hold the surface itself and
+  /// nothing has to be kept alive by its caller.
+  struct Coefficients {
+    Eigen::MatrixXd control;
+    std::vector<unsigned char> cell_on_data;  ///< per cell, (ncols-1) × (nrows-1)
+    InstanceId identity;
+  };
+  std::shared_ptr<const Coefficients> data_;
 };
 
 }  // namespace talus

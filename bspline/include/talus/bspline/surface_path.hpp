@@ -53,8 +53,8 @@ PathFrame lift_to_surface(const Vec2& position, const SurfacePoint& surface, con
                           const Vec2& d2);
 
 /// A planar B-spline curve lifted onto a BPatch, with its 3-D arc-length map.
-/// Holds a pointer to the surface: the BPatch must outlive the path (copies
-/// and moves of the path are fine).
+/// Holds the surface itself (a BPatch copy shares its coefficients), so the
+/// path stays valid whatever happens to the caller's surface object.
 class SurfacePath {
  public:
   /// Builds the arc-length table: breakpoints at the curve's knots and where
@@ -65,7 +65,7 @@ class SurfacePath {
   SurfacePath(const BPatch& surface, Curve2 curve);
 
   const Curve2& curve() const { return curve_; }
-  const BPatch& surface() const { return *surface_; }
+  const BPatch& surface() const { return surface_; }
   /// 3-D length of the lifted curve [m].
   double length() const { return arc_length_.length(); }
 
@@ -84,7 +84,7 @@ class SurfacePath {
   void sample_uniform_parameter(std::size_t stations, std::vector<PathFrame>& frames) const;
 
  private:
-  const BPatch* surface_;
+  BPatch surface_;
   Curve2 curve_;
   ArcLengthTable arc_length_;
 };

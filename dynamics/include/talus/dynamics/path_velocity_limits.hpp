@@ -25,10 +25,11 @@ class VelocityLimits {
 
   void compute(const SurfacePath& path, std::size_t stations);
   /// The limits at stations the caller has sampled on `surface` (at least 2; s
-  /// increasing); the surface is where a rigid body's wheels stand. Null
-  /// `surface`: frames given without one (geometry from a user), every wheel
-  /// taken at the c.g. (StationGeometry::from).
-  void compute(const std::vector<PathFrame>& frames, const BPatch* surface);
+  /// increasing); the surface is where a rigid body's wheels stand.
+  void compute(const std::vector<PathFrame>& frames, const BPatch& surface);
+  /// The limits at frames given without a surface (geometry from a user):
+  /// every wheel taken at the c.g. (StationGeometry::from).
+  void compute(const std::vector<PathFrame>& frames);
 
   const Vehicle& vehicle() const { return vehicle_; }
   /// The vehicle's admissible (ṡ², s̈) set, built once: what the optimiser asks.
@@ -51,7 +52,8 @@ class VelocityLimits {
   std::size_t first_untraversable() const;
 
  private:
-  void compute_limits(const BPatch* surface);
+  void compute_on(const BPatch& surface);  ///< geometry_ at frames_ on it, then the limits
+  void compute_limits();                   ///< limits_ from geometry_
 
   Vehicle vehicle_;
   AdmissibleSet set_;

@@ -241,11 +241,13 @@ GlobalSearchResult global_search(const BPatch& terrain, const Vehicle& vehicle, 
 /// from scratch without it). Results are exactly those of searches without
 /// a workspace; GlobalSearchResult::edges_evaluated counts only the edges
 /// the search itself computed. Lattices of the whole map are kept (with
-/// kMulti: the coarse one; the corridors are not). A workspace used with
-/// another terrain (BPatch::identity(), never its address: a new terrain at a
-/// destroyed one's address is another terrain), vehicle, connectivity or
-/// braking rule drops what it held. Not for concurrent use from several
-/// threads.
+/// kMulti: the coarse one; the corridors are not). It holds its own copy of
+/// the terrain (BPatch copies share their coefficients), so nothing it keeps
+/// depends on the caller's surface object. A workspace used with another
+/// terrain (BPatch::identity(), never its address: a new fit at a destroyed
+/// one's address is another terrain; a copy is the same one), vehicle,
+/// connectivity or braking rule drops what it held. Not for concurrent use
+/// from several threads.
 class GlobalSearchWorkspace {
  public:
   GlobalSearchWorkspace();

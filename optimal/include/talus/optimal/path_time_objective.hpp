@@ -104,7 +104,7 @@ class PathTimeObjective {
   bool adjoint_gradient(Eigen::VectorXd& gradient);
   void finite_difference_gradient(const Eigen::VectorXd& z, Eigen::VectorXd& gradient);
 
-  const BPatch* terrain_;
+  BPatch terrain_;  ///< a copy shares the coefficients
   Vehicle vehicle_;
   Vec2 start_, goal_;
   std::size_t control_points_;

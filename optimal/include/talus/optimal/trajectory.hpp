@@ -65,8 +65,9 @@ struct TrajectoryOptions {
 };
 
 /// A path on the surface with its speed limits and time-optimal profile.
-/// Copies share the (immutable) path and limits. The path refers to the
-/// surface it was evaluated on, which must outlive it.
+/// Copies share the (immutable) path and limits. The path holds the surface
+/// it was evaluated on (a BPatch copy shares its coefficients): nothing has
+/// to outlive it.
 struct Trajectory {
   std::shared_ptr<const SurfacePath> path;       ///< null if the curve could not be lifted
   std::shared_ptr<const VelocityLimits> limits;  ///< null if the curve could not be lifted

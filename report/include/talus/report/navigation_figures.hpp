@@ -12,6 +12,7 @@
 ///   side-slip angle against time [deg].
 /// Each is a gnuplot script saved beside its PNG and data files (plot.hpp).
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "talus/bspline/bpatch.hpp"
@@ -23,7 +24,7 @@ namespace talus {
 
 /// What the three figures show; the pointers must outlive the call.
 struct NavigationFigureData {
-  const BPatch* surface = nullptr;                         ///< the terrain driven on
+  std::optional<BPatch> surface;                           ///< the terrain driven on
   const ReferenceTrajectory* waypoints = nullptr;          ///< what the navigator was given
   const PotentialFieldNavigationResult* result = nullptr;  ///< the run
   Vec2 start = Vec2::Zero(), goal = Vec2::Zero();          ///< [m]

@@ -5,6 +5,7 @@
 /// limit). Each is a gnuplot script saved beside its PNG and data files
 /// (plot.hpp), so it can be re-rendered with `gnuplot plan.gp`.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,7 @@ namespace talus {
 /// What plan.png shows. Positions are in the terrain's frame [m]; the map is
 /// drawn in offsets from `origin` (the grid's south-west node).
 struct PlanMapData {
-  const BPatch* surface = nullptr;
+  std::optional<BPatch> surface;  ///< the fitted terrain (required)
   Vec2 origin = Vec2::Zero();
   double width = 0.0, height = 0.0;           ///< the grid's extent [m]
   std::vector<std::vector<Vec2>> candidates;  ///< global candidates (lattice vertices)

@@ -671,17 +671,19 @@ OptimizedPath nested_result(PathTimeObjective& objective, const detail::BoxProbl
 }
 
 /// optimize_path() from one fit (options.control_points; more_control_points
-/// ignored).
+/// ignored): `known_fit` when given, else computed here.
 OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicle,
                                     const std::vector<Vec2>& initial_polyline,
-                                    const PathOptimizerOptions& options) {
+                                    const PathOptimizerOptions& options,
+                                    const std::optional<InitialPath>& known_fit) {
   const auto started = std::chrono::steady_clock::now();
   if (initial_polyline.size() < 2) throw InputError("the initial path needs at least 2 vertices");
   // The initial path: a least-squares fit to the candidate, grown while a
   // winding candidate needs more control points (fit_initial_path).
   const bool simultaneous = options.formulation == PathFormulation::kSimultaneous;
   const InitialPath fit =
-      fit_initial_path(terrain, vehicle, initial_polyline, options, simultaneous);
+      known_fit ? *known_fit
+                : fit_initial_path(terrain, vehicle, initial_polyline, options, simultaneous);
   // The simultaneous NLP starts from an infeasible profile (restoration).
   if (!(fit.admissible() || (simultaneous && fit.on_data))) {
     throw InputError("the initial path (" + std::to_string(fit.control_points) +
@@ -731,13 +733,15 @@ OptimizedPath tagged(OptimizedPath path) {
 
 OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                             const std::vector<Vec2>& initial_polyline,
-                            const PathOptimizerOptions& options) {
+                            const PathOptimizerOptions& options,
+                            const std::optional<InitialPath>& fit) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   // Armed once: every fit, attempt and solver below polls the same deadline.
   PathOptimizerOptions armed = options;
   armed.termination = options.termination.start();
-  OptimizedPath best = tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, armed));
+  OptimizedPath best =
+      tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, armed, fit));
   for (const std::size_t m : options.more_control_points) {
     if (armed.termination.should_stop()) break;
     PathOptimizerOptions further = armed;
@@ -746,7 +750,8 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
     further.max_control_points = std::max(further.max_control_points, m);
     std::optional<OptimizedPath> next;
     try {
-      next.emplace(tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, further)));
+      next.emplace(
+          tagged(optimize_from_one_fit(terrain, vehicle, initial_polyline, further, std::nullopt)));
     } catch (const InputError&) {
       continue;  // no admissible fit at this count
     }

@@ -40,16 +40,11 @@ std::vector<Vec2> candidate_polyline(const PlanningProblem& problem,
 /// The followability check of the file comment for one candidate: the
 /// optimiser's own initial path (fit_initial_path: grown while needed) has
 /// an admissible profile at the search's stations; if not, where it fails
-/// (absent when the fit leaves the data).
-struct Followability {
-  bool followable = false;
-  std::optional<Vec2> failure;
-};
-
-Followability check_followable(const PlanningProblem& problem, const PathOptimizerOptions& local,
-                               const std::vector<Vec2>& polyline) {
-  const InitialPath fit = fit_initial_path(*problem.surface, problem.vehicle, polyline, local);
-  return {fit.admissible(), fit.failure_point};
+/// (absent when the fit leaves the data). The fit is kept for the local
+/// stage, which starts from it.
+InitialPath check_followable(const PlanningProblem& problem, const PathOptimizerOptions& local,
+                             const std::vector<Vec2>& polyline) {
+  return fit_initial_path(*problem.surface, problem.vehicle, polyline, local);
 }
 
 /// Step 3 of the file comment when the optimum disagrees: every other
@@ -70,18 +65,24 @@ void report_fastest_attempt(const PlanningProblem& problem, const TrajectoryOpti
   }
 }
 
-/// Optimises candidate `c` and evaluates the optimum and its initial fit.
+/// Optimises candidate `c` (from `fit`, its followability check's fit, when
+/// there was one) and evaluates the optimum and its initial fit.
 CandidateOutcome optimise_candidate(const PlanningProblem& problem,
                                     const PathOptimizerOptions& local,
                                     const TrajectoryOptions& evaluation,
                                     const GlobalSearchResult& global, std::size_t c,
+                                    const std::optional<InitialPath>& fit,
                                     TimeOptimalProfileSolver& workspace, PlannerTimings& timings) {
   const auto started = Clock::now();
   CandidateOutcome outcome;
   outcome.candidate = c;
   const std::vector<Vec2> polyline = candidate_polyline(problem, global, c);
+  // The check's fit is the nested formulation's start (the simultaneous one
+  // stops growing its fit earlier).
+  const bool reuse = local.formulation == PathFormulation::kNested;
   try {
-    outcome.optimization.emplace(optimize_path(*problem.surface, problem.vehicle, polyline, local));
+    outcome.optimization.emplace(optimize_path(*problem.surface, problem.vehicle, polyline, local,
+                                               reuse ? fit : std::nullopt));
   } catch (const InputError& error) {
     outcome.optimizer_message = error.what();
   }
@@ -284,44 +285,39 @@ std::string list_text(const std::vector<std::size_t>& items) {
   return text.str();
 }
 
-/// The followability of every candidate of `global`.
-std::vector<bool> check_candidates(const PlanningProblem& problem,
-                                   const PathOptimizerOptions& local,
-                                   const GlobalSearchResult& global,
-                                   std::vector<std::optional<Vec2>>* failures) {
-  std::vector<bool> followable;
-  failures->clear();
-  for (std::size_t c = 0; c < global.candidates.size(); ++c) {
-    const Followability f =
-        check_followable(problem, local, candidate_polyline(problem, global, c));
-    followable.push_back(f.followable);
-    failures->push_back(f.failure);
-  }
-  return followable;
+/// The followability check's fit of every candidate of `global`.
+std::vector<InitialPath> check_candidates(const PlanningProblem& problem,
+                                          const PathOptimizerOptions& local,
+                                          const GlobalSearchResult& global) {
+  std::vector<InitialPath> fits;
+  for (std::size_t c = 0; c < global.candidates.size(); ++c)
+    fits.push_back(check_followable(problem, local, candidate_polyline(problem, global, c)));
+  return fits;
 }
 
 /// The feedback loop of the file comment, from the first global search in
 /// result.global: re-runs the search with the failing stretches excluded
 /// while some candidate is not followable and the budget lasts, keeps the
 /// round with the most followable candidates in result.global (its
-/// exclusions in result.excluded) and returns their followability.
-std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerOptions& options,
-                                  const PathOptimizerOptions& local, GlobalSearchOptions global,
-                                  GlobalSearchWorkspace& workspace, PlannerResult& result) {
+/// exclusions in result.excluded) and returns their followability checks' fits.
+std::vector<InitialPath> feedback_rounds(const PlanningProblem& problem,
+                                         const PlannerOptions& options,
+                                         const PathOptimizerOptions& local,
+                                         GlobalSearchOptions global,
+                                         GlobalSearchWorkspace& workspace, PlannerResult& result) {
   const double spacing =
       result.global.spacing > 0.0 ? result.global.spacing : problem.surface->cellsize();
   const double radius = options.feedback_radius > 0.0 ? options.feedback_radius : 2.0 * spacing;
-  std::vector<std::optional<Vec2>> failures;
-  std::vector<bool> followable = check_candidates(problem, local, result.global, &failures);
-  const auto count = [](const std::vector<bool>& f) {
-    return static_cast<std::size_t>(std::count(f.begin(), f.end(), true));
+  std::vector<InitialPath> fits = check_candidates(problem, local, result.global);
+  const auto count = [](const std::vector<InitialPath>& f) {
+    return static_cast<std::size_t>(
+        std::count_if(f.begin(), f.end(), [](const InitialPath& p) { return p.admissible(); }));
   };
   GlobalSearchResult kept_global = result.global;
   std::size_t edges_evaluated = result.global.edges_evaluated;
-  std::vector<bool> kept = followable;
+  std::vector<InitialPath> kept = fits;
   std::vector<ExcludedRegion> kept_excluded = global.excluded;
-  while (count(followable) < followable.size() &&
-         result.feedback_rounds < options.feedback_rounds) {
+  while (count(fits) < fits.size() && result.feedback_rounds < options.feedback_rounds) {
     // A disc round each failure; near the start or the goal (whose nodes
     // are kept, and whose approach a disc would cut off) only the
     // candidate's own vertices near it, so that it must come another way.
@@ -350,9 +346,9 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
       }
       added.push_back({centre, r});
     };
-    for (std::size_t c = 0; c < failures.size(); ++c) {
-      if (!failures[c]) continue;
-      const Vec2 p = *failures[c];
+    for (std::size_t c = 0; c < fits.size(); ++c) {
+      if (fits[c].admissible() || !fits[c].failure_point) continue;
+      const Vec2 p = *fits[c].failure_point;
       const double margin = radius + spacing;
       if ((p - problem.start).norm() > margin && (p - problem.goal).norm() > margin) {
         add_or_widen(p, radius);
@@ -403,10 +399,10 @@ std::vector<bool> feedback_rounds(const PlanningProblem& problem, const PlannerO
       }
     }
     if (next.status != GlobalSearchStatus::kOk) break;  // no corridor left, or stopped
-    followable = check_candidates(problem, local, next, &failures);
-    if (count(followable) >= count(kept)) {
+    fits = check_candidates(problem, local, next);
+    if (count(fits) >= count(kept)) {
       kept_global = next;
-      kept = followable;
+      kept = fits;
       kept_excluded = global.excluded;
     }
     result.global = std::move(next);
@@ -459,18 +455,6 @@ std::string time_limit_message(std::string message, bool global_cut,
   return message;
 }
 
-/// `trajectory`'s path shares the ownership of `surface`, which it refers to: a trajectory
-/// copied out of the result outlives the problem and the result safely.
-void keep_surface(Trajectory& trajectory, const std::shared_ptr<const BPatch>& surface) {
-  if (!trajectory.path) return;
-  struct Owner {
-    std::shared_ptr<const SurfacePath> path;
-    std::shared_ptr<const BPatch> surface;
-  };
-  const auto owner = std::make_shared<const Owner>(Owner{trajectory.path, surface});
-  trajectory.path = std::shared_ptr<const SurfacePath>(owner, owner->path.get());
-}
-
 std::string infeasible_message(const PlannerResult& result) {
   std::string message = "no candidate has a feasible trajectory (see each candidate's message)";
   if (result.feedback_rounds > 0) {
@@ -497,11 +481,7 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     return options.progress(progress);
   };
   const auto finish = [&](PlannerStatus status, std::string message) {
-    result.surface = problem.surface;
-    for (CandidateOutcome& c : result.candidates) {
-      keep_surface(c.initial, problem.surface);
-      keep_surface(c.trajectory, problem.surface);
-    }
+    result.surface = problem.surface;  // the paths hold it too (a BPatch copy shares it)
     result.status = status;
     result.message = std::move(message);
     result.seconds.total = seconds_since(started);
@@ -529,9 +509,9 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
   PathOptimizerOptions local = local_stage_options(problem, options);
   local.termination = options.local.termination | termination;
   TimeOptimalProfileSolver workspace;
-  std::vector<bool> followable;
+  std::vector<InitialPath> fits;  // each candidate's followability check
   if (options.optimize && result.global.status == GlobalSearchStatus::kOk) {
-    followable = feedback_rounds(problem, options, local, global, search_workspace, result);
+    fits = feedback_rounds(problem, options, local, global, search_workspace, result);
   }
   result.seconds.global = seconds_since(global_started);
   bool global_cut = false;
@@ -576,10 +556,12 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     if (!keep_going(PlannerStage::kLocalOptimisation, c)) {
       return finish(PlannerStatus::kStopped, kStopMessage);
     }
+    const std::optional<InitialPath> fit =
+        c < fits.size() ? std::optional<InitialPath>(fits[c]) : std::nullopt;
     result.candidates.push_back(optimise_candidate(problem, local, evaluation, result.global, c,
-                                                   workspace, result.seconds));
+                                                   fit, workspace, result.seconds));
     CandidateOutcome& outcome = result.candidates.back();
-    outcome.followable = c < followable.size() && followable[c];
+    outcome.followable = fit && fit->admissible();
     outcome.time_limited =
         late || (outcome.optimization && outcome.optimization->solver_status == "time_limit");
     if (outcome.time_limited) cut_short.push_back(c);

@@ -340,9 +340,12 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
 /// InputError if the initial path is off the data or (nested) has no
 /// admissible profile, or (simultaneous) neither it nor the NLP's result has
 /// one; a solver failure is reported in the result (status, best point), not
-/// thrown.
+/// thrown. `fit`, when given, is fit_initial_path(terrain, vehicle,
+/// initial_polyline, options, simultaneous formulation) already computed by
+/// the caller (the planner's followability check): it is not computed again.
 OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                             const std::vector<Vec2>& initial_polyline,
-                            const PathOptimizerOptions& options);
+                            const PathOptimizerOptions& options,
+                            const std::optional<InitialPath>& fit = std::nullopt);
 
 }  // namespace talus

@@ -455,10 +455,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       "not_optimised say which candidates were cut short or never optimised; if the global "
       "search is cut before it found a route there is no trajectory). Exit code 0 when a "
       "result exists (also with status time_limit); 2 when the goal is "
-      "unreachable, (full) every candidate's profile is infeasible, or the time limit left no "
+      "unreachable (also from a start or goal on untraversable terrain: the message names it), "
+      "(full) every candidate's profile is infeasible, or the time limit left no "
       "trajectory (summary still written and printed); 1 on bad input: a start or goal off the "
-      "map, on NODATA or on "
-      "untraversable terrain, a vehicle without max_speed, a malformed X,Y, an unknown "
+      "map or on NODATA, a vehicle without max_speed, a malformed X,Y, an unknown "
       "solver (one line on stderr, nothing written)");
   plan->add_option("--terrain", plan_request.terrain, ex::kTerrainHelp)->required();
   add_raster_options(*plan, plan_request.reproject, plan_request.band);

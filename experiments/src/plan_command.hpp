@@ -129,8 +129,9 @@ struct PlanOutcome {
 /// trajectory gives status "infeasible" (reachable = false).
 ///
 /// Bad input (options, files, a vehicle without max_speed, a start or goal
-/// off the map, on NODATA or on untraversable terrain) throws InputError and
-/// writes nothing. An unreachable goal is not an error.
+/// off the map or on NODATA) throws InputError and writes nothing. An
+/// unreachable goal is not an error, nor is a start or goal on untraversable
+/// terrain (status "unreachable", the message naming it).
 PlanOutcome plan(const PlanRequest& request);
 
 }  // namespace talus::experiments

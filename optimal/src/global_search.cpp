@@ -696,8 +696,10 @@ class LatticeSearch {
     result_.candidates.push_back(std::move(candidate));
   }
 
-  /// InputError unless some edge leaves the start node and some edge enters the goal node.
-  void require_traversable_ends(std::uint32_t s, std::uint32_t g) const {
+  /// The unreachable result when no edge leaves the start node or none enters
+  /// the goal node (an expected outcome on steep ground, not bad input), with
+  /// the reason; empty otherwise.
+  std::optional<GlobalSearchResult> untraversable_end(std::uint32_t s, std::uint32_t g) {
     for (const auto& [which, node] : {std::pair{"start", s}, std::pair{"goal", g}}) {
       const bool from = std::strcmp(which, "start") == 0;
       bool any = false;
@@ -710,8 +712,9 @@ class LatticeSearch {
       msg << which << " node (" << p.x() << ", " << p.y()
           << ") is on untraversable terrain: every lattice edge " << (from ? "from" : "into")
           << " it is too steep or unstable for the vehicle";
-      throw InputError(msg.str());
+      return finish(GlobalSearchStatus::kUnreachable, msg.str());
     }
+    return std::nullopt;
   }
 
   /// Both cost fields reach every edge of the reachable lattice: computes
@@ -895,7 +898,7 @@ class LatticeSearch {
 };
 
 /// The search of one lattice: the whole grid, or the corridor `mask`.
-/// Throws InputError for an untraversable start or goal node.
+/// An untraversable start or goal node is an unreachable result naming it.
 /// `cached`: a whole-map lattice at `spacing` whose samples and costs a
 /// workspace keeps (mask is then null), or null for a lattice of this search.
 GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
@@ -916,7 +919,8 @@ GlobalSearchResult search_lattice(const BPatch& terrain, const Vehicle& vehicle,
   if (!lattice.sample([&search] { return search.stop(); }, options.stop_interval))
     return search.stopped("sampling the surface");
   lattice.exclude(options.excluded, s, g);
-  search.require_traversable_ends(s, g);
+  if (std::optional<GlobalSearchResult> closed = search.untraversable_end(s, g))
+    return std::move(*closed);
   const std::size_t threads =
       options.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : options.threads;
   if (threads > 1 && (options.cost_fields || options.candidates > 1) &&

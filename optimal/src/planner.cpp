@@ -368,16 +368,10 @@ std::vector<InitialPath> feedback_rounds(const PlanningProblem& problem,
     global.excluded.insert(global.excluded.end(), added.begin(), added.end());
     ++result.feedback_rounds;
     // Discs round failures next to the start (or goal) can close every edge out of its
-    // node, which global_search refuses as bad input: for the loop that is a closed corridor.
+    // node: global_search reports that as unreachable, for the loop a closed corridor.
     const auto search_again = [&] {
-      try {
-        return global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global,
-                             workspace);
-      } catch (const InputError&) {
-        GlobalSearchResult closed;
-        closed.status = GlobalSearchStatus::kUnreachable;
-        return closed;
-      }
+      return global_search(*problem.surface, problem.vehicle, problem.start, problem.goal, global,
+                           workspace);
     };
     GlobalSearchResult next = search_again();
     edges_evaluated += next.edges_evaluated;

@@ -492,6 +492,25 @@ TEST(CliPlan, WallOfHillsMakesTheGoalUnreachableWithExitCodeTwo) {
   EXPECT_NE(fields.find("\n30,5,0,nan\n"), std::string::npos);
 }
 
+// A start on ground no edge can leave is an expected outcome (exit 2, the summary naming
+// the start node and why), not bad input (exit 1), for both stages.
+TEST(CliPlan, AnUntraversableStartExitsTwoWithTheReason) {
+  const std::string steep =
+      quoted(generate_terrain("steep.asc", "plane --slope 0.8 --ncols 41 --nrows 41 --cellsize 1"));
+  for (const std::string stage : {"global", "full"}) {
+    const std::string dir = scratch_file("steep_out_" + stage);
+    const nlohmann::json j =
+        run_plan_and_check("--terrain " + steep + " --start 20,20 --goal 30,30 --vehicle " +
+                               quoted(plan_vehicle("v10.yaml", 10.0)) + " --stage " + stage,
+                           dir, 2);
+    EXPECT_EQ(j.value("status", ""), "unreachable") << j.dump();
+    EXPECT_NE(j.value("message", "").find("start node (20, 20) is on untraversable terrain"),
+              std::string::npos)
+        << j.dump();
+    EXPECT_EQ(read_text(dir + "/candidates.csv"), "candidate,x,y\n");
+  }
+}
+
 TEST(CliPlan, BadInputGivesOneLineOnStderrAndExitCodeOne) {
   const std::string flat = quoted(plan_flat_terrain());
   const std::string steep =
@@ -509,7 +528,6 @@ TEST(CliPlan, BadInputGivesOneLineOnStderrAndExitCodeOne) {
       {"--terrain " + flat + " --start '1;2' --goal 55,20" + v10 + tail, "'1;2'"},
       {"--terrain " + flat + " --start 5,20 --goal 55" + v10 + tail, "--goal must be X,Y"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + unlimited + tail, "max_speed"},
-      {"--terrain " + steep + " --start 20,20 --goal 30,30" + v10 + tail, "untraversable"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --candidates 0" + tail,
        "--candidates"},
       {"--terrain " + flat + " --start 5,20 --goal 55,20" + v10 + " --smoothing -1" + tail,

@@ -160,11 +160,31 @@ TEST(GlobalSearch, BadInputIsAnInputError) {
   EXPECT_THROW(global_search(flat, unlimited, {5, 5}, {20, 20}, options), InputError);
   options.connectivity = 12;
   EXPECT_THROW(global_search(flat, point_mass_rover(), {5, 5}, {20, 20}, options), InputError);
-  // Start on a slope steeper than friction.
+}
+
+// A start (or goal) on a slope steeper than friction is an expected outcome, not bad input:
+// unreachable, the message naming the end and why, in both resolutions and both ways.
+TEST(GlobalSearch, AnUntraversableStartOrGoalIsUnreachableWithTheReason) {
   const BPatch steep = BPatch::interpolate(grid_from_function(
       [](double x, double y) { return x < 20 ? 2.0 * y : 0.0; }, 0, 0, 40, 40, 1.0));
-  GlobalSearchOptions ok;
-  EXPECT_THROW(global_search(steep, point_mass_rover(0.5), {10, 20}, {35, 20}, ok), InputError);
+  for (const GlobalSearchResolution resolution :
+       {GlobalSearchResolution::kFull, GlobalSearchResolution::kMulti}) {
+    GlobalSearchOptions options;
+    options.resolution = resolution;
+    const GlobalSearchResult from =
+        global_search(steep, point_mass_rover(0.5), {10, 20}, {35, 20}, options);
+    EXPECT_EQ(from.status, GlobalSearchStatus::kUnreachable);
+    EXPECT_TRUE(from.candidates.empty());
+    EXPECT_NE(from.message.find("start node (10, 20) is on untraversable terrain"),
+              std::string::npos)
+        << from.message;
+    const GlobalSearchResult into =
+        global_search(steep, point_mass_rover(0.5), {35, 20}, {10, 20}, options);
+    EXPECT_EQ(into.status, GlobalSearchStatus::kUnreachable);
+    EXPECT_NE(into.message.find("goal node (10, 20) is on untraversable terrain"),
+              std::string::npos)
+        << into.message;
+  }
 }
 
 // ---- Edge costs against closed forms -------------------------------------

@@ -218,9 +218,11 @@ struct GlobalSearchResult {
 
 /// Runs the global stage from `start` to `goal` [m]. Throws InputError for an
 /// invalid vehicle (it needs a finite max_speed: J is the time at the speed
-/// limit, and an unlimited straight road would cost nothing), a start or goal
-/// off the map, on NODATA or on untraversable terrain; an unreachable goal
-/// is a status.
+/// limit, and an unlimited straight road would cost nothing) or a start or
+/// goal off the map or on NODATA. An unreachable goal is a status
+/// (kUnreachable, `message` saying why), and so is a start or goal node on
+/// untraversable terrain (no lattice edge leaves or enters it): expected
+/// outcomes on steep ground, not bad input.
 /// The candidates' separation when GlobalSearchOptions::distinctness is 0: a tenth of the
 /// start-goal distance between lattice nodes, at least three lattice spacings [m].
 inline double default_candidate_separation(const Vec2& start_node, const Vec2& goal_node,

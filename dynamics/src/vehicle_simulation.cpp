@@ -777,6 +777,7 @@ VehicleSimulationResult simulate_vehicle(const BPatch& surface, const Vehicle& v
     ++tick;
     const double t_tick =
         std::min(options.end_time, static_cast<double>(tick) * options.control_period);
+    if (options.progress) options.progress(t);
     cvode.set_stop_time(t_tick);
     while (t < t_tick && !done) {
       if (diag.steps >= options.max_steps) {

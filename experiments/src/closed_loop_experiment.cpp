@@ -386,14 +386,20 @@ void run_closed_loop_plans(const ExperimentContext& context) {
       load_vehicle((context.data_dir / "vehicles" / "iagnemma_ugv.yaml").string());
   const std::size_t seeds = context.quick ? 2 : 25;  // issue #12: seeds 1-25
   std::vector<Case> cases;
-  for (std::size_t seed = 1; seed <= seeds; ++seed)
+  const std::size_t steps = seeds + (context.quick ? 1 : 2);
+  for (std::size_t seed = 1; seed <= seeds; ++seed) {
+    context.progress->update(
+        "closed-loop-plans: battery seed " + std::to_string(seed) + " of " + std::to_string(seeds),
+        seed - 1, steps);
     cases.push_back(run_battery_case(seed, vehicle));
+  }
   // Two real DEMs with the rover and a simulation body (one in quick runs).
   const Vehicle rover = load_vehicle((context.data_dir / "vehicles" / "rover_sim.yaml").string());
   std::vector<Case> dems;
   for (const std::string_view stem :
        {"west_bijou_escarpment_nasadem25m", "mount_st_helens_usgs30m"}) {
     if (context.quick && !dems.empty()) break;
+    context.progress->update("closed-loop-plans: " + std::string(stem), seeds + dems.size(), steps);
     dems.push_back(run_dem_case(context.data_dir, stem, rover));
   }
 

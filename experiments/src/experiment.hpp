@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "talus/report/experiment_summary.hpp"
+#include "talus/report/progress_line.hpp"
 
 namespace talus::experiments {
 
@@ -27,6 +28,9 @@ struct ExperimentContext {
   /// that run sweeps.
   std::function<int(const std::vector<std::string>&)> run_command;
   std::function<void(const std::vector<std::string>&)> check_command;
+  /// Where the experiment is (ProgressLine: drawn on a terminal; its notes,
+  /// one per finished case, go to stderr either way unless --quiet).
+  std::shared_ptr<ProgressLine> progress = std::make_shared<ProgressLine>("experiment", false);
 };
 
 /// One registered experiment.

@@ -169,8 +169,10 @@ std::string cell(double value, const char* format = "%.1f") {
 /// Both methods on every terrain of `battery` (seeds 1..seeds), in order
 /// (terrain by terrain, kMethods' order within one).
 std::vector<Run> run_battery(const Battery& battery, std::size_t seeds, const Vehicle& vehicle,
-                             std::vector<TerrainFacts>& facts) {
+                             std::vector<TerrainFacts>& facts, ProgressLine& progress) {
   std::vector<Run> runs;
+  const std::string name =
+      "iagnemma-table1" + (battery.key.empty() ? "" : " (" + battery.key + ")");
   for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
     FractalTerrainOptions terrain = scenarios::battery_terrain(seed);
     terrain.height_scale = battery.height_scale;
@@ -181,11 +183,14 @@ std::vector<Run> run_battery(const Battery& battery, std::size_t seeds, const Ve
       run.seed = seed;
       run.battery = battery.key;
       run.method = &method;
+      progress.update(name + ": seed " + std::to_string(seed) + " of " + std::to_string(seeds) +
+                          ", " + method.name,
+                      seed - 1, seeds);
       run.result = navigate_layered(grid, vehicle, scenarios::kBatteryStart,
                                     scenarios::kBatteryGoal, options_for(method));
-      std::cerr << "iagnemma-table1" << (battery.key.empty() ? "" : " (" + battery.key + ")")
-                << ": seed " << seed << " " << method.name << ": " << to_string(run.result.status)
-                << (run.failure().empty() ? "" : " (" + run.failure() + ")") << "\n";
+      progress.note(name + ": seed " + std::to_string(seed) + " " + method.name + ": " +
+                    std::string(to_string(run.result.status)) +
+                    (run.failure().empty() ? "" : " (" + run.failure() + ")"));
       runs.push_back(std::move(run));
     }
   }
@@ -359,7 +364,7 @@ void run_iagnemma_table1(const ExperimentContext& context) {
   double plan_seconds = 0.0, navigation_seconds = 0.0;
   for (const Battery& battery : batteries) {
     std::vector<TerrainFacts> rough;
-    const std::vector<Run> runs = run_battery(battery, seeds, vehicle, rough);
+    const std::vector<Run> runs = run_battery(battery, seeds, vehicle, rough, *context.progress);
     const std::string prefix = battery.key.empty() ? "" : battery.key + "_";
     const std::string csv_name =
         "results" + (battery.key.empty() ? "" : "_" + battery.key) + ".csv";

@@ -283,6 +283,8 @@ void add_sweep_command(CLI::App& app, ex::SweepRequest& request) {
   sweep->add_flag("--resume", request.resume,
                   "resume the sweep in DIR (also the default when DIR has results)");
   sweep->add_flag("--dry-run", request.dry_run, "list the cases (id, parameters) and stop");
+  sweep->add_flag("!--quiet", request.progress,
+                  "no progress on stderr (a rewritten line on a terminal, else a line per case)");
   sweep->add_option("--case-time-limit", request.case_time_limit,
                     "seconds a case may run before its worker is killed (overrides the "
                     "config's case_time_limit, default 600)");
@@ -503,6 +505,9 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
                    "east; as --start-heading. Default: free");
   plan->add_option("--out", plan_request.output_dir, "output folder (created if needed)")
       ->required();
+  plan->add_flag("!--quiet", plan_request.progress,
+                 "no progress line on stderr (it is shown only when stderr is a terminal: the "
+                 "stage, candidate k of n, elapsed and estimated remaining time)");
   plan->add_flag("!--no-figures", plan_request.figures,
                  "skip plan.png and profile.png (and their gnuplot files), e.g. in sweeps");
   plan->callback([&]() {
@@ -546,6 +551,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->add_option("--trace-interval", simulate_request.trace_interval,
                    "trace.csv sample interval [s]")
       ->capture_default_str();
+  simulate->add_flag("!--quiet", simulate_request.progress,
+                     "no progress line on stderr (shown only when stderr is a terminal)");
   simulate->add_option("--out", simulate_request.output_dir, "output folder (created if needed)")
       ->required();
   simulate->callback([&]() {
@@ -599,6 +606,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       ->add_option("--trace-interval", navigate_request.trace_interval,
                    "trace.csv sample interval [s]")
       ->capture_default_str();
+  navigate->add_flag("!--quiet", navigate_request.progress,
+                     "no progress line on stderr (shown only when stderr is a terminal)");
   navigate->add_flag("!--no-figures", navigate_request.figures,
                      "skip navigation_map.png, navigation_speed.png and navigation_angles.png");
   navigate->add_option("--out", navigate_request.output_dir, "output folder (created if needed)")
@@ -683,6 +692,10 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
   experiment->add_option("--out", out_dir, "results go to OUT/NAME/")->capture_default_str();
   experiment->add_option("--data", data_dir, "folder with the bundled terrain/ DEMs");
   experiment->add_flag("--quick", quick, "smaller problem sizes (smoke runs)");
+  bool experiment_quiet = false;
+  experiment->add_flag("--quiet", experiment_quiet,
+                       "no progress on stderr (a progress line when stderr is a terminal, and "
+                       "one line per finished case)");
   experiment->callback([&]() {
     const std::vector<ex::Experiment> experiments = ex::all_experiments();
     if (experiment_name == "list") {
@@ -696,6 +709,8 @@ int run_cli(const std::vector<std::string>& args, bool check_only) {
       const std::filesystem::path folder = std::filesystem::path(out_dir) / e.name;
       context.data_dir = ex::find_data_dir(data_dir);
       context.quick = quick;
+      context.progress =
+          std::make_shared<talus::ProgressLine>("experiment " + e.name, !experiment_quiet);
       context.run_command = [](const std::vector<std::string>& args) {
         return run_cli(args, false);
       };

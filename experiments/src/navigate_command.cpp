@@ -16,6 +16,7 @@
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/report/navigation_figures.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/progress_line.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {
@@ -94,6 +95,17 @@ NavigateOutcome navigate(const NavigateRequest& request) {
   options.navigation.time_limit = request.time_limit;
   options.navigation.seed = request.seed;
   options.navigation.simulation.output_interval = request.trace_interval;
+  ProgressLine line("talus navigate", request.progress);
+  options.planner.progress = [&line](const PlannerProgress& p) {
+    line.update("planning on the coarse map (" + std::string(to_string(p.stage)) + ")");
+    return true;
+  };
+  const std::size_t limit = static_cast<std::size_t>(std::ceil(request.time_limit));
+  options.navigation.simulation.progress = [&line, limit](double t) {
+    line.update("navigating, t = " + format_number(std::round(10.0 * t) / 10.0) + " s of at most " +
+                    std::to_string(limit) + " s",
+                static_cast<std::size_t>(t), limit);
+  };
   NavigateOutcome outcome;
   try {
     outcome.result = navigate_layered(terrain.grid, vehicle, start, goal, options);

@@ -34,6 +34,7 @@ struct NavigateRequest {
   /// false (--no-figures): no navigation_map.png, navigation_speed.png and
   /// navigation_angles.png (sweeps draw their own).
   bool figures = true;
+  bool progress = true;  ///< false (--quiet): no progress line on stderr
 };
 
 /// Exit code when the goal was not reached (failure, timeout, no plan); the

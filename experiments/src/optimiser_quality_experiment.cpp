@@ -408,14 +408,19 @@ void run_optimiser_quality(const ExperimentContext& context) {
   const std::vector<Configuration> reference = reference_configurations(quick);
   std::vector<Case> cases;
   // One line per case on stderr: the full run takes tens of minutes.
+  ProgressLine& progress = *context.progress;
   for (std::size_t k = 0; k < problems.size(); ++k) {
     const std::size_t configurations = problems[k].battery ? reference.size() : kDemConfigurations;
+    progress.update("optimiser-quality: case " + std::to_string(k + 1) + " of " +
+                        std::to_string(problems.size()) + " (" + problems[k].name + ")",
+                    k, problems.size());
     cases.push_back(run_case(std::move(problems[k]), reference, configurations));
     const Case& c = cases.back();
-    std::cerr << "optimiser-quality: case " << k + 1 << "/" << problems.size() << " ("
-              << c.problem.name << "): default " << sig3(c.default_run.travel_time) << " s in "
-              << sig3(c.default_run.seconds) << " s, reference " << sig3(c.reference_time) << " s, "
-              << sig3(seconds_since(start)) << " s so far\n";
+    progress.note("optimiser-quality: case " + std::to_string(k + 1) + "/" +
+                  std::to_string(problems.size()) + " (" + c.problem.name + "): default " +
+                  sig3(c.default_run.travel_time) + " s in " + sig3(c.default_run.seconds) +
+                  " s, reference " + sig3(c.reference_time) + " s, " + sig3(seconds_since(start)) +
+                  " s so far");
   }
 
   const auto default_of = [](const Case& c) -> const Run* { return &c.default_run; };

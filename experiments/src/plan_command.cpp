@@ -27,6 +27,7 @@
 #include "talus/optimal/planner_parameters.hpp"
 #include "talus/report/plan_figures.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/progress_line.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {
@@ -369,11 +370,20 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   seconds["plots"] = plots_seconds;
 }
 
-/// The request's options as the library planner's.
-PlannerOptions planner_options(const PlanRequest& request) {
+/// The request's options as the library planner's, reporting on `line`.
+PlannerOptions planner_options(const PlanRequest& request, ProgressLine& line) {
   PlannerOptions options = request.planner;
   options.global.cost_fields = true;  // fields.csv
   options.optimize = request.stage == kPlanStageFull;
+  options.progress = [&line](const PlannerProgress& p) {
+    if (p.stage == PlannerStage::kGlobalSearch) line.update("global search");
+    if (p.stage == PlannerStage::kLocalOptimisation)
+      line.update("local optimisation, candidate " + std::to_string(p.candidate + 1) + " of " +
+                      std::to_string(p.candidates),
+                  p.candidate, p.candidates);
+    if (p.stage == PlannerStage::kDone) line.update("writing the outputs");
+    return true;
+  };
   return options;
 }
 
@@ -443,6 +453,8 @@ PlanOutcome plan(const PlanRequest& request) {
   const ElevationGrid& grid = terrain.grid;
   check_in_domain("--start", start, grid, request.terrain);
   check_in_domain("--goal", goal, grid, request.terrain);
+  ProgressLine line("talus plan", request.progress);
+  line.update("fitting the surface");
   const auto fit_start = Clock::now();
   PlanOutcome outcome;
   outcome.surface = std::make_shared<const BPatch>([&] {
@@ -462,7 +474,7 @@ PlanOutcome plan(const PlanRequest& request) {
     problem.start_heading = request.start_heading;
     problem.goal_heading = request.goal_heading;
   }
-  const PlannerOptions options = planner_options(request);
+  const PlannerOptions options = planner_options(request, line);
   outcome.result = talus::plan(problem, options);
   const PlannerResult& planned = outcome.result;
   const GlobalSearchResult& result = planned.global;

@@ -50,6 +50,9 @@ struct PlanRequest {
   bool rasters = false;
   /// false (--no-figures): no plan.png and profile.png (sweeps draw their own).
   bool figures = true;
+  /// false (--quiet): no progress line on stderr (there is none unless stderr
+  /// is a terminal).
+  bool progress = true;
 };
 
 /// The stages `--stage` accepts.

@@ -19,6 +19,7 @@
 #include "talus/core/stopwatch.hpp"
 #include "talus/dynamics/vehicle.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/progress_line.hpp"
 #include "terrain_input.hpp"
 
 namespace talus::experiments {
@@ -168,6 +169,11 @@ SimulateOutcome simulate(const SimulateRequest& request) {
   options.speed_scale = request.speed_scale;
   options.steering_law = parse_steering_law(request.steering_law);
   options.simulation.output_interval = request.trace_interval;
+  ProgressLine line("talus simulate", request.progress);
+  options.simulation.progress = [&line](double t) {
+    line.update("driving the trajectory, t = " + format_number(std::round(10.0 * t) / 10.0) +
+                " s simulated");
+  };
   SimulateOutcome outcome;
   outcome.result = track_trajectory(surface, vehicle, reference, options);
   const TrackingResult& r = outcome.result;

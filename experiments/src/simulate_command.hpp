@@ -30,6 +30,7 @@ struct SimulateRequest {
   /// lambda of the smoothing fit (as the plan's --smoothing); none = interpolating fit.
   std::optional<double> smoothing;
   double trace_interval = 0.02;  ///< trace.csv sample interval [s] (> 0)
+  bool progress = true;          ///< false (--quiet): no progress line on stderr
 };
 
 /// Exit code of `talus simulate` when the vehicle did not reach the goal

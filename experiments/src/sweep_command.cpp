@@ -26,7 +26,7 @@ std::string sweep(const SweepRequest& request) {
   options.case_time_limit = request.case_time_limit;
   options.rank = mpi.rank();
   options.ranks = mpi.size();
-  options.progress = mpi.rank() == 0;
+  options.progress = request.progress && mpi.rank() == 0;
   const std::unique_ptr<CaseDealer> dealer = mpi.case_dealer();
   options.dealer = dealer.get();
   options.run_command = request.run_command;

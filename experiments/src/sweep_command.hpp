@@ -16,6 +16,7 @@ struct SweepRequest {
   bool resume = false;   ///< accepted for clarity: resuming is the default
   bool dry_run = false;
   double case_time_limit = 0.0;  ///< > 0 overrides the config's
+  bool progress = true;          ///< false (--quiet): no progress on stderr
   std::function<int(const std::vector<std::string>&)> run_command;
   std::function<void(const std::vector<std::string>&)> check_command;
 };

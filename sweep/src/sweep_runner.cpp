@@ -26,6 +26,7 @@
 #include "talus/core/error.hpp"
 #include "talus/core/input_file.hpp"
 #include "talus/report/plot.hpp"
+#include "talus/report/progress_line.hpp"
 
 namespace talus {
 namespace {
@@ -260,35 +261,25 @@ Ending ending_of(int wait_status, bool timed_out, double limit) {
   return e;
 }
 
+/// The sweep's progress line (one rewritten line on a terminal, else a line
+/// per finished case).
 class Progress {
  public:
-  Progress(bool on, std::size_t total) : on_(on), tty_(on && ::isatty(2)), total_(total) {}
+  Progress(bool on, std::size_t total) : line_("sweep", on), total_(total) {}
   void update(std::size_t done, std::size_t failed, std::size_t running, const std::string& note) {
-    if (!on_) return;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
-    std::ostringstream line;
-    line << "sweep: " << done << "/" << total_ << " done, " << failed << " failed, " << running
-         << " running";
-    if (rate > 0) {
-      line.precision(3);
-      line << ", " << rate << " cases/s, ETA "
-           << std::lround(static_cast<double>(total_ - done) / rate) << " s";
-    }
-    if (tty_) {
-      std::cerr << "\r" << line.str() << "\033[K" << std::flush;
+    std::ostringstream text;
+    text << done << "/" << total_ << " done, " << failed << " failed, " << running << " running";
+    if (line_.drawn()) {
+      line_.update(text.str(), done, total_);
     } else if (!note.empty()) {
-      std::cerr << line.str() << " (" << note << ")\n";
+      line_.note(line_.text(text.str(), done, total_) + " (" + note + ")");
     }
   }
-  void finish() {
-    if (tty_) std::cerr << "\n";
-  }
+  void finish() { line_.finish(); }
 
  private:
-  bool on_, tty_;
+  ProgressLine line_;
   std::size_t total_;
-  Clock::time_point start_ = Clock::now();
 };
 
 }  // namespace

@@ -205,6 +205,9 @@ struct VehicleSimulationOptions {
   /// strict event, at the first instant).
   double side_slip_time = 0.5;
   double stall_speed = 0.05;  ///< [m/s] (> 0)
+  /// Called at every control tick with the simulated time reached [s] (for a
+  /// progress display; empty = none). It must not throw.
+  std::function<void(double t)> progress;
   /// Throws InputError naming the field.
   void validate() const;
 };

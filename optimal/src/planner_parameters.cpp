@@ -50,13 +50,11 @@ std::vector<Parameter<Options>> global_stage() {
 std::vector<Parameter<Options>> planner_level() {
   // The time limit is the termination's time budget (a stop request set in
   // code is replaced when the time limit is set).
-  Parameter<Options> time_limit;
-  time_limit.name = "time_limit";
-  time_limit.kind = ParameterKind::kReal;
-  time_limit.doc =
+  Parameter<Options> time_limit = detail::entry<Options>(
+      "time_limit", ParameterKind::kReal,
       "wall-clock budget of the whole plan [s] (inf = none): on it the status is time_limit "
-      "and the best feasible trajectory found by then is returned";
-  time_limit.lower = 0.0;
+      "and the best feasible trajectory found by then is returned",
+      0.0);
   time_limit.lower_open = true;
   time_limit.allow_infinity = true;
   time_limit.get = [](const Options& o) { return ParameterValue(o.termination.smallest_budget()); };

@@ -182,16 +182,30 @@ class ParameterTable {
   std::vector<Entry> entries_;
 };
 
+namespace detail {
+/// An entry with its name, kind, documentation and bounds set (the rest is the builder's).
+template <class Options>
+Parameter<Options> entry(std::string name, ParameterKind kind, std::string doc,
+                         double lower = -std::numeric_limits<double>::infinity(),
+                         double upper = std::numeric_limits<double>::infinity()) {
+  Parameter<Options> p;
+  p.name = std::move(name);
+  p.kind = kind;
+  p.doc = std::move(doc);
+  p.lower = lower;
+  p.upper = upper;
+  return p;
+}
+}  // namespace detail
+
 /// Builders of the common entries, reading and writing one member through
 /// `field` (a generic function returning a reference to it, for const and
 /// mutable options alike: [](auto& o) -> auto& {
 /// return o.global.connectivity; }).
 template <class Options, class Field>
 Parameter<Options> flag_parameter(std::string name, Field field, std::string doc) {
-  Parameter<Options> p;
-  p.name = std::move(name);
-  p.kind = ParameterKind::kFlag;
-  p.doc = std::move(doc);
+  Parameter<Options> p =
+      detail::entry<Options>(std::move(name), ParameterKind::kFlag, std::move(doc));
   p.get = [field](const Options& o) { return ParameterValue(static_cast<bool>(field(o))); };
   p.set = [field](Options& o, const ParameterValue& v) { field(o) = std::get<bool>(v); };
   return p;
@@ -201,12 +215,8 @@ Parameter<Options> flag_parameter(std::string name, Field field, std::string doc
 template <class Options, class Field>
 Parameter<Options> integer_parameter(std::string name, Field field, double lower, double upper,
                                      std::string doc, std::vector<long long> allowed = {}) {
-  Parameter<Options> p;
-  p.name = std::move(name);
-  p.kind = ParameterKind::kInteger;
-  p.doc = std::move(doc);
-  p.lower = lower;
-  p.upper = upper;
+  Parameter<Options> p = detail::entry<Options>(std::move(name), ParameterKind::kInteger,
+                                                std::move(doc), lower, upper);
   p.allowed = std::move(allowed);
   p.get = [field](const Options& o) { return ParameterValue(static_cast<long long>(field(o))); };
   p.set = [field](Options& o, const ParameterValue& v) {
@@ -222,12 +232,8 @@ template <class Options, class Field>
 Parameter<Options> real_parameter(std::string name, Field field, double lower, double upper,
                                   std::string doc, bool lower_open = false,
                                   bool allow_infinity = false) {
-  Parameter<Options> p;
-  p.name = std::move(name);
-  p.kind = ParameterKind::kReal;
-  p.doc = std::move(doc);
-  p.lower = lower;
-  p.upper = upper;
+  Parameter<Options> p =
+      detail::entry<Options>(std::move(name), ParameterKind::kReal, std::move(doc), lower, upper);
   p.lower_open = lower_open;
   p.allow_infinity = allow_infinity;
   p.get = [field](const Options& o) { return ParameterValue(field(o)); };
@@ -240,10 +246,8 @@ Parameter<Options> real_parameter(std::string name, Field field, double lower, d
 template <class Options, class Field, class ToName, class FromName>
 Parameter<Options> choice_parameter(std::string name, Field field, std::vector<std::string> choices,
                                     ToName to_name, FromName from_name, std::string doc) {
-  Parameter<Options> p;
-  p.name = std::move(name);
-  p.kind = ParameterKind::kChoice;
-  p.doc = std::move(doc);
+  Parameter<Options> p =
+      detail::entry<Options>(std::move(name), ParameterKind::kChoice, std::move(doc));
   p.choices = std::move(choices);
   p.get = [field, to_name](const Options& o) {
     return ParameterValue(std::string(to_name(field(o))));
@@ -258,12 +262,8 @@ Parameter<Options> choice_parameter(std::string name, Field field, std::vector<s
 template <class Options, class Field>
 Parameter<Options> integer_list_parameter(std::string name, Field field, double lower, double upper,
                                           std::string doc) {
-  Parameter<Options> p;
-  p.name = std::move(name);
-  p.kind = ParameterKind::kIntegerList;
-  p.doc = std::move(doc);
-  p.lower = lower;
-  p.upper = upper;
+  Parameter<Options> p = detail::entry<Options>(std::move(name), ParameterKind::kIntegerList,
+                                                std::move(doc), lower, upper);
   p.get = [field](const Options& o) {
     std::vector<long long> out;
     for (const auto m : field(o)) out.push_back(static_cast<long long>(m));

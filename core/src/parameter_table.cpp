@@ -115,27 +115,33 @@ std::string value_text(const ParameterValue& value) {
 }
 
 std::optional<ParameterValue> parse_parameter_text(ParameterKind kind, std::string_view text) {
+  // Each value is made in place in the optional (GCC 12 warns, wrongly, of an uninitialised
+  // vector when a variant temporary is moved into it).
+  using Out = std::optional<ParameterValue>;
   switch (kind) {
     case ParameterKind::kFlag: {
       const std::string_view t = trimmed(text);
-      if (t == "true" || t == "1" || t == "on") return ParameterValue(true);
-      if (t == "false" || t == "0" || t == "off") return ParameterValue(false);
+      if (t == "true" || t == "1" || t == "on")
+        return Out(std::in_place, std::in_place_type<bool>, true);
+      if (t == "false" || t == "0" || t == "off")
+        return Out(std::in_place, std::in_place_type<bool>, false);
       return std::nullopt;
     }
     case ParameterKind::kInteger:
-      if (const auto v = parse_integer(text)) return ParameterValue(*v);
+      if (const auto v = parse_integer(text))
+        return Out(std::in_place, std::in_place_type<long long>, *v);
       return std::nullopt;
     case ParameterKind::kReal:
-      if (const auto v = parse_real(text)) return ParameterValue(*v);
+      if (const auto v = parse_real(text))
+        return Out(std::in_place, std::in_place_type<double>, *v);
       return std::nullopt;
     case ParameterKind::kChoice:
-      return ParameterValue(std::string(trimmed(text)));
+      return Out(std::in_place, std::in_place_type<std::string>, trimmed(text));
     case ParameterKind::kIntegerList: {
       std::vector<long long> list;
       const std::string_view all = trimmed(text);
-      if (all.empty() || all == "0") return ParameterValue(list);
       std::size_t from = 0;
-      while (true) {
+      while (!(all.empty() || all == "0")) {
         const std::size_t comma = all.find(',', from);
         const auto v = parse_integer(all.substr(from, comma - from));
         if (!v) return std::nullopt;
@@ -143,7 +149,7 @@ std::optional<ParameterValue> parse_parameter_text(ParameterKind kind, std::stri
         if (comma == std::string_view::npos) break;
         from = comma + 1;
       }
-      return ParameterValue(list);
+      return Out(std::in_place, std::in_place_type<std::vector<long long>>, std::move(list));
     }
   }
   return std::nullopt;

@@ -508,6 +508,8 @@ PlanOutcome plan(const PlanRequest& request) {
                        : reachable  ? nlohmann::json(nullptr)
                                     : nlohmann::json(result.message);
   summary["coarse_nodes"] = result.coarse_nodes;
+  // What the search ran (the option may be auto).
+  summary["search_resolution"] = std::string(to_string(result.resolution));
   summary["corridor_widenings"] = result.corridor_widenings;
   summary["stage"] = request.stage;
   // The best corridor's lattice travel time: monotone in the vehicle's limits

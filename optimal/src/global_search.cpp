@@ -586,7 +586,8 @@ void GlobalSearchOptions::validate() const {
   if (candidates < 1) throw InputError("GlobalSearchOptions.candidates must be >= 1");
   if (!(distinctness >= 0.0)) throw InputError("GlobalSearchOptions.distinctness must be >= 0");
   if (!(max_cost_ratio >= 1.0)) throw InputError("GlobalSearchOptions.max_cost_ratio must be >= 1");
-  if (resolution != GlobalSearchResolution::kFull && resolution != GlobalSearchResolution::kMulti) {
+  if (resolution != GlobalSearchResolution::kFull && resolution != GlobalSearchResolution::kMulti &&
+      resolution != GlobalSearchResolution::kAuto) {
     throw InputError("GlobalSearchOptions.resolution is not a GlobalSearchResolution");
   }
   if (coarse_factor < 2) {
@@ -606,6 +607,8 @@ std::string_view to_string(GlobalSearchResolution resolution) {
       return "full";
     case GlobalSearchResolution::kMulti:
       return "multi";
+    case GlobalSearchResolution::kAuto:
+      return "auto";
   }
   return "unknown";
 }
@@ -613,8 +616,9 @@ std::string_view to_string(GlobalSearchResolution resolution) {
 GlobalSearchResolution parse_global_search_resolution(std::string_view name) {
   if (name == "full") return GlobalSearchResolution::kFull;
   if (name == "multi") return GlobalSearchResolution::kMulti;
+  if (name == "auto") return GlobalSearchResolution::kAuto;
   throw InputError("unknown global search resolution '" + std::string(name) +
-                   "': choose full or multi");
+                   "': choose auto, full or multi");
 }
 
 std::string_view to_string(GlobalSearchStatus status) {
@@ -1185,16 +1189,26 @@ GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const V
   // Armed once: every stage below polls the same deadlines.
   GlobalSearchOptions armed = options;
   armed.termination = options.termination.start();
+  if (armed.resolution == GlobalSearchResolution::kAuto) {
+    const auto count = [spacing](double extent) {
+      return static_cast<double>(std::floor(extent / spacing)) + 1.0;
+    };
+    const double nodes =
+        count(terrain.x_max() - terrain.x_min()) * count(terrain.y_max() - terrain.y_min());
+    armed.resolution = nodes > static_cast<double>(kAutoMultiResolutionNodes)
+                           ? GlobalSearchResolution::kMulti
+                           : GlobalSearchResolution::kFull;
+  }
   if (const TerminationReason reason = armed.termination.check();
       reason != TerminationReason::kNone) {
     GlobalSearchResult result;
     result.status = GlobalSearchStatus::kStopped;
     result.message = "stopped by GlobalSearchOptions::termination (" +
                      std::string(to_string(reason)) + ") before the search started";
-    result.resolution = options.resolution;
+    result.resolution = armed.resolution;
     return result;
   }
-  if (options.resolution == GlobalSearchResolution::kMulti) {
+  if (armed.resolution == GlobalSearchResolution::kMulti) {
     return search_coarse_to_fine(terrain, vehicle, set, start, goal, armed, spacing, whole_map, t0);
   }
   GlobalSearchResult result = search_lattice(terrain, vehicle, set, start, goal, armed, spacing,

@@ -24,16 +24,18 @@ std::vector<Parameter<Options>> global_stage() {
                                  [](auto& o) -> auto& { return o.global.connectivity; }, 8, 32,
                                  "neighbours per lattice node", {8, 16, 32}),
       choice_parameter<Options>(
-          "resolution", [](auto& o) -> auto& { return o.global.resolution; }, {"full", "multi"},
+          "resolution", [](auto& o) -> auto& { return o.global.resolution; },
+          {"auto", "full", "multi"},
           [](GlobalSearchResolution r) { return to_string(r); },
           [](const std::string& name) { return parse_global_search_resolution(name); },
-          "global search: full (every lattice node) or multi (a coarse lattice 4x coarser, then "
+          "global search: full (every lattice node), multi (a coarse lattice 4x coarser, then "
           "the fine lattice in a corridor around its candidates, widened while needed; no "
-          "cost fields)"),
+          "cost fields) or auto (multi above 1000000 lattice nodes, full below; the summary's "
+          "search_resolution says which ran)"),
       integer_parameter<Options>(
           "threads", [](auto& o) -> auto& { return o.global.threads; }, 0, 1024,
-          "threads computing the global search's edge costs (0 = one per hardware thread); the "
-          "plan is the same for any count"),
+          "threads computing the global search's edge costs (0, the default, = one per "
+          "hardware thread); the plan is the same for any count"),
       flag_parameter<Options>(
           "braking_rule", [](auto& o) -> auto& { return o.global.braking_rule; },
           "global search: lattice edges on which the vehicle could not brake at any speed are "

@@ -55,8 +55,16 @@ enum class GlobalSearchResolution {
   /// scale) falls back to the full search. cost_from_start / cost_to_goal
   /// are not returned (they would be map-sized).
   kMulti,
+  /// kMulti when the lattice has more than kAutoMultiResolutionNodes nodes,
+  /// else kFull (GlobalSearchResult::resolution says which ran): a tile-size
+  /// DEM is searched coarse to fine without the user having to ask.
+  kAuto,
 };
-/// "full", "multi".
+/// Lattices with more nodes than this (1000 x 1000) are searched coarse to
+/// fine under GlobalSearchResolution::kAuto: a 3601² DEM at 1 m in full takes
+/// minutes and 3.3 GB; coarse to fine, seconds and under 1 GB.
+inline constexpr std::size_t kAutoMultiResolutionNodes = 1'000'000;
+/// "full", "multi", "auto".
 std::string_view to_string(GlobalSearchResolution resolution);
 /// Inverse of to_string; throws InputError listing the choices.
 GlobalSearchResolution parse_global_search_resolution(std::string_view name);
@@ -90,8 +98,9 @@ struct GlobalSearchOptions {
   /// from start to goal with the admissible heuristic distance / max_speed,
   /// which evaluates only the edges it needs.
   bool cost_fields = true;
-  /// kFull (default) or kMulti (coarse to fine, see GlobalSearchResolution).
-  GlobalSearchResolution resolution = GlobalSearchResolution::kFull;
+  /// kAuto (default: kFull up to kAutoMultiResolutionNodes lattice nodes,
+  /// kMulti above), kFull or kMulti (coarse to fine, see GlobalSearchResolution).
+  GlobalSearchResolution resolution = GlobalSearchResolution::kAuto;
   /// kMulti: coarse lattice spacing / fine lattice spacing (>= 2).
   int coarse_factor = 4;
   /// kMulti: the corridor's first half-width around the coarse candidates [m]
@@ -200,7 +209,7 @@ struct GlobalSearchResult {
   double search_seconds = 0.0;      ///< total time of the global stage
   // Multi-resolution diagnostics (resolution kMulti; nodes is then the final
   // corridor's node count, expanded and edges_evaluated count every search).
-  GlobalSearchResolution resolution = GlobalSearchResolution::kFull;  ///< what ran
+  GlobalSearchResolution resolution = GlobalSearchResolution::kFull;  ///< what ran (never kAuto)
   std::size_t coarse_nodes = 0;        ///< nodes of the coarse lattice
   std::size_t corridor_widenings = 0;  ///< times the corridor was doubled
   double corridor_width = 0.0;         ///< the final corridor's half-width [m]

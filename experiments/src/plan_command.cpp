@@ -226,6 +226,20 @@ nlohmann::json optimum_json(const CandidateOutcome& c, const std::string& solver
   entry["attempts"] = std::move(attempts);
   entry["best_attempt"] = o ? nlohmann::json(o->best_attempt) : nlohmann::json(nullptr);
   entry["length_m"] = c.feasible() ? nlohmann::json(c.trajectory.length()) : nullptr;
+  // --certify: the optimum's local-optimality certificate.
+  entry["certificate"] = nullptr;
+  if (c.certificate) {
+    const LocalCertificate& k = *c.certificate;
+    entry["certificate"] = {{"certified", k.certified},
+                            {"radius_m", k.radius},
+                            {"tolerance", k.tolerance},
+                            {"improvement_percent", 100.0 * k.improvement},
+                            {"evaluations", k.evaluations},
+                            {"rounds", k.rounds},
+                            {"solver_status", k.solver_status},
+                            {"kept", c.certificate_kept},
+                            {"seconds", k.seconds}};
+  }
   return entry;
 }
 

@@ -777,4 +777,72 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
   return best;
 }
 
+void LocalCertificateOptions::validate() const {
+  if (!(std::isfinite(radius) && radius >= 0.0))
+    throw InputError("LocalCertificateOptions.radius must be a finite number >= 0 [m]");
+  if (!(std::isfinite(tolerance) && tolerance >= 0.0))
+    throw InputError("LocalCertificateOptions.tolerance must be a finite number >= 0");
+  if (rounds < 1) throw InputError("LocalCertificateOptions.rounds must be >= 1");
+}
+
+LocalCertificate certify_local_optimum(const BPatch& terrain, const Vehicle& vehicle,
+                                       const OptimizedPath& optimum,
+                                       const PathOptimizerOptions& options,
+                                       const LocalCertificateOptions& certificate) {
+  const auto started = std::chrono::steady_clock::now();
+  certificate.validate();
+  options.validate();
+  LocalCertificate out;
+  out.radius = certificate.radius > 0.0 ? certificate.radius : 0.25 * terrain.cellsize();
+  out.tolerance = certificate.tolerance;
+  const std::vector<Vec2>& points = optimum.curve.control_points();
+  PathTimeObjective objective(terrain, vehicle, points.front(), points.back(), points.size(),
+                              optimum.stations, options.speeds);
+  detail::TrackedObjective tracked(objective);
+  const Eigen::VectorXd z = objective.variables(points);
+  out.travel_time = out.best_time = tracked(z, nullptr);
+  if (!std::isfinite(out.travel_time)) {
+    out.solver_status = "infeasible";
+    out.seconds = seconds_since(started);
+    return out;
+  }
+  // Rounds: the optimiser's own box (domain, pinned headings) cut to the radius round the
+  // best point so far; a round that improves by more than the tolerance moves the box there
+  // and searches again. The last round's improvement decides the certificate.
+  Eigen::VectorXd centre = z;
+  const std::size_t n = objective.dimension();
+  const std::size_t budget =
+      certificate.max_evaluations > 0 ? certificate.max_evaluations : 10 * (n + 1);
+  for (std::size_t round = 0; round < certificate.rounds; ++round) {
+    detail::BoxProblem box = box_problem(terrain, centre, {points.front(), points.back()}, options);
+    box.lower = box.lower.cwiseMax((centre.array() - out.radius).matrix());
+    box.upper = box.upper.cwiseMin((centre.array() + out.radius).matrix());
+    double narrowest = std::numeric_limits<double>::infinity();
+    for (long i = 0; i < centre.size(); ++i)
+      if (box.upper[i] > box.lower[i]) narrowest = std::min(narrowest, box.upper[i] - box.lower[i]);
+    if (!std::isfinite(narrowest)) {  // nothing free: the optimum is the only point
+      out.certified = true;
+      out.solver_status = "no free coordinate";
+      break;
+    }
+    box.initial_step = 0.25 * narrowest;  // half the radius where the box is not cut
+    box.max_evaluations = budget;
+    box.relative_tolerance = 0.1 * certificate.tolerance;
+    const double before = tracked.best_value();
+    const detail::SolverRun run = detail::run_nlopt_bobyqa(tracked, box);
+    out.solver_status = run.status;
+    ++out.rounds;
+    const double gain = (before - tracked.best_value()) / before;
+    out.certified = gain <= certificate.tolerance;
+    if (out.certified || run.status == "time_limit") break;
+    centre = tracked.best();
+  }
+  out.evaluations = tracked.evaluations();
+  out.best_time = tracked.best_value();
+  out.improvement = (out.travel_time - out.best_time) / out.travel_time;
+  if (out.best_time < out.travel_time) out.better.emplace(objective.curve(tracked.best()));
+  out.seconds = seconds_since(started);
+  return out;
+}
+
 }  // namespace talus

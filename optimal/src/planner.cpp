@@ -71,7 +71,7 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
                                     const PathOptimizerOptions& local,
                                     const TrajectoryOptions& evaluation,
                                     const GlobalSearchResult& global, std::size_t c,
-                                    const std::optional<InitialPath>& fit,
+                                    const std::optional<InitialPath>& fit, bool certify,
                                     TimeOptimalProfileSolver& workspace, PlannerTimings& timings) {
   const auto started = Clock::now();
   CandidateOutcome outcome;
@@ -103,6 +103,18 @@ CandidateOutcome optimise_candidate(const PlanningProblem& problem,
     if (!(outcome.trajectory.travel_time() <=
           optimization.travel_time * (1.0 + kStageDisagreement))) {
       report_fastest_attempt(problem, evaluation, optimization, workspace, outcome);
+    }
+    if (certify) {
+      outcome.certificate.emplace(
+          certify_local_optimum(surface, problem.vehicle, optimization, local));
+      if (outcome.certificate->better) {
+        Trajectory better = evaluate_trajectory(
+            surface, problem.vehicle, *outcome.certificate->better, evaluation, &workspace);
+        if (better.travel_time() < outcome.trajectory.travel_time()) {
+          outcome.trajectory = std::move(better);
+          outcome.certificate_kept = true;
+        }
+      }
     }
   } else {
     outcome.trajectory.message = outcome.optimizer_message;
@@ -553,7 +565,8 @@ PlannerResult plan(const PlanningProblem& problem, const PlannerOptions& options
     const std::optional<InitialPath> fit =
         c < fits.size() ? std::optional<InitialPath>(fits[c]) : std::nullopt;
     result.candidates.push_back(optimise_candidate(problem, local, evaluation, result.global, c,
-                                                   fit, workspace, result.seconds));
+                                                   fit, options.certify, workspace,
+                                                   result.seconds));
     CandidateOutcome& outcome = result.candidates.back();
     outcome.followable = fit && fit->admissible();
     outcome.time_limited =

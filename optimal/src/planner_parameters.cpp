@@ -25,8 +25,7 @@ std::vector<Parameter<Options>> global_stage() {
                                  "neighbours per lattice node", {8, 16, 32}),
       choice_parameter<Options>(
           "resolution", [](auto& o) -> auto& { return o.global.resolution; },
-          {"auto", "full", "multi"},
-          [](GlobalSearchResolution r) { return to_string(r); },
+          {"auto", "full", "multi"}, [](GlobalSearchResolution r) { return to_string(r); },
           [](const std::string& name) { return parse_global_search_resolution(name); },
           "global search: full (every lattice node), multi (a coarse lattice 4x coarser, then "
           "the fine lattice in a corridor around its candidates, widened while needed; no "
@@ -118,6 +117,12 @@ std::vector<Parameter<Options>> local_stage() {
           "local stage: restarts of a candidate's optimisation that ends without converging (an "
           "iteration or evaluation cap): the first from its best point with fresh solver state, "
           "the others from that point perturbed laterally by two cells (seeded)"),
+      flag_parameter<Options>(
+          "certify", [](auto& o) -> auto& { return o.certify; },
+          "local stage: certify each optimum as a local minimum of the travel time (a "
+          "derivative-free trust-region search, BOBYQA, within a quarter cell of every control "
+          "point finds nothing faster by more than 0.05 %; a faster point it finds is kept); "
+          "optima[].certificate reports it"),
       flag_parameter<Options>(
           "polish", [](auto& o) -> auto& { return o.local.polish; },
           "local stage, nested formulation: polish each candidate's optimum with the "

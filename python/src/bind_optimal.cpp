@@ -390,6 +390,20 @@ void bind_planner(py::module_& m) {
       .def(
           "__str__", [](PlannerStatus s) { return std::string(to_string(s)); }, py::prepend());
 
+  py::class_<LocalCertificate>(m, "LocalCertificate",
+                               "An optimum's local-optimality certificate "
+                               "(talus::certify_local_optimum; PlannerOptions(certify=True))")
+      .def_readonly("certified", &LocalCertificate::certified)
+      .def_readonly("rounds", &LocalCertificate::rounds)
+      .def_readonly("radius", &LocalCertificate::radius, "[m]")
+      .def_readonly("tolerance", &LocalCertificate::tolerance)
+      .def_readonly("travel_time", &LocalCertificate::travel_time, "[s]")
+      .def_readonly("best_time", &LocalCertificate::best_time, "[s]")
+      .def_readonly("improvement", &LocalCertificate::improvement, "relative, >= 0")
+      .def_readonly("evaluations", &LocalCertificate::evaluations)
+      .def_readonly("solver_status", &LocalCertificate::solver_status)
+      .def_readonly("seconds", &LocalCertificate::seconds);
+
   py::class_<CandidateOutcome>(m, "CandidateOutcome")
       .def_readonly("candidate", &CandidateOutcome::candidate)
       .def_readonly("optimization", &CandidateOutcome::optimization)
@@ -397,6 +411,8 @@ void bind_planner(py::module_& m) {
       .def_readonly("initial", &CandidateOutcome::initial)
       .def_readonly("trajectory", &CandidateOutcome::trajectory)
       .def_readonly("kept_initial", &CandidateOutcome::kept_initial)
+      .def_readonly("certificate", &CandidateOutcome::certificate, "LocalCertificate or None")
+      .def_readonly("certificate_kept", &CandidateOutcome::certificate_kept)
       .def_readonly("reported_attempt", &CandidateOutcome::reported_attempt)
       .def_readonly("seconds", &CandidateOutcome::seconds)
       .def("feasible", &CandidateOutcome::feasible);

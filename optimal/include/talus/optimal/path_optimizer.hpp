@@ -348,4 +348,54 @@ OptimizedPath optimize_path(const BPatch& terrain, const Vehicle& vehicle,
                             const PathOptimizerOptions& options,
                             const std::optional<InitialPath>& fit = std::nullopt);
 
+/// Options of certify_local_optimum().
+struct LocalCertificateOptions {
+  /// Half-width [m] of the box round every free control point that the
+  /// search explores; 0 = a quarter of the terrain's cell size.
+  double radius = 0.0;
+  /// A relative improvement at most this (0.05 %) certifies the optimum.
+  double tolerance = 5e-4;
+  /// Travel-time evaluations each round may spend; 0 = 10 (n + 1) for n
+  /// free coordinates.
+  std::size_t max_evaluations = 0;
+  /// Rounds (>= 1): a round that improves by more than the tolerance moves
+  /// the box to its best point and searches again.
+  std::size_t rounds = 3;
+  /// Throws InputError naming the field.
+  void validate() const;
+};
+
+/// Whether a local optimum is one, kinks or not (issue #36): the travel time
+/// is piecewise smooth (it kinks where a switching point appears), so a
+/// solver's status cannot certify it. From the optimum a derivative-free
+/// trust-region search (NLopt BOBYQA, initial radius half the box) explores
+/// the box of half-width `radius` round every free control point at the
+/// optimum's own stations; finding nothing faster by more than `tolerance`
+/// certifies a local minimum of the travel time to that tolerance within
+/// that radius. A faster point it finds is returned: it is a better path,
+/// and the search is repeated round it (up to `rounds`); the certificate is
+/// the last round's.
+struct LocalCertificate {
+  bool certified = false;
+  std::size_t rounds = 0;    ///< searches run
+  double radius = 0.0;       ///< [m] the box's half-width used
+  double tolerance = 0.0;    ///< the relative tolerance used
+  double travel_time = 0.0;  ///< the optimum's, at its search stations [s]
+  double best_time = 0.0;    ///< the fastest found within the box, same stations [s]
+  /// (travel_time - best_time) / travel_time >= 0, over every round.
+  double improvement = 0.0;
+  std::size_t evaluations = 0;
+  std::string solver_status;     ///< BOBYQA's return code as text
+  std::optional<Curve2> better;  ///< the faster path, when improvement > 0
+  double seconds = 0.0;
+};
+
+/// Certifies `optimum` (a result of optimize_path with `options`, whose
+/// speeds and headings it keeps). An optimum without an admissible profile
+/// at its stations is not certified (solver_status "infeasible").
+LocalCertificate certify_local_optimum(const BPatch& terrain, const Vehicle& vehicle,
+                                       const OptimizedPath& optimum,
+                                       const PathOptimizerOptions& options,
+                                       const LocalCertificateOptions& certificate = {});
+
 }  // namespace talus

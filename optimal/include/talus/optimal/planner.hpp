@@ -156,6 +156,11 @@ struct PlannerOptions {
   /// 0 = default_station_spacing(surface, vehicle) (trajectory.hpp), one
   /// tenth of the larger of the cell size and the vehicle's half-track.
   double station_spacing = 0.0;
+  /// Certify each candidate's optimum (certify_local_optimum with its
+  /// defaults: a quarter-cell box, 0.05 %), keeping the faster path a
+  /// certificate finds; CandidateOutcome::certificate reports it. Off by
+  /// default while its cost on the battery is measured.
+  bool certify = false;
   /// Called at each PlannerProgress; returning false stops the plan before
   /// its next step (status kStopped, what was done so far kept). A step is
   /// one candidate's optimisation, bounded by local.max_evaluations.
@@ -219,6 +224,11 @@ struct CandidateOutcome {
   /// "time_limit"), or it had passed before it began (only its initial fit).
   bool time_limited = false;
   double seconds = 0.0;  ///< this candidate's local stage and evaluations [s]
+  /// PlannerOptions::certify: the optimum's local-optimality certificate
+  /// (certify_local_optimum); empty without one or without an optimum.
+  std::optional<LocalCertificate> certificate;
+  /// The certificate found a faster path and `trajectory` is it.
+  bool certificate_kept = false;
   bool feasible() const { return trajectory.feasible(); }
 };
 

@@ -174,7 +174,8 @@ class Lattice {
     // each of its half_ edges, and the searches' fields, labels and queues.
     const double per_node =
         static_cast<double>(sizeof(surface_[0]) + 1 + 16 * half_ + 64 + (full_ ? 0 : 4));
-    require_memory(per_node * static_cast<double>(size_),
+    bytes_ = per_node * static_cast<double>(size_);
+    require_memory(bytes_,
                    "the global search's lattice of " + std::to_string(nx_) + " x " +
                        std::to_string(ny_) + " nodes" +
                        (full_ ? std::string() : " (corridor of " + std::to_string(size_) + ")"),
@@ -239,6 +240,8 @@ class Lattice {
     }
   }
 
+  /// What the lattice holds [bytes] (its memory-budget estimate).
+  double bytes() const { return bytes_; }
   std::size_t size() const { return size_; }
   std::size_t nx() const { return nx_; }
   std::size_t ny() const { return ny_; }
@@ -395,6 +398,7 @@ class Lattice {
   }
 
   const BPatch& terrain_;
+  double bytes_ = 0.0;
   const AdmissibleSet& set_;
   double spacing_;
   bool braking_rule_;
@@ -830,11 +834,26 @@ class LatticeSearch {
         options_.distinctness > 0.0
             ? options_.distinctness
             : default_candidate_separation(result_.start_node, result_.goal_node, spacing_);
+    // The seeds (every state within max_cost_ratio of the best: on open ground most of
+    // them) and a distance map per further candidate, checked against the budget first.
+    const auto seed = [&](std::uint32_t k) {
+      return from_start.cost[k] + to_goal.cost[k] <= best * options_.max_cost_ratio * (1 + 1e-12);
+    };
+    std::size_t seed_count = 0;
+    for (std::uint32_t k = 0; k < n; ++k) seed_count += seed(k) ? 1 : 0;
+    // Held together with the lattice and both trees (13 bytes a state each).
+    require_memory(lattice_.bytes() + 26.0 * static_cast<double>(n) +
+                       4.0 * static_cast<double>(seed_count) +
+                       (4.0 * static_cast<double>(options_.candidates) + 1.0) *
+                           static_cast<double>(lattice_.size()),
+                   "the global search's candidate extraction (" + std::to_string(seed_count) +
+                       " seed states, " + std::to_string(lattice_.size()) + " lattice nodes)",
+                   "increase the lattice spacing (--lattice-spacing; the default is the cell "
+                   "size) or ask for fewer candidates");
     std::vector<std::uint32_t> order;
-    for (std::uint32_t k = 0; k < n; ++k) {
-      const double through = from_start.cost[k] + to_goal.cost[k];
-      if (through <= best * options_.max_cost_ratio * (1 + 1e-12)) order.push_back(k);
-    }
+    order.reserve(seed_count);
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (seed(k)) order.push_back(k);
     std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
       const double ca = from_start.cost[a] + to_goal.cost[a],
                    cb = from_start.cost[b] + to_goal.cost[b];

@@ -33,8 +33,8 @@ std::vector<Parameter<Options>> global_stage() {
           "search_resolution says which ran)"),
       integer_parameter<Options>(
           "threads", [](auto& o) -> auto& { return o.global.threads; }, 0, 1024,
-          "threads computing the global search's edge costs (0, the default, = one per "
-          "hardware thread); the plan is the same for any count"),
+          "threads computing the global search's edge costs (0 = one per hardware thread); the "
+          "plan is the same for any count"),
       flag_parameter<Options>(
           "braking_rule", [](auto& o) -> auto& { return o.global.braking_rule; },
           "global search: lattice edges on which the vehicle could not brake at any speed are "

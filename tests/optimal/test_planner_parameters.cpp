@@ -19,7 +19,7 @@ TEST(PlannerParameters, EachParameterSetsItsMember) {
   t.set_text(o, "lattice_spacing", "0.5");
   t.set_text(o, "connectivity", "32");
   t.set_text(o, "resolution", "multi");
-  t.set_text(o, "threads", "1");
+  t.set_text(o, "threads", "0");
   t.set_text(o, "braking_rule", "false");
   t.set_text(o, "turn_limit", "false");
   t.set_text(o, "feedback_rounds", "2");
@@ -37,7 +37,7 @@ TEST(PlannerParameters, EachParameterSetsItsMember) {
   EXPECT_EQ(o.global.lattice_spacing, 0.5);
   EXPECT_EQ(o.global.connectivity, 32);
   EXPECT_EQ(o.global.resolution, GlobalSearchResolution::kMulti);
-  EXPECT_EQ(o.global.threads, 1u);
+  EXPECT_EQ(o.global.threads, 0u);
   EXPECT_FALSE(o.global.braking_rule);
   EXPECT_FALSE(o.global.turn_limit);
   EXPECT_EQ(o.feedback_rounds, 2u);

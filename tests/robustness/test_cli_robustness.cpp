@@ -129,8 +129,11 @@ TEST(CliRobustness, OptionsThatWouldWrapHangOrExhaustMemory) {
   expect_refused(
       {
           {"start equal to goal", plan + "--start 5,20 --goal 5,20", "same point"},
+          // In full (the default, auto, searches these 6 million nodes coarse to fine and
+          // plans in about 200 MB).
           {"lattice finer than memory",
-           plan + "--start 5,20 --goal 55,20 --stage global --lattice-spacing 0.02",
+           plan + "--start 5,20 --goal 55,20 --stage global --lattice-spacing 0.02 "
+                  "--resolution full",
            "increase the lattice spacing"},
           // Issue #39 item 6: before, every candidate ran into the memory budget and the plan
           // ended "infeasible" (exit 2), advising an option plan does not have.

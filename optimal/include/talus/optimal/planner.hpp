@@ -124,21 +124,12 @@ struct PlannerProgress {
   double seconds = 0.0;        ///< since plan() started
 };
 
-/// The planner's global-stage defaults: GlobalSearchOptions{}'s (resolution
-/// kAuto: coarse to fine above kAutoMultiResolutionNodes lattice nodes), with
-/// the edge costs computed on every hardware thread (threads 0; the plan is
-/// bit-identical for any count). global_search() itself defaults to one
-/// thread, its benchmarks' one-core figure.
-inline GlobalSearchOptions planner_global_search_defaults() {
-  GlobalSearchOptions global;
-  global.threads = 0;
-  return global;
-}
-
 struct PlannerOptions {
-  /// The global stage (planner_global_search_defaults()). Its `candidates`
-  /// (3) is how many corridors are optimised.
-  GlobalSearchOptions global = planner_global_search_defaults();
+  /// The global stage. Its `candidates` (3) is how many corridors are
+  /// optimised. Its threads stay 1 by default: more threads each reserve a
+  /// malloc arena, and under an address-space limit (ulimit -v, common on
+  /// clusters) the failed reservations made a 1 s plan run past 20 s.
+  GlobalSearchOptions global;
   /// The local stage. Its `speeds` are ignored: the problem's start and end
   /// speeds are used.
   PathOptimizerOptions local;

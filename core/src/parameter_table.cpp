@@ -2,23 +2,16 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdio>
-#include <cstdlib>
+#include <cmath>
 
 namespace talus {
 namespace {
 
-/// Shortest text that reads back as `x` (inf for +infinity).
+/// Shortest text that reads back as `x` ("inf" for +infinity).
 std::string number_text(double x) {
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  if (std::isnan(x)) return "nan";
-  if (x == std::floor(x) && std::fabs(x) < 1e15) return std::to_string(static_cast<long long>(x));
   char buffer[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-    if (std::strtod(buffer, nullptr) == x) break;
-  }
-  return buffer;
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, result.ptr);
 }
 
 std::string_view trimmed(std::string_view text) {
@@ -27,21 +20,15 @@ std::string_view trimmed(std::string_view text) {
   return text;
 }
 
-std::optional<long long> parse_integer(std::string_view text) {
+/// The whole of `text` (blanks round it and a leading '+' allowed) as a T; NaN is refused.
+template <class T>
+std::optional<T> parse_number(std::string_view text) {
   text = trimmed(text);
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  long long value = 0;
+  T value{};
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size()) return std::nullopt;
-  return value;
-}
-
-std::optional<double> parse_real(std::string_view text) {
-  const std::string s(trimmed(text));
-  if (s.empty()) return std::nullopt;
-  char* end = nullptr;
-  const double value = std::strtod(s.c_str(), &end);
-  if (end != s.c_str() + s.size() || std::isnan(value)) return std::nullopt;
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() || value != value)
+    return std::nullopt;
   return value;
 }
 
@@ -128,11 +115,11 @@ std::optional<ParameterValue> parse_parameter_text(ParameterKind kind, std::stri
       return std::nullopt;
     }
     case ParameterKind::kInteger:
-      if (const auto v = parse_integer(text))
+      if (const auto v = parse_number<long long>(text))
         return Out(std::in_place, std::in_place_type<long long>, *v);
       return std::nullopt;
     case ParameterKind::kReal:
-      if (const auto v = parse_real(text))
+      if (const auto v = parse_number<double>(text))
         return Out(std::in_place, std::in_place_type<double>, *v);
       return std::nullopt;
     case ParameterKind::kChoice:
@@ -143,7 +130,7 @@ std::optional<ParameterValue> parse_parameter_text(ParameterKind kind, std::stri
       std::size_t from = 0;
       while (!(all.empty() || all == "0")) {
         const std::size_t comma = all.find(',', from);
-        const auto v = parse_integer(all.substr(from, comma - from));
+        const auto v = parse_number<long long>(all.substr(from, comma - from));
         if (!v) return std::nullopt;
         list.push_back(*v);
         if (comma == std::string_view::npos) break;

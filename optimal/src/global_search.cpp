@@ -98,6 +98,12 @@ int edge_stations(double planar_length, double spacing) {
 
 namespace {
 
+/// Lattice nodes along an extent [m] at `spacing` [m] (the last node within
+/// rounding of the far edge): the one rule for the lattice's shape.
+std::size_t lattice_nodes_along(double extent, double spacing) {
+  return static_cast<std::size_t>(std::floor(extent / spacing + 1e-9)) + 1;
+}
+
 /// Neighbour offsets; the first half are "positive" (dy > 0, or dy = 0 and
 /// dx > 0) and offset k + half is the negation of offset k.
 std::vector<std::pair<int, int>> neighbour_offsets(int connectivity) {
@@ -145,12 +151,8 @@ class Lattice {
         braking_rule_(braking_rule),
         offsets_(neighbour_offsets(connectivity)) {
     origin_ = Vec2(terrain.x_min(), terrain.y_min());
-    nx_ =
-        static_cast<std::size_t>(std::floor((terrain.x_max() - terrain.x_min()) / spacing + 1e-9)) +
-        1;
-    ny_ =
-        static_cast<std::size_t>(std::floor((terrain.y_max() - terrain.y_min()) / spacing + 1e-9)) +
-        1;
+    nx_ = lattice_nodes_along(terrain.x_max() - terrain.x_min(), spacing);
+    ny_ = lattice_nodes_along(terrain.y_max() - terrain.y_min(), spacing);
     if (nx_ < 2 || ny_ < 2) throw InputError("lattice spacing is larger than the terrain");
     if (nx_ * ny_ > 50'000'000) throw InputError("lattice too large: increase --lattice-spacing");
     half_ = offsets_.size() / 2;
@@ -1153,12 +1155,8 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
     result.fell_back_to_full = true;
     if (result.status == GlobalSearchStatus::kOk) result.message = fallback + ": full search";
   } else {
-    // The fine lattice's shape, as Lattice computes it.
-    const auto nodes_along = [spacing](double extent) {
-      return static_cast<std::size_t>(std::floor(extent / spacing + 1e-9)) + 1;
-    };
-    const std::size_t nx = nodes_along(terrain.x_max() - terrain.x_min());
-    const std::size_t ny = nodes_along(terrain.y_max() - terrain.y_min());
+    const std::size_t nx = lattice_nodes_along(terrain.x_max() - terrain.x_min(), spacing);
+    const std::size_t ny = lattice_nodes_along(terrain.y_max() - terrain.y_min(), spacing);
     const Vec2 origin(terrain.x_min(), terrain.y_min());
     while (true) {
       const TileMask mask =
@@ -1209,11 +1207,9 @@ GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const V
   GlobalSearchOptions armed = options;
   armed.termination = options.termination.start();
   if (armed.resolution == GlobalSearchResolution::kAuto) {
-    const auto count = [spacing](double extent) {
-      return static_cast<double>(std::floor(extent / spacing)) + 1.0;
-    };
     const double nodes =
-        count(terrain.x_max() - terrain.x_min()) * count(terrain.y_max() - terrain.y_min());
+        static_cast<double>(lattice_nodes_along(terrain.x_max() - terrain.x_min(), spacing)) *
+        static_cast<double>(lattice_nodes_along(terrain.y_max() - terrain.y_min(), spacing));
     armed.resolution = nodes > static_cast<double>(kAutoMultiResolutionNodes)
                            ? GlobalSearchResolution::kMulti
                            : GlobalSearchResolution::kFull;

@@ -439,6 +439,17 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
 
 namespace {
 
+/// The narrowest side of `box` among its free coordinates (+inf when every
+/// coordinate is pinned).
+double narrowest_free_width(const detail::BoxProblem& box) {
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (long i = 0; i < box.lower.size(); ++i) {
+    const double width = box.upper[i] - box.lower[i];
+    if (width > 0.0) narrowest = std::min(narrowest, width);
+  }
+  return narrowest;
+}
+
 /// The solvers' box round the fit's variables `start`: half a cell inside the
 /// domain (grown to hold the fit), the heading points pinned, the budgets,
 /// the expiry and BOBYQA's initial step.
@@ -479,15 +490,10 @@ detail::BoxProblem box_problem(const BPatch& terrain, const Eigen::VectorXd& sta
   problem.termination = options.termination;  // armed by optimize_path
   // BOBYQA's trust region must fit in the box twice over (NLopt refuses
   // otherwise): elongated or tiny domains cap it.
-  double narrowest = std::numeric_limits<double>::infinity();  // of the free coordinates
-  for (long i = 0; i < n; ++i) {
-    const double width = problem.upper[i] - problem.lower[i];
-    if (width > 0.0) narrowest = std::min(narrowest, width);
-  }
   problem.initial_step =
       std::min(std::max(0.1 * (initial_polyline.back() - initial_polyline.front()).norm(),
                         terrain.cellsize()),
-               0.45 * narrowest);
+               0.45 * narrowest_free_width(problem));
   return problem;
 }
 
@@ -817,9 +823,7 @@ LocalCertificate certify_local_optimum(const BPatch& terrain, const Vehicle& veh
     detail::BoxProblem box = box_problem(terrain, centre, {points.front(), points.back()}, options);
     box.lower = box.lower.cwiseMax((centre.array() - out.radius).matrix());
     box.upper = box.upper.cwiseMin((centre.array() + out.radius).matrix());
-    double narrowest = std::numeric_limits<double>::infinity();
-    for (long i = 0; i < centre.size(); ++i)
-      if (box.upper[i] > box.lower[i]) narrowest = std::min(narrowest, box.upper[i] - box.lower[i]);
+    const double narrowest = narrowest_free_width(box);
     if (!std::isfinite(narrowest)) {  // nothing free: the optimum is the only point
       out.certified = true;
       out.solver_status = "no free coordinate";

@@ -37,16 +37,6 @@ std::vector<Vec2> candidate_polyline(const PlanningProblem& problem,
   return polyline;
 }
 
-/// The followability check of the file comment for one candidate: the
-/// optimiser's own initial path (fit_initial_path: grown while needed) has
-/// an admissible profile at the search's stations; if not, where it fails
-/// (absent when the fit leaves the data). The fit is kept for the local
-/// stage, which starts from it.
-InitialPath check_followable(const PlanningProblem& problem, const PathOptimizerOptions& local,
-                             const std::vector<Vec2>& polyline) {
-  return fit_initial_path(*problem.surface, problem.vehicle, polyline, local);
-}
-
 /// Step 3 of the file comment when the optimum disagrees: every other
 /// attempt's point evaluated at the final stations, the fastest there
 /// replacing outcome.trajectory.
@@ -297,13 +287,18 @@ std::string list_text(const std::vector<std::size_t>& items) {
   return text.str();
 }
 
-/// The followability check's fit of every candidate of `global`.
+/// The followability check of the file comment for every candidate of
+/// `global`: the optimiser's own initial path (fit_initial_path: grown while
+/// needed) has an admissible profile at the search's stations; if not, where
+/// it fails (absent when the fit leaves the data). The fits are kept for the
+/// local stage, which starts from them.
 std::vector<InitialPath> check_candidates(const PlanningProblem& problem,
                                           const PathOptimizerOptions& local,
                                           const GlobalSearchResult& global) {
   std::vector<InitialPath> fits;
   for (std::size_t c = 0; c < global.candidates.size(); ++c)
-    fits.push_back(check_followable(problem, local, candidate_polyline(problem, global, c)));
+    fits.push_back(fit_initial_path(*problem.surface, problem.vehicle,
+                                    candidate_polyline(problem, global, c), local));
   return fits;
 }
 

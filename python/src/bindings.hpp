@@ -26,6 +26,7 @@ void bind_surface(py::module_& m);
 void bind_dynamics(py::module_& m);
 void bind_optimal(py::module_& m);
 void bind_kinematic(py::module_& m);
+void bind_simulation(py::module_& m);
 
 /// A 1-D float64 array holding a copy of `values`.
 inline py::array_t<double> to_array(const std::vector<double>& values) {

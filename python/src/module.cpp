@@ -1,6 +1,6 @@
 /// @file
 /// The module `talus`: Talus's exceptions as Python exception classes, then
-/// one bind_* call per layer (core, surface, dynamics, optimal, kinematic).
+/// one bind_* call per layer (core, surface, dynamics, optimal, simulation, kinematic).
 #include <exception>
 #include <string>
 #include <utility>
@@ -108,5 +108,6 @@ PYBIND11_MODULE(talus, m) {
   tp::bind_surface(m);
   tp::bind_dynamics(m);
   tp::bind_optimal(m);
+  tp::bind_simulation(m);
   tp::bind_kinematic(m);
 }

@@ -23,8 +23,9 @@ bash scripts/setup.sh
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 # The executable build/experiments/talus comes from target talus_cli (the
-# name `talus` belongs to the umbrella library target).
-cmake --build build -j"$(nproc)" --target talus_cli
+# name `talus` belongs to the umbrella library target); talus_python is
+# `import talus` for the Jupyter notebooks (step 5).
+cmake --build build -j"$(nproc)" --target talus_cli talus_python
 
 talus=build/experiments/talus
 if [[ ! -x "$talus" ]]; then
@@ -36,7 +37,7 @@ fi
 # replaces files it did not write, e.g. those of an older talus without a
 # manifest).
 rm -rf "$out_dir/plan" "$out_dir/optimal-profile" "$out_dir/global-search" \
-       "$out_dir/terrain-gallery"
+       "$out_dir/terrain-gallery" "$out_dir/notebooks-python"
 mkdir -p "$out_dir"
 terrain=data/terrain/mount_st_helens_usgs30m.asc
 vehicle=data/vehicles/rover.yaml
@@ -73,6 +74,11 @@ done
 #    each, linked from notebooks/index.md (about 15 s once built).
 bash scripts/notebooks.sh "$out_dir/notebooks"
 
+# 5. The Jupyter notebooks (python/notebooks/), executed and rendered to HTML
+#    with their figures (about 40 s).
+PYTHONPATH=build/python /usr/bin/python3 python/notebooks/run_notebooks.py \
+  python/notebooks/*.ipynb --html "$out_dir/notebooks-python"
+
 echo
 echo "Results are in: $out_dir"
-find "$out_dir" -type f \( -name '*.png' -o -name 'report.md' -o -name 'summary.json' -o -name 'trajectory.csv' \) | sort | sed 's/^/  /'
+find "$out_dir" -type f \( -name '*.png' -o -name 'report.md' -o -name 'summary.json' -o -name 'trajectory.csv' -o -name '*.html' \) | sort | sed 's/^/  /'

@@ -18,6 +18,10 @@ packages=(
   # Python bindings (python/, `import talus`): pybind11, the interpreter's headers, numpy;
   # pytest runs their tests under CTest and matplotlib draws python/examples/plan.py.
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  # `pip install .` into a venv (pyproject.toml, setup.py), and the Jupyter notebooks
+  # (python/notebooks/): executed by nbclient in an ipykernel, rendered by nbconvert.
+  python3-venv python3-pip python3-setuptools python3-wheel
+  python3-nbclient python3-nbformat python3-ipykernel python3-nbconvert
   # mpirun for `talus sweep` across ranks and its tests (libopenmpi-dev comes with SUNDIALS).
   openmpi-bin libopenmpi-dev
 )

@@ -8,6 +8,7 @@
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
+#include "talus/core/terrain_generators.hpp"
 
 namespace talus::python {
 namespace {
@@ -134,6 +135,31 @@ void bind_core(py::module_& m) {
         py::overload_cast<const ElevationGrid&, const std::string&, double>(&write_esri_ascii),
         py::arg("grid"), py::arg("path"), py::arg("nodata_value") = -9999.0,
         "Writes `grid` as ESRI ASCII; values round-trip exactly.");
+  m.def(
+      "generate_fractal_terrain",
+      [](std::size_t ncols, std::size_t nrows, double cellsize, double x_min, double y_min,
+         double fractal_dimension, double height_scale, double undulation_amplitude,
+         double undulation_wavelength, std::size_t peaks, double peak_height, double peak_radius,
+         std::uint64_t seed) {
+        FractalTerrainOptions o;
+        o.shape = {ncols, nrows, cellsize, x_min, y_min};
+        o.fractal_dimension = fractal_dimension;
+        o.height_scale = height_scale;
+        o.undulation_amplitude = undulation_amplitude;
+        o.undulation_wavelength = undulation_wavelength;
+        o.peaks = peaks;
+        o.peak_height = peak_height;
+        o.peak_radius = peak_radius;
+        o.seed = seed;
+        return generate_fractal_terrain(o);
+      },
+      py::kw_only(), py::arg("ncols") = 129, py::arg("nrows") = 129, py::arg("cellsize") = 0.24,
+      py::arg("x_min") = 0.0, py::arg("y_min") = 0.0, py::arg("fractal_dimension") = 2.05,
+      py::arg("height_scale") = 4.2, py::arg("undulation_amplitude") = 0.0,
+      py::arg("undulation_wavelength") = 0.0, py::arg("peaks") = 0, py::arg("peak_height") = 0.0,
+      py::arg("peak_radius") = 1.0, py::arg("seed") = 1,
+      "A seeded fractal terrain (talus::generate_fractal_terrain, `talus terrain generate "
+      "fractal`): the same grid for the same arguments, keyword arguments only.");
 }
 
 }  // namespace talus::python

@@ -1,6 +1,8 @@
 /// @file
 /// kinematic: every registered baseline planner (planner_registry()),
-/// listed and run by name with its text options, on the ruled terrain.
+/// listed and run by name with its text options, on the ruled terrain; and a
+/// baseline's path driven at the time-optimal profile (driven_path_time,
+/// polyline_travel_time), the yardstick every comparison uses.
 #include <memory>
 #include <string>
 #include <variant>
@@ -11,6 +13,8 @@
 #include "talus/kinematic/baseline_options.hpp"
 #include "talus/kinematic/baseline_planner.hpp"
 #include "talus/kinematic/baseline_registry.hpp"
+#include "talus/optimal/driven_path_time.hpp"
+#include "talus/optimal/polyline_travel_time.hpp"
 #include "talus/planners/planner_registry.hpp"
 
 namespace talus::python {
@@ -49,6 +53,17 @@ py::array_t<double> poses(const std::vector<SE2Pose>& path) {
     o[3 * k + 1] = path[k].y;
     o[3 * k + 2] = path[k].theta;
   }
+  return out;
+}
+
+/// Poses from an (n, 3) array of x, y, theta.
+std::vector<SE2Pose> to_poses(const DoubleArray& array) {
+  if (array.ndim() != 2 || array.shape(1) != 3)
+    throw py::type_error("path must be an (n, 3) array");
+  std::vector<SE2Pose> out(static_cast<std::size_t>(array.shape(0)));
+  const auto a = array.unchecked<2>();
+  for (py::ssize_t k = 0; k < array.shape(0); ++k)
+    out[static_cast<std::size_t>(k)] = {a(k, 0), a(k, 1), a(k, 2)};
   return out;
 }
 
@@ -149,6 +164,39 @@ void bind_kinematic(py::module_& m) {
           },
           py::arg("terrain"), py::arg("start"), py::arg("goal"),
           "Plans from start to goal, each (x, y, theta); releases the GIL.");
+
+  // A baseline's path driven at the time-optimal profile (the velocity stage of a path-velocity
+  // decomposition): how `talus baseline NAME --vehicle` and the sweeps compare paths.
+  py::class_<DrivenPathResult>(m, "DrivenPathResult")
+      .def_property_readonly(
+          "status", [](const DrivenPathResult& r) { return std::string(to_string(r.status)); },
+          "'ok', 'infeasible' or 'not_tangent' (a path that moves sideways)")
+      .def_readonly("message", &DrivenPathResult::message)
+      .def_readonly("travel_time", &DrivenPathResult::travel_time, "[s]; inf unless ok")
+      .def_readonly("length", &DrivenPathResult::length, "3-D [m]")
+      .def_readonly("planar_length", &DrivenPathResult::planar_length, "[m]")
+      .def_property_readonly("pieces", [](const DrivenPathResult& r) { return r.pieces.size(); })
+      .def("brief_report", &DrivenPathResult::brief_report);
+  m.def(
+      "driven_path_time",
+      [](const BPatch& surface, const Vehicle& vehicle, const DoubleArray& path) {
+        const std::vector<SE2Pose> configurations = to_poses(path);
+        const py::gil_scoped_release release;
+        return driven_path_time(surface, vehicle, configurations);
+      },
+      py::arg("surface"), py::arg("vehicle"), py::arg("path"),
+      "A path of (n, 3) poses (a BaselineResult.path) driven along its own segments and arcs, "
+      "rest to rest at every cusp, at the time-optimal profile (talus::driven_path_time).");
+  m.def(
+      "polyline_travel_time",
+      [](const BPatch& surface, const Vehicle& vehicle, const DoubleArray& points) {
+        const std::vector<Vec2> polyline = to_points(points, "points");
+        const py::gil_scoped_release release;
+        return polyline_travel_time(surface, vehicle, polyline);
+      },
+      py::arg("surface"), py::arg("vehicle"), py::arg("points"),
+      "Rest-to-rest time-optimal travel time [s] along a clamped cubic fitted to (n, 2) planar "
+      "points (talus::polyline_travel_time); inf where no profile is admissible.");
 
   m.def(
       "baseline_names", [] { return planner_registry().names(); },

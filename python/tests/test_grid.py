@@ -100,3 +100,20 @@ def test_a_bad_vehicle_file_raises_the_readers_message(tmp_path, cli, west_bijou
     code, _, err = cli("plan", "--terrain", west_bijou, "--vehicle", path, "--start", "0,0",
                        "--goal", "1,1", "--out", tmp_path / "out")
     assert code == 1 and cli_error(err) == str(raised.value)
+
+
+def test_the_fractal_generator_is_the_clis_bit_for_bit(cli, tmp_path):
+    grid = talus.generate_fractal_terrain(ncols=41, nrows=31, cellsize=0.25, height_scale=1.0,
+                                          undulation_amplitude=0.5, peaks=3, peak_height=0.4,
+                                          seed=7)
+    assert (grid.ncols, grid.nrows, grid.cellsize) == (41, 31, 0.25)
+    path = tmp_path / "fractal.asc"
+    code, _, err = cli("terrain", "generate", "fractal", "--ncols", 41, "--nrows", 31,
+                       "--cellsize", 0.25, "--height-scale", 1.0, "--undulation-amplitude", 0.5,
+                       "--peaks", 3, "--peak-height", 0.4, "--seed", 7, "-o", path)
+    assert code == 0, err
+    assert np.array_equal(talus.read_esri_ascii(str(path)).to_array(), grid.to_array())
+    other = talus.generate_fractal_terrain(ncols=41, nrows=31, cellsize=0.25, seed=8)
+    assert not np.array_equal(other.to_array(), grid.to_array())
+    with pytest.raises(talus.InputError):
+        talus.generate_fractal_terrain(fractal_dimension=3.5)

@@ -25,3 +25,16 @@ def test_the_installed_module_imports_from_the_prefix(tmp_path):
     module, names = r.stdout.splitlines()
     assert pathlib.Path(module).parent == site
     assert "hait" in names
+
+
+def test_pip_installed_the_module_the_suite_imports():
+    """Under `pip_install.sh` (CTest's Python.pipInstall) the suite must test the installed
+    package: the module and its metadata come from the venv, not from the build folder."""
+    venv = os.environ.get("TALUS_INSTALLED_IN")
+    if not venv:
+        pytest.skip("TALUS_INSTALLED_IN is set by python/tests/pip_install.sh")
+    import importlib.metadata
+
+    import talus
+    assert pathlib.Path(talus.__file__).resolve().is_relative_to(pathlib.Path(venv).resolve())
+    assert importlib.metadata.version("talus") == talus.__version__

@@ -86,3 +86,25 @@ def test_a_bad_option_is_a_baseline_option_error_naming_its_key(data_dir):
     terrain = talus.RuledTerrain(talus.ElevationGrid(9, 9, 0.5, 0.0, 0.0))
     with pytest.raises(talus.InputError):  # the start is off the map
         talus.run_baseline("hait", terrain, (-5.0, 0.0, 0.0), (2.0, 2.0, 0.0), {"robot": robot})
+
+
+def test_a_straight_path_is_driven_in_the_analytic_rest_to_rest_time(rover, plane_asc):
+    """On level ground the rover accelerates at max_accel 3 and brakes at max_decel 6 (both
+    within mu g): over L = 10 m the peak speed is sqrt(2 L a d / (a + d)) and the time
+    v (1/a + 1/d)."""
+    surface = talus.BPatch.interpolate(talus.read_esri_ascii(str(plane_asc("p.asc", 31, 11, 1.0,
+                                                                           0.0, 0.0, 0.0))))
+    vehicle = talus.load_vehicle(str(rover))
+    a, d, length = 3.0, 6.0, 10.0
+    peak = np.sqrt(2 * length * a * d / (a + d))
+    expected = peak / a + peak / d
+    poses = np.array([[5.0 + x, 5.0, 0.0] for x in np.linspace(0.0, length, 21)])
+    driven = talus.driven_path_time(surface, vehicle, poses)
+    assert driven.status == "ok" and driven.pieces == 1
+    assert driven.travel_time == pytest.approx(expected, rel=1e-3)
+    assert driven.length == pytest.approx(length, rel=1e-9)
+    assert talus.polyline_travel_time(surface, vehicle, poses[:, :2]) == pytest.approx(expected,
+                                                                                       rel=1e-3)
+    sideways = poses.copy()
+    sideways[:, 2] = np.pi / 2   # facing north while moving east: no driving direction
+    assert talus.driven_path_time(surface, vehicle, sideways).status == "not_tangent"

@@ -306,8 +306,14 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   write_text_file(dir / "optima.csv", optima_csv(result));
 
   const auto plots_start = Clock::now();
-  const bool plots = request.figures && best != nullptr && gnuplot_available();
+  // Past the time limit the figures (the slowest output of a tile-size plan) are left out:
+  // the limit bounds the command, and the data files carry the plan.
+  const bool late = options.termination.check() == TerminationReason::kTimeLimit;
+  const bool plots = request.figures && best != nullptr && !late && gnuplot_available();
   if (plots) render_plan_figures(request, grid, problem, result, dir);
+  summary["figures_skipped"] = request.figures && best != nullptr && late
+                                   ? nlohmann::json("the time limit had passed")
+                                   : nlohmann::json(nullptr);
   const double plots_seconds = seconds_since(plots_start);
 
   nlohmann::json optima = nlohmann::json::array();
@@ -468,6 +474,11 @@ PlanOutcome plan(const PlanRequest& request) {
   check_in_domain("--start", start, grid, request.terrain);
   check_in_domain("--goal", goal, grid, request.terrain);
   ProgressLine line("talus plan", request.progress);
+  // --time-limit bounds everything after reading: its budget is armed here, before the fit
+  // (the planner keeps a deadline armed before it starts).
+  PlannerOptions options = planner_options(request, line);
+  options.termination = options.termination.start();
+  const double read_seconds = seconds_since(start_time);
   line.update("fitting the surface");
   const auto fit_start = Clock::now();
   PlanOutcome outcome;
@@ -488,8 +499,8 @@ PlanOutcome plan(const PlanRequest& request) {
     problem.start_heading = request.start_heading;
     problem.goal_heading = request.goal_heading;
   }
-  const PlannerOptions options = planner_options(request, line);
   outcome.result = talus::plan(problem, options);
+  const auto write_start = Clock::now();
   const PlannerResult& planned = outcome.result;
   const GlobalSearchResult& result = planned.global;
   // A search cut by the time limit after it found a route counts as reaching the goal.
@@ -522,6 +533,9 @@ PlanOutcome plan(const PlanRequest& request) {
                        : reachable  ? nlohmann::json(nullptr)
                                     : nlohmann::json(result.message);
   summary["coarse_nodes"] = result.coarse_nodes;
+  summary["route_nodes"] = result.route_nodes;  // the route level's, under a time limit
+  // The candidates are a coarser level's routes: the time limit stopped the finer search.
+  summary["coarse_candidates"] = result.coarse_candidates;
   // What the search ran (the option may be auto).
   summary["search_resolution"] = std::string(to_string(result.resolution));
   summary["corridor_widenings"] = result.corridor_widenings;
@@ -563,9 +577,11 @@ PlanOutcome plan(const PlanRequest& request) {
   // The global stage's entries of the echo that summary.json has always had at its top level.
   for (const char* key : {"time_limit", "resolution", "connectivity", "braking_rule", "turn_limit"})
     summary[key] = summary["options"].at(key);
+  summary["read_seconds"] = read_seconds;
   summary["fit_seconds"] = fit_seconds;
   summary["search_seconds"] = result.search_seconds;
   if (request.stage == kPlanStageGlobal) {
+    summary["write_seconds"] = seconds_since(write_start);
     summary["seconds"] = seconds_since(start_time);
     write_text_file(dir / "summary.json", summary.dump(2) + "\n");
     out.commit();
@@ -573,7 +589,10 @@ PlanOutcome plan(const PlanRequest& request) {
     outcome.reachable = reachable;
     return outcome;
   }
-  nlohmann::json seconds = {{"fit", fit_seconds}, {"global", result.search_seconds}};
+  // Every stage, so that they add up to the total: reading (and checking) the inputs, the fit,
+  // the global and local stages, the final profiles, the figures and the other outputs.
+  nlohmann::json seconds = {
+      {"read", read_seconds}, {"fit", fit_seconds}, {"global", planned.seconds.global}};
   if (reachable) {
     write_full_stage(request, grid, problem, options, planned, out, summary, seconds);
   } else {  // no trajectory: the full stage's fields are empty
@@ -588,7 +607,14 @@ PlanOutcome plan(const PlanRequest& request) {
     seconds["profile"] = 0.0;
     seconds["plots"] = 0.0;
   }
-  seconds["total"] = seconds_since(start_time);
+  // The files and this summary (the figures are `plots`), up to its own writing.
+  seconds["write"] = seconds_since(write_start) - seconds["plots"].get<double>();
+  const double total = seconds_since(start_time);
+  double named = 0.0;
+  for (const auto& [stage, value] : seconds.items()) named += value.get<double>();
+  // The planner's own work between its stages (its candidate loop, the certificate).
+  seconds["other"] = std::max(0.0, total - named);
+  seconds["total"] = total;
   summary["seconds"] = std::move(seconds);
   write_text_file(dir / "summary.json", summary.dump(2) + "\n");
   out.commit();

@@ -1097,6 +1097,32 @@ void check_search_inputs(const BPatch& terrain, const Vehicle& vehicle, const Ve
 /// The whole-map lattice at a spacing from the workspace, or null without one.
 using WholeMap = std::function<Lattice*(double spacing)>;
 
+/// kMulti under a time budget: the route level's spacing (at most kRouteLevelNodes nodes),
+/// or 0 when that is not coarser than the coarse level.
+double route_level_spacing(const BPatch& terrain, double spacing, int coarse_factor) {
+  const double nodes =
+      static_cast<double>(lattice_nodes_along(terrain.x_max() - terrain.x_min(), spacing)) *
+      static_cast<double>(lattice_nodes_along(terrain.y_max() - terrain.y_min(), spacing));
+  const double factor = std::ceil(std::sqrt(nodes / static_cast<double>(kRouteLevelNodes)));
+  return factor > coarse_factor ? factor * spacing : 0.0;
+}
+
+/// A coarser level's result returned in place of a finer search the budget
+/// stopped before it had a candidate (see GlobalSearchResolution::kMulti).
+GlobalSearchResult coarse_level_result(GlobalSearchResult level, const std::string& stopped,
+                                       const char* name) {
+  std::ostringstream text;
+  text << stopped << "; the " << name << " level's " << level.candidates.size() << " candidate"
+       << (level.candidates.size() == 1 ? "" : "s") << " (lattice spacing " << level.spacing
+       << " m) " << (level.candidates.size() == 1 ? "is" : "are") << " returned";
+  level.status = GlobalSearchStatus::kStopped;
+  level.message = text.str();
+  level.coarse_candidates = true;
+  level.cost_from_start.clear();
+  level.cost_to_goal.clear();
+  return level;
+}
+
 /// GlobalSearchResolution::kMulti: the coarse search, then fine corridors round its
 /// candidates, doubled until the best route keeps off the corridor's edge.
 GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& vehicle,
@@ -1111,7 +1137,47 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
   if (coarse_options.distinctness == 0.0) {
     coarse_options.distinctness = default_candidate_separation(start, goal, spacing);
   }
-  std::size_t expanded = 0, edges = 0, coarse_nodes = 0;
+  std::size_t expanded = 0, edges = 0, coarse_nodes = 0, route_nodes = 0;
+  // Under a time budget, the route level first, to its end (bounded by its size).
+  std::optional<GlobalSearchResult> route;
+  const double route_spacing =
+      std::isfinite(options.termination.remaining()) &&
+              options.termination.check() != TerminationReason::kStopRequested
+          ? route_level_spacing(terrain, spacing, options.coarse_factor)
+          : 0.0;
+  if (route_spacing > 0.0) {
+    GlobalSearchOptions route_options = coarse_options;
+    route_options.lattice_spacing = route_spacing;
+    route_options.termination = Termination();
+    try {
+      route.emplace(search_lattice(terrain, vehicle, set, start, goal, route_options, route_spacing,
+                                   nullptr, whole_map(route_spacing)));
+      expanded += route->expanded;
+      edges += route->edges_evaluated;
+      route_nodes = route->nodes;
+      if (route->status != GlobalSearchStatus::kOk) route.reset();
+    } catch (const InputError&) {  // e.g. the start untraversable at this scale: no route level
+      route.reset();
+    }
+  }
+  // What a stopped finer level returns: the coarsest level's candidates when it has some.
+  const auto stopped_result = [&](GlobalSearchResult stopped, const char* where) {
+    stopped.message += where;
+    GlobalSearchResult result =
+        route ? coarse_level_result(std::move(*route), stopped.message, "route")
+              : std::move(stopped);
+    if (!route) result.candidates.clear();  // coarse lattice paths are not fine candidates
+    result.resolution = GlobalSearchResolution::kMulti;
+    result.coarse_nodes = coarse_nodes;
+    result.route_nodes = route_nodes;
+    result.expanded = expanded;
+    result.edges_evaluated = edges;
+    result.nodes = route ? route_nodes : 0;  // the lattice of the candidates returned
+    result.cost_from_start.clear();
+    result.cost_to_goal.clear();
+    result.search_seconds = seconds_since(t0);
+    return result;
+  };
   std::optional<GlobalSearchResult> coarse;
   std::string fallback;
   const bool coarse_fits = (terrain.x_max() - terrain.x_min()) >= 8.0 * coarse_spacing &&
@@ -1130,18 +1196,8 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
     expanded += coarse->expanded;
     edges += coarse->edges_evaluated;
     coarse_nodes = coarse->nodes;
-    if (coarse->status == GlobalSearchStatus::kStopped) {
-      GlobalSearchResult result = std::move(*coarse);
-      result.candidates.clear();  // coarse lattice paths are not fine candidates
-      result.message = result.message + " (in the coarse search)";
-      result.resolution = GlobalSearchResolution::kMulti;
-      result.coarse_nodes = coarse_nodes;
-      result.nodes = 0;
-      result.cost_from_start.clear();
-      result.cost_to_goal.clear();
-      result.search_seconds = seconds_since(t0);
-      return result;
-    }
+    if (coarse->status == GlobalSearchStatus::kStopped)
+      return stopped_result(std::move(*coarse), " (in the coarse search)");
     if (coarse->status != GlobalSearchStatus::kOk) {
       fallback = "the coarse search found no route (" + coarse->message + ")";
     }
@@ -1175,8 +1231,25 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
       ++widenings;
     }
   }
+  if (result.status == GlobalSearchStatus::kStopped && result.candidates.empty()) {
+    // A coarse route beats none: the coarse level's candidates, else the route level's.
+    if (coarse && coarse->status == GlobalSearchStatus::kOk) {
+      GlobalSearchResult level = coarse_level_result(
+          std::move(*coarse), result.message + " (in the fine search)", "coarse");
+      level.resolution = GlobalSearchResolution::kMulti;
+      level.coarse_nodes = coarse_nodes;
+      level.nodes = coarse_nodes;
+      level.route_nodes = route_nodes;
+      level.expanded = expanded;
+      level.edges_evaluated = edges;
+      level.search_seconds = seconds_since(t0);
+      return level;
+    }
+    return stopped_result(std::move(result), " (in the fine search)");
+  }
   result.corridor_width = result.fell_back_to_full ? 0.0 : radius;
   result.resolution = GlobalSearchResolution::kMulti;
+  result.route_nodes = route_nodes;
   result.coarse_nodes = coarse_nodes;
   result.corridor_widenings = widenings;
   result.expanded = expanded + (result.fell_back_to_full ? result.expanded : 0);
@@ -1214,8 +1287,12 @@ GlobalSearchResult search(const BPatch& terrain, const Vehicle& vehicle, const V
                            ? GlobalSearchResolution::kMulti
                            : GlobalSearchResolution::kFull;
   }
+  // A budget already spent still lets the coarse-to-fine search run its route level (see
+  // GlobalSearchResolution::kMulti); a stop request stops everything.
   if (const TerminationReason reason = armed.termination.check();
-      reason != TerminationReason::kNone) {
+      reason == TerminationReason::kStopRequested ||
+      (reason == TerminationReason::kTimeLimit &&
+       armed.resolution != GlobalSearchResolution::kMulti)) {
     GlobalSearchResult result;
     result.status = GlobalSearchStatus::kStopped;
     result.message = "stopped by GlobalSearchOptions::termination (" +

@@ -54,7 +54,9 @@ std::vector<Parameter<Options>> planner_level() {
   Parameter<Options> time_limit = detail::entry<Options>(
       "time_limit", ParameterKind::kReal,
       "wall-clock budget of the whole plan [s] (inf = none): on it the status is time_limit "
-      "and the best feasible trajectory found by then is returned",
+      "and the best feasible trajectory found by then is returned; a tile-size map is searched "
+      "on a coarse route level first, so a route is found whatever the budget (talus plan: "
+      "counted from the end of reading the inputs, the fit included; past it no figures)",
       0.0);
   time_limit.lower_open = true;
   time_limit.allow_infinity = true;

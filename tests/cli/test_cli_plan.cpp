@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -214,6 +215,22 @@ TEST(CliPlan, GaussianHillGivesTwoCandidatesOneOnEachSide) {
   EXPECT_EQ(south, 1);
 }
 
+/// A full-stage summary's `seconds`: every stage is named, each a part of the run: the named
+/// ones together no longer than its total, and with `other` (the planner's work between its
+/// stages) exactly the total.
+void expect_stages_add_up(const nlohmann::json& seconds) {
+  const double missing = std::numeric_limits<double>::quiet_NaN();  // a double: NAN is a float
+  double named = 0.0;
+  for (const char* stage : {"read", "fit", "global", "local", "profile", "plots", "write"}) {
+    EXPECT_GE(seconds.value(stage, missing), 0.0) << stage << " in " << seconds.dump();
+    named += seconds.value(stage, missing);
+  }
+  const double total = seconds.value("total", 0.0);
+  EXPECT_LE(named, total + 1e-6) << seconds.dump();
+  EXPECT_NEAR(named + seconds.value("other", missing), total, 1e-9 * total + 1e-12)
+      << seconds.dump();
+}
+
 /// The checks of a full-stage run that found a trajectory: the local stage's
 /// summary keys, trajectory.csv (exact header, t increasing, ends at
 /// travel_time) and optima.csv. Returns the summary.
@@ -224,12 +241,7 @@ nlohmann::json run_plan_full_ok(const std::string& args, const std::string& dir)
     EXPECT_TRUE(j.contains(key)) << key << " missing from " << j.dump();
   }
   if (!j.contains("optima") || !j.contains("seconds")) return j;
-  // The stages are parts of the run: together no longer than its total.
-  const nlohmann::json& seconds = j.at("seconds");
-  EXPECT_LE(
-      seconds.value("global", NAN) + seconds.value("local", NAN) + seconds.value("profile", NAN),
-      seconds.value("total", 0.0))
-      << seconds.dump();
+  expect_stages_add_up(j.at("seconds"));
   EXPECT_EQ(j.at("optima").size(), j.at("candidates").size());
   for (const nlohmann::json& o : j.at("optima")) {
     for (const char* key : {"travel_time", "initial_time", "solver_status", "iterations"}) {
@@ -652,6 +664,30 @@ TEST(CliPlan, TimeLimitAndMultiResolution) {
                    {{base + " --time-limit 0 --out " + quoted(dir), "--time-limit"},
                     {base + " --resolution coarse --out " + quoted(dir), "--resolution"}},
                    dir);
+}
+
+// A time limit spent before the search could start on a tile-size lattice (600 x 600 nodes,
+// searched coarse to fine): the route level still finds a route, the plan is a trajectory along
+// it (status time_limit, exit 0), the figures are left out, and the stages add up to the total.
+TEST(CliPlan, ASpentTimeLimitOnATileSizeMapStillGivesATrajectory) {
+  const std::string terrain =
+      generate_terrain("plan_tile.asc", "plane --slope 0.05 --ncols 600 --nrows 600 --cellsize 1");
+  const std::string dir = scratch_file("tile_time_limit_out");
+  const nlohmann::json j = run_plan_and_check(
+      "--terrain " + quoted(terrain) + " --start 10,10 --goal 590,590 --vehicle " +
+          quoted(plan_vehicle("v10.yaml", 10.0)) + " --resolution multi --time-limit 1e-9",
+      dir, 0);
+  EXPECT_EQ(j.value("status", ""), "time_limit") << j.dump();
+  EXPECT_NE(j.value("search_message", "").find("the route level's"), std::string::npos) << j.dump();
+  ASSERT_TRUE(j.at("travel_time").is_number()) << j.dump();
+  // At most the top speed's time along the straight line, at least 10 % above it (the route is
+  // a 5 m lattice path through a fit, and the trajectory starts and ends at rest).
+  const double straight = std::hypot(580.0, 580.0) / 10.0;
+  EXPECT_GT(j.at("travel_time").get<double>(), straight);
+  EXPECT_LT(j.at("travel_time").get<double>(), 1.1 * straight);
+  EXPECT_EQ(j.value("figures_skipped", ""), "the time limit had passed");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/plan.png"));
+  expect_stages_add_up(j.at("seconds"));
 }
 
 }  // namespace

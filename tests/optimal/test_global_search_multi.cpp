@@ -296,5 +296,48 @@ TEST(GlobalSearchStop, ANeverTrueStopChangesNothing) {
   }
 }
 
+// A tile-size search under a time budget: the route level (at most kRouteLevelNodes nodes) runs
+// to its end whatever the budget, so a budget spent before the coarse search could finish still
+// returns a route, and the same search without a budget is unchanged.
+TEST(GlobalSearchRouteLevel, ABudgetSpentEarlyStillReturnsTheRouteLevelsCandidates) {
+  // 600 x 600 nodes at 1 m: 360,000 lattice nodes, a route level 5 times coarser (14,400 nodes,
+  // coarser than the coarse level's factor 4). A hill in the way: the route bends round it.
+  const BPatch terrain = BPatch::interpolate(grid_from_function(
+      [](double x, double y) {
+        return 60.0 *
+               std::exp(-((x - 300) * (x - 300) + (y - 300) * (y - 300)) / (2 * 60.0 * 60.0));
+      },
+      0, 0, 599, 599, 1.0));
+  const Vehicle v = point_mass_rover(0.5);
+  GlobalSearchOptions o = with(2, 16, 0.0, false);
+  o.resolution = GlobalSearchResolution::kMulti;
+  // A clock that runs a second per look: the 1 s budget has passed at the coarse search's first.
+  double now = 0.0;
+  o.termination = Termination::time_budget(1.0, [&now] { return now += 1.0; });
+  const GlobalSearchResult cut = global_search(terrain, v, {20, 20}, {580, 580}, o);
+  EXPECT_EQ(cut.status, GlobalSearchStatus::kStopped);
+  ASSERT_FALSE(cut.candidates.empty()) << cut.message;
+  EXPECT_TRUE(cut.coarse_candidates);
+  EXPECT_EQ(cut.spacing, 5.0);
+  EXPECT_EQ(cut.route_nodes, 120u * 120u);
+  EXPECT_LE(cut.route_nodes, kRouteLevelNodes);
+  EXPECT_NE(cut.message.find("the route level's"), std::string::npos) << cut.message;
+  // A route from the start's node to the goal's, round the hill (no vertex on its top).
+  const std::vector<Vec2>& route = cut.candidates.front().vertices;
+  EXPECT_LE((route.front() - Vec2(20, 20)).norm(), 5.0);
+  EXPECT_LE((route.back() - Vec2(580, 580)).norm(), 5.0);
+  for (const Vec2& p : route) EXPECT_GT((p - Vec2(300, 300)).norm(), 30.0) << p.transpose();
+
+  // No budget: no route level, and the fine search's own best route.
+  o.termination = Termination();
+  const GlobalSearchResult full = global_search(terrain, v, {20, 20}, {580, 580}, o);
+  EXPECT_EQ(full.status, GlobalSearchStatus::kOk) << full.message;
+  EXPECT_EQ(full.route_nodes, 0u);
+  EXPECT_FALSE(full.coarse_candidates);
+  EXPECT_EQ(full.spacing, 1.0);
+  // The route level's lattice path is a route, not the optimum: no faster than the fine one.
+  EXPECT_GE(cut.candidates.front().cost_seconds, 0.98 * full.candidates.front().cost_seconds);
+}
+
 }  // namespace
 }  // namespace talus

@@ -54,6 +54,15 @@ enum class GlobalSearchResolution {
   /// route (or whose start or goal node is untraversable at the coarse
   /// scale) falls back to the full search. cost_from_start / cost_to_goal
   /// are not returned (they would be map-sized).
+  ///
+  /// Under a time budget (GlobalSearchOptions::termination), a route level
+  /// comes first: the same search on a lattice of at most
+  /// kRouteLevelNodes nodes (when that is coarser than the coarse one), run
+  /// to its end whatever the budget (its size bounds its time: about 0.2 s).
+  /// When the budget stops a finer level before it has a candidate, the
+  /// coarsest level's candidates are returned with status kStopped (routes
+  /// to fit and optimise, not fine-lattice paths): a time-limited plan of a
+  /// tile-size DEM has a route whenever that level finds one.
   kMulti,
   /// kMulti when the lattice has more than kAutoMultiResolutionNodes nodes,
   /// else kFull (GlobalSearchResult::resolution says which ran): a tile-size
@@ -64,6 +73,9 @@ enum class GlobalSearchResolution {
 /// fine under GlobalSearchResolution::kAuto: a 3601² DEM at 1 m in full takes
 /// minutes and 3.3 GB; coarse to fine, seconds and under 1 GB.
 inline constexpr std::size_t kAutoMultiResolutionNodes = 1'000'000;
+/// The route level's largest lattice under a time budget (kMulti): 20,000
+/// nodes, searched with its candidates in about 0.2 s on one core.
+inline constexpr std::size_t kRouteLevelNodes = 20'000;
 /// "full", "multi", "auto".
 std::string_view to_string(GlobalSearchResolution resolution);
 /// Inverse of to_string; throws InputError listing the choices.
@@ -210,7 +222,10 @@ struct GlobalSearchResult {
   // Multi-resolution diagnostics (resolution kMulti; nodes is then the final
   // corridor's node count, expanded and edges_evaluated count every search).
   GlobalSearchResolution resolution = GlobalSearchResolution::kFull;  ///< what ran (never kAuto)
-  std::size_t coarse_nodes = 0;        ///< nodes of the coarse lattice
+  std::size_t coarse_nodes = 0;  ///< nodes of the coarse lattice
+  std::size_t route_nodes = 0;   ///< nodes of the route level (0: none ran)
+  /// The candidates are the route or coarse level's (a finer level was stopped first).
+  bool coarse_candidates = false;
   std::size_t corridor_widenings = 0;  ///< times the corridor was doubled
   double corridor_width = 0.0;         ///< the final corridor's half-width [m]
   bool fell_back_to_full = false;      ///< the coarse search found no route: full search

@@ -211,6 +211,15 @@ void bind_global_search(py::module_& m) {
       .def_readonly("expanded", &GlobalSearchResult::expanded)
       .def_readonly("reachable_nodes", &GlobalSearchResult::reachable_nodes)
       .def_readonly("search_seconds", &GlobalSearchResult::search_seconds)
+      .def_property_readonly(
+          "resolution",
+          [](const GlobalSearchResult& r) { return std::string(to_string(r.resolution)); },
+          "what ran: 'full' or 'multi' (coarse to fine)")
+      .def_readonly("coarse_nodes", &GlobalSearchResult::coarse_nodes)
+      .def_readonly("route_nodes", &GlobalSearchResult::route_nodes,
+                    "the route level's nodes under a time budget (0: none ran)")
+      .def_readonly("coarse_candidates", &GlobalSearchResult::coarse_candidates,
+                    "the candidates are a coarser level's routes (the budget stopped the finer)")
       .def_readonly("nx", &GlobalSearchResult::nx)
       .def_readonly("ny", &GlobalSearchResult::ny)
       .def_readonly("spacing", &GlobalSearchResult::spacing)

@@ -4,6 +4,8 @@ search without one, edge costs kept between searches of one surface and vehicle
 import gc
 import weakref
 
+import numpy as np
+
 import talus
 
 START, GOAL = (557000.0, 4373500.0), (557800.0, 4374200.0)  # about 1.07 km on West Bijou
@@ -61,3 +63,20 @@ def test_the_turn_limit_reuses_the_edge_costs_and_keeps_the_steering_limit(west_
     assert limited.status == free.status == talus.GlobalSearchStatus.OK
     assert free.edges_evaluated == 0  # the same lattice: only the graph over it differs
     assert limited.candidates[0].cost_seconds >= free.candidates[0].cost_seconds * (1 - 1e-12)
+
+
+def test_a_spent_budget_on_a_tile_size_map_returns_the_route_levels_candidates():
+    """Under a time budget the coarse-to-fine search runs a route level to its end first."""
+    x = np.arange(600.0)
+    surface = talus.BPatch.interpolate(
+        talus.ElevationGrid.from_array(np.tile(0.05 * x, (600, 1)), 1.0, 0.0, 0.0))
+    vehicle = talus.Vehicle.from_dict({"model": "point_mass", "friction": 0.7, "cg_height": 0.5,
+                                       "half_track": 0.6, "max_speed": 10.0})
+    problem = talus.PlanningProblem(surface, vehicle, (10.0, 10.0), (590.0, 590.0))
+    planner = talus.PlannerOptions(resolution="multi", time_limit=1e-9)
+    result = talus.plan(problem, planner)
+    search = result.global_search
+    assert result.status == talus.PlannerStatus.TIME_LIMIT
+    assert search.coarse_candidates and search.route_nodes == 120 * 120
+    assert search.resolution == "multi" and search.spacing == 5.0
+    assert result.best() is not None and result.best().feasible()

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +46,13 @@ bool stays_on_data(const BPatch& terrain, const Curve2& curve, std::size_t stati
     if (!terrain.contains(p) || !terrain.on_data(p)) return false;
   }
   return true;
+}
+
+/// "(x, y)" to the centimetre.
+std::string point_text(const Vec2& p) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(2) << "(" << p.x() << ", " << p.y() << ")";
+  return text.str();
 }
 
 /// The solver's own statement that it converged (not a stop on a limit).
@@ -415,6 +424,7 @@ InitialPath fit_initial_path(const BPatch& terrain, const Vehicle& vehicle,
         }
         out.failure_point =
             out.curve->evaluate(static_cast<double>(k) / static_cast<double>(out.stations - 1));
+        out.failure += " (near " + point_text(*out.failure_point) + ")";
       }
     } catch (const InputError& e) {
       out.travel_time = std::numeric_limits<double>::infinity();
@@ -692,10 +702,10 @@ OptimizedPath optimize_from_one_fit(const BPatch& terrain, const Vehicle& vehicl
                 : fit_initial_path(terrain, vehicle, initial_polyline, options, simultaneous);
   // The simultaneous NLP starts from an infeasible profile (restoration).
   if (!(fit.admissible() || (simultaneous && fit.on_data))) {
-    throw InputError("the initial path (" + std::to_string(fit.control_points) +
-                     " control points) leaves the map or the measured data or has no "
-                     "admissible profile" +
-                     (fit.failure.empty() ? std::string() : ": " + fit.failure));
+    throw InputError(
+        "the initial path (" + std::to_string(fit.control_points) +
+        " control points) cannot be driven: " +
+        (fit.failure.empty() ? std::string("it has no admissible profile") : fit.failure));
   }
   const std::size_t control_points = fit.control_points, stations = fit.stations;
   PathTimeObjective objective(terrain, vehicle, initial_polyline.front(), initial_polyline.back(),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include "profile_sensitivity.hpp"
 #include "station_derivatives.hpp"
@@ -14,6 +15,16 @@ namespace talus {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// Marks `profile` infeasible at `station` for `why` (its buffers kept for the next solve) and
+/// returns the objective's value there: so that a rejected path says where and why.
+double infeasible(TimeOptimalProfile& profile, std::size_t station, std::string_view why) {
+  profile.status = ProfileStatus::kInfeasible;
+  profile.infeasible_station = station;
+  profile.infeasible_binding = Constraint::kNone;
+  profile.message.assign(why);
+  return kInfinity;
+}
 
 KnotVector uniform_clamped_knots(std::size_t control_points) {
   std::vector<double> breaks;
@@ -110,8 +121,10 @@ double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
     }
     planar_[k] = p;
     const Vec2 position = p.col(0);
-    if (!terrain_.contains(position) || !terrain_.on_data(position)) return kInfinity;
-    if (!(p.col(1).norm() > 0.0)) return kInfinity;  // a cusp: no frame
+    if (!terrain_.contains(position) || !terrain_.on_data(position))
+      return infeasible(profile_, k, "it leaves the map's measured data");
+    if (!(p.col(1).norm() > 0.0))  // a cusp: no frame
+      return infeasible(profile_, k, "it has a cusp (its tangent vanishes)");
     PathFrame& f = frames_[k];
     f = lift_to_surface(position, terrain_.evaluate(position), p.col(1), p.col(2));
     f.parameter = sigma_[k];
@@ -121,7 +134,8 @@ double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
       const PathFrame& prev = frames_[k - 1];
       f.s = prev.s + 0.5 * h * (prev.speed + f.speed) +
             h * h / 12.0 * (prev.speed_rate - f.speed_rate);
-      if (!(f.s > prev.s)) return kInfinity;  // degenerate parametrisation
+      if (!(f.s > prev.s))
+        return infeasible(profile_, k, "its parametrisation is degenerate (no arc length)");
     }
   }
   const std::size_t beyond = std::isfinite(max_curvature_)
@@ -139,8 +153,8 @@ double PathTimeObjective::travel_time(const Eigen::VectorXd& z) {
   limits_.compute(frames_, terrain_);
   try {
     solver_.solve(limits_, speeds_, profile_);
-  } catch (const InputError&) {
-    return kInfinity;  // start or end speed above this path's limit there
+  } catch (const InputError& e) {  // start or end speed above this path's limit there
+    return infeasible(profile_, 0, e.what());
   }
   return profile_.status == ProfileStatus::kOk ? profile_.travel_time : kInfinity;
 }

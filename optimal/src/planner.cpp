@@ -457,7 +457,14 @@ std::string time_limit_message(std::string message, bool global_cut,
 }
 
 std::string infeasible_message(const PlannerResult& result) {
-  std::string message = "no candidate has a feasible trajectory (see each candidate's message)";
+  // The best corridor's failure by name (where and why); the others' in their own messages.
+  std::string message = "no candidate has a feasible trajectory";
+  if (!result.candidates.empty() && !result.candidates.front().trajectory.message.empty()) {
+    message += ": candidate 0: " + result.candidates.front().trajectory.message;
+    if (result.candidates.size() > 1) message += " (the others: see each candidate's message)";
+  } else {
+    message += " (see each candidate's message)";
+  }
   if (result.feedback_rounds > 0) {
     message += "; the global search ran " + std::to_string(result.feedback_rounds + 1) +
                " times, excluding " + std::to_string(result.excluded.size()) +

@@ -187,6 +187,17 @@ TEST(Planner, NoAdmissibleProfileOnAnyCandidateIsInfeasible) {
     EXPECT_FALSE(c.trajectory.message.empty());
   }
   EXPECT_EQ(result.best(), nullptr);
+  // The message names why and where the best corridor cannot be driven, also after the feedback
+  // rounds have bent the corridors (whose fits then fail on the start speed before any profile).
+  for (const std::size_t rounds : {std::size_t{0}, std::size_t{8}}) {
+    PlannerOptions options = quick_options(2);
+    options.feedback_rounds = rounds;
+    const PlannerResult r = plan(problem, options);
+    ASSERT_EQ(r.status, PlannerStatus::kInfeasible) << r.brief_report();
+    EXPECT_NE(r.message.find("candidate 0: "), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("start speed 10 m/s"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("near (10.00, 20.00)"), std::string::npos) << r.message;
+  }
 }
 
 TEST(Planner, TheProgressCallbackSeesEveryStageAndCanStop) {

@@ -322,7 +322,7 @@ void write_full_stage(const PlanRequest& request, const ElevationGrid& grid,
   }
   if (result.status == PlannerStatus::kInfeasible) {
     summary["status"] = "infeasible";
-    summary["message"] = "no candidate has a feasible trajectory (see optima[].message)";
+    summary["message"] = result.message;  // names the best corridor's failure and its point
   }
   if (result.status == PlannerStatus::kTimeLimit) {
     summary["status"] = "time_limit";

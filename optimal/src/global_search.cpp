@@ -1107,24 +1107,77 @@ double route_level_spacing(const BPatch& terrain, double spacing, int coarse_fac
   return factor > coarse_factor ? factor * spacing : 0.0;
 }
 
-/// A coarser level's result returned in place of a finer search the budget
-/// stopped before it had a candidate (see GlobalSearchResolution::kMulti).
-GlobalSearchResult coarse_level_result(GlobalSearchResult level, const std::string& stopped,
-                                       const char* name) {
+/// The multi-resolution search's counters over its levels, stamped on the result it returns.
+struct MultiCounts {
+  std::size_t expanded = 0, edges = 0, coarse_nodes = 0, route_nodes = 0;
+  void add(const GlobalSearchResult& r) {
+    expanded += r.expanded;
+    edges += r.edges_evaluated;
+  }
+  /// `r` as the multi-resolution search's result: every level's counters, no map-sized fields.
+  GlobalSearchResult stamp(GlobalSearchResult r, std::chrono::steady_clock::time_point t0) const {
+    r.resolution = GlobalSearchResolution::kMulti;
+    r.coarse_nodes = coarse_nodes;
+    r.route_nodes = route_nodes;
+    r.expanded = expanded;
+    r.edges_evaluated = edges;
+    r.cost_from_start.clear();
+    r.cost_to_goal.clear();
+    r.search_seconds = seconds_since(t0);
+    return r;
+  }
+};
+
+/// A finer search the budget stopped (`stopped`, `where` it was) before it had a candidate:
+/// the coarser `level`'s candidates when it found some (see GlobalSearchResolution::kMulti),
+/// else `stopped` without candidates (a coarse lattice path is not a fine candidate).
+GlobalSearchResult stopped_search(GlobalSearchResult stopped, const char* where,
+                                  std::optional<GlobalSearchResult>& level, const char* name) {
+  stopped.message += where;
+  if (!level || level->status != GlobalSearchStatus::kOk || level->candidates.empty()) {
+    stopped.candidates.clear();
+    stopped.nodes = 0;
+    return stopped;
+  }
+  GlobalSearchResult out = std::move(*level);
   std::ostringstream text;
-  text << stopped << "; the " << name << " level's " << level.candidates.size() << " candidate"
-       << (level.candidates.size() == 1 ? "" : "s") << " (lattice spacing " << level.spacing
-       << " m) " << (level.candidates.size() == 1 ? "is" : "are") << " returned";
-  level.status = GlobalSearchStatus::kStopped;
-  level.message = text.str();
-  level.coarse_candidates = true;
-  level.cost_from_start.clear();
-  level.cost_to_goal.clear();
-  return level;
+  text << stopped.message << "; the " << name << " level's " << out.candidates.size()
+       << " candidate" << (out.candidates.size() == 1 ? "" : "s") << " (lattice spacing "
+       << out.spacing << " m) " << (out.candidates.size() == 1 ? "is" : "are") << " returned";
+  out.status = GlobalSearchStatus::kStopped;
+  out.message = text.str();
+  out.coarse_candidates = true;
+  return out;
+}
+
+/// Under a time budget (and no stop request), the route level's search, run to its end (its
+/// size bounds its time); empty when none applies or it fails (e.g. the start untraversable
+/// at its scale).
+std::optional<GlobalSearchResult> route_level(const BPatch& terrain, const Vehicle& vehicle,
+                                              const AdmissibleSet& set, const Vec2& start,
+                                              const Vec2& goal,
+                                              const GlobalSearchOptions& coarse_options,
+                                              double spacing, const WholeMap& whole_map) {
+  const Termination& termination = coarse_options.termination;
+  if (!std::isfinite(termination.remaining()) ||
+      termination.check() == TerminationReason::kStopRequested)
+    return std::nullopt;
+  const double route_spacing = route_level_spacing(terrain, spacing, coarse_options.coarse_factor);
+  if (route_spacing == 0.0) return std::nullopt;
+  GlobalSearchOptions options = coarse_options;
+  options.lattice_spacing = route_spacing;
+  options.termination = Termination();
+  try {
+    return search_lattice(terrain, vehicle, set, start, goal, options, route_spacing, nullptr,
+                          whole_map(route_spacing));
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
 }
 
 /// GlobalSearchResolution::kMulti: the coarse search, then fine corridors round its
-/// candidates, doubled until the best route keeps off the corridor's edge.
+/// candidates, doubled until the best route keeps off the corridor's edge; under a time budget
+/// a route level first.
 GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& vehicle,
                                          const AdmissibleSet& set, const Vec2& start,
                                          const Vec2& goal, const GlobalSearchOptions& options,
@@ -1137,47 +1190,13 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
   if (coarse_options.distinctness == 0.0) {
     coarse_options.distinctness = default_candidate_separation(start, goal, spacing);
   }
-  std::size_t expanded = 0, edges = 0, coarse_nodes = 0, route_nodes = 0;
-  // Under a time budget, the route level first, to its end (bounded by its size).
-  std::optional<GlobalSearchResult> route;
-  const double route_spacing =
-      std::isfinite(options.termination.remaining()) &&
-              options.termination.check() != TerminationReason::kStopRequested
-          ? route_level_spacing(terrain, spacing, options.coarse_factor)
-          : 0.0;
-  if (route_spacing > 0.0) {
-    GlobalSearchOptions route_options = coarse_options;
-    route_options.lattice_spacing = route_spacing;
-    route_options.termination = Termination();
-    try {
-      route.emplace(search_lattice(terrain, vehicle, set, start, goal, route_options, route_spacing,
-                                   nullptr, whole_map(route_spacing)));
-      expanded += route->expanded;
-      edges += route->edges_evaluated;
-      route_nodes = route->nodes;
-      if (route->status != GlobalSearchStatus::kOk) route.reset();
-    } catch (const InputError&) {  // e.g. the start untraversable at this scale: no route level
-      route.reset();
-    }
+  MultiCounts counts;
+  std::optional<GlobalSearchResult> route =
+      route_level(terrain, vehicle, set, start, goal, coarse_options, spacing, whole_map);
+  if (route) {
+    counts.add(*route);
+    counts.route_nodes = route->nodes;
   }
-  // What a stopped finer level returns: the coarsest level's candidates when it has some.
-  const auto stopped_result = [&](GlobalSearchResult stopped, const char* where) {
-    stopped.message += where;
-    GlobalSearchResult result =
-        route ? coarse_level_result(std::move(*route), stopped.message, "route")
-              : std::move(stopped);
-    if (!route) result.candidates.clear();  // coarse lattice paths are not fine candidates
-    result.resolution = GlobalSearchResolution::kMulti;
-    result.coarse_nodes = coarse_nodes;
-    result.route_nodes = route_nodes;
-    result.expanded = expanded;
-    result.edges_evaluated = edges;
-    result.nodes = route ? route_nodes : 0;  // the lattice of the candidates returned
-    result.cost_from_start.clear();
-    result.cost_to_goal.clear();
-    result.search_seconds = seconds_since(t0);
-    return result;
-  };
   std::optional<GlobalSearchResult> coarse;
   std::string fallback;
   const bool coarse_fits = (terrain.x_max() - terrain.x_min()) >= 8.0 * coarse_spacing &&
@@ -1193,11 +1212,11 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
     fallback = "the map is under 8 coarse lattice spacings across";
   }
   if (coarse) {
-    expanded += coarse->expanded;
-    edges += coarse->edges_evaluated;
-    coarse_nodes = coarse->nodes;
+    counts.add(*coarse);
+    counts.coarse_nodes = coarse->nodes;
     if (coarse->status == GlobalSearchStatus::kStopped)
-      return stopped_result(std::move(*coarse), " (in the coarse search)");
+      return counts.stamp(
+          stopped_search(std::move(*coarse), " (in the coarse search)", route, "route"), t0);
     if (coarse->status != GlobalSearchStatus::kOk) {
       fallback = "the coarse search found no route (" + coarse->message + ")";
     }
@@ -1208,6 +1227,7 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
   if (!fallback.empty()) {
     result = search_lattice(terrain, vehicle, set, start, goal, options, spacing, nullptr,
                             whole_map(spacing));
+    counts.add(result);
     result.fell_back_to_full = true;
     if (result.status == GlobalSearchStatus::kOk) result.message = fallback + ": full search";
   } else {
@@ -1220,8 +1240,7 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
       const bool whole = mask.all();
       result = search_lattice(terrain, vehicle, set, start, goal, options, spacing,
                               whole ? nullptr : &mask, whole ? whole_map(spacing) : nullptr);
-      expanded += result.expanded;
-      edges += result.edges_evaluated;
+      counts.add(result);
       const bool touches = result.corridor_width < 0.0;
       if (whole || result.status == GlobalSearchStatus::kStopped ||
           (result.status == GlobalSearchStatus::kOk && !touches)) {
@@ -1233,31 +1252,15 @@ GlobalSearchResult search_coarse_to_fine(const BPatch& terrain, const Vehicle& v
   }
   if (result.status == GlobalSearchStatus::kStopped && result.candidates.empty()) {
     // A coarse route beats none: the coarse level's candidates, else the route level's.
-    if (coarse && coarse->status == GlobalSearchStatus::kOk) {
-      GlobalSearchResult level = coarse_level_result(
-          std::move(*coarse), result.message + " (in the fine search)", "coarse");
-      level.resolution = GlobalSearchResolution::kMulti;
-      level.coarse_nodes = coarse_nodes;
-      level.nodes = coarse_nodes;
-      level.route_nodes = route_nodes;
-      level.expanded = expanded;
-      level.edges_evaluated = edges;
-      level.search_seconds = seconds_since(t0);
-      return level;
-    }
-    return stopped_result(std::move(result), " (in the fine search)");
+    const bool coarse_route = coarse && coarse->status == GlobalSearchStatus::kOk;
+    return counts.stamp(
+        stopped_search(std::move(result), " (in the fine search)", coarse_route ? coarse : route,
+                       coarse_route ? "coarse" : "route"),
+        t0);
   }
   result.corridor_width = result.fell_back_to_full ? 0.0 : radius;
-  result.resolution = GlobalSearchResolution::kMulti;
-  result.route_nodes = route_nodes;
-  result.coarse_nodes = coarse_nodes;
   result.corridor_widenings = widenings;
-  result.expanded = expanded + (result.fell_back_to_full ? result.expanded : 0);
-  result.edges_evaluated = edges + (result.fell_back_to_full ? result.edges_evaluated : 0);
-  result.cost_from_start.clear();
-  result.cost_to_goal.clear();
-  result.search_seconds = seconds_since(t0);
-  return result;
+  return counts.stamp(std::move(result), t0);
 }
 
 /// global_search() with the whole-map lattices from `workspace` when it is

@@ -76,7 +76,7 @@ bash scripts/notebooks.sh "$out_dir/notebooks"
 
 # 5. The Jupyter notebooks (python/notebooks/), executed and rendered to HTML
 #    with their figures (about 40 s).
-PYTHONPATH=build/python /usr/bin/python3 python/notebooks/run_notebooks.py \
+PYTHONPATH="$repo_root/build/python" /usr/bin/python3 python/notebooks/run_notebooks.py \
   python/notebooks/*.ipynb --html "$out_dir/notebooks-python"
 
 echo

@@ -41,6 +41,12 @@ def execute(path, html_dir):
 def main():
     # ipykernel imports its debugger, which warns about Python's frozen modules on every start.
     os.environ.setdefault("PYDEVD_DISABLE_FILE_VALIDATION", "1")
+    # The kernels run in the notebooks' folder: a relative PYTHONPATH (PYTHONPATH=build/python)
+    # is made absolute here, where it was meant.
+    if os.environ.get("PYTHONPATH"):
+        os.environ["PYTHONPATH"] = os.pathsep.join(
+            str(pathlib.Path(entry).resolve()) if entry else entry
+            for entry in os.environ["PYTHONPATH"].split(os.pathsep))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("notebooks", nargs="+", type=pathlib.Path)
     parser.add_argument("--html", type=pathlib.Path, help="write each as DIR/NAME.html")

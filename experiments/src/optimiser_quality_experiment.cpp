@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -11,7 +12,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "talus/bspline/bpatch.hpp"
+#include "talus/core/error.hpp"
 #include "talus/core/esri_ascii.hpp"
 #include "talus/core/sample_statistics.hpp"
 #include "talus/core/stopwatch.hpp"
@@ -29,6 +33,7 @@ namespace talus::experiments {
 namespace {
 
 namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -40,7 +45,7 @@ constexpr std::size_t kDemConfigurations = 1;
 
 /// The issue's targets.
 constexpr double kConvergedTarget = 0.9;  ///< fraction of local optimisations
-constexpr double kWithinPercent = 1.0;    ///< of the multistart reference [%]
+constexpr double kWithinPercent = 1.0;    ///< of the stored reference [%]
 constexpr double kWithinTarget = 0.9;     ///< fraction of battery cases
 constexpr double kSecondsTarget = 2.0;    ///< median planning time on the battery [s]
 
@@ -118,7 +123,8 @@ Configuration former_default() {
   return c;
 }
 
-/// The multistart reference: the default (16 control points, 2 restarts)
+/// The configurations planned besides the default (the stored reference is the best over
+/// one full run of them): the default (16 control points, 2 restarts)
 /// with the polish, the nested Ipopt stage with 2 restarts at 8 control
 /// points with the polish and at 24 without it, the former default, NLopt's
 /// LBFGS with 2 restarts and the polish at 8, and the simultaneous NLP alone
@@ -230,8 +236,15 @@ struct Case {
   /// No trajectory by default, and none in the independent check either.
   bool agreed_no_corridor() const { return !default_run.feasible() && check && !check->feasible(); }
   std::vector<Run> reference;  ///< one per reference configuration
-  /// The best travel time over the default and every reference plan [s].
+  /// This run's best travel time over the default and every reference plan [s], and the
+  /// configuration that gave it ("default" or a configuration's name).
+  double run_best = kInf;
+  std::string run_best_configuration;
+  /// What the plans are compared with [s]: the stored reference's time when the case is in it
+  /// (stored_reference), else run_best.
   double reference_time = kInf;
+  bool stored_reference = false;
+  std::string reference_configuration;  ///< the configuration that gave reference_time
   /// 100 (default / reference − 1); NaN unless both are feasible.
   double above_reference_percent() const { return above_percent(default_run); }
   double above_percent(const Run& r) const {
@@ -250,13 +263,121 @@ Case run_case(Problem problem, const std::vector<Configuration>& reference,
   c.problem = std::move(problem);
   c.default_run = run_plan(c.problem, Configuration{});
   if (!c.default_run.feasible()) c.check = independent_check(c.problem);
-  c.reference_time = c.default_run.travel_time;
+  c.run_best = c.default_run.travel_time;
+  c.run_best_configuration = "default";
   for (std::size_t k = 0; k < std::min(configurations, reference.size()); ++k) {
     c.reference.push_back(run_plan(c.problem, reference[k]));
-    if (c.reference.back().comparable)
-      c.reference_time = std::min(c.reference_time, c.reference.back().travel_time);
+    const Run& r = c.reference.back();
+    if (r.comparable && r.travel_time < c.run_best) {
+      c.run_best = r.travel_time;
+      c.run_best_configuration = reference[k].name;
+    }
   }
+  c.reference_time = c.run_best;
+  c.reference_configuration = c.run_best_configuration;
   return c;
+}
+
+/// The fixed reference (issue #36 item 2): the best travel time per case of one heavy run of
+/// this experiment, frozen in data/references/optimiser_quality.json with the commit and the
+/// configurations that produced it, so that a configuration added later, or a lucky run, does
+/// not move the target. Each run writes its own best per case as reference.json in the same
+/// format; freezing a new reference is copying that file (data/references/README.md).
+struct StoredCase {
+  double travel_time = kInf;  ///< [s]
+  std::string configuration;  ///< the configuration that gave it
+};
+struct StoredReference {
+  std::string commit;                       ///< the commit whose run produced it
+  std::vector<std::string> configurations;  ///< the configurations that took part
+  std::vector<std::pair<std::string, StoredCase>> cases;
+  const StoredCase* find(const std::string& name) const {
+    for (const auto& [case_name, stored] : cases)
+      if (case_name == name) return &stored;
+    return nullptr;
+  }
+};
+
+constexpr const char* kStoredReferenceFile = "references/optimiser_quality.json";
+
+/// Reads `path` (InputError naming the file and what is wrong).
+StoredReference read_stored_reference(const fs::path& path) {
+  const auto fail = [&](const std::string& what) -> StoredReference {
+    throw InputError(path.string() + ": " + what +
+                     " (optimiser-quality's fixed reference; data/references/README.md)");
+  };
+  if (!fs::exists(path)) return fail("no such file");
+  Json json;
+  try {
+    std::ifstream in(path);
+    json = Json::parse(in);
+  } catch (const Json::exception& e) {
+    return fail(std::string("not JSON: ") + e.what());
+  }
+  StoredReference out;
+  try {
+    out.commit = json.at("commit").get<std::string>();
+    out.configurations = json.at("configurations").get<std::vector<std::string>>();
+    for (const Json& c : json.at("cases")) {
+      StoredCase stored{c.at("travel_time").get<double>(),
+                        c.at("configuration").get<std::string>()};
+      if (!(stored.travel_time > 0.0 && std::isfinite(stored.travel_time)))
+        return fail("case '" + c.at("case").get<std::string>() + "' has travel_time " +
+                    csv_number(stored.travel_time) + ", expected a positive number of seconds");
+      out.cases.emplace_back(c.at("case").get<std::string>(), stored);
+    }
+  } catch (const Json::exception& e) {
+    return fail(std::string("expected the keys commit, configurations and cases[] with case, "
+                            "travel_time, configuration: ") +
+                e.what());
+  }
+  if (out.cases.empty()) return fail("no cases");
+  return out;
+}
+
+/// This run's best per case, in the stored reference's format (commit left empty: whoever
+/// freezes it names the commit that built the binary).
+std::string reference_json(const std::vector<Case>& cases,
+                           const std::vector<Configuration>& configurations) {
+  Json json;
+  json["description"] =
+      "Best travel time per case over the configurations below, on the interpolating bicubic "
+      "B-patch: the fixed reference of talus experiment optimiser-quality (issue #36 item 2)";
+  json["commit"] = "";
+  json["command"] =
+      "talus experiment optimiser-quality --out DIR; DIR/optimiser-quality/reference.json";
+  Json names = Json::array({"default"});
+  for (const Configuration& c : configurations)
+    if (c.in_reference()) names.push_back(c.name);
+  json["configurations"] = names;
+  json["cases"] = Json::array();
+  for (const Case& c : cases) {
+    if (!std::isfinite(c.run_best)) continue;
+    json["cases"].push_back({{"case", c.problem.name},
+                             {"travel_time", c.run_best},
+                             {"configuration", c.run_best_configuration}});
+  }
+  return json.dump(2) + "\n";
+}
+
+/// Compares every case that the stored reference holds with it instead of this run's best.
+/// Returns how many plans of this run are faster than their stored reference by more than
+/// 1e-6 (relative): a sign that the reference should be refreshed.
+std::size_t apply_stored_reference(std::vector<Case>& cases, const StoredReference& stored) {
+  std::size_t faster = 0;
+  for (Case& c : cases) {
+    const StoredCase* s = stored.find(c.problem.name);
+    if (s == nullptr) continue;
+    c.reference_time = s->travel_time;
+    c.reference_configuration = s->configuration;
+    c.stored_reference = true;
+    const auto count = [&](const Run& r) {
+      faster += r.comparable && r.travel_time < s->travel_time * (1.0 - 1e-6) ? 1 : 0;
+    };
+    count(c.default_run);
+    for (const Run& r : c.reference) count(r);
+  }
+  return faster;
 }
 
 std::vector<Problem> battery_problems(std::size_t seeds) {
@@ -398,17 +519,16 @@ FigureLink spread_figure(const std::vector<Case>& cases,
     tics += ", " + gnuplot_string(configurations[k].name) + " " + std::to_string(k + 1);
   tics += ")\n";
   const int height = 160 + 50 * static_cast<int>(configurations.size() + 1);
-  plot.describe("travel time above the multistart reference per case and configuration",
+  plot.describe("travel time above the fixed reference per case and configuration",
                 plot.name(".dat"))
       .canvas(1400, height)
-      .title("Travel time above the multistart reference, every case");
+      .title("Travel time above the fixed reference, every case");
   plot << tics << "set yrange [" + std::to_string(configurations.size()) + ".5:-0.5]\n"
        << "set xlabel 'above the reference [%]'\nset grid xtics\nset key off\n"
        << "set xrange [-0.1:*]\n";
   plot.plot({gnuplot_string(plot.name(".dat")) + " using 2:1 with points pt 7 ps 1.2"});
   plot.render();
-  return {"Travel time above the multistart reference, every case and configuration",
-          plot.name(".png")};
+  return {"Travel time above the fixed reference, every case and configuration", plot.name(".png")};
 }
 
 /// One row per plan (the default, then each configuration planned on the
@@ -442,6 +562,7 @@ void run_optimiser_quality(const ExperimentContext& context) {
   require_gnuplot();
   const auto start = Clock::now();
   const bool quick = context.quick;
+  const StoredReference stored = read_stored_reference(context.data_dir / kStoredReferenceFile);
   std::vector<Problem> problems = battery_problems(quick ? 2 : 25);  // issue #12: seeds 1-25
   if (!quick) {
     for (Problem& p : dem_problems(context.data_dir)) problems.push_back(std::move(p));
@@ -464,8 +585,15 @@ void run_optimiser_quality(const ExperimentContext& context) {
     progress.note("optimiser-quality: case " + std::to_string(k + 1) + "/" +
                   std::to_string(problems.size()) + " (" + c.problem.name + "): default " +
                   sig3(c.default_run.travel_time) + " s in " + sig3(c.default_run.seconds) +
-                  " s, reference " + sig3(c.reference_time) + " s, " + sig3(seconds_since(start)) +
+                  " s, best of this run " + sig3(c.run_best) + " s, " + sig3(seconds_since(start)) +
                   " s so far");
+  }
+  const std::size_t faster_than_stored = apply_stored_reference(cases, stored);
+  std::size_t stored_cases = 0;
+  double stored_battery_total = 0.0;
+  for (const Case& c : cases) {
+    stored_cases += c.stored_reference ? 1 : 0;
+    if (c.stored_reference && c.problem.battery) stored_battery_total += c.reference_time;
   }
 
   const auto default_of = [](const Case& c) -> const Run* { return &c.default_run; };
@@ -506,11 +634,18 @@ void run_optimiser_quality(const ExperimentContext& context) {
   summary.set("default_converged_fraction", converged, "1",
               "local optimisations converged by the solver's own status, every case");
   summary.set("battery_within_1pct_fraction", within, "1",
-              "battery cases whose default plan is within 1 % of the multistart reference");
+              "battery cases whose default plan is within 1 % of the fixed reference");
   summary.set("battery_median_above_reference_percent", battery.median_above, "%");
   summary.set("battery_worst_above_reference_percent", battery.worst_above, "%");
   summary.set("battery_median_plan_seconds", battery.median_seconds, "s");
-  summary.set("reference_configurations", static_cast<double>(reference.size()), "count");
+  summary.set("reference_configurations", static_cast<double>(reference.size()), "count",
+              "configurations this run plans besides the default");
+  summary.set("stored_reference_cases", static_cast<double>(stored_cases), "count",
+              "cases compared with the fixed reference of " + std::string(kStoredReferenceFile));
+  summary.set("stored_reference_battery_total_seconds", stored_battery_total, "s",
+              "sum of the stored reference's travel times over the battery cases run");
+  summary.set("runs_faster_than_stored_reference", static_cast<double>(faster_than_stored), "count",
+              "plans of this run faster than the stored reference (1e-6): refresh it");
 
   Table targets({"target (issue #12)", "measured", ""});
   targets.row(
@@ -523,7 +658,7 @@ void run_optimiser_quality(const ExperimentContext& context) {
                percent_text(converged) + " (" + std::to_string(all.converged) + " of " +
                    std::to_string(all.optimisations) + ")",
                pass_text(converged >= kConvergedTarget)});
-  targets.row({"default within 1 % of the multistart reference on >= 90 % of the battery",
+  targets.row({"default within 1 % of the fixed reference on >= 90 % of the battery",
                percent_text(within) + " (" + std::to_string(battery.within) + " of " +
                    std::to_string(battery.cases) + ")",
                pass_text(within >= kWithinTarget)});
@@ -550,13 +685,16 @@ void run_optimiser_quality(const ExperimentContext& context) {
                reference[k].in_reference());
   }
 
-  Table per_case({"case", "status", "travel time [s]", "reference [s]", "above ref. [%]",
-                  "converged", "feedback rounds", "plan time [s]", "verified"});
+  Table per_case({"case", "status", "travel time [s]", "reference [s]", "reference from",
+                  "above ref. [%]", "converged", "feedback rounds", "plan time [s]", "verified"});
   for (const Case& c : cases) {
     const Run& r = c.default_run;
     per_case.row({c.problem.name, std::string(to_string(r.status)),
                   r.feasible() ? sig3(r.travel_time) : "–",
                   std::isfinite(c.reference_time) ? sig3(c.reference_time) : "–",
+                  !std::isfinite(c.reference_time) ? "–"
+                  : c.stored_reference             ? "stored: " + c.reference_configuration
+                                                   : "this run: " + c.reference_configuration,
                   sig3(c.above_reference_percent()),
                   std::to_string(r.converged) + " / " + std::to_string(r.optimisations),
                   std::to_string(r.feedback_rounds), sig3(r.seconds),
@@ -564,7 +702,7 @@ void run_optimiser_quality(const ExperimentContext& context) {
   }
 
   const PathOptimizerOptions defaults;
-  Report report("optimiser-quality: the planner's local stage against a multistart reference");
+  Report report("optimiser-quality: the planner's local stage against a fixed reference");
   report
       .paragraph(
           "Cases: " + std::to_string(battery.cases) +
@@ -582,12 +720,24 @@ void run_optimiser_quality(const ExperimentContext& context) {
           " control points" + more_text(defaults.more_control_points) + ", " +
           std::to_string(defaults.restarts) + " restarts, " +
           (defaults.polish ? "polished by the simultaneous NLP" : "no polish") +
-          "). The reference of a case is the fastest trajectory over the default plan "
-          "and one plan per configuration below on the same bicubic B-patch (the same global "
-          "stage each time; the biquintic configuration plans on another terrain model and "
-          "counts only for convergence and time); on the DEMs "
-          "only the first configuration is planned (a DEM plan takes up to minutes, and the "
-          "travel-time target is the battery's). A local "
+          "). The reference of a case is fixed: the fastest trajectory of one heavy run of this "
+          "experiment, stored in `data/" +
+          std::string(kStoredReferenceFile) + "` (commit " + stored.commit + "; configurations: " +
+          [&] {
+            std::string names;
+            for (std::size_t k = 0; k < stored.configurations.size(); ++k)
+              names += (k ? "; " : "") + stored.configurations[k];
+            return names;
+          }() +
+          "), so that adding a configuration does not move the target; a case it does not hold "
+          "is compared with this run's best. This run plans the default and the configurations "
+          "below on the same bicubic B-patch (the same global stage each time; the biquintic "
+          "configuration plans on another terrain model and counts only for convergence and "
+          "time); on the DEMs only the first configuration is planned (a DEM plan takes up to "
+          "minutes, and the travel-time target is the battery's). " +
+          std::to_string(faster_than_stored) +
+          " plans of this run are faster than their stored reference (a reason to refresh "
+          "it: copy this run's reference.json). A local "
           "optimisation converges when the solver says so: Ipopt Solve_Succeeded or "
           "Solved_To_Acceptable_Level, NLopt a tolerance stop. Every best trajectory is checked "
           "by `verify_profile` against its own limits and by a fresh `evaluate_trajectory` of "
@@ -617,11 +767,13 @@ void run_optimiser_quality(const ExperimentContext& context) {
   }
   const std::vector<FigureLink> links = {spread_figure(cases, reference, context.output_dir)};
   write_text_file(context.output_dir / "runs.csv", runs_csv(cases, reference));
+  write_text_file(context.output_dir / "reference.json", reference_json(cases, reference));
   summary.set("wall_seconds", seconds_since(start), "s");
   report.paragraph("Wall time: " + sig3(seconds_since(start)) + " s.");
   report.write(context.output_dir,
                "runs.csv (every plan: travel time, reference, status, "
-               "convergence, time), spread_above_reference.dat",
+               "convergence, time), reference.json (this run's best per case, the stored "
+               "reference's format), spread_above_reference.dat",
                links);
 }
 

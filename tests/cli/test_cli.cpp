@@ -90,6 +90,40 @@ TEST(Cli, BadInputGivesOneLineOnStderrAndExitCodeOne) {
   EXPECT_NE(r.err.find("bad.asc:7"), std::string::npos) << r.err;  // names file and line
 }
 
+// optimiser-quality compares with the fixed reference stored in the data folder (issue #36
+// item 2); without it, or with a broken one, it stops before planning with one line naming the
+// file and what is wrong, and writes no report.
+TEST(Cli, OptimiserQualityNeedsItsStoredReference) {
+  const auto data = scratch_dir() / "data_without_reference";
+  std::filesystem::create_directories(data / "terrain");
+  std::filesystem::create_directories(data / "references");
+  const std::string file = (data / "references" / "optimiser_quality.json").string();
+  const std::string out = (scratch_dir() / "oq_out").string();
+  const std::string args = "experiment optimiser-quality --quick --quiet --data '" + data.string() +
+                           "' --out '" + out + "'";
+  const struct {
+    const char* text;  ///< the stored file's content; nullptr = no file
+    const char* names;
+  } cases[] = {
+      {nullptr, "no such file"},
+      {"{\"commit\": \"abc\", \"configurations\": [], \"cases\": [", "not JSON"},
+      {"{\"commit\": \"abc\", \"configurations\": [\"default\"], \"cases\": "
+       "[{\"case\": \"fractal seed 1\", \"travel_time\": -1, \"configuration\": \"default\"}]}",
+       "fractal seed 1"},
+      {"{\"commit\": \"abc\", \"cases\": []}", "configurations"},
+  };
+  for (const auto& c : cases) {
+    std::filesystem::remove(file);
+    if (c.text) std::ofstream(file) << c.text;
+    const RunResult r = run_talus(args);
+    EXPECT_EQ(r.exit_code, 1) << (c.text ? c.text : "no file");
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("references/optimiser_quality.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out + "/optimiser-quality/report.md"));
+  }
+}
+
 TEST(Cli, ExperimentListNamesTheGallery) {
   const RunResult r = run_talus("experiment list");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -56,6 +56,92 @@ bool implied_by_lateral(const ForceCondition& c, double lambda) {
   return c.t == 0.0 && c.c == 0.0 && c.r >= lambda * std::abs(c.q);
 }
 
+/// Half-width w of the tangential force interval |f_t| <= w at normal load R and lateral force
+/// Q [m/s²] (0 where none is admissible, |Q| > μ R): the friction cone f_t² + Q² <= μ² R²
+/// (beta = 0), or the lighter axle's f_t² + 2 beta |f_t Q| + Q² <= μ² R² (see
+/// AdmissibleSet::friction_coupling), written without cancellation:
+/// w = (μ²R² − Q²) / (beta |Q| + sqrt(μ²R² − (1 − beta²) Q²)).
+[[gnu::always_inline]] inline double friction_half_width(double mu, double beta, double R,
+                                                         double Q) {
+  const double mR = mu * std::max(R, 0.0);
+  const double slack = mR * mR - Q * Q;
+  if (!(slack > 0.0)) return 0.0;
+  if (beta == 0.0) return std::sqrt(slack);
+  return slack / (beta * std::abs(Q) + std::sqrt(slack + beta * beta * Q * Q));
+}
+
+/// The smallest coupling beta (AdmissibleSet::friction_coupling) whose set
+/// f_t² + 2 beta |f_t f_q| + f_q² <= μ² R² lies inside the lighter axle's condition
+/// f_q² <= (R − tau |f_t|)² (μ² − f_t² / R²): by bisection on the section R = 1, checked at
+/// 4,096 points a = |f_t| in (0, μ), plus 0.1 %. Both boundaries start at |f_q| = μ with
+/// slopes −beta and −tau μ, and both end at |f_t| = μ, so beta >= tau μ.
+double lighter_axle_coupling(double mu, double tau) {
+  if (!(tau > 0.0)) return 0.0;
+  const auto inside = [&](double beta) {
+    constexpr int kPoints = 4096;
+    for (int i = 1; i < kPoints; ++i) {
+      const double a = mu * (1.0 - std::pow(static_cast<double>(i) / kPoints, 2.0));
+      const double q = std::sqrt(std::max(mu * mu - (1.0 - beta * beta) * a * a, 0.0)) - beta * a;
+      const double axle = std::max(1.0 - tau * a, 0.0) * std::sqrt(std::max(mu * mu - a * a, 0.0));
+      if (q > axle) return false;
+    }
+    return true;
+  };
+  double lo = tau * mu, hi = 1.0;
+  if (!inside(hi)) return 1.0;  // tau mu >= 1: the cone degenerates to |f_t| + |f_q| <= μ R
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (inside(mid) ? hi : lo) = mid;
+  }
+  return std::min(1.0, hi * 1.001);
+}
+
+/// Keeps the u with f_t² + 2 c f_t f_q + f_q² <= μ² R² (f_t = u + T0, f_q = Q0 + Q1 u,
+/// R = R0 + R1 u; c = 0 the friction cone, |c| < 1) on the nappe R >= 0, which the caller's
+/// conditions already select (they keep |f_q| <= μ R).
+void intersect_friction_cone(AccelerationInterval& out, double T0, double Q0, double Q1, double R0,
+                             double R1, double mu, double c) {
+  const double m2 = mu * mu;
+  const double a = 1.0 + 2.0 * c * Q1 + Q1 * Q1 - m2 * R1 * R1;
+  const double b = 2.0 * (T0 + c * (Q0 + Q1 * T0) + Q0 * Q1 - m2 * R0 * R1);
+  const double k = T0 * T0 + 2.0 * c * Q0 * T0 + Q0 * Q0 - m2 * R0 * R0;
+  const double scale = std::max({std::abs(T0), std::abs(Q0), mu * std::abs(R0), 1e-300});
+  const double disc = b * b - 4.0 * a * k;
+  if (a > 0.0) {
+    if (disc < -AdmissibleSet::kRounding * scale * scale * std::max(a, 1.0)) {
+      out.lower = kInfinity;
+      return;
+    }
+    // Stable roots: q = -(b + sign(b) sqrt(disc)) / 2, roots q/a and k/q.
+    const double root = std::sqrt(std::max(disc, 0.0));
+    const double q = -0.5 * (b + std::copysign(root, b));
+    double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
+    if (r1 > r2) std::swap(r1, r2);
+    const double widen = AdmissibleSet::kRounding * (1.0 + std::abs(r1) + std::abs(r2));
+    out.intersect(r1 - widen, r2 + widen);
+  } else if (a == 0.0) {
+    out.require_nonnegative(-k, -b);
+  } else if (disc > 0.0) {
+    // a < 0: the line crosses both nappes of the cone; the caller's conditions
+    // keep u on the R >= 0 nappe, where the solution set is the outer piece
+    // (-inf, r1] or [r2, inf) that they touch.
+    const double root = std::sqrt(disc);
+    const double q = -0.5 * (b + std::copysign(root, b));
+    double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
+    if (r1 > r2) std::swap(r1, r2);
+    const double widen = AdmissibleSet::kRounding * (1.0 + std::abs(r1) + std::abs(r2));
+    if (out.upper <= r1 + widen) {
+      // already inside the lower piece
+    } else if (out.lower >= r2 - widen) {
+      // already inside the upper piece
+    } else if (out.lower <= r1 + widen) {
+      out.upper = std::min(out.upper, r1 + widen);
+    } else {
+      out.lower = std::max(out.lower, r2 - widen);
+    }
+  }
+}
+
 }  // namespace
 
 void ForceConditions::add(const ForceCondition& condition) {
@@ -78,11 +164,13 @@ void ForceConditions::add_tangential_ratio(Constraint constraint, double ratio) 
 AdmissibleSet::AdmissibleSet(const Vehicle& vehicle)
     : AdmissibleSet(vehicle_physics(vehicle.model).admissible_set(vehicle)) {}
 
-AdmissibleSet::AdmissibleSet(double gravity, double friction, double max_speed,
-                             double max_curvature, const ForceConditions& conditions,
+AdmissibleSet::AdmissibleSet(double gravity, double friction, double axle_transfer,
+                             double max_speed, double max_curvature,
+                             const ForceConditions& conditions,
                              const std::optional<WheelLayout>& wheels)
     : gravity_(gravity),
       friction_(friction),
+      friction_coupling_(lighter_axle_coupling(friction, axle_transfer)),
       max_speed_(max_speed),
       max_speed_squared_(max_speed * max_speed),
       max_curvature_(max_curvature),
@@ -306,8 +394,8 @@ AccelerationBounds AdmissibleSet::acceleration_bounds(const StationGeometry& s,
     return out;
   }
   // Bounds on f_t, then s̈ = f_t − g k_t.
-  const TangentialForceRange f =
-      traction_range(std::max(normal, 0.0), f_q, std::sqrt(std::max(slack, 0.0)));
+  const TangentialForceRange f = traction_range(
+      std::max(normal, 0.0), f_q, friction_half_width(friction_, friction_coupling_, normal, f_q));
   const double weight = gravity_ * s.k_t;
   out.a_min = f.lower - weight;
   out.a_max = f.upper - weight;
@@ -320,9 +408,8 @@ AccelerationBounds AdmissibleSet::acceleration_bounds(const StationGeometry& s,
 TangentialForceRange AdmissibleSet::tangential_forces(const StationGeometry& s, double x) const {
   const double normal = std::max(gravity_ * s.k_r + s.kappa_n * x, 0.0);
   const double f_q = gravity_ * s.k_q + s.kappa_g * x;
-  const double friction_force = friction_ * normal;
   return traction_range(normal, f_q,
-                        std::sqrt(std::max(friction_force * friction_force - f_q * f_q, 0.0)));
+                        friction_half_width(friction_, friction_coupling_, normal, f_q));
 }
 
 AccelerationInterval AdmissibleSet::accelerations_at(const StationGeometry& s, double x) const {
@@ -346,8 +433,7 @@ AccelerationInterval AdmissibleSet::accelerations_at(const StationGeometry& s, d
     out.lower = kInfinity;
     return out;
   }
-  const double friction_force = friction_ * std::max(R, 0.0);
-  const double half_width = std::sqrt(std::max(friction_force * friction_force - Q * Q, 0.0));
+  const double half_width = friction_half_width(friction_, friction_coupling_, R, Q);
   const double normal = std::max(R, 0.0);
   double upper = std::min(half_width, f_t_max_), lower = std::max(-half_width, f_t_min_);
   for (std::size_t k = 0; k < upper_count_; ++k) {
@@ -400,46 +486,16 @@ AccelerationInterval AdmissibleSet::accelerations_along(const StationGeometry& s
   }
   out.intersect(f_t_min_ - T0, f_t_max_ - T0);  // the constant traction force limits
   if (out.empty()) return out;
-  // Friction cone: (u + T0)^2 + (Q0 + Q1 u)^2 - mu^2 (R0 + R1 u)^2 <= 0.
-  const double mu = friction_;
-  const double m2 = mu * mu;
-  const double a = 1.0 + Q1 * Q1 - m2 * R1 * R1;
-  const double b = 2.0 * (T0 + Q0 * Q1 - m2 * R0 * R1);
-  const double k = T0 * T0 + Q0 * Q0 - m2 * R0 * R0;
-  const double scale = std::max({std::abs(T0), std::abs(Q0), mu * std::abs(R0), 1e-300});
-  const double disc = b * b - 4.0 * a * k;
-  if (a > 0.0) {
-    if (disc < -kRounding * scale * scale * std::max(a, 1.0)) {
-      out.lower = kInfinity;
-      return out;
-    }
-    // Stable roots: q = -(b + sign(b) sqrt(disc)) / 2, roots q/a and k/q.
-    const double root = std::sqrt(std::max(disc, 0.0));
-    const double q = -0.5 * (b + std::copysign(root, b));
-    double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
-    if (r1 > r2) std::swap(r1, r2);
-    const double widen = kRounding * (1.0 + std::abs(r1) + std::abs(r2));
-    out.intersect(r1 - widen, r2 + widen);
-  } else if (a == 0.0) {
-    out.require_nonnegative(-k, -b);
-  } else if (disc > 0.0) {
-    // a < 0: the line crosses both nappes of the cone; the lateral
-    // conditions above already keep u on the R >= 0 nappe, where the
-    // solution set is the outer piece (-inf, r1] or [r2, inf) that they touch.
-    const double root = std::sqrt(disc);
-    const double q = -0.5 * (b + std::copysign(root, b));
-    double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
-    if (r1 > r2) std::swap(r1, r2);
-    const double widen = kRounding * (1.0 + std::abs(r1) + std::abs(r2));
-    if (out.upper <= r1 + widen) {
-      // already inside the lower piece
-    } else if (out.lower >= r2 - widen) {
-      // already inside the upper piece
-    } else if (out.lower <= r1 + widen) {
-      out.upper = std::min(out.upper, r1 + widen);
-    } else {
-      out.lower = std::max(out.lower, r2 - widen);
-    }
+  // Friction: (u + T0)^2 + (Q0 + Q1 u)^2 - mu^2 (R0 + R1 u)^2 <= 0, or the lighter axle's
+  // two coupled cones, with + 2 (± beta) (u + T0) (Q0 + Q1 u). The lateral conditions above
+  // keep u on the R >= 0 nappe of each.
+  if (friction_coupling_ == 0.0) {
+    intersect_friction_cone(out, T0, Q0, Q1, R0, R1, friction_, 0.0);
+    return out;
+  }
+  for (const double coupling : {friction_coupling_, -friction_coupling_}) {
+    intersect_friction_cone(out, T0, Q0, Q1, R0, R1, friction_, coupling);
+    if (out.empty()) return out;
   }
   return out;
 }

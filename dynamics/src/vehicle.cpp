@@ -121,6 +121,8 @@ void Vehicle::validate() const {
       throw InputError(msg.str());
     }
   }
+  if (axle_friction && model != VehicleModel::kRigidBody)
+    throw InputError("Vehicle.axle_friction needs model rigid_body (the point mass has no axles)");
   if (body) body->validate();
 }
 
@@ -147,6 +149,7 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
                                                "contact_reserve",
                                                "friction_reserve",
                                                "drive_reserve",
+                                               "axle_friction",
                                                "mass",
                                                "inertia_roll",
                                                "inertia_pitch",
@@ -165,7 +168,8 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
       throw InputError(source + ": unknown key '" + printable(key) +
                        "' (known: model, gravity, friction, cg_height, half_track, "
                        "half_wheelbase, max_speed, max_accel, max_decel, max_steering, "
-                       "contact_reserve, friction_reserve, drive_reserve; and for the "
+                       "contact_reserve, friction_reserve, drive_reserve, axle_friction; and for "
+                       "the "
                        "simulation mass, "
                        "inertia_roll, inertia_pitch, inertia_yaw, wheel_radius, "
                        "suspension_stiffness, suspension_damping, cornering_stiffness)");
@@ -209,6 +213,14 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   number("contact_reserve", v.contact_reserve);
   number("friction_reserve", v.friction_reserve);
   number("drive_reserve", v.drive_reserve);
+  if (seen.count("axle_friction")) {
+    try {
+      v.axle_friction = root["axle_friction"].as<bool>();
+    } catch (const YAML::Exception&) {
+      throw InputError(source + ": key 'axle_friction' must be true or false, got '" +
+                       printable(root["axle_friction"].as<std::string>("<not a scalar>")) + "'");
+    }
+  }
   if (seen.count("mass")) {
     double mass = 0.0;
     number("mass", mass);

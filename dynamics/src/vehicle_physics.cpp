@@ -36,8 +36,8 @@ AdmissibleSet VehiclePhysics::admissible_set(const Vehicle& vehicle) const {
                              "' breaks the ForceCondition contract (admissible_set.hpp)");
     }
   }
-  return AdmissibleSet(vehicle.gravity, friction, vehicle.max_speed, vehicle.max_curvature(),
-                       conditions,
+  return AdmissibleSet(vehicle.gravity, friction, axle_load_transfer(vehicle), vehicle.max_speed,
+                       vehicle.max_curvature(), conditions,
                        contact_at_wheels() ? std::optional(wheel_layout(vehicle)) : std::nullopt);
 }
 

@@ -1,5 +1,7 @@
 #include "talus/optimal/canonical_manoeuvres.hpp"
 
+#include "talus/dynamics/admissible_set.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -212,7 +214,14 @@ ManoeuvreCase side_slope_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehic
   ManoeuvreCase c(manoeuvre, BPatch::interpolate(generate_plane(plane)),
                   straight_path(3.0, 17.0, 6.0));
   const double theta = plane.slope;
-  const double bound = g * std::cos(theta) * std::sqrt(mu * mu - std::tan(theta) * std::tan(theta));
+  // Normal load R = g cos θ, lateral force Q = g sin θ per unit mass; |f_t| <= w on the friction
+  // cone, w = sqrt(μ²R² − Q²); the rigid body judges friction at its lighter axle,
+  // f_t² + 2 β |f_t| Q + Q² <= μ² R² (β = AdmissibleSet::friction_coupling, fitted inside the
+  // axle's condition), whose root is w = (μ²R² − Q²) / (β Q + sqrt(μ²R² − (1 − β²) Q²)).
+  const double R = g * std::cos(theta), Q = g * std::sin(theta);
+  const double beta = AdmissibleSet(vehicle).friction_coupling();
+  const double slack = mu * mu * R * R - Q * Q;
+  const double bound = slack / (beta * Q + std::sqrt(slack + beta * beta * Q * Q));
   c.limit_kind = AnalyticLimitKind::kAcceleration;
   c.analytic_limit = std::min(bound, vehicle.planned_max_accel());
   c.analytic_brake_limit = std::min(bound, vehicle.planned_max_decel());
@@ -220,7 +229,9 @@ ManoeuvreCase side_slope_case(CanonicalManoeuvre manoeuvre, const Vehicle& vehic
   c.key_to = 14.0;
   c.description =
       "straight along the contour of a plane with tan theta = 0.9 mu: the tangential "
-      "acceleration is bounded by g cos theta sqrt(mu^2 - tan^2 theta) both ways";
+      "acceleration is bounded by g cos theta sqrt(mu^2 - tan^2 theta) both ways (a point mass; "
+      "a rigid body at its lighter axle, f_t^2 + 2 beta |f_t| g sin theta + (g sin theta)^2 <= "
+      "(mu g cos theta)^2)";
   return c;
 }
 

@@ -24,7 +24,8 @@ enum class Kind {
   kSpeedCondition,  // a speed condition of the vehicle the envelope does not imply
   kMaxSpeed,        // v_max² − x >= 0
   kWheelContact,    // g k_r + κ_w x >= 0: contact at the wheels (rigid body)
-  kFriction,        // μ² R² − f_t² − f_q² >= 0
+  kFriction,        // μ² R² − f_t² − 2 c f_t f_q − f_q² >= 0 (c: 0, or ± the lighter
+                    // axle's beta, AdmissibleSet::friction_coupling)
   kTractionZero,    // f_t = 0: friction on a station whose lateral friction is exhausted
   kTraction,        // a traction condition of the vehicle (pitch-over, drive, brake)
   // u = the double root where the step's line x = y0 + β u touches the
@@ -35,9 +36,9 @@ enum class Kind {
 
 /// Constraint value at a station with state x, step control u and geometry
 /// (κ_n, κ_g, k_t, k_q, k_r, κ_w) = G; `condition` for kSpeedCondition and
-/// kTraction. One source for double and AutoDiff.
+/// kTraction, `coupling` for kFriction. One source for double and AutoDiff.
 template <typename S>
-S constraint(Kind kind, const ForceCondition* condition, const AdmissibleSet& c,
+S constraint(Kind kind, const ForceCondition* condition, double coupling, const AdmissibleSet& c,
              double max_speed_squared, const S& x, const S& u, const S* G) {
   const double g = c.gravity();
   const S R = g * G[4] + G[0] * x;
@@ -53,7 +54,7 @@ S constraint(Kind kind, const ForceCondition* condition, const AdmissibleSet& c,
     case Kind::kWheelContact:
       return g * G[4] - c.contact_reserve() + G[5] * x;
     case Kind::kFriction:
-      return c.friction() * c.friction() * R * R - F * F - Q * Q;
+      return c.friction() * c.friction() * R * R - F * F - 2.0 * coupling * F * Q - Q * Q;
     case Kind::kTractionZero:
       return F;
     case Kind::kSpeedCondition:
@@ -65,18 +66,19 @@ S constraint(Kind kind, const ForceCondition* condition, const AdmissibleSet& c,
   return S(0.0);
 }
 
-/// The friction ellipse of a station along the step's line x = y0 + β u, as
-/// A u² + B u + K <= 0 (as in AdmissibleSet::accelerations_along); returns u + B / (2 A),
-/// zero at the double root.
+/// The friction ellipse (with the coupling 2 `coupling` f_t f_q) of a station along the
+/// step's line x = y0 + β u, as A u² + B u + K <= 0 (as in AdmissibleSet::accelerations_along);
+/// returns u + B / (2 A), zero at the double root.
 template <typename S>
-S tangent_control(const AdmissibleSet& c, const S& y0, const S& beta, const S& u, const S* G) {
+S tangent_control(const AdmissibleSet& c, double coupling, const S& y0, const S& beta, const S& u,
+                  const S* G) {
   const double g = c.gravity();
   const S R0 = g * G[4] + G[0] * y0, R1 = G[0] * beta;
   const S Q0 = g * G[3] + G[1] * y0, Q1 = G[1] * beta;
   const S T0 = g * G[2];
   const double m2 = c.friction() * c.friction();
-  const S A = 1.0 + Q1 * Q1 - m2 * R1 * R1;
-  const S B = 2.0 * (T0 + Q0 * Q1 - m2 * R0 * R1);
+  const S A = 1.0 + 2.0 * coupling * Q1 + Q1 * Q1 - m2 * R1 * R1;
+  const S B = 2.0 * (T0 + coupling * (Q0 + Q1 * T0) + Q0 * Q1 - m2 * R0 * R1);
   return u + B / (2.0 * A);
 }
 
@@ -98,6 +100,7 @@ struct Equation {
   bool speed_only = true;   // a speed condition pins `station` alone
   double residual = std::numeric_limits<double>::infinity();
   const ForceCondition* condition = nullptr;  // kSpeedCondition, kTraction
+  double coupling = 0.0;                      // kFriction, kTangentControl: the cone's
 };
 
 class Problem {
@@ -139,7 +142,7 @@ class Problem {
     const auto G = g(e.station);
     const double u = e.speed_only ? 0.0 : control(e.step);
     const double value =
-        constraint<double>(e.kind, e.condition, c_, vmax2_, x_[e.station], u, G.data());
+        constraint<double>(e.kind, e.condition, e.coupling, c_, vmax2_, x_[e.station], u, G.data());
     const double sc = scale(e.station, u);
     if (e.kind == Kind::kMaxSpeed) return std::abs(value) / std::max(vmax2_, 1e-300);
     return std::abs(value) / (e.kind == Kind::kFriction ? sc * sc : sc);
@@ -175,14 +178,23 @@ class Problem {
         e.residual = residual(e);
         if (e.residual > control_tolerance(j, station)) return false;
         out.push_back(e);
-        if (e.kind == Kind::kFriction && tangent(j, station)) {
+        if (e.kind == Kind::kFriction && tangent(j, station, e.coupling)) {
           e.kind = Kind::kTangentControl;
           out.push_back(e);
         }
         return true;
       };
-      if (!add({Kind::kFriction, station, j, false}) && friction_exhausted(station))
-        add({Kind::kTractionZero, station, j, false});
+      // The friction cone, or the lighter axle's two coupled cones (one is touched at most,
+      // unless f_t f_q = 0, where both meet and the first stands for them).
+      const double beta = c_.friction_coupling();
+      bool friction = false;
+      for (const double coupling : {beta, -beta}) {
+        Equation e{Kind::kFriction, station, j, false};
+        e.coupling = coupling;
+        friction = friction || add(e);
+        if (friction || beta == 0.0) break;
+      }
+      if (!friction && friction_exhausted(station)) add({Kind::kTractionZero, station, j, false});
       for (const ForceCondition& c : c_.traction_conditions())
         add({Kind::kTraction, station, j, false, 0.0, &c});
     }
@@ -200,7 +212,7 @@ class Problem {
   /// Whether step j's line touches the friction ellipse of `station` (one
   /// of its ends) at the step's control: there the friction equation fixes
   /// only the near state, and the double root fixes the control.
-  bool tangent(std::size_t j, std::size_t station) const {
+  bool tangent(std::size_t j, std::size_t station, double coupling) const {
     const auto G = g(station);
     const double u = control(j);
     const bool far_end = station == j + 1;
@@ -209,8 +221,8 @@ class Problem {
     const double R0 = c_.gravity() * G[4] + G[0] * y0, R1 = G[0] * beta;
     const double Q0 = c_.gravity() * G[3] + G[1] * y0, Q1 = G[1] * beta;
     const double T0 = c_.gravity() * G[2], m2 = c_.friction() * c_.friction();
-    const double A = 1.0 + Q1 * Q1 - m2 * R1 * R1;
-    const double B = 2.0 * (T0 + Q0 * Q1 - m2 * R0 * R1);
+    const double A = 1.0 + 2.0 * coupling * Q1 + Q1 * Q1 - m2 * R1 * R1;
+    const double B = 2.0 * (T0 + coupling * (Q0 + Q1 * T0) + Q0 * Q1 - m2 * R0 * R1);
     const double slope = 2.0 * A * u + B;  // d/du of the ellipse along the line
     return std::abs(slope) <=
            kTangentTolerance * (std::abs(B) + std::abs(2.0 * A * u) + scale(station, u));
@@ -235,9 +247,9 @@ class Problem {
     if (e.kind == Kind::kTangentControl) {
       const bool far_end = e.station == e.step + 1;
       const Ad beta = (far_end ? 2.0 : -2.0) * vars[2];
-      return tangent_control<Ad>(c_, far_end ? vars[0] : vars[1], beta, u, vars + 3);
+      return tangent_control<Ad>(c_, e.coupling, far_end ? vars[0] : vars[1], beta, u, vars + 3);
     }
-    return constraint<Ad>(e.kind, e.condition, c_, vmax2_, x, u, vars + 3);
+    return constraint<Ad>(e.kind, e.condition, e.coupling, c_, vmax2_, x, u, vars + 3);
   }
 
  private:

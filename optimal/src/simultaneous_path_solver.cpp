@@ -52,7 +52,8 @@ class SimultaneousNlp : public Ipopt::TNLP {
     }
     for (const ForceCondition& c : set_.conditions()) conditions_.push_back(c);
     wheel_row_ = set_.wheels() != nullptr;
-    rows_per_end_ = 1 + conditions_.size() + (wheel_row_ ? 1 : 0);
+    cone_rows_ = set_.friction_coupling() > 0.0 ? 2 : 1;
+    rows_per_end_ = cone_rows_ + conditions_.size() + (wheel_row_ ? 1 : 0);
     const KnotVector& knots = problem.initial->knots();
     first_basis_.resize(stations_);
     basis_.resize(stations_);
@@ -515,9 +516,9 @@ class SimultaneousNlp : public Ipopt::TNLP {
     }
   }
 
-  /// The 2 (1 + C [+ 1]) constraint values of step j (the friction cone, each
-  /// ForceCondition, and with wheels contact at the wheels, g k_r + κ_w ṡ² >= 0,
-  /// at its first end and then at its second) and, when
+  /// The 2 (cones + C [+ 1]) constraint values of step j (the friction cone, or the lighter
+  /// axle's two coupled cones, each ForceCondition, and with wheels contact at the wheels,
+  /// g k_r + κ_w ṡ² >= 0, at its first end and then at its second) and, when
   /// `jacobian` is given, their derivatives over the step's columns.
   void step_rows(std::size_t j, const Number* x, double* rows, Eigen::MatrixXd* jacobian) {
     const double g = set_.gravity(), mu = set_.friction();
@@ -542,12 +543,16 @@ class SimultaneousNlp : public Ipopt::TNLP {
       const double fq = g * v[3] + v[1] * b;
       const double rn = g * v[4] + v[0] * b;
       double* out = rows + static_cast<std::size_t>(end) * rows_per_end_;
-      out[0] = (mu * mu * rn * rn - ft * ft - fq * fq) / (2.0 * g);
+      for (std::size_t c = 0; c < cone_rows_; ++c) {
+        const double coupling = cone_coupling(c);
+        out[c] = (mu * mu * rn * rn - ft * ft - 2.0 * coupling * ft * fq - fq * fq) / (2.0 * g);
+      }
       for (std::size_t c = 0; c < conditions_.size(); ++c) {
         const ForceCondition& f = conditions_[c];
-        out[1 + c] = f.t * ft + f.q * fq + f.r * rn + f.c;
+        out[cone_rows_ + c] = f.t * ft + f.q * fq + f.r * rn + f.c;
       }
-      if (wheel_row_) out[1 + conditions_.size()] = g * v[4] - set_.contact_reserve() + v[7] * b;
+      if (wheel_row_)
+        out[cone_rows_ + conditions_.size()] = g * v[4] - set_.contact_reserve() + v[7] * b;
       if (jacobian == nullptr) continue;
       // d(f_t, f_q, R) over the step's columns.
       const long offset = static_cast<long>(dims_ * (first_basis_[k] - first_basis_[j]));
@@ -563,10 +568,16 @@ class SimultaneousNlp : public Ipopt::TNLP {
       dfq[col_b] += v[1];
       dr[col_b] += v[0];
       const long row = static_cast<long>(static_cast<std::size_t>(end) * rows_per_end_);
-      jacobian->row(row) = ((mu * mu * rn) * dr - ft * dft - fq * dfq).transpose() / g;
+      for (std::size_t c = 0; c < cone_rows_; ++c) {
+        const double coupling = cone_coupling(c);
+        jacobian->row(row + static_cast<long>(c)) =
+            ((mu * mu * rn) * dr - (ft + coupling * fq) * dft - (fq + coupling * ft) * dfq)
+                .transpose() /
+            g;
+      }
       for (std::size_t c = 0; c < conditions_.size(); ++c) {
         const ForceCondition& f = conditions_[c];
-        jacobian->row(row + 1 + static_cast<long>(c)) =
+        jacobian->row(row + static_cast<long>(cone_rows_ + c)) =
             (f.t * dft + f.q * dfq + f.r * dr).transpose();
       }
       if (wheel_row_) {
@@ -574,7 +585,7 @@ class SimultaneousNlp : public Ipopt::TNLP {
         dw.setZero(width);
         dw.segment(offset, w) = (g * d.row(4) + b * d.row(7)).head(w).transpose();
         dw[col_b] += v[7];
-        jacobian->row(row + 1 + static_cast<long>(conditions_.size())) = dw.transpose();
+        jacobian->row(row + static_cast<long>(cone_rows_ + conditions_.size())) = dw.transpose();
       }
     }
   }
@@ -590,7 +601,12 @@ class SimultaneousNlp : public Ipopt::TNLP {
   std::vector<ForceCondition> conditions_;
   std::vector<Vec2> control_;  // workspace: the current control points
   std::size_t points_, stations_, dims_ = 2, free_ = 0, rows_per_end_ = 0;
-  bool wheel_row_ = false;             // contact at the wheels (rigid body): one more row per end
+  bool wheel_row_ = false;     // contact at the wheels (rigid body): one more row per end
+  std::size_t cone_rows_ = 1;  // the friction cone, or the lighter axle's two cones
+  /// The coupling of cone row c: 0 for the friction cone, ± AdmissibleSet::friction_coupling().
+  double cone_coupling(std::size_t c) const {
+    return cone_rows_ == 1 ? 0.0 : (c == 0 ? 1.0 : -1.0) * set_.friction_coupling();
+  }
   std::vector<Vec2> origin_, normal_;  // the initial control points, their lateral directions
   double h_ = 0.0;
   std::vector<std::size_t> first_basis_;

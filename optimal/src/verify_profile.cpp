@@ -25,7 +25,8 @@ void record(WorstViolation& worst, std::size_t station, double amount) {
 /// How far the contact force per unit mass that state x = ṡ² and s̈ = u need
 /// at a station lies outside the vehicle's admissible force set [m/s²]: the
 /// largest Euclidean distance in (f_t, f_q, R) to one of the set's pieces,
-/// the friction cone and each linear condition; 0 inside. Evaluated from the
+/// the friction cone (the lighter axle's, for the rigid body) and each linear condition; 0
+/// inside. Evaluated from the
 /// force model itself (admissible_set.hpp), not from the set's intervals.
 /// Measured in force, not in s̈, because at the tip of the admissible set (a
 /// speed on the sliding limit) the s̈ interval is sqrt(v_max − v) wide: a
@@ -33,7 +34,13 @@ void record(WorstViolation& worst, std::size_t station, double amount) {
 double force_excess(const AdmissibleSet& set, const StationGeometry& s, double x, double u) {
   const double g = set.gravity(), mu = set.friction();
   const double f_t = u + g * s.k_t, f_q = g * s.k_q + s.kappa_g * x, R = g * s.k_r + s.kappa_n * x;
-  double excess = (std::hypot(f_t, f_q) - mu * R) / std::sqrt(1.0 + mu * mu);
+  // The friction cone, or the lighter axle's (AdmissibleSet::friction_coupling):
+  // sqrt(f_t² + 2 beta |f_t f_q| + f_q²) <= μ R.
+  const double beta = set.friction_coupling();
+  const double magnitude =
+      beta == 0.0 ? std::hypot(f_t, f_q)
+                  : std::sqrt(f_t * f_t + 2.0 * beta * std::abs(f_t * f_q) + f_q * f_q);
+  double excess = (magnitude - mu * R) / std::sqrt(1.0 + mu * mu);
   for (const ForceCondition& c : set.conditions()) {
     const double norm = std::sqrt(c.t * c.t + c.q * c.q + c.r * c.r);
     if (norm > 0.0) excess = std::max(excess, -(c.t * f_t + c.q * f_q + c.r * R + c.c) / norm);

@@ -74,6 +74,7 @@ py::dict vehicle_to_dict(const Vehicle& v) {
   if (v.contact_reserve != 0.0) d["contact_reserve"] = v.contact_reserve;
   if (v.friction_reserve != 0.0) d["friction_reserve"] = v.friction_reserve;
   if (v.drive_reserve != 0.0) d["drive_reserve"] = v.drive_reserve;
+  if (v.axle_friction) d["axle_friction"] = true;
   if (v.body) {  // every key, defaults included: the dict says exactly what the simulation uses
     const VehicleBody& b = *v.body;
     d["mass"] = b.mass;
@@ -265,6 +266,7 @@ void bind_dynamics(py::module_& m) {
       .def_readwrite("contact_reserve", &Vehicle::contact_reserve)
       .def_readwrite("friction_reserve", &Vehicle::friction_reserve)
       .def_readwrite("drive_reserve", &Vehicle::drive_reserve)
+      .def_readwrite("axle_friction", &Vehicle::axle_friction)
       .def("max_curvature", &Vehicle::max_curvature,
            "tan(max_steering) / (2 half_wheelbase) [1/m]; inf without a steering limit")
       .def("validate", &Vehicle::validate)

@@ -72,3 +72,19 @@ def test_fields_are_writable_and_validate_names_the_field():
     v.friction = -0.5
     with pytest.raises(talus.InputError, match="friction"):
         v.validate()
+
+
+def test_axle_friction_round_trips_and_needs_a_rigid_body(data_dir):
+    """axle_friction judges friction at the lighter axle (only a rigid body has axles); the
+    dict keeps it when set and omits it otherwise."""
+    ugv = talus.load_vehicle(str(data_dir / "vehicles" / "iagnemma_ugv.yaml"))
+    d = ugv.to_dict()
+    assert "axle_friction" not in d
+    d["axle_friction"] = True
+    axle = talus.Vehicle.from_dict(d)
+    assert axle.axle_friction
+    assert axle.to_dict()["axle_friction"] is True
+    point = {"model": "point_mass", "friction": 0.7, "cg_height": 0.5, "half_track": 0.6,
+             "axle_friction": True}
+    with pytest.raises(talus.InputError, match="axle_friction"):
+        talus.Vehicle.from_dict(point)

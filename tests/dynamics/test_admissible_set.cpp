@@ -27,6 +27,8 @@ Vehicle vehicle_of(VehicleModel model, int variant) {
     v.max_accel = 2.5;
     v.max_decel = 5.0;
   }
+  // The rigid body's variants 2 and 3 judge friction at the lighter axle (its coupled cones).
+  v.axle_friction = model == VehicleModel::kRigidBody && variant >= 2;
   return v;
 }
 
@@ -65,11 +67,15 @@ TEST_P(EveryVehicleModel, QueriesAgreeAtRandomStations) {
         const double tol = 1e-8 * (1 + std::abs(b.a_min) + std::abs(b.a_max));
         EXPECT_NEAR(at.lower, b.a_min, tol);
         EXPECT_NEAR(at.upper, b.a_max, tol);
-        // The line query with beta = 0 is the known-state query.
+        // The line query with beta = 0 is the known-state query, widened by kRounding
+        // relative to its quadratics' roots: the lighter axle's coupled cones have one root
+        // at the lateral force's scale, 2 beta |f_q| away.
         const AccelerationInterval flat =
             set.accelerations_along(g, x, 0.0, 0.0, std::numeric_limits<double>::infinity());
-        EXPECT_NEAR(flat.lower, b.a_min, tol);
-        EXPECT_NEAR(flat.upper, b.a_max, tol);
+        const double line_tol = tol + 4.0 * AdmissibleSet::kRounding * set.friction_coupling() *
+                                          std::abs(v.gravity * g.k_q + g.kappa_g * x);
+        EXPECT_NEAR(flat.lower, b.a_min, line_tol);
+        EXPECT_NEAR(flat.upper, b.a_max, line_tol);
         // Along a step's line x + beta u, every u inside the interval lands on
         // an admissible state (up to the kRounding slack of the state bounds,
         // hence the clamp) with u admissible there; just beyond, not.
@@ -135,6 +141,68 @@ class OffsetRigidBody final : public VehiclePhysics {
     out.add({Constraint::kPitchover, 1.0, 0.0, front / v.cg_height, 0.0});  // braking
   }
 };
+
+/// The largest |f_t| the lighter axle's own condition admits at normal load R and lateral
+/// force Q (AdmissibleSet::friction_coupling): Q² <= (R − tau w)² (μ² − w²/R²), by bisection
+/// (its left side falls with w on [0, μ R]).
+double axle_root(double mu, double tau, double R, double Q) {
+  double lo = 0.0, hi = mu * R;
+  for (int k = 0; k < 200; ++k) {
+    const double w = 0.5 * (lo + hi);
+    const bool holds = (R - tau * w) * (R - tau * w) * (mu * mu - w * w / (R * R)) >= Q * Q;
+    (holds ? lo : hi) = w;
+  }
+  return lo;
+}
+
+// With axle_friction the rigid body's friction is judged at its lighter axle: the coupled
+// cones lie inside the axle's own condition (checked against its root found by bisection),
+// equal it where f_q = 0 (driving and braking straight keep μ R) and where f_t = 0 (every
+// speed limit is the friction cone's), and the coupling sits just above tau μ.
+TEST(VehiclePhysics, TheLighterAxlesFrictionLiesInsideTheAxlesConditionAndKeepsTheSpeeds) {
+  Vehicle ugv;  // data/vehicles/iagnemma_ugv.yaml's geometry, without drive limits
+  ugv.model = VehicleModel::kRigidBody;
+  ugv.friction = 0.7;
+  ugv.cg_height = 0.06;
+  ugv.half_track = 0.124;
+  ugv.half_wheelbase = 0.135;
+  Vehicle axle = ugv;
+  axle.axle_friction = true;
+  const AdmissibleSet cone(ugv), lighter(axle);
+  const double mu = 0.7, tau = 0.06 / 0.135, g = ugv.gravity;
+  EXPECT_EQ(cone.friction_coupling(), 0.0);
+  EXPECT_GE(lighter.friction_coupling(), tau * mu);
+  EXPECT_LE(lighter.friction_coupling(), 1.02 * tau * mu);
+  double worst_gap = 0.0;
+  for (int i = 0; i <= 40; ++i) {
+    // A plane tilted sideways by up to the friction angle: R = g cos θ, Q = g sin θ at rest.
+    const double theta = std::atan(mu) * i / 40.0;
+    const StationGeometry side{0.0, 0.0, 0.0, std::sin(theta), std::cos(theta)};
+    const double R = g * std::cos(theta), Q = g * std::sin(theta);
+    const TangentialForceRange f = lighter.tangential_forces(side, 0.0);
+    const double exact = axle_root(mu, tau, R, Q);
+    EXPECT_LE(f.upper, exact * (1.0 + 1e-12) + 1e-12) << "theta " << theta;
+    EXPECT_NEAR(f.lower, -f.upper, 1e-12 * (1.0 + f.upper));
+    worst_gap = std::max(worst_gap, (exact - f.upper) / (mu * R));
+    if (i == 0) EXPECT_NEAR(f.upper, mu * g, 1e-12 * mu * g);  // f_q = 0: the whole μ R
+  }
+  EXPECT_LT(worst_gap, 0.1);  // of μ R, at worst near |f_t| = 0.95 μ R
+  // The speed limits are the cone's, station by station.
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 300; ++trial) {
+    const StationGeometry s = random_station(rng);
+    const SpeedLimits a = cone.speed_limits(s), b = lighter.speed_limits(s);
+    ASSERT_EQ(a.traversable, b.traversable);
+    if (!a.traversable) continue;
+    EXPECT_EQ(a.v_max, b.v_max);
+    EXPECT_EQ(a.v_min, b.v_min);
+    EXPECT_EQ(a.upper_binding, b.upper_binding);
+  }
+  // Only a rigid body has axles.
+  Vehicle point = axle;
+  point.model = VehicleModel::kPointMass;
+  EXPECT_THROW(point.validate(), InputError);
+}
 
 TEST(VehiclePhysics, ANewModelIsOneSubclass) {
   Vehicle v = vehicle_of(VehicleModel::kRigidBody, 2);

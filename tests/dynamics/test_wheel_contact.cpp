@@ -229,5 +229,23 @@ TEST(PlanningReserves, AReserveOutsideZeroToOneIsAnInputErrorNamingTheKey) {
   EXPECT_EQ(v.drive_reserve, 0.15);
 }
 
+TEST(PlanningReserves, AxleFrictionIsARigidBodyKeyTakingTrueOrFalse) {
+  const std::string rigid =
+      "model: rigid_body\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\nhalf_wheelbase: 1\n";
+  EXPECT_FALSE(parse_vehicle(rigid, "axle.yaml").axle_friction);
+  EXPECT_TRUE(parse_vehicle(rigid + "axle_friction: true\n", "axle.yaml").axle_friction);
+  for (const std::string& bad :
+       {rigid + "axle_friction: 0.5\n",
+        std::string("model: point_mass\nfriction: 0.7\ncg_height: 0.5\nhalf_track: 0.6\n"
+                    "axle_friction: true\n")}) {
+    try {
+      parse_vehicle(bad, "axle.yaml");
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("axle_friction"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace talus

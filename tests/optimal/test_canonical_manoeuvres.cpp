@@ -49,6 +49,33 @@ TEST_P(CanonicalManoeuvreTest, TheProfileMeetsTheClosedForm) {
   }
 }
 
+// With axle_friction the side slope's tangential bound is the lighter axle's: the profile meets
+// the coupled cone's closed form exactly, and that lies within 1 % below the axle's own
+// condition Q² <= (R − (h/l) w)² (μ² − w²/R²) (its root by bisection), far below the friction
+// cone's g cos θ sqrt(μ² − tan² θ).
+TEST(CanonicalManoeuvre, TheSideSlopeWithAxleFrictionMeetsTheLighterAxlesBound) {
+  Vehicle vehicle = ugv();
+  vehicle.axle_friction = true;
+  const ManoeuvreCase m = make_canonical_manoeuvre(CanonicalManoeuvre::kSideSlope, vehicle);
+  const Trajectory t = evaluate_trajectory(m.surface, vehicle, m.path, TrajectoryOptions{});
+  ASSERT_TRUE(t.feasible()) << t.message;
+  const ManoeuvreKeySection key = measure_key_section(m, t);
+  ASSERT_GT(key.stations, 0u);
+  EXPECT_NEAR(key.accel_max, m.analytic_limit, 1e-6 * m.analytic_limit);
+  EXPECT_NEAR(key.decel_max, m.analytic_brake_limit, 1e-6 * m.analytic_brake_limit);
+  const double g = vehicle.gravity, mu = vehicle.friction;
+  const double tau = vehicle.cg_height / vehicle.half_wheelbase;
+  const double theta = std::atan(0.9 * mu), R = g * std::cos(theta), Q = g * std::sin(theta);
+  double lo = 0.0, hi = mu * R;
+  for (int k = 0; k < 200; ++k) {
+    const double w = 0.5 * (lo + hi);
+    ((R - tau * w) * (R - tau * w) * (mu * mu - w * w / (R * R)) >= Q * Q ? lo : hi) = w;
+  }
+  EXPECT_LE(m.analytic_limit, lo);
+  EXPECT_GE(m.analytic_limit, 0.99 * lo);
+  EXPECT_LT(m.analytic_limit, 0.6 * std::sqrt(mu * mu * R * R - Q * Q));
+}
+
 // One friction envelope for planner and simulator: driven round the flat and the banked
 // circle, the largest speed scale the simulated UGV still follows is within 2 % of the plan's
 // (measured: 1.012 and 1.012 with the curvature steering law); over the crest the wheels stay on

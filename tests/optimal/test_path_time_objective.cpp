@@ -107,38 +107,43 @@ TEST(PathTimeObjective, TheRigidBodysGradientThroughItsWheelsMatchesFiniteDiffer
         return 0.6 * std::sin(0.5 * x) * std::cos(0.4 * y) + 0.3 * std::sin(0.9 * x + 0.7 * y);
       },
       0, 0, 80, 60, 0.5));
-  Vehicle v = rover(0.6);
-  v.model = VehicleModel::kRigidBody;
-  v.half_wheelbase = 1.0;
-  int checked = 0, wheel_bound = 0;
-  for (int trial = 0; trial < 12 && checked < 4; ++trial) {
-    PathTimeObjective objective(terrain, v, {5, 30}, {75, 30}, 7, 300, {});
-    std::vector<Vec2> points;
-    for (int i = 0; i < 7; ++i) {
-      const double y = (i == 0 || i == 6) ? 30.0 : 30.0 + 3.0 * std::sin(1.7 * i + trial);
-      points.emplace_back(5 + 70.0 * i / 6.0, y);
+  for (const bool axle_friction : {false, true}) {
+    Vehicle v = rover(0.6);
+    v.model = VehicleModel::kRigidBody;
+    v.half_wheelbase = 1.0;
+    // With axle_friction the friction cone is the lighter axle's pair of coupled cones: the
+    // adjoint follows whichever of the two is touched.
+    v.axle_friction = axle_friction;
+    int checked = 0, wheel_bound = 0;
+    for (int trial = 0; trial < 12 && checked < 4; ++trial) {
+      PathTimeObjective objective(terrain, v, {5, 30}, {75, 30}, 7, 300, {});
+      std::vector<Vec2> points;
+      for (int i = 0; i < 7; ++i) {
+        const double y = (i == 0 || i == 6) ? 30.0 : 30.0 + 3.0 * std::sin(1.7 * i + trial);
+        points.emplace_back(5 + 70.0 * i / 6.0, y);
+      }
+      const Eigen::VectorXd z = objective.variables(points);
+      Eigen::VectorXd gradient;
+      if (!std::isfinite(objective.evaluate(z, &gradient))) continue;
+      const Eigen::VectorXd fd = central_differences(objective, z, 1e-6);
+      EXPECT_LT((gradient - fd).norm() / fd.norm(), 1e-4)
+          << "trial " << trial << "\nadjoint " << gradient.transpose() << "\nfinite  "
+          << fd.transpose();
+      EXPECT_EQ(objective.finite_difference_fallbacks(), 0u);
+      ++checked;
+      // The wheels' contact binds somewhere on these paths (else the test would not reach it).
+      const SurfacePath path(terrain, objective.curve(z));
+      const VelocityLimits limits(v, path, 300);
+      for (std::size_t k = 0; k < limits.size(); ++k) {
+        const StationGeometry& g = limits.geometry(k);
+        if (g.kappa_wheels < g.kappa_n - 1e-3 &&
+            limits.limits(k).upper_binding == Constraint::kContact)
+          ++wheel_bound;
+      }
     }
-    const Eigen::VectorXd z = objective.variables(points);
-    Eigen::VectorXd gradient;
-    if (!std::isfinite(objective.evaluate(z, &gradient))) continue;
-    const Eigen::VectorXd fd = central_differences(objective, z, 1e-6);
-    EXPECT_LT((gradient - fd).norm() / fd.norm(), 1e-4)
-        << "trial " << trial << "\nadjoint " << gradient.transpose() << "\nfinite  "
-        << fd.transpose();
-    EXPECT_EQ(objective.finite_difference_fallbacks(), 0u);
-    ++checked;
-    // The wheels' contact binds somewhere on these paths (else the test would not reach it).
-    const SurfacePath path(terrain, objective.curve(z));
-    const VelocityLimits limits(v, path, 300);
-    for (std::size_t k = 0; k < limits.size(); ++k) {
-      const StationGeometry& g = limits.geometry(k);
-      if (g.kappa_wheels < g.kappa_n - 1e-3 &&
-          limits.limits(k).upper_binding == Constraint::kContact)
-        ++wheel_bound;
-    }
+    EXPECT_EQ(checked, 4);
+    EXPECT_GT(wheel_bound, 0);
   }
-  EXPECT_EQ(checked, 4);
-  EXPECT_GT(wheel_bound, 0);
 }
 
 // Brakes but no drive limit, moving start and end, map coordinates of UTM

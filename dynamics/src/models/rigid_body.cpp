@@ -12,6 +12,9 @@ class RigidBodyPhysics final : public VehiclePhysics {
  public:
   std::string_view name() const override { return "rigid_body"; }
   bool contact_at_wheels() const override { return true; }
+  double axle_load_transfer(const Vehicle& v) const override {
+    return v.axle_friction ? v.cg_height / v.half_wheelbase : 0.0;
+  }
 
  protected:
   void add_model_conditions(const Vehicle& v, ForceConditions& out) const override {

@@ -121,6 +121,21 @@ class AdmissibleSet {
   /// μ of the friction cone: (1 − Vehicle::friction_reserve) μ.
   double friction() const { return friction_; }
   double max_speed() const { return max_speed_; }  ///< [m/s]; ∞ = unlimited
+  /// beta [-] in [0, 1]: 0 for the friction cone at the c.g. (the point mass), else the
+  /// coupling of the lighter axle's friction (the rigid body, VehiclePhysics::
+  /// axle_load_transfer). The tangential force f_t pitches the chassis and moves
+  /// tau |f_t| (tau = h / l) of the normal load R from one axle to the other; with f_t shared
+  /// by the wheels in proportion to their loads (the simulation's drive and brake) and f_q
+  /// equally by the axles (no yaw acceleration, the c.g. midway), the lighter axle, loaded
+  /// (R − tau |f_t|) / 2, holds iff f_q² <= (R − tau |f_t|)² (μ² − f_t²/R²). The set keeps
+  /// the convex inner bound
+  ///     f_t² + 2 beta |f_t f_q| + f_q² <= μ² R²
+  /// (two elliptic cones, one per sign of f_t f_q) in place of the friction cone, which it
+  /// implies: equal to the axle's condition at f_t = 0 (so every speed limit is the cone's)
+  /// and at f_q = 0 (braking and driving straight keep μ R), inside it in between with beta
+  /// the smallest such coupling (from tau μ up; 0.315 for the UGV, 0.356 for the rover).
+  /// dynamics/DERIVATION.md, "Friction at the lighter axle".
+  double friction_coupling() const { return friction_coupling_; }
   /// The wheels where contact is also judged, g k_r + κ_w ṡ² >= 0 with
   /// κ_w = StationGeometry::kappa_wheels (the rigid body; wheel_contact.hpp),
   /// or null (the point mass). Stations for this set are built with
@@ -168,8 +183,9 @@ class AdmissibleSet {
 
  private:
   friend class VehiclePhysics;
-  AdmissibleSet(double gravity, double friction, double max_speed, double max_curvature,
-                const ForceConditions& conditions, const std::optional<WheelLayout>& wheels);
+  AdmissibleSet(double gravity, double friction, double axle_transfer, double max_speed,
+                double max_curvature, const ForceConditions& conditions,
+                const std::optional<WheelLayout>& wheels);
   TangentialForceRange traction_range(double normal, double f_q, double half_width) const;
 
   static constexpr std::size_t kCandidates = ForceConditions::kCapacity + 2;
@@ -180,7 +196,10 @@ class AdmissibleSet {
     Constraint constraint = Constraint::kNone;
   };
 
-  double gravity_ = 9.81, friction_ = 0.0, max_speed_ = 0.0, max_speed_squared_ = 0.0;
+  double gravity_ = 9.81, friction_ = 0.0;
+  /// beta of friction_coupling(), or 0.
+  double friction_coupling_ = 0.0;
+  double max_speed_ = 0.0, max_speed_squared_ = 0.0;
   /// Vehicle::max_curvature(): a station turning tighter (|κ_planar| above it) has no admissible
   /// speed (binding kSteering); +inf without a steering limit.
   double max_curvature_ = std::numeric_limits<double>::infinity();

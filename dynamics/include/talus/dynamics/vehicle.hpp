@@ -101,6 +101,14 @@ struct Vehicle {
   /// loop: a climb planned at full drive leaves a tracker that has fallen behind no force
   /// to catch up with, and it stalls on the slope. The simulation keeps the full limits.
   double drive_reserve = 0.0;
+  /// [axle_friction] rigid_body only, default false: the planner judges friction at the
+  /// lighter axle (AdmissibleSet::friction_coupling) instead of on the total contact force.
+  /// The tangential force pitches the chassis and unloads one axle by (h / l) |f_t| (the rear
+  /// under braking and on a descent held by the brakes); with the drive and brake shared by
+  /// the wheels in proportion to their loads, as in the simulation, and the lateral force
+  /// equally by the axles, that axle slides first. Off: the friction cone f_t² + f_q² <= μ²R²
+  /// (Mann & Shiller 2006).
+  bool axle_friction = false;
   /// Mass, inertia, suspension and tyres (the keys of VehicleBody); empty when
   /// the file has no `mass`. Only the simulation needs it; the speed limits
   /// ignore it.

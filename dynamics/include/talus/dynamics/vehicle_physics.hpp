@@ -34,6 +34,9 @@ class VehiclePhysics {
   /// Whether the model judges contact at the wheels as well as at the c.g.
   /// (StationGeometry::kappa_wheels, wheel_contact.hpp): the rigid body.
   virtual bool contact_at_wheels() const { return false; }
+  /// tau = h / l [-] when the model judges friction at the lighter axle (AdmissibleSet::
+  /// friction_coupling()), 0 (the default) for the friction cone at the c.g.
+  virtual double axle_load_transfer(const Vehicle&) const { return 0.0; }
 
  protected:
   /// Appends the model's own conditions (tip-over, pitch-over, ...) for

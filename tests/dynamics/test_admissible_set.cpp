@@ -184,7 +184,9 @@ TEST(VehiclePhysics, TheLighterAxlesFrictionLiesInsideTheAxlesConditionAndKeepsT
     EXPECT_LE(f.upper, exact * (1.0 + 1e-12) + 1e-12) << "theta " << theta;
     EXPECT_NEAR(f.lower, -f.upper, 1e-12 * (1.0 + f.upper));
     worst_gap = std::max(worst_gap, (exact - f.upper) / (mu * R));
-    if (i == 0) EXPECT_NEAR(f.upper, mu * g, 1e-12 * mu * g);  // f_q = 0: the whole μ R
+    if (i == 0) {
+      EXPECT_NEAR(f.upper, mu * g, 1e-12 * mu * g);  // f_q = 0: the whole μ R
+    }
   }
   EXPECT_LT(worst_gap, 0.1);  // of μ R, at worst near |f_t| = 0.95 μ R
   // The speed limits are the cone's, station by station.

@@ -183,6 +183,14 @@ std::pair<std::size_t, std::size_t> count_values(Tokenizer tokens) {
   return {n, tokens.line()};
 }
 
+[[noreturn]] void fail_short(const std::string& source, std::size_t values, std::size_t line,
+                             std::size_t ncols, std::size_t nrows) {
+  fail(source, line,
+       "file ends after " + std::to_string(values) +
+           " values, expected ncols x nrows = " + std::to_string(ncols) + " x " +
+           std::to_string(nrows) + " = " + std::to_string(ncols * nrows));
+}
+
 ElevationGrid parse_esri_ascii(std::string_view text, const std::string& source_name) {
   constexpr std::string_view kBom = "\xEF\xBB\xBF";  // some editors start UTF-8 with it
   if (text.substr(0, kBom.size()) == kBom) text.remove_prefix(kBom.size());
@@ -205,20 +213,31 @@ ElevationGrid parse_esri_ascii(std::string_view text, const std::string& source_
   const bool has_nodata = header.values.count("nodata_value") != 0;
   const double nodata = has_nodata ? header.values.at("nodata_value") : 0.0;
 
-  // Count before allocating: a 100-byte file must not claim 20000 x 20000.
+  // A 100-byte file must not claim 20000 x 20000: every value takes at least two bytes
+  // (a digit and a separator), so a header claiming more values than half the text has
+  // room for is short; only then are the values counted (a second pass), for the message.
   const std::size_t expected = ncols * nrows;
-  const auto [values, last_line] = count_values(tokens);
-  if (values < expected) {
-    fail(source_name, last_line,
-         "file ends after " + std::to_string(values) +
-             " values, expected ncols x nrows = " + std::to_string(ncols) + " x " +
-             std::to_string(nrows) + " = " + std::to_string(expected));
+  if (expected > text.size() / 2 + 1) {
+    const auto [values, last_line] = count_values(tokens);
+    if (values < expected) fail_short(source_name, values, last_line, ncols, nrows);
   }
   ElevationGrid grid(ncols, nrows, cellsize, x_min, y_min);
   std::size_t count = 0;
   // Rows are expected one per line; a file that wraps rows over several lines
-  // is accepted as long as the total count is right.
-  std::map<std::size_t, std::size_t> per_line;
+  // is accepted as long as the total count is right. The values come in line order, so
+  // each line's count is checked when the next line starts (a map per value was a fifth
+  // of reading a 3601² grid).
+  std::size_t lines_with_values = 0, current_line = 0, on_line = 0;
+  std::size_t first_ragged_line = 0, first_ragged_count = 0;
+  const auto close_line = [&] {
+    if (on_line == 0) return;
+    ++lines_with_values;
+    if (on_line != ncols && first_ragged_line == 0) {
+      first_ragged_line = current_line;
+      first_ragged_count = on_line;
+    }
+  };
+  std::size_t last_line = tokens.line();
   for (; token; token = tokens.next()) {
     const std::size_t line = tokens.line();
     if (count == expected) {
@@ -247,16 +266,21 @@ ElevationGrid parse_esri_ascii(std::string_view text, const std::string& source_
     } else {
       grid.at(i, j) = *value;
     }
-    ++per_line[line];
-    ++count;
-  }
-  if (per_line.size() == nrows) {
-    for (const auto& [line, n] : per_line) {
-      if (n != ncols) {
-        fail(source_name, line,
-             "row has " + std::to_string(n) + " values, expected ncols = " + std::to_string(ncols));
-      }
+    if (line != current_line) {
+      close_line();
+      current_line = line;
+      on_line = 0;
     }
+    ++on_line;
+    ++count;
+    last_line = line;
+  }
+  close_line();
+  if (count < expected) fail_short(source_name, count, last_line, ncols, nrows);
+  if (lines_with_values == nrows && first_ragged_line != 0) {
+    fail(source_name, first_ragged_line,
+         "row has " + std::to_string(first_ragged_count) +
+             " values, expected ncols = " + std::to_string(ncols));
   }
   return grid;
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "talus/core/error.hpp"
 #include "talus/dynamics/vehicle_physics.hpp"
 
 namespace talus {
@@ -74,7 +75,9 @@ bool implied_by_lateral(const ForceCondition& c, double lambda) {
 /// f_t² + 2 beta |f_t f_q| + f_q² <= μ² R² lies inside the lighter axle's condition
 /// f_q² <= (R − tau |f_t|)² (μ² − f_t² / R²): by bisection on the section R = 1, checked at
 /// 4,096 points a = |f_t| in (0, μ), plus 0.1 %. Both boundaries start at |f_q| = μ with
-/// slopes −beta and −tau μ, and both end at |f_t| = μ, so beta >= tau μ.
+/// slopes −beta and −tau μ, and both end at |f_t| = μ, so beta >= tau μ. NaN when not even
+/// beta = 1 (the square |f_t| + |f_q| <= μ R) fits: a vehicle with tau μ near 1 or above, whose
+/// lighter axle unloads completely before the total force reaches μ R.
 double lighter_axle_coupling(double mu, double tau) {
   if (!(tau > 0.0)) return 0.0;
   const auto inside = [&](double beta) {
@@ -88,7 +91,7 @@ double lighter_axle_coupling(double mu, double tau) {
     return true;
   };
   double lo = tau * mu, hi = 1.0;
-  if (!inside(hi)) return 1.0;  // tau mu >= 1: the cone degenerates to |f_t| + |f_q| <= μ R
+  if (!inside(hi)) return std::numeric_limits<double>::quiet_NaN();
   for (int k = 0; k < 60; ++k) {
     const double mid = 0.5 * (lo + hi);
     (inside(mid) ? hi : lo) = mid;
@@ -176,6 +179,14 @@ AdmissibleSet::AdmissibleSet(double gravity, double friction, double axle_transf
       max_curvature_(max_curvature),
       wheels_(wheels),
       conditions_(conditions) {
+  if (std::isnan(friction_coupling_)) {
+    throw InputError(
+        "Vehicle.axle_friction: no friction cone fits inside the lighter axle's "
+        "friction at mu h / l = " +
+        std::to_string(friction * axle_transfer) +
+        " (its axle unloads before the tyres slide; the pitch-over limit binds "
+        "first): leave axle_friction off for this vehicle");
+  }
   for (const ForceCondition& c : conditions.all()) {
     if (c.constraint == Constraint::kContact && c.t == 0.0 && c.q == 0.0 && c.r == 1.0)
       contact_reserve_ = std::max(contact_reserve_, -c.c);

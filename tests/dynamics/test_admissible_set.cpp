@@ -200,6 +200,17 @@ TEST(VehiclePhysics, TheLighterAxlesFrictionLiesInsideTheAxlesConditionAndKeepsT
     EXPECT_EQ(a.v_min, b.v_min);
     EXPECT_EQ(a.upper_binding, b.upper_binding);
   }
+  // A vehicle whose lighter axle unloads before its tyres slide (mu h / l = 1) has no such
+  // cone: an InputError naming the key, not a bound outside the axle's condition.
+  Vehicle tall = axle;
+  tall.friction = 1.0;
+  tall.cg_height = tall.half_wheelbase;
+  try {
+    const AdmissibleSet refused(tall);
+    ADD_FAILURE() << "coupling " << refused.friction_coupling();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("axle_friction"), std::string::npos) << e.what();
+  }
   // Only a rigid body has axles.
   Vehicle point = axle;
   point.model = VehicleModel::kPointMass;
@@ -208,7 +219,8 @@ TEST(VehiclePhysics, TheLighterAxlesFrictionLiesInsideTheAxlesConditionAndKeepsT
 
 TEST(VehiclePhysics, ANewModelIsOneSubclass) {
   Vehicle v = vehicle_of(VehicleModel::kRigidBody, 2);
-  v.friction = 1.5;  // the cone (1.5 g) leaves both pitch limits binding
+  v.friction = 1.5;         // the cone (1.5 g) leaves both pitch limits binding
+  v.axle_friction = false;  // at mu h / l = 1.36 the lighter axle has no cone (see above)
   const AdmissibleSet set = OffsetRigidBody().admissible_set(v);
   const AccelerationBounds level = set.acceleration_bounds({}, 3.0);
   ASSERT_TRUE(level.feasible);

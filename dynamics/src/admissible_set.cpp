@@ -77,13 +77,14 @@ bool implied_by_lateral(const ForceCondition& c, double lambda) {
 /// 4,096 points a = |f_t| in (0, μ), plus 0.1 %. Both boundaries start at |f_q| = μ with
 /// slopes −beta and −tau μ, and both end at |f_t| = μ, so beta >= tau μ. NaN when not even
 /// beta = 1 (the square |f_t| + |f_q| <= μ R) fits: a vehicle with tau μ near 1 or above, whose
-/// lighter axle unloads completely before the total force reaches μ R.
-double lighter_axle_coupling(double mu, double tau) {
-  if (!(tau > 0.0)) return 0.0;
+/// lighter axle unloads completely before the total force reaches μ R. About a millisecond:
+/// lighter_axle_coupling() remembers it.
+double fit_lighter_axle_coupling(double mu, double tau) {
   const auto inside = [&](double beta) {
     constexpr int kPoints = 4096;
     for (int i = 1; i < kPoints; ++i) {
-      const double a = mu * (1.0 - std::pow(static_cast<double>(i) / kPoints, 2.0));
+      const double t = static_cast<double>(i) / kPoints;
+      const double a = mu * (1.0 - t * t);
       const double q = std::sqrt(std::max(mu * mu - (1.0 - beta * beta) * a * a, 0.0)) - beta * a;
       const double axle = std::max(1.0 - tau * a, 0.0) * std::sqrt(std::max(mu * mu - a * a, 0.0));
       if (q > axle) return false;
@@ -97,6 +98,24 @@ double lighter_axle_coupling(double mu, double tau) {
     (inside(mid) ? hi : lo) = mid;
   }
   return std::min(1.0, hi * 1.001);
+}
+
+/// fit_lighter_axle_coupling(mu, tau), remembered per thread for the last few vehicles: an
+/// AdmissibleSet is built per objective evaluation (the adjoint) and per one-off query, where
+/// a millisecond's fit would dominate (a set is a microsecond without it).
+double lighter_axle_coupling(double mu, double tau) {
+  if (!(tau > 0.0)) return 0.0;
+  struct Fit {
+    double mu = std::numeric_limits<double>::quiet_NaN(), tau = 0.0, beta = 0.0;
+  };
+  thread_local std::array<Fit, 4> fits{};
+  thread_local std::size_t next = 0;
+  for (const Fit& f : fits)
+    if (f.mu == mu && f.tau == tau) return f.beta;
+  const double beta = fit_lighter_axle_coupling(mu, tau);
+  fits[next] = {mu, tau, beta};
+  next = (next + 1) % fits.size();
+  return beta;
 }
 
 /// Keeps the u with f_t² + 2 c f_t f_q + f_q² <= μ² R² (f_t = u + T0, f_q = Q0 + Q1 u,

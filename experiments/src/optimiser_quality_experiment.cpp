@@ -44,10 +44,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kDemConfigurations = 1;
 
 /// The issue's targets.
-constexpr double kConvergedTarget = 0.9;  ///< fraction of local optimisations
+constexpr double kCertifiedTarget = 0.9;  ///< fraction of the default plan's optima
 constexpr double kWithinPercent = 1.0;    ///< of the stored reference [%]
 constexpr double kWithinTarget = 0.9;     ///< fraction of battery cases
 constexpr double kSecondsTarget = 2.0;    ///< median planning time on the battery [s]
+
+/// The default with PlannerOptions::certify, as runs.csv and reference.json name it.
+constexpr const char* kCertifiedName = "default, certified";
 
 /// One planning problem.
 struct Problem {
@@ -155,6 +158,11 @@ struct Run {
   double travel_time = kInf;  ///< the best trajectory's [s]
   double seconds = 0.0;       ///< plan() wall time
   std::size_t optimisations = 0, converged = 0;
+  /// PlannerOptions::certify: optima with a certificate, and those it certified (issue #36
+  /// item 1); the certificates that found a faster path (kept), their time, and the largest
+  /// relative improvement any found.
+  std::size_t certificates = 0, certified = 0, certificates_kept = 0;
+  double certificate_seconds = 0.0, best_improvement = 0.0;
   std::size_t feedback_rounds = 0;
   bool verified = false;  ///< verify_profile and a fresh evaluation agree
   std::string verification;
@@ -206,6 +214,12 @@ Run run_plan(const Problem& p, const Configuration& configuration, PlannerOption
     if (!c.optimization) continue;
     ++run.optimisations;
     run.converged += c.optimization->converged ? 1 : 0;
+    if (!c.certificate) continue;
+    ++run.certificates;
+    run.certified += c.certificate->certified ? 1 : 0;
+    run.certificates_kept += c.certificate_kept ? 1 : 0;
+    run.certificate_seconds += c.certificate->seconds;
+    run.best_improvement = std::max(run.best_improvement, c.certificate->improvement);
   }
   if (const Trajectory* best = result.best()) {
     run.travel_time = best->travel_time();
@@ -233,6 +247,9 @@ struct Case {
   Run default_run;
   /// independent_check(), when the default plan has no trajectory.
   std::optional<Run> check;
+  /// The default with PlannerOptions::certify (issue #36 item 1), for a case whose default
+  /// plan has a trajectory: the candidate default, measured beside today's.
+  std::optional<Run> certified;
   /// No trajectory by default, and none in the independent check either.
   bool agreed_no_corridor() const { return !default_run.feasible() && check && !check->feasible(); }
   std::vector<Run> reference;  ///< one per reference configuration
@@ -265,6 +282,17 @@ Case run_case(Problem problem, const std::vector<Configuration>& reference,
   if (!c.default_run.feasible()) c.check = independent_check(c.problem);
   c.run_best = c.default_run.travel_time;
   c.run_best_configuration = "default";
+  if (c.default_run.feasible()) {
+    PlannerOptions certify;
+    certify.certify = true;
+    c.certified = run_plan(c.problem, Configuration{}, certify);
+    // Its trajectory is the default's or faster (a certificate keeps only a faster path), so
+    // it joins this run's best as the default too.
+    if (c.certified->travel_time < c.run_best) {
+      c.run_best = c.certified->travel_time;
+      c.run_best_configuration = kCertifiedName;
+    }
+  }
   for (std::size_t k = 0; k < std::min(configurations, reference.size()); ++k) {
     c.reference.push_back(run_plan(c.problem, reference[k]));
     const Run& r = c.reference.back();
@@ -346,7 +374,7 @@ std::string reference_json(const std::vector<Case>& cases,
   json["commit"] = "";
   json["command"] =
       "talus experiment optimiser-quality --out DIR; DIR/optimiser-quality/reference.json";
-  Json names = Json::array({"default"});
+  Json names = Json::array({"default", kCertifiedName});
   for (const Configuration& c : configurations)
     if (c.in_reference()) names.push_back(c.name);
   json["configurations"] = names;
@@ -375,6 +403,7 @@ std::size_t apply_stored_reference(std::vector<Case>& cases, const StoredReferen
       faster += r.comparable && r.travel_time < s->travel_time * (1.0 - 1e-6) ? 1 : 0;
     };
     count(c.default_run);
+    if (c.certified) count(*c.certified);
     for (const Run& r : c.reference) count(r);
   }
   return faster;
@@ -462,7 +491,10 @@ std::string pass_text(bool pass) {
 /// Statistics of one configuration (or the default) over a set of cases.
 struct Stats {
   std::size_t cases = 0, feasible = 0, verified = 0, optimisations = 0, converged = 0;
+  std::size_t certificates = 0, certified = 0, certificates_kept = 0;
   std::size_t within = 0;  ///< feasible and within kWithinPercent of the reference
+  double best_improvement = 0.0;
+  std::vector<double> certificate_seconds;  ///< per plan with a certificate [s]
   double median_above = kNaN, worst_above = kNaN, median_seconds = kNaN;
 };
 
@@ -479,6 +511,11 @@ Stats stats(const std::vector<Case>& cases, bool battery_only, RunOf run_of) {
     ++s.cases;
     s.optimisations += r.optimisations;
     s.converged += r.converged;
+    s.certificates += r.certificates;
+    s.certified += r.certified;
+    s.certificates_kept += r.certificates_kept;
+    s.best_improvement = std::max(s.best_improvement, r.best_improvement);
+    if (r.certificates > 0) s.certificate_seconds.push_back(r.certificate_seconds);
     seconds.push_back(r.seconds);
     if (!r.feasible()) continue;
     ++s.feasible;
@@ -534,24 +571,28 @@ FigureLink spread_figure(const std::vector<Case>& cases,
 /// One row per plan (the default, then each configuration planned on the
 /// case) at full precision, so a new local stage can be compared against a
 /// stored reference without re-running it. Configuration 0 is the default,
-/// k the k-th reference configuration, as in spread_above_reference.dat.
+/// k the k-th reference configuration, as in spread_above_reference.dat, and
+/// the last (one past them) the default with the certificate.
 std::string runs_csv(const std::vector<Case>& cases,
                      const std::vector<Configuration>& configurations) {
   std::string csv =
       "case,configuration,name,status,travel_time,reference_time,above_reference_percent,"
-      "converged,optimisations,plan_seconds,feedback_rounds,verified\n";
+      "converged,optimisations,plan_seconds,feedback_rounds,verified,certified,certificates,"
+      "certificate_seconds\n";
   const auto row = [&](const Case& c, std::size_t k, const std::string& name, const Run& r) {
     csv += "\"" + c.problem.name + "\"," + std::to_string(k) + ",\"" + name + "\"," +
            std::string(to_string(r.status)) + "," + csv_number(r.travel_time, 10) + "," +
            csv_number(c.reference_time, 10) + "," + csv_number(c.above_percent(r)) + "," +
            std::to_string(r.converged) + "," + std::to_string(r.optimisations) + "," +
            csv_number(r.seconds, 4) + "," + std::to_string(r.feedback_rounds) + "," +
-           (r.verified ? "1" : "0") + "\n";
+           (r.verified ? "1" : "0") + "," + std::to_string(r.certified) + "," +
+           std::to_string(r.certificates) + "," + csv_number(r.certificate_seconds, 4) + "\n";
   };
   for (const Case& c : cases) {
     row(c, 0, "default", c.default_run);
     for (std::size_t k = 0; k < c.reference.size(); ++k)
       row(c, k + 1, configurations[k].name, c.reference[k]);
+    if (c.certified) row(c, configurations.size() + 1, kCertifiedName, *c.certified);
   }
   return csv;
 }
@@ -601,6 +642,21 @@ void run_optimiser_quality(const ExperimentContext& context) {
   const Stats battery = stats(cases, true, default_of);
   const double converged = fraction(all.converged, all.optimisations);
   const double within = fraction(battery.within, battery.cases);
+  // Issue #36 item 1: the default with the certificate, on every case with a trajectory.
+  const auto certified_of = [](const Case& c) -> const Run* {
+    return c.certified ? &*c.certified : nullptr;
+  };
+  const Stats certified_all = stats(cases, false, certified_of);
+  const Stats certified_battery = stats(cases, true, certified_of);
+  const double certified = fraction(certified_all.certified, certified_all.certificates);
+  const double certified_within = fraction(certified_battery.within, certified_battery.cases);
+  std::size_t certified_slower = 0;  // a certificate keeps only a faster path: must stay 0
+  for (const Case& c : cases)
+    certified_slower +=
+        c.certified && c.certified->travel_time > c.default_run.travel_time * (1.0 + 1e-9) ? 1 : 0;
+  const double certificate_seconds = certified_all.certificate_seconds.empty()
+                                         ? kNaN
+                                         : upper_median(certified_all.certificate_seconds);
 
   // Issue #36 item 5: plans without a trajectory, and whether a drivable corridor existed.
   std::size_t without = 0, check_feasible = 0, agreed = 0, named = 0, control_agreed = 0;
@@ -638,6 +694,24 @@ void run_optimiser_quality(const ExperimentContext& context) {
   summary.set("battery_median_above_reference_percent", battery.median_above, "%");
   summary.set("battery_worst_above_reference_percent", battery.worst_above, "%");
   summary.set("battery_median_plan_seconds", battery.median_seconds, "s");
+  summary.set("certificate_optima", static_cast<double>(certified_all.certificates), "count",
+              "optima of the default plan with PlannerOptions::certify, every case with a "
+              "trajectory (issue #36 item 1)");
+  summary.set("certified_optima", static_cast<double>(certified_all.certified), "count",
+              "of those, certified: no faster path within a quarter cell by more than 0.05 %");
+  summary.set("certified_fraction", certified, "1");
+  summary.set("certificates_kept", static_cast<double>(certified_all.certificates_kept), "count",
+              "certificates that found a faster path, which the plan keeps");
+  summary.set("certificate_best_improvement_percent", 100.0 * certified_all.best_improvement, "%",
+              "the largest improvement a certificate found");
+  summary.set("certificate_median_seconds", certificate_seconds, "s",
+              "the certificates' time per plan (every optimum's), median over the cases");
+  summary.set("certified_slower_than_default", static_cast<double>(certified_slower), "count",
+              "cases whose certified plan is slower than the default's (1e-9)");
+  summary.set("certified_battery_median_plan_seconds", certified_battery.median_seconds, "s",
+              "median planning time on the battery with the certificate");
+  summary.set("certified_battery_within_1pct_fraction", certified_within, "1",
+              "battery cases whose certified plan is within 1 % of the fixed reference");
   summary.set("reference_configurations", static_cast<double>(reference.size()), "count",
               "configurations this run plans besides the default");
   summary.set("stored_reference_cases", static_cast<double>(stored_cases), "count",
@@ -654,18 +728,26 @@ void run_optimiser_quality(const ExperimentContext& context) {
        std::to_string(all.verified) + " verified, " + std::to_string(agreed) +
            " agreed without, of " + std::to_string(all.cases),
        pass_text(all.verified + agreed == all.cases)});
-  targets.row({">= 90 % of local optimisations converge (solver status)",
-               percent_text(converged) + " (" + std::to_string(all.converged) + " of " +
-                   std::to_string(all.optimisations) + ")",
-               pass_text(converged >= kConvergedTarget)});
+  // The issue retired "converged by the solver's status" (the nested objective kinks at
+  // switching points by construction) for the certificate; the status stays reported below.
+  targets.row(
+      {">= 90 % of the default plan's optima certified (battery and DEMs; with "
+       "PlannerOptions::certify, off by default)",
+       percent_text(certified) + " (" + std::to_string(certified_all.certified) + " of " +
+           std::to_string(certified_all.certificates) + ")",
+       pass_text(certified >= kCertifiedTarget)});
   targets.row({"default within 1 % of the fixed reference on >= 90 % of the battery",
                percent_text(within) + " (" + std::to_string(battery.within) + " of " +
                    std::to_string(battery.cases) + ")",
                pass_text(within >= kWithinTarget)});
   targets.row({"median planning time on the battery <= 2 s", sig3(battery.median_seconds) + " s",
                pass_text(battery.median_seconds <= kSecondsTarget)});
+  targets.row({"the same, including the certificate",
+               sig3(certified_battery.median_seconds) + " s (certificates " +
+                   sig3(certificate_seconds) + " s per plan, median)",
+               pass_text(certified_battery.median_seconds <= kSecondsTarget)});
 
-  Table per_configuration({"configuration", "feasible", "verified", "converged",
+  Table per_configuration({"configuration", "feasible", "verified", "converged", "certified",
                            "within 1 % (battery)", "median above ref. [%]", "worst above ref. [%]",
                            "median plan time [s]"});
   const auto config_row = [&](const std::string& name, const Stats& s, const Stats& b,
@@ -673,10 +755,13 @@ void run_optimiser_quality(const ExperimentContext& context) {
     per_configuration.row(
         {name, std::to_string(s.feasible) + " / " + std::to_string(s.cases),
          std::to_string(s.verified), percent_text(fraction(s.converged, s.optimisations)),
+         s.certificates == 0 ? "–"
+                             : std::to_string(s.certified) + " / " + std::to_string(s.certificates),
          comparable ? std::to_string(b.within) + " / " + std::to_string(b.cases) : "–",
          sig3(s.median_above), sig3(s.worst_above), sig3(s.median_seconds)});
   };
   config_row("default (PlannerOptions{})", all, battery, true);
+  config_row("default with the certificate (certify)", certified_all, certified_battery, true);
   for (std::size_t k = 0; k < reference.size(); ++k) {
     const auto of = [k](const Case& c) -> const Run* {
       return k < c.reference.size() ? &c.reference[k] : nullptr;
@@ -686,7 +771,8 @@ void run_optimiser_quality(const ExperimentContext& context) {
   }
 
   Table per_case({"case", "status", "travel time [s]", "reference [s]", "reference from",
-                  "above ref. [%]", "converged", "feedback rounds", "plan time [s]", "verified"});
+                  "above ref. [%]", "converged", "feedback rounds", "plan time [s]", "verified",
+                  "certified", "certified plan [s]", "certificates [s]"});
   for (const Case& c : cases) {
     const Run& r = c.default_run;
     per_case.row({c.problem.name, std::string(to_string(r.status)),
@@ -698,7 +784,12 @@ void run_optimiser_quality(const ExperimentContext& context) {
                   sig3(c.above_reference_percent()),
                   std::to_string(r.converged) + " / " + std::to_string(r.optimisations),
                   std::to_string(r.feedback_rounds), sig3(r.seconds),
-                  r.feasible() ? (r.verified ? "yes" : "no: " + r.verification) : "–"});
+                  r.feasible() ? (r.verified ? "yes" : "no: " + r.verification) : "–",
+                  !c.certified ? "–"
+                               : std::to_string(c.certified->certified) + " / " +
+                                     std::to_string(c.certified->certificates),
+                  c.certified ? sig3(c.certified->travel_time) : "–",
+                  c.certified ? sig3(c.certified->certificate_seconds) : "–"});
   }
 
   const PathOptimizerOptions defaults;
@@ -741,7 +832,11 @@ void run_optimiser_quality(const ExperimentContext& context) {
           "optimisation converges when the solver says so: Ipopt Solve_Succeeded or "
           "Solved_To_Acceptable_Level, NLopt a tolerance stop. Every best trajectory is checked "
           "by `verify_profile` against its own limits and by a fresh `evaluate_trajectory` of "
-          "its curve (same travel time to 1e-9).")
+          "its curve (same travel time to 1e-9). The default is planned a second time with "
+          "`PlannerOptions::certify` (`talus plan --certify`; issue #36 item 1): each optimum's "
+          "local-optimality certificate, a BOBYQA search of the box of a quarter cell round "
+          "every free control point, certifies it when it finds nothing faster by more than "
+          "0.05 %; a faster path it finds is kept, so that plan is the default's or faster.")
       .heading("Targets")
       .table(targets)
       .heading("Per configuration (nested against simultaneous)")

@@ -29,8 +29,9 @@ struct Step {
 
   /// Controls admissible at the start (state x) that land in [lo, hi] at the end.
   ControlInterval forward(double x, double lo, double hi) const {
-    return intersect(detail::known_state_controls(c, from, x),
-                     admissible_controls(c, to, x, 2.0 * length, lo, hi));
+    const ControlInterval own = detail::known_state_controls(c, from, x);
+    if (own.empty()) return own;  // the second query cannot make it less empty
+    return intersect(own, admissible_controls(c, to, x, 2.0 * length, lo, hi));
   }
   /// Controls admissible at the end (state x_end) reached from a start state in [lo, hi].
   ControlInterval backward(double x_end, double lo, double hi) const {
@@ -167,9 +168,13 @@ struct BackwardStep {
     return candidate;
   }
 
-  /// The closed-form state sits on the boundary: nudged inside if rounding put it out.
-  double nudged_down(double candidate) const {
-    return feasible(candidate) ? candidate : std::max(candidate * (1.0 - 1e-9) - 1e-12, x_min);
+  /// The closed-form state sits on the boundary: it, or nudged inside if rounding put it
+  /// out; false when neither is feasible. (Each feasibility test is two admissible-set
+  /// queries, the solve's main cost: none is repeated.)
+  bool feasible_near(double& candidate) const {
+    if (feasible(candidate)) return true;
+    candidate = std::max(candidate * (1.0 - 1e-9) - 1e-12, x_min);
+    return feasible(candidate);
   }
 
   /// The top of the controllable set, or −inf when no state is feasible. The
@@ -181,21 +186,23 @@ struct BackwardStep {
   double upper_end() const {
     double top_candidate = kInfinity;
     const bool from_top = braking_state(next_hi, top_candidate);
+    // Tried first below the speed limit; then it is known to fail and not tried again.
+    bool top_tried = false;
     if (from_top && top_candidate < x_max * (1.0 - 1e-12)) {
-      const double candidate = nudged_down(top_candidate);
-      if (feasible(candidate)) return settle_upper(candidate);
+      top_tried = true;
+      double candidate = top_candidate;
+      if (feasible_near(candidate)) return settle_upper(candidate);
     }
     if (std::isfinite(x_max) && feasible(x_max)) return x_max;
     for (const double target : {next_hi, next_lo}) {
       double candidate = 0.0;
       if (target == next_hi) {
-        if (!from_top) continue;
+        if (!from_top || top_tried) continue;
         candidate = top_candidate;
       } else if (!braking_state(target, candidate)) {
         continue;
       }
-      candidate = nudged_down(candidate);
-      if (!feasible(candidate)) continue;
+      if (!feasible_near(candidate)) continue;
       return settle_upper(candidate);
     }
     // Last resort: the feasible states form an interval; if its bottom is

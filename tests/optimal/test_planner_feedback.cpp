@@ -242,10 +242,14 @@ TEST(PlannerStations, AnOptimumWithoutAProfileAtTheFinalStationsGivesWayToTheFas
       << "the best point's final time " << own.travel_time() << " s agrees with its search time "
       << optimization.travel_time << " s";
 
-  // The reported point is another attempt's, the fastest of them all at the
-  // final stations by a fresh evaluation, and faster than the initial fit.
+  // The reported point is the fastest attempt at the final stations by a fresh evaluation,
+  // and faster than the initial fit: another attempt's when the best point has no profile
+  // there (as where this was written). On a machine whose floating-point path differs
+  // (OpenBLAS picks its kernels by CPU; on an AVX-512 machine the best point keeps a profile
+  // there, 17.5 s against 8.96 s at the search stations, and the other attempts' are slower)
+  // the best point may still be the fastest, and is then rightly the one reported.
   ASSERT_TRUE(outcome.reported_attempt.has_value());
-  EXPECT_NE(*outcome.reported_attempt, optimization.best_attempt);
+  if (!own.feasible()) EXPECT_NE(*outcome.reported_attempt, optimization.best_attempt);
   EXPECT_FALSE(outcome.kept_initial);
   double fastest = std::numeric_limits<double>::infinity();
   for (const LocalAttempt& attempt : optimization.attempts) {

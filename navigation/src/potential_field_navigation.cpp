@@ -182,11 +182,24 @@ class FieldNavigator {
     TrajectorySpaceInputs in = base;
     const Vec2 to_target = local(waypoints.points[waypoint]);
     const double bearing = std::atan2(to_target.y(), to_target.x());
-    in.desired_curvature =
-        std::clamp(arc_curvature(to_target), -in.max_curvature, in.max_curvature);
+    const double arc = arc_curvature(to_target);
+    in.desired_curvature = std::clamp(arc, -in.max_curvature, in.max_curvature);
+    // A goal inside the turning circle (its arc tighter than the steering allows) is
+    // approached by driving on until it is outside, then along the arc through it: turning
+    // at full lock instead orbited it (0.4 m round it, the UGV's smallest radius, outside
+    // the goal's 0.3 m) until the time limit.
+    if (waypoint == goal_index && std::abs(arc) > in.max_curvature) in.desired_curvature = 0.0;
     in.desired_speed = waypoints.speed[waypoint];
     in.gravity_lateral = gravity_lateral;
     in.gravity_normal = std::max(1e-6, gravity_normal);
+    // Capturing the goal: no faster than the arc to it can be driven without sliding,
+    // sqrt(mu g_n / kappa). The goal, unlike the waypoints before it, is never passed, and
+    // one that fell inside the turning circle at speed was orbited at the side-slip field's
+    // curvature (1.2 m round it at 2.5 m/s) until the time limit.
+    if (waypoint == goal_index)
+      in.desired_speed =
+          std::min(in.desired_speed, std::sqrt(in.friction * in.gravity_normal /
+                                               std::max(std::abs(in.desired_curvature), 1e-9)));
     for (const DiscHazard& h : seen) {
       const Vec2 c_local = local(h.centre);
       const double distance = c_local.norm() - h.radius;
@@ -242,9 +255,8 @@ class FieldNavigator {
                                                    -g * left.z(), g * normal.z(), waypoint, seen);
         command = descend(in, command, rng, options.descent);
       }
-      const double wanted = options.speed_kp * (command.speed - speed);
-      speed = std::max(
-          0.0, speed + std::clamp(wanted, -vehicle.max_decel, vehicle.max_accel) * ahead.step);
+      speed = reduced_model_speed(surface, vehicle, cg, heading, speed, command.speed,
+                                  options.speed_kp, ahead.step);
       heading += speed * command.curvature * ahead.step;
       cg += speed * ahead.step * Vec2(std::cos(heading), std::sin(heading));
       points.push_back(cg);

@@ -14,12 +14,15 @@
 #include "talus/bspline/bpatch.hpp"
 #include "talus/core/elevation_grid.hpp"
 #include "talus/core/error.hpp"
+#include "talus/core/terrain_generators.hpp"
 #include "talus/navigation/hazard_detection.hpp"
 #include "talus/navigation/navigation_lookahead.hpp"
 #include "talus/navigation/potential_field_navigation.hpp"
 
 namespace talus {
 namespace {
+
+constexpr double kPi = 3.14159265358979323846;
 
 Vehicle ugv() {
   return load_vehicle(std::string(TALUS_DATA_DIR) + "/vehicles/iagnemma_ugv.yaml");
@@ -65,6 +68,26 @@ TEST(PotentialFieldNavigation, AvoidsAHazardOnTheDirectLine) {
       navigate_potential_field(ground, ugv(), Vec2(0, 0), 0.0, goal(15.0, 0.0, 2.0), hazards);
   EXPECT_EQ(again.navigation_time, r.navigation_time);
   EXPECT_EQ(again.simulation.final.state.position, r.simulation.final.state.position);
+}
+
+// A goal inside the turning circle: 0.4 m to the left and 0.1 m ahead of the UGV at rest,
+// near the centre of its tightest circle (radius 1 / 2.53 = 0.395 m); the arc through it
+// (curvature 4.7 1/m) is tighter than its steering allows. Turning at full lock the UGV
+// circled it about 0.4 m away, outside the 0.3 m goal radius, until the time limit; it now
+// drives on until the goal is outside the circle and takes the arc.
+TEST(PotentialFieldNavigation, AGoalInsideTheTurningCircleIsCaptured) {
+  const BPatch ground = flat();
+  const Vehicle vehicle = ugv();
+  const Vec2 target(0.1, 0.4);
+  ASSERT_GT(2.0 * target.y() / target.squaredNorm(), vehicle.max_curvature());
+  PotentialFieldNavigationOptions options;
+  options.max_steering = vehicle.max_steering;
+  options.time_limit = 20.0;
+  const PotentialFieldNavigationResult r = navigate_potential_field(
+      ground, vehicle, Vec2(0, 0), 0.0, goal(target.x(), target.y(), 1.0), {}, options);
+  std::cout << r.brief_report() << "\n";
+  ASSERT_EQ(r.status, TrackingStatus::kReachedGoal) << r.message;
+  EXPECT_LT(r.navigation_time, 10.0);
 }
 
 /// A Gaussian crest across the x axis: 0.25 m high, σ 0.7 m, at x = 9 m, so
@@ -143,6 +166,36 @@ TEST(NavigationLookahead, SafeSpeedsBrakeAheadOfTheCrestsContactLimit) {
   // Off the map: nothing is safe.
   EXPECT_EQ(safe_speed_profile(ground, ugv(), {Vec2(0, 0), Vec2(100, 0)}).front(), 0.0);
   EXPECT_THROW(safe_speed_profile(ground, ugv(), {Vec2(0, 0)}), InputError);
+}
+
+// The reduced model's speed on a plane rising 20° to the east (tan 20° = 0.364): gravity
+// along the ground is g sin 20° = 3.36 m/s² heading east, none heading north, the opposite
+// heading west; the drive and brake clip before it is added, so at full drive (3 m/s²) the
+// UGV loses speed up that slope, as the simulated one does (it climbs no steeper than
+// asin(3 / g) = 17.8° at constant speed).
+TEST(NavigationLookahead, TheReducedModelFeelsGravityAlongTheGround) {
+  PlaneOptions plane;
+  plane.shape = GridShape{41, 41, 0.5, 0.0, 0.0};
+  plane.slope = 20.0 * kPi / 180.0;
+  plane.aspect = 0.0;
+  const BPatch ground = BPatch::interpolate(generate_plane(plane));
+  const Vehicle vehicle = ugv();
+  const double along = vehicle.gravity * std::sin(plane.slope), dt = 0.05, gain = 4.0;
+  const Vec2 here(10.0, 10.0);
+  // Holding speed (no speed error): only gravity.
+  EXPECT_NEAR(reduced_model_speed(ground, vehicle, here, 0.0, 2.0, 2.0, gain, dt), 2.0 - along * dt,
+              1e-9);
+  EXPECT_NEAR(reduced_model_speed(ground, vehicle, here, 0.5 * kPi, 2.0, 2.0, gain, dt), 2.0, 1e-9);
+  EXPECT_NEAR(reduced_model_speed(ground, vehicle, here, kPi, 2.0, 2.0, gain, dt), 2.0 + along * dt,
+              1e-9);
+  // Asking for far more: the drive limit, then gravity.
+  const double climb = reduced_model_speed(ground, vehicle, here, 0.0, 2.0, 6.0, gain, dt);
+  EXPECT_NEAR(climb, 2.0 + (vehicle.max_accel - along) * dt, 1e-9);
+  EXPECT_LT(climb, 2.0);
+  // Never backwards; off the surface, level.
+  EXPECT_EQ(reduced_model_speed(ground, vehicle, here, 0.0, 0.0, 0.0, gain, dt), 0.0);
+  EXPECT_NEAR(reduced_model_speed(ground, vehicle, Vec2(-50, 0), 0.0, 2.0, 2.0, gain, dt), 2.0,
+              1e-12);
 }
 
 // A prediction turning at the UGV's steering limit (the bicycle saturated): the cubic through

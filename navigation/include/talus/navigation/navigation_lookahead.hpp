@@ -11,8 +11,14 @@
 /// rigid body models"): a kinematic bicycle on the surface — the heading
 /// turns at the commanded curvature, the speed follows the commanded one
 /// at the navigator's speed gain, clipped to the vehicle's drive and brake
-/// limits — with the field's gravity inputs taken from the surface normal
-/// at each predicted position.
+/// limits, less gravity along the ground (reduced_model_speed) — with the
+/// field's gravity inputs taken from the surface normal at each predicted
+/// position. Gravity along the ground matters: without it the prediction
+/// climbed every slope at the commanded speed and came down every descent no
+/// faster, so the cap missed the speed a descent gathers and the lookahead
+/// braked for crests a climb would never reach at that speed
+/// (iagnemma-table1, the paper's battery: 11 of 23 terrains reached without
+/// it, 15 with it; 16 with the goal capture of potential_field_navigation.hpp too).
 ///
 /// The safe profile (safe_speed_profile) is a reduced form of the
 /// time-optimal profile of Section II: the vehicle's speed limits at every
@@ -44,6 +50,14 @@ struct NavigationLookaheadOptions {
   /// Throws InputError naming the field.
   void validate() const;
 };
+
+/// One step `dt` [s] (> 0) of the reduced model's speed [m/s]: from `speed`,
+/// the speed loop's acceleration gain (commanded − speed) clipped to
+/// [−max_decel, max_accel], less g sin α where α is the ground's slope at
+/// `position` in the direction `heading` [rad, counter-clockwise from east]
+/// (0 off the surface); never below 0 (the model does not roll backwards).
+double reduced_model_speed(const BPatch& surface, const Vehicle& vehicle, const Vec2& position,
+                           double heading, double speed, double commanded, double gain, double dt);
 
 /// The maximum safe speed [m/s] at each of `points` (a predicted path, at
 /// least 2 points, consecutive ones distinct) for `vehicle` on `surface`:

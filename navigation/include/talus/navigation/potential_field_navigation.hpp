@@ -11,7 +11,13 @@
 ///    waypoint_radius nor passed — the c.g. beyond the line through it normal
 ///    to the leg to the next one; the last is the goal) and its desired curvature
 ///    κ_d = 2 sin α / D (the arc from the c.g. tangent to the heading through
-///    the waypoint, α its bearing, D its distance) and speed v_d;
+///    the waypoint, α its bearing, D its distance) and speed v_d. The goal,
+///    which is never passed, is captured (this library's choice; the paper
+///    does not say): v_d no more than √(μ g_n / |κ_d|), the speed at which
+///    its arc can be driven without sliding, and κ_d = 0 while it lies inside
+///    the turning circle (|κ_d| above the steering limit), so the vehicle
+///    drives on until the arc through it can be steered; without either it
+///    orbited a goal it had just missed until the time limit;
 /// 2. reads the gravity components g_y, g_z in the body frame (an IMU) and,
 ///    for each hazard ahead (a disc within sensor_radius), the curvatures
 ///    [κ2, κ1] of the arcs that meet it (figure 5: 2y/(x² + y²) over its rim

@@ -34,21 +34,12 @@ ElevationGrid ground() {
 TEST(LayeredNavigation, PlansOnTheCoarseMapAndDrivesThroughItsWaypointsToTheGoal) {
   const ElevationGrid fine = ground();
   const Vec2 start(1.0, 4.8), goal(21.0, 4.8);
-  // Dugoff tyres: with the default brush tyre the vehicle passes the goal
-  // 0.85 m to the side and then orbits it until the time limit (the field
-  // keeps to an arc of 1.2 m radius round it and never captures a goal
-  // inside its turning circle: a defect of the navigator's final approach,
-  // left for the drivable-plans issue's Table I work, not of the tyre).
-  // The same defect with the file's steering limit on the plan: its waypoints
-  // move by about 5 cm and the navigator orbits the goal for 21 s before it
-  // captures it (26 s against 5.35 s); the plan here is the unsteered one.
-  // Likewise with the rigid body's load judged at its wheels (wheel_contact.hpp): 25.7 s
-  // against 5 s; the plan here is the point mass's (the simulation drives the same body).
-  LayeredNavigationOptions options;
-  options.navigation.simulation.tyre = TyreModel::kDugoff;
-  Vehicle vehicle = ugv();
-  vehicle.max_steering = std::numeric_limits<double>::infinity();
-  vehicle.model = VehicleModel::kPointMass;
+  // The UGV as its file describes it (brush tyres, steering limit, rigid body). Before the
+  // navigator captured the goal it needed Dugoff tyres, no steering limit on the plan and the
+  // point mass here: with any of those three the UGV passed the goal 0.85 m to the side and
+  // orbited it for 20 s or until the time limit.
+  const LayeredNavigationOptions options;
+  const Vehicle vehicle = ugv();
   const LayeredNavigationResult r = navigate_layered(fine, vehicle, start, goal, options);
   std::cout << r.brief_report();
   ASSERT_EQ(r.status, LayeredNavigationStatus::kReachedGoal) << r.message;

@@ -399,9 +399,10 @@ void bind_planner(py::module_& m) {
       .def(
           "__str__", [](PlannerStatus s) { return std::string(to_string(s)); }, py::prepend());
 
-  py::class_<LocalCertificate>(m, "LocalCertificate",
-                               "An optimum's local-optimality certificate "
-                               "(talus::certify_local_optimum; PlannerOptions(certify=True))")
+  py::class_<LocalCertificate>(
+      m, "LocalCertificate",
+      "An optimum's local-optimality certificate "
+      "(talus::certify_local_optimum; PlannerOptions.certify, on by default)")
       .def_readonly("certified", &LocalCertificate::certified)
       .def_readonly("rounds", &LocalCertificate::rounds)
       .def_readonly("radius", &LocalCertificate::radius, "[m]")

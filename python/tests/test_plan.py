@@ -199,12 +199,13 @@ def test_every_front_end_shows_the_same_declared_parameters(cli, west_bijou, rov
 def test_the_certificate_is_reported_per_optimum(west_bijou, rover):
     surface = talus.BPatch.interpolate(talus.read_esri_ascii(str(west_bijou)))
     problem = talus.PlanningProblem(surface, talus.load_vehicle(str(rover)), START, GOAL)
-    result = talus.plan(problem, talus.PlannerOptions(candidates=1, certify=True))
+    assert talus.PlannerOptions().certify  # on by default
+    result = talus.plan(problem, talus.PlannerOptions(candidates=1))
     assert result.status == talus.PlannerStatus.OK, result.brief_report()
     certificate = result.candidates[0].certificate
     assert certificate is not None and certificate.evaluations > 0
     assert certificate.radius == 0.25 * surface.cellsize
     assert certificate.improvement >= 0.0
-    plain = talus.plan(problem, talus.PlannerOptions(candidates=1))
+    plain = talus.plan(problem, talus.PlannerOptions(candidates=1, certify=False))
     assert result.candidates[0].certificate is not None and plain.candidates[0].certificate is None
     assert result.travel_time() <= plain.travel_time()

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <iostream>
-#include <limits>
 #include <string>
 
 #include "talus/core/elevation_grid.hpp"

@@ -32,7 +32,7 @@ TEST(PlannerParameters, EachParameterSetsItsMember) {
   t.set_text(o, "formulation", "simultaneous");
   t.set_text(o, "restarts", "0");
   t.set_text(o, "polish", "true");
-  t.set_text(o, "certify", "true");
+  t.set_text(o, "certify", "false");
   EXPECT_EQ(o.global.candidates, 5u);
   EXPECT_EQ(o.global.lattice_spacing, 0.5);
   EXPECT_EQ(o.global.connectivity, 32);
@@ -51,7 +51,7 @@ TEST(PlannerParameters, EachParameterSetsItsMember) {
   EXPECT_EQ(o.local.formulation, PathFormulation::kSimultaneous);
   EXPECT_EQ(o.local.restarts, 0u);
   EXPECT_TRUE(o.local.polish);
-  EXPECT_TRUE(o.certify);
+  EXPECT_FALSE(o.certify);
   // Every parameter was set above, to a value other than its default.
   const PlannerOptions defaults;
   std::set<std::string> changed;

@@ -43,6 +43,19 @@ struct Run {
   const Method* method = nullptr;
   LayeredNavigationResult result;
   bool reached() const { return result.status == LayeredNavigationStatus::kReachedGoal; }
+  /// A run that did not reach the goal because the lookahead held it still: its cap was
+  /// (nearly) 0 on at least 80 of its last 100 control ticks (1 s), so no speed was safe on
+  /// the manoeuvre ahead. The simulation then names what ended it (usually a stall: the
+  /// vehicle holding still on a slope) or the time limit does.
+  bool lookahead_stopped() const {
+    if (reached() || !result.navigation) return false;
+    const std::vector<double>& caps = result.navigation->lookahead_caps;
+    const std::size_t last = std::min<std::size_t>(caps.size(), 100);
+    if (last == 0) return false;
+    const auto stopped = std::count_if(caps.end() - static_cast<std::ptrdiff_t>(last), caps.end(),
+                                       [](double cap) { return cap < 0.05; });
+    return static_cast<std::size_t>(stopped) * 5 >= last * 4;
+  }
   bool planned() const { return result.status != LayeredNavigationStatus::kNoPlan; }
   /// The failure kind for results.csv: the simulation's for a failed run,
   /// "timeout", "no_plan", or empty when the goal was reached.
@@ -446,11 +459,22 @@ void run_iagnemma_table1(const ExperimentContext& context) {
             " terrains both methods cross, the near-optimal navigation takes " +
             cell(lookahead_cost, "%.1f") +
             " % longer than the standard one (mean; same plan and field, only the cap differs).");
+    std::size_t lookahead_stops = 0;
     for (const Run& r : runs)
-      if (!r.reached())
+      if (!r.reached()) {
+        lookahead_stops += r.lookahead_stopped() ? 1 : 0;
         report.bullet("seed " + std::to_string(r.seed) + ", " + r.method->name + ": " +
                       std::string(to_string(r.result.status)) +
-                      (r.result.message.empty() ? "" : ": " + r.result.message));
+                      (r.result.message.empty() ? "" : ": " + r.result.message) +
+                      (r.lookahead_stopped() ? " (held still by the lookahead: its cap was 0 for "
+                                               "the last second, no speed safe on the manoeuvre "
+                                               "ahead)"
+                                             : ""));
+      }
+    summary.set(prefix + "near_optimal_lookahead_stops", static_cast<double>(lookahead_stops),
+                "count",
+                "near-optimal runs that failed held still by the lookahead (cap 0 for their last "
+                "second): ground ahead that no speed can drive");
     for (const FigureLink& link : representative_figures(runs, battery, out)) links.push_back(link);
     for (const Run& r : runs) {
       plan_seconds += r.result.plan_seconds;

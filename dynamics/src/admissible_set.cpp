@@ -129,17 +129,23 @@ void intersect_friction_cone(AccelerationInterval& out, double T0, double Q0, do
   const double k = T0 * T0 + 2.0 * c * Q0 * T0 + Q0 * Q0 - m2 * R0 * R0;
   const double scale = std::max({std::abs(T0), std::abs(Q0), mu * std::abs(R0), 1e-300});
   const double disc = b * b - 4.0 * a * k;
+  // The roots r1 <= r2 of a u² + b u + k, stably: q = -(b + sign(b) sqrt(disc)) / 2, roots
+  // q/a and k/q; and the rounding slack round them.
+  const auto roots = [&](double& r1, double& r2, double& widen) {
+    const double root = std::sqrt(std::max(disc, 0.0));
+    const double q = -0.5 * (b + std::copysign(root, b));
+    r1 = q / a;
+    r2 = (q != 0.0) ? k / q : r1;
+    if (r1 > r2) std::swap(r1, r2);
+    widen = AdmissibleSet::kRounding * (1.0 + std::abs(r1) + std::abs(r2));
+  };
+  double r1 = 0.0, r2 = 0.0, widen = 0.0;
   if (a > 0.0) {
     if (disc < -AdmissibleSet::kRounding * scale * scale * std::max(a, 1.0)) {
       out.lower = kInfinity;
       return;
     }
-    // Stable roots: q = -(b + sign(b) sqrt(disc)) / 2, roots q/a and k/q.
-    const double root = std::sqrt(std::max(disc, 0.0));
-    const double q = -0.5 * (b + std::copysign(root, b));
-    double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
-    if (r1 > r2) std::swap(r1, r2);
-    const double widen = AdmissibleSet::kRounding * (1.0 + std::abs(r1) + std::abs(r2));
+    roots(r1, r2, widen);
     out.intersect(r1 - widen, r2 + widen);
   } else if (a == 0.0) {
     out.require_nonnegative(-k, -b);
@@ -147,11 +153,7 @@ void intersect_friction_cone(AccelerationInterval& out, double T0, double Q0, do
     // a < 0: the line crosses both nappes of the cone; the caller's conditions
     // keep u on the R >= 0 nappe, where the solution set is the outer piece
     // (-inf, r1] or [r2, inf) that they touch.
-    const double root = std::sqrt(disc);
-    const double q = -0.5 * (b + std::copysign(root, b));
-    double r1 = q / a, r2 = (q != 0.0) ? k / q : r1;
-    if (r1 > r2) std::swap(r1, r2);
-    const double widen = AdmissibleSet::kRounding * (1.0 + std::abs(r1) + std::abs(r2));
+    roots(r1, r2, widen);
     if (out.upper <= r1 + widen) {
       // already inside the lower piece
     } else if (out.lower >= r2 - widen) {

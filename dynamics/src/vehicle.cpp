@@ -165,14 +165,13 @@ Vehicle parse_vehicle(const std::string& yaml_text, const std::string& source) {
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>("");
     if (!kKnown.count(key)) {
-      throw InputError(source + ": unknown key '" + printable(key) +
-                       "' (known: model, gravity, friction, cg_height, half_track, "
-                       "half_wheelbase, max_speed, max_accel, max_decel, max_steering, "
-                       "contact_reserve, friction_reserve, drive_reserve, axle_friction; and for "
-                       "the "
-                       "simulation mass, "
-                       "inertia_roll, inertia_pitch, inertia_yaw, wheel_radius, "
-                       "suspension_stiffness, suspension_damping, cornering_stiffness)");
+      throw InputError(
+          source + ": unknown key '" + printable(key) +
+          "' (known: model, gravity, friction, cg_height, half_track, "
+          "half_wheelbase, max_speed, max_accel, max_decel, max_steering, "
+          "contact_reserve, friction_reserve, drive_reserve, axle_friction; and for "
+          "the simulation mass, inertia_roll, inertia_pitch, inertia_yaw, wheel_radius, "
+          "suspension_stiffness, suspension_damping, cornering_stiffness)");
     }
     seen.insert(key);
   }

@@ -21,14 +21,13 @@ void NavigationLookaheadOptions::validate() const {
     throw InputError("NavigationLookaheadOptions.safety_factor must be in (0, 1]");
 }
 
-double reduced_model_speed(const BPatch& surface, const Vehicle& vehicle, const Vec2& position,
-                           double heading, double speed, double commanded, double gain, double dt) {
-  double slope_sine = 0.0;
-  if (surface.contains(position)) {
-    const Vec2 gradient = surface.evaluate(position).gradient;
-    const double rise = gradient.x() * std::cos(heading) + gradient.y() * std::sin(heading);
-    slope_sine = rise / std::sqrt(1.0 + rise * rise);
-  }
+double slope_sine_along(const Vec2& gradient, double heading) {
+  const double rise = gradient.x() * std::cos(heading) + gradient.y() * std::sin(heading);
+  return rise / std::sqrt(1.0 + rise * rise);
+}
+
+double reduced_model_speed(const Vehicle& vehicle, double slope_sine, double speed,
+                           double commanded, double gain, double dt) {
   const double drive =
       std::clamp(gain * (commanded - speed), -vehicle.max_decel, vehicle.max_accel);
   return std::max(0.0, speed + (drive - vehicle.gravity * slope_sine) * dt);

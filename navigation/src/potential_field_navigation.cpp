@@ -242,21 +242,28 @@ class FieldNavigator {
     std::vector<Vec2> points = {cg};
     std::vector<double> speeds = {speed};
     for (std::size_t k = 0; k < steps; ++k) {
-      if (k > 0) {
-        if (!surface.contains(cg)) break;
+      // The ground under the predicted c.g., once per step: the field's gravity inputs (from
+      // the second step on: the first is the actual state's) and the slope the speed feels.
+      double slope_sine = 0.0;
+      if (surface.contains(cg)) {
         const SurfacePoint z = surface.evaluate(cg);
-        const Vec3 normal = Vec3(-z.gradient.x(), -z.gradient.y(), 1.0).normalized();
-        const Vec3 along =
-            Vec3(std::cos(heading), std::sin(heading),
-                 z.gradient.x() * std::cos(heading) + z.gradient.y() * std::sin(heading))
-                .normalized();
-        const Vec3 left = normal.cross(along);
-        const TrajectorySpaceInputs in = inputs_at(cg, Vec2(std::cos(heading), std::sin(heading)),
-                                                   -g * left.z(), g * normal.z(), waypoint, seen);
-        command = descend(in, command, rng, options.descent);
+        slope_sine = slope_sine_along(z.gradient, heading);
+        if (k > 0) {
+          const Vec3 normal = Vec3(-z.gradient.x(), -z.gradient.y(), 1.0).normalized();
+          const Vec3 along =
+              Vec3(std::cos(heading), std::sin(heading),
+                   z.gradient.x() * std::cos(heading) + z.gradient.y() * std::sin(heading))
+                  .normalized();
+          const Vec3 left = normal.cross(along);
+          const TrajectorySpaceInputs in = inputs_at(cg, Vec2(std::cos(heading), std::sin(heading)),
+                                                     -g * left.z(), g * normal.z(), waypoint, seen);
+          command = descend(in, command, rng, options.descent);
+        }
+      } else if (k > 0) {
+        break;
       }
-      speed = reduced_model_speed(surface, vehicle, cg, heading, speed, command.speed,
-                                  options.speed_kp, ahead.step);
+      speed = reduced_model_speed(vehicle, slope_sine, speed, command.speed, options.speed_kp,
+                                  ahead.step);
       heading += speed * command.curvature * ahead.step;
       cg += speed * ahead.step * Vec2(std::cos(heading), std::sin(heading));
       points.push_back(cg);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <unsupported/Eigen/AutoDiff>
 
 #include "step_controls.hpp"
@@ -67,18 +68,25 @@ S constraint(Kind kind, const ForceCondition* condition, double coupling, const 
 }
 
 /// The friction ellipse (with the coupling 2 `coupling` f_t f_q) of a station along the
-/// step's line x = y0 + β u, as A u² + B u + K <= 0 (as in AdmissibleSet::accelerations_along);
-/// returns u + B / (2 A), zero at the double root.
+/// step's line x = y0 + β u, as A u² + B u + K <= 0 (as in AdmissibleSet::accelerations_along):
+/// its A and B.
 template <typename S>
-S tangent_control(const AdmissibleSet& c, double coupling, const S& y0, const S& beta, const S& u,
-                  const S* G) {
+std::pair<S, S> ellipse_along_line(const AdmissibleSet& c, double coupling, const S& y0,
+                                   const S& beta, const S* G) {
   const double g = c.gravity();
   const S R0 = g * G[4] + G[0] * y0, R1 = G[0] * beta;
   const S Q0 = g * G[3] + G[1] * y0, Q1 = G[1] * beta;
   const S T0 = g * G[2];
   const double m2 = c.friction() * c.friction();
-  const S A = 1.0 + 2.0 * coupling * Q1 + Q1 * Q1 - m2 * R1 * R1;
-  const S B = 2.0 * (T0 + coupling * (Q0 + Q1 * T0) + Q0 * Q1 - m2 * R0 * R1);
+  return {1.0 + 2.0 * coupling * Q1 + Q1 * Q1 - m2 * R1 * R1,
+          2.0 * (T0 + coupling * (Q0 + Q1 * T0) + Q0 * Q1 - m2 * R0 * R1)};
+}
+
+/// u + B / (2 A) of ellipse_along_line: zero at the double root.
+template <typename S>
+S tangent_control(const AdmissibleSet& c, double coupling, const S& y0, const S& beta, const S& u,
+                  const S* G) {
+  const auto [A, B] = ellipse_along_line(c, coupling, y0, beta, G);
   return u + B / (2.0 * A);
 }
 
@@ -218,11 +226,7 @@ class Problem {
     const bool far_end = station == j + 1;
     const double y0 = far_end ? x_[j] : x_[j + 1];
     const double beta = (far_end ? 2.0 : -2.0) * length(j);
-    const double R0 = c_.gravity() * G[4] + G[0] * y0, R1 = G[0] * beta;
-    const double Q0 = c_.gravity() * G[3] + G[1] * y0, Q1 = G[1] * beta;
-    const double T0 = c_.gravity() * G[2], m2 = c_.friction() * c_.friction();
-    const double A = 1.0 + 2.0 * coupling * Q1 + Q1 * Q1 - m2 * R1 * R1;
-    const double B = 2.0 * (T0 + coupling * (Q0 + Q1 * T0) + Q0 * Q1 - m2 * R0 * R1);
+    const auto [A, B] = ellipse_along_line<double>(c_, coupling, y0, beta, G.data());
     const double slope = 2.0 * A * u + B;  // d/du of the ellipse along the line
     return std::abs(slope) <=
            kTangentTolerance * (std::abs(B) + std::abs(2.0 * A * u) + scale(station, u));

@@ -181,21 +181,23 @@ TEST(NavigationLookahead, TheReducedModelFeelsGravityAlongTheGround) {
   const BPatch ground = BPatch::interpolate(generate_plane(plane));
   const Vehicle vehicle = ugv();
   const double along = vehicle.gravity * std::sin(plane.slope), dt = 0.05, gain = 4.0;
-  const Vec2 here(10.0, 10.0);
+  const Vec2 gradient = ground.evaluate(Vec2(10.0, 10.0)).gradient;
+  const auto step = [&](double heading, double speed, double commanded) {
+    return reduced_model_speed(vehicle, slope_sine_along(gradient, heading), speed, commanded, gain,
+                               dt);
+  };
   // Holding speed (no speed error): only gravity.
-  EXPECT_NEAR(reduced_model_speed(ground, vehicle, here, 0.0, 2.0, 2.0, gain, dt), 2.0 - along * dt,
-              1e-9);
-  EXPECT_NEAR(reduced_model_speed(ground, vehicle, here, 0.5 * kPi, 2.0, 2.0, gain, dt), 2.0, 1e-9);
-  EXPECT_NEAR(reduced_model_speed(ground, vehicle, here, kPi, 2.0, 2.0, gain, dt), 2.0 + along * dt,
-              1e-9);
+  EXPECT_NEAR(step(0.0, 2.0, 2.0), 2.0 - along * dt, 1e-9);
+  EXPECT_NEAR(step(0.5 * kPi, 2.0, 2.0), 2.0, 1e-9);
+  EXPECT_NEAR(step(kPi, 2.0, 2.0), 2.0 + along * dt, 1e-9);
   // Asking for far more: the drive limit, then gravity.
-  const double climb = reduced_model_speed(ground, vehicle, here, 0.0, 2.0, 6.0, gain, dt);
+  const double climb = step(0.0, 2.0, 6.0);
   EXPECT_NEAR(climb, 2.0 + (vehicle.max_accel - along) * dt, 1e-9);
   EXPECT_LT(climb, 2.0);
-  // Never backwards; off the surface, level.
-  EXPECT_EQ(reduced_model_speed(ground, vehicle, here, 0.0, 0.0, 0.0, gain, dt), 0.0);
-  EXPECT_NEAR(reduced_model_speed(ground, vehicle, Vec2(-50, 0), 0.0, 2.0, 2.0, gain, dt), 2.0,
-              1e-12);
+  // Never backwards; level ground (off the surface the navigator passes 0), no gravity.
+  EXPECT_EQ(step(0.0, 0.0, 0.0), 0.0);
+  EXPECT_EQ(slope_sine_along(Vec2::Zero(), 1.0), 0.0);
+  EXPECT_NEAR(reduced_model_speed(vehicle, 0.0, 2.0, 2.0, gain, dt), 2.0, 1e-12);
 }
 
 // A prediction turning at the UGV's steering limit (the bicycle saturated): the cubic through

@@ -51,13 +51,17 @@ struct NavigationLookaheadOptions {
   void validate() const;
 };
 
+/// sin α of the ground's slope α in the direction `heading` [rad, counter-clockwise from
+/// east] where the surface's gradient is `gradient` (positive uphill).
+double slope_sine_along(const Vec2& gradient, double heading);
+
 /// One step `dt` [s] (> 0) of the reduced model's speed [m/s]: from `speed`,
 /// the speed loop's acceleration gain (commanded − speed) clipped to
-/// [−max_decel, max_accel], less g sin α where α is the ground's slope at
-/// `position` in the direction `heading` [rad, counter-clockwise from east]
-/// (0 off the surface); never below 0 (the model does not roll backwards).
-double reduced_model_speed(const BPatch& surface, const Vehicle& vehicle, const Vec2& position,
-                           double heading, double speed, double commanded, double gain, double dt);
+/// [−max_decel, max_accel], less g `slope_sine` (slope_sine_along at the
+/// predicted position; 0 off the surface); never below 0 (the model does not
+/// roll backwards).
+double reduced_model_speed(const Vehicle& vehicle, double slope_sine, double speed,
+                           double commanded, double gain, double dt);
 
 /// The maximum safe speed [m/s] at each of `points` (a predicted path, at
 /// least 2 points, consecutive ones distinct) for `vehicle` on `surface`:
